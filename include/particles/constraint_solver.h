@@ -1,0 +1,75 @@
+#pragma once
+// The constraint solve: with forces Q accumulated, find λ from
+//   (J W Jᵀ) λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ
+// and add the constraint force Q̂ = Jᵀ λ. J W Jᵀ is never formed: it is applied
+// as an operator from the per-constraint blocks and the system is solved by
+// (preconditioned) conjugate gradient.
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "particles/constraint.h"
+
+namespace particles {
+
+enum class Preconditioner {
+  None,    // plain CG
+  Jacobi,  // diagonal of J W Jᵀ, which the blocks give at no extra cost
+};
+
+struct SolverSettings {
+  double tolerance = 1e-8;       // stop when |r| ≤ tolerance·|b| (relative residual)
+  int maxIterations = 0;         // CG iteration cap; 0 means 4m + 100 for m constraints
+  double stiffness = 60.0;       // k_s of the feedback term, 1/s² (squared-rod units aside)
+  double damping = 10.0;         // k_d of the feedback term, 1/s
+  bool warmStart = true;         // start CG from the previous λ
+  Preconditioner preconditioner = Preconditioner::Jacobi;
+
+  void validate() const;  // throws naming the bad field
+};
+
+struct SolveStats {
+  int constraints = 0;     // m
+  int iterations = 0;      // CG iterations of the last solve
+  double residual = 0.0;   // relative residual |r|/|b| at exit (0 when b = 0)
+};
+
+using ConstraintList = std::vector<std::unique_ptr<Constraint>>;
+
+class ConstraintSolver {
+ public:
+  SolverSettings settings;
+
+  // Adds Jᵀλ to f, where f holds the accumulated forces Q on entry.
+  void addConstraintForces(const Phase& s, const ConstraintList& constraints, Eigen::VectorXd& f);
+
+  const SolveStats& stats() const { return stats_; }
+  const Eigen::VectorXd& lambda() const { return lambda_; }
+  void resetWarmStart() { lambda_.resize(0); }
+
+  // The pieces of the last solve, for tests: the gathered rows as dense J and
+  // J̇ (m × 2n), the right-hand side b, and A·y = J W Jᵀ y applied matrix-free.
+  Eigen::MatrixXd denseJ(int particleCount) const;
+  Eigen::MatrixXd denseJdot(int particleCount) const;
+  const Eigen::VectorXd& rhs() const { return b_; }
+  void applyOperator(const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
+
+ private:
+  void gather(const Phase& s, const ConstraintList& constraints);
+  int conjugateGradient(double& relativeResidual);
+
+  // Rows in compressed form: entries rowStart_[k] .. rowStart_[k+1]−1 belong
+  // to constraint k; each entry is one particle with its J and J̇ blocks.
+  std::vector<int> rowStart_;
+  std::vector<int> entryParticle_;
+  std::vector<Eigen::Vector2d> J_, Jdot_;
+  Eigen::VectorXd C_, Cdot_, b_, lambda_, diagonal_;
+  const Eigen::VectorXd* inverseMass_ = nullptr;
+  // CG scratch, kept to avoid allocation in the step loop.
+  Eigen::VectorXd r_, z_, p_, Ap_;
+  mutable Eigen::VectorXd scatter_;  // W Jᵀ y inside applyOperator
+  SolveStats stats_;
+};
+
+}  // namespace particles

@@ -1,0 +1,109 @@
+#pragma once
+// State (q, q̇, force accumulator, inverse masses), the force and constraint
+// objects acting on it, and the derivative evaluation that integrators drive.
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "particles/collision.h"
+#include "particles/constraint.h"
+#include "particles/constraint_solver.h"
+#include "particles/force.h"
+#include "particles/integrator.h"
+
+namespace particles {
+
+// A copy of the dynamic state, for rewinding.
+struct Snapshot {
+  Eigen::VectorXd x, v;
+  double time = 0.0;
+};
+
+class ParticleSystem {
+ public:
+  // --- building -----------------------------------------------------------
+  // Returns the new particle's index. mass must be finite and > 0.
+  int addParticle(const Eigen::Vector2d& position, double mass,
+                  const Eigen::Vector2d& velocity = Eigen::Vector2d::Zero());
+  // Adds many particles at rest with one reallocation (large cloths); returns
+  // the index of the first.
+  int addParticles(const std::vector<Eigen::Vector2d>& positions, const std::vector<double>& masses);
+  // A pinned particle has inverse mass 0 and never moves; pinning zeroes its velocity.
+  void setPinned(int i, bool pinned);
+  bool pinned(int i) const { return inverseMass_[i] == 0.0; }
+  // Makes particle i a disc of the given radius (> 0) for particle–particle contact.
+  void setCollidable(int i, double radius);
+  bool collidable(int i) const { return radius_[i] > 0.0; }
+
+  // Take ownership; throw std::invalid_argument if an index is out of range.
+  Force& addForce(std::unique_ptr<Force> force);
+  Constraint& addConstraint(std::unique_ptr<Constraint> constraint);
+  void addWall(const Wall& wall);
+  // Removes a force previously added (e.g. the mouse spring on release).
+  void removeForce(const Force* force);
+
+  // --- state --------------------------------------------------------------
+  int size() const { return static_cast<int>(mass_.size()); }
+  Eigen::VectorXd& positions() { return x_; }
+  Eigen::VectorXd& velocities() { return v_; }
+  const Eigen::VectorXd& positions() const { return x_; }
+  const Eigen::VectorXd& velocities() const { return v_; }
+  Eigen::Vector2d position(int i) const { return x_.segment<2>(2 * i); }
+  Eigen::Vector2d velocity(int i) const { return v_.segment<2>(2 * i); }
+  const Eigen::VectorXd& masses() const { return mass_; }
+  const Eigen::VectorXd& inverseMasses() const { return inverseMass_; }
+  const Eigen::VectorXd& radii() const { return radius_; }
+  // Force accumulator Q + Q̂ of the last evaluation (2n).
+  const Eigen::VectorXd& forces() const { return f_; }
+  double time() const { return time_; }
+  Phase phase() const { return {x_, v_, mass_, inverseMass_}; }
+  Phase phase(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
+    return {x, v, mass_, inverseMass_};
+  }
+
+  Snapshot snapshot() const { return {x_, v_, time_}; }
+  void restore(const Snapshot& s);
+
+  const std::vector<std::unique_ptr<Force>>& forceObjects() const { return forces_; }
+  const ConstraintList& constraints() const { return constraints_; }
+  const std::vector<Wall>& walls() const { return walls_; }
+
+  ConstraintSolver& solver() { return solver_; }
+  const ConstraintSolver& solver() const { return solver_; }
+  ParticleContacts& particleContacts() { return contacts_; }
+  const ParticleContacts& particleContacts() const { return contacts_; }
+
+  // --- dynamics -----------------------------------------------------------
+  // q̈ at (x, v): clear forces → apply forces → solve λ → add Jᵀλ → a = W(Q + Q̂).
+  // The constraint solve is skipped when there are no constraints.
+  void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a);
+
+  // One step: integrate by dt, then resolve collisions (skipped without
+  // colliders), then advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
+  void step(Integrator& integrator, double dt);
+
+  // --- diagnostics --------------------------------------------------------
+  double kineticEnergy() const;
+  double potentialEnergy() const;  // sum over forces that have a potential
+  double totalEnergy() const { return kineticEnergy() + potentialEnergy(); }
+  double maxConstraintError() const;          // max violation, world units
+  double maxRelativeConstraintError() const;  // max violation / length scale
+  const SolveStats& lastSolve() const { return solver_.stats(); }
+  bool finite() const;  // every position and velocity finite
+  int contactsLastStep() const { return contactsLastStep_; }
+
+ private:
+  Eigen::VectorXd x_, v_, f_;
+  Eigen::VectorXd mass_, inverseMass_, radius_;
+  double time_ = 0.0;
+  std::vector<std::unique_ptr<Force>> forces_;
+  ConstraintList constraints_;
+  std::vector<Wall> walls_;
+  std::vector<int> collidable_;
+  ConstraintSolver solver_;
+  ParticleContacts contacts_;
+  int contactsLastStep_ = 0;
+};
+
+}  // namespace particles

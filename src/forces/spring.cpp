@@ -1,0 +1,76 @@
+#include "particles/forces/spring.h"
+
+#include "particles/check.h"
+
+namespace particles {
+
+Eigen::Vector2d springForce(const Eigen::Vector2d& l, const Eigen::Vector2d& ldot, double rest,
+                            double stiffness, double damping) {
+  const double length = l.norm();
+  if (length == 0.0) return Eigen::Vector2d::Zero();  // direction undefined
+  const Eigen::Vector2d u = l / length;
+  return -(stiffness * (length - rest) + damping * ldot.dot(u)) * u;
+}
+
+// With u = l/|l|, P = I − u uᵀ and s = k_s(|l| − r) + k_d l̇·u:
+//   f = −s u,  ∂u/∂l = P/|l|,  ∂(l̇·u)/∂l = P l̇/|l|,
+//   ∂f/∂l = −k_s u uᵀ − s P/|l| − k_d u (P l̇)ᵀ/|l|,   ∂f/∂l̇ = −k_d u uᵀ.
+void springJacobian(const Eigen::Vector2d& l, const Eigen::Vector2d& ldot, double rest,
+                    double stiffness, double damping, Eigen::Matrix2d& dfdl,
+                    Eigen::Matrix2d& dfdldot) {
+  const double length = l.norm();
+  if (length == 0.0) {
+    dfdl.setZero();
+    dfdldot.setZero();
+    return;
+  }
+  const Eigen::Vector2d u = l / length;
+  const Eigen::Matrix2d uu = u * u.transpose();
+  const Eigen::Matrix2d P = Eigen::Matrix2d::Identity() - uu;
+  const double s = stiffness * (length - rest) + damping * ldot.dot(u);
+  dfdl = -stiffness * uu - (s / length) * P - (damping / length) * u * (P * ldot).transpose();
+  dfdldot = -damping * uu;
+}
+
+SpringForce::SpringForce(int i, int j, double restLength, double stiffness, double damping)
+    : i_(i), j_(j), rest_(restLength), stiffness_(stiffness), damping_(damping) {
+  requirePositive("spring rest length", restLength);
+  requireNonNegative("spring stiffness", stiffness);
+  requireNonNegative("spring damping", damping);
+  if (i == j) throw std::invalid_argument("spring joins particle " + std::to_string(i) + " to itself");
+}
+
+void SpringForce::apply(const Phase& s, Eigen::VectorXd& f) const {
+  const Eigen::Vector2d fi = springForce(s.position(i_) - s.position(j_),
+                                         s.velocity(i_) - s.velocity(j_), rest_, stiffness_, damping_);
+  f.segment<2>(2 * i_) += fi;
+  f.segment<2>(2 * j_) -= fi;
+}
+
+double SpringForce::potential(const Phase& s) const {
+  const double stretch = (s.position(i_) - s.position(j_)).norm() - rest_;
+  return 0.5 * stiffness_ * stretch * stretch;
+}
+
+void SpringForce::addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const {
+  Eigen::Matrix2d dl, dldot;
+  springJacobian(s.position(i_) - s.position(j_), s.velocity(i_) - s.velocity(j_), rest_,
+                 stiffness_, damping_, dl, dldot);
+  // f_i depends on x_i with +∂f/∂l and on x_j with −∂f/∂l; f_j = −f_i.
+  const int idx[2] = {i_, j_};
+  const double sign[2] = {1.0, -1.0};
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) {
+          const double s2 = sign[a] * sign[b];
+          dfdx.emplace_back(2 * idx[a] + r, 2 * idx[b] + c, s2 * dl(r, c));
+          if (damping_ != 0.0) dfdv.emplace_back(2 * idx[a] + r, 2 * idx[b] + c, s2 * dldot(r, c));
+        }
+}
+
+void SpringForce::sketch(const Phase& s, Sketch& out) const {
+  out.lines.push_back({s.position(i_), s.position(j_)});
+}
+
+}  // namespace particles

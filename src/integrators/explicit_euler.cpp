@@ -1,0 +1,16 @@
+#include "particles/integrators/explicit_euler.h"
+
+#include "particles/particle_system.h"
+
+namespace particles {
+
+void ExplicitEulerIntegrator::step(ParticleSystem& system, double dt) {
+  Eigen::VectorXd& x = system.positions();
+  Eigen::VectorXd& v = system.velocities();
+  system.acceleration(x, v, a_);
+  x += dt * v;
+  v += dt * a_;
+  lastStep_ = dt;
+}
+
+}  // namespace particles

@@ -1,0 +1,19 @@
+#include "particles/integrators/midpoint.h"
+
+#include "particles/particle_system.h"
+
+namespace particles {
+
+void MidpointIntegrator::step(ParticleSystem& system, double dt) {
+  Eigen::VectorXd& x = system.positions();
+  Eigen::VectorXd& v = system.velocities();
+  system.acceleration(x, v, a_);
+  xMid_ = x + (0.5 * dt) * v;
+  vMid_ = v + (0.5 * dt) * a_;
+  system.acceleration(xMid_, vMid_, a_);
+  x += dt * vMid_;
+  v += dt * a_;
+  lastStep_ = dt;
+}
+
+}  // namespace particles

@@ -1,0 +1,16 @@
+#include "particles/integrators/symplectic_euler.h"
+
+#include "particles/particle_system.h"
+
+namespace particles {
+
+void SymplecticEulerIntegrator::step(ParticleSystem& system, double dt) {
+  Eigen::VectorXd& x = system.positions();
+  Eigen::VectorXd& v = system.velocities();
+  system.acceleration(x, v, a_);
+  v += dt * a_;
+  x += dt * v;
+  lastStep_ = dt;
+}
+
+}  // namespace particles

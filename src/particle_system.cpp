@@ -1,0 +1,143 @@
+#include "particles/particle_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "particles/check.h"
+
+namespace particles {
+
+int ParticleSystem::addParticle(const Eigen::Vector2d& position, double mass,
+                                const Eigen::Vector2d& velocity) {
+  const int i = addParticles({position}, {mass});
+  requireFinite("particle velocity.x", velocity.x());
+  requireFinite("particle velocity.y", velocity.y());
+  v_.segment<2>(2 * i) = velocity;
+  return i;
+}
+
+int ParticleSystem::addParticles(const std::vector<Eigen::Vector2d>& positions,
+                                 const std::vector<double>& masses) {
+  if (positions.size() != masses.size())
+    throw std::invalid_argument("addParticles needs one mass per position");
+  for (std::size_t k = 0; k < positions.size(); ++k) {
+    requireFinite("particle position.x", positions[k].x());
+    requireFinite("particle position.y", positions[k].y());
+    requirePositive("particle mass", masses[k]);
+  }
+  const int first = size(), n = first + static_cast<int>(positions.size());
+  x_.conservativeResize(2 * n);
+  v_.conservativeResize(2 * n);
+  f_.conservativeResize(2 * n);
+  mass_.conservativeResize(n);
+  inverseMass_.conservativeResize(n);
+  radius_.conservativeResize(n);
+  for (int i = first; i < n; ++i) {
+    x_.segment<2>(2 * i) = positions[i - first];
+    v_.segment<2>(2 * i).setZero();
+    f_.segment<2>(2 * i).setZero();
+    mass_[i] = masses[i - first];
+    inverseMass_[i] = 1.0 / mass_[i];
+    radius_[i] = 0.0;
+  }
+  return first;
+}
+
+void ParticleSystem::setPinned(int i, bool pin) {
+  requireIndex("setPinned", i, size());
+  inverseMass_[i] = pin ? 0.0 : 1.0 / mass_[i];
+  if (pin) v_.segment<2>(2 * i).setZero();
+}
+
+void ParticleSystem::setCollidable(int i, double radius) {
+  requireIndex("setCollidable", i, size());
+  requirePositive("particle radius", radius);
+  if (radius_[i] == 0.0) collidable_.push_back(i);
+  radius_[i] = radius;
+}
+
+Force& ParticleSystem::addForce(std::unique_ptr<Force> force) {
+  for (int i : force->particles()) requireIndex(force->type(), i, size());
+  forces_.push_back(std::move(force));
+  return *forces_.back();
+}
+
+Constraint& ParticleSystem::addConstraint(std::unique_ptr<Constraint> constraint) {
+  for (int i : constraint->particles()) requireIndex(constraint->type(), i, size());
+  constraints_.push_back(std::move(constraint));
+  solver_.resetWarmStart();
+  return *constraints_.back();
+}
+
+void ParticleSystem::addWall(const Wall& wall) {
+  wall.validate();
+  walls_.push_back(wall);
+}
+
+void ParticleSystem::removeForce(const Force* force) {
+  forces_.erase(std::remove_if(forces_.begin(), forces_.end(),
+                               [&](const std::unique_ptr<Force>& f) { return f.get() == force; }),
+                forces_.end());
+}
+
+void ParticleSystem::restore(const Snapshot& s) {
+  if (s.x.size() != x_.size() || s.v.size() != v_.size())
+    throw std::invalid_argument("snapshot was taken of a system of another size");
+  x_ = s.x;
+  v_ = s.v;
+  time_ = s.time;
+  solver_.resetWarmStart();
+}
+
+void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& a) {
+  const Phase s = phase(x, v);
+  f_.setZero(x.size());
+  for (const auto& force : forces_) force->apply(s, f_);
+  if (!constraints_.empty()) solver_.addConstraintForces(s, constraints_, f_);
+  a.resize(x.size());
+  for (int i = 0; i < size(); ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
+}
+
+void ParticleSystem::step(Integrator& integrator, double dt) {
+  requirePositive("dt", dt);
+  integrator.step(*this, dt);
+  if (!walls_.empty()) resolveWallContacts(walls_, inverseMass_, radius_, x_, v_);
+  contactsLastStep_ =
+      collidable_.size() > 1 ? contacts_.resolve(collidable_, inverseMass_, radius_, x_, v_) : 0;
+  time_ += dt;
+}
+
+double ParticleSystem::kineticEnergy() const {
+  double e = 0.0;
+  for (int i = 0; i < size(); ++i)
+    if (inverseMass_[i] > 0.0) e += 0.5 * mass_[i] * v_.segment<2>(2 * i).squaredNorm();
+  return e;
+}
+
+double ParticleSystem::potentialEnergy() const {
+  const Phase s = phase();
+  double e = 0.0;
+  for (const auto& force : forces_)
+    if (force->hasPotential()) e += force->potential(s);
+  return e;
+}
+
+double ParticleSystem::maxConstraintError() const {
+  const Phase s = phase();
+  double worst = 0.0;
+  for (const auto& c : constraints_) worst = std::max(worst, c->violation(s));
+  return worst;
+}
+
+double ParticleSystem::maxRelativeConstraintError() const {
+  const Phase s = phase();
+  double worst = 0.0;
+  for (const auto& c : constraints_)
+    if (c->lengthScale() > 0.0) worst = std::max(worst, c->violation(s) / c->lengthScale());
+  return worst;
+}
+
+bool ParticleSystem::finite() const { return x_.allFinite() && v_.allFinite(); }
+
+}  // namespace particles
