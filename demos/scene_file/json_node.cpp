@@ -58,30 +58,29 @@ void JsonNode::allowOnly(std::initializer_list<const char*> keys) const {
   }
 }
 
-double JsonNode::number() const {
-  const Json& v = require(value_ && value_->is_number(), "a finite number");
+double JsonNode::numberWhere(const std::string& what, bool (*ok)(double, double, double), double lo,
+                             double hi) const {
+  const Json& v = require(value_ && value_->is_number(), what.c_str());
   const double x = v.get<double>();
-  if (!std::isfinite(x)) expected("a finite number");
+  if (!std::isfinite(x) || !ok(x, lo, hi)) expected(what);
   return x;
+}
+
+double JsonNode::number() const {
+  return numberWhere("a finite number", [](double, double, double) { return true; });
 }
 
 double JsonNode::positive() const {
-  const double x = number();
-  if (!(x > 0.0)) expected("a number > 0");
-  return x;
+  return numberWhere("a number > 0", [](double x, double, double) { return x > 0.0; });
 }
 
 double JsonNode::nonNegative() const {
-  const double x = number();
-  if (!(x >= 0.0)) expected("a number >= 0");
-  return x;
+  return numberWhere("a number >= 0", [](double x, double, double) { return x >= 0.0; });
 }
 
 double JsonNode::inRange(double lo, double hi) const {
-  const double x = number();
-  if (!(x >= lo && x <= hi))
-    expected("a number in [" + particles::formatValue(lo) + ", " + particles::formatValue(hi) + "]");
-  return x;
+  return numberWhere("a number in [" + particles::formatValue(lo) + ", " + particles::formatValue(hi) + "]",
+                     [](double x, double a, double b) { return x >= a && x <= b; }, lo, hi);
 }
 
 int JsonNode::integer(int lo, int hi) const {

@@ -57,6 +57,9 @@ class JsonNode {
 
  private:
   const Json& require(bool ok, const char* what) const;
+  // A finite number for which ok(x, lo, hi) holds, or an error naming what.
+  double numberWhere(const std::string& what, bool (*ok)(double, double, double), double lo = 0.0,
+                     double hi = 0.0) const;
   const Json* value_;
   std::string path_;
 };

@@ -1,5 +1,7 @@
 #include "scene_file/scene_file.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -140,6 +142,25 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   return scene;
 }
 
+// nlohmann's what() reads "[json.exception.parse_error.101] parse error at ...".
+std::string withoutExceptionId(const char* what) {
+  const char* detail = std::strstr(what, "] ");
+  return detail ? detail + 2 : what;
+}
+
+// NaN and Infinity are not JSON numbers; say so rather than "invalid literal".
+std::string describeParseError(const std::string& text, const Json::parse_error& e) {
+  std::size_t start = std::min<std::size_t>(e.byte, text.size());
+  while (start > 0 && std::isalpha(static_cast<unsigned char>(text[start - 1]))) --start;
+  std::string word;
+  for (std::size_t k = start; k < text.size() && std::isalpha(static_cast<unsigned char>(text[k])); ++k)
+    word += static_cast<char>(std::tolower(static_cast<unsigned char>(text[k])));
+  const std::string where = "a " + withoutExceptionId(e.what());
+  if (word == "nan" || word == "infinity" || word == "inf")
+    return "'" + text.substr(start, word.size()) + "', which is not a JSON number (write a finite number), in " + where;
+  return where;
+}
+
 }  // namespace
 
 Scene readScene(const std::string& text, const std::string& source) {
@@ -147,9 +168,9 @@ Scene readScene(const std::string& text, const std::string& source) {
   try {
     document = Json::parse(text);
   } catch (const Json::parse_error& e) {
-    // e.what() reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
-    const char* detail = std::strstr(e.what(), "] ");
-    throw SceneFileError(source + ": $: expected valid JSON, got a " + (detail ? detail + 2 : e.what()));
+    throw SceneFileError(source + ": $: expected valid JSON, got " + describeParseError(text, e));
+  } catch (const Json::exception& e) {  // a number too large for a double
+    throw SceneFileError(source + ": $: expected valid JSON, got a " + withoutExceptionId(e.what()));
   }
   try {
     return readDocument(JsonNode(&document, "$"), source);
