@@ -1,5 +1,6 @@
 #include "scene_file/json_node.h"
 
+#include <cctype>
 #include <cmath>
 
 #include "particles/check.h"
@@ -14,6 +15,13 @@ std::string describe(const Json* value) {
   std::string text = value->dump(-1, ' ', false, Json::error_handler_t::replace);
   if (text.size() > 40) text = text.substr(0, 37) + "...";
   return text;
+}
+// ".key" for a plain name, else ["key"] escaped as JSON, so that a path stays
+// on one line whatever a key holds.
+std::string member(const std::string& key) {
+  bool plain = !key.empty();
+  for (char c : key) plain = plain && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+  return plain ? "." + key : "[" + Json(key).dump(-1, ' ', false, Json::error_handler_t::replace) + "]";
 }
 }  // namespace
 
@@ -31,7 +39,7 @@ const Json& JsonNode::require(bool ok, const char* what) const {
 JsonNode JsonNode::operator[](const char* key) const {
   const Json& object = require(value_ && value_->is_object(), "an object");
   const auto it = object.find(key);
-  return JsonNode(it == object.end() ? nullptr : &*it, path_ + "." + key);
+  return JsonNode(it == object.end() ? nullptr : &*it, path_ + member(key));
 }
 
 JsonNode JsonNode::operator[](std::size_t index) const {
