@@ -148,27 +148,34 @@ std::string withoutExceptionId(const char* what) {
   return detail ? detail + 2 : what;
 }
 
-// NaN and Infinity are not JSON numbers; say so rather than "invalid literal".
-std::string describeParseError(const std::string& text, const Json::parse_error& e) {
-  std::size_t start = std::min<std::size_t>(e.byte, text.size());
-  while (start > 0 && std::isalpha(static_cast<unsigned char>(text[start - 1]))) --start;
-  std::string word;
-  for (std::size_t k = start; k < text.size() && std::isalpha(static_cast<unsigned char>(text[k])); ++k)
-    word += static_cast<char>(std::tolower(static_cast<unsigned char>(text[k])));
-  const std::string where = "a " + withoutExceptionId(e.what());
-  if (word == "nan" || word == "infinity" || word == "inf")
-    return "'" + text.substr(start, word.size()) + "', which is not a JSON number (write a finite number), in " + where;
-  return where;
+// The bare word (NaN, Infinity, -inf, ...) at which parsing stopped, with its
+// sign, as [start, start + length) of text; length 0 when there is none.
+std::pair<std::size_t, std::size_t> nonNumberAt(const std::string& text, std::size_t byte) {
+  const auto alpha = [&](std::size_t k) { return std::isalpha(static_cast<unsigned char>(text[k])) != 0; };
+  std::size_t start = std::min(byte, text.size()), end = start;
+  while (start > 0 && alpha(start - 1)) --start;
+  while (end < text.size() && alpha(end)) ++end;
+  std::string word = text.substr(start, end - start);
+  for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (word != "nan" && word != "inf" && word != "infinity") return {start, 0};
+  if (start > 0 && (text[start - 1] == '-' || text[start - 1] == '+')) --start;
+  return {start, end - start};
 }
 
-}  // namespace
-
-Scene readScene(const std::string& text, const std::string& source) {
+Scene readText(const std::string& text, const std::string& source, bool locateNonNumbers) {
   Json document;
   try {
     document = Json::parse(text);
   } catch (const Json::parse_error& e) {
-    throw SceneFileError(source + ": $: expected valid JSON, got " + describeParseError(text, e));
+    const auto [start, length] = nonNumberAt(text, e.byte);
+    if (locateNonNumbers && length > 0) {
+      // JSON cannot hold NaN or Infinity. Read the file again with the word as
+      // a string, so that the error names the JSON path of the value.
+      std::string quoted = text;
+      quoted.replace(start, length, "\"" + text.substr(start, length) + " (not a JSON number)\"");
+      readText(quoted, source, false);
+    }
+    throw SceneFileError(source + ": $: expected valid JSON, got a " + withoutExceptionId(e.what()));
   } catch (const Json::exception& e) {  // a number too large for a double
     throw SceneFileError(source + ": $: expected valid JSON, got a " + withoutExceptionId(e.what()));
   }
@@ -178,6 +185,10 @@ Scene readScene(const std::string& text, const std::string& source) {
     throw SceneFileError(source + ": " + e.what());
   }
 }
+
+}  // namespace
+
+Scene readScene(const std::string& text, const std::string& source) { return readText(text, source, true); }
 
 Scene loadSceneFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
