@@ -286,13 +286,15 @@ TEST(ConstraintSolver, StraightChainBetweenTwoWiresGivesFiniteSolve) {
   }
 }
 
-// Known to fail: after the first step the chain is no longer exactly straight,
-// J W Jᵀ is nearly singular rather than singular, and the consistent λ it asks
-// for (about 4e5 at the end of the first RK4 step) throws the ends off the
-// wires: by the third step of 0.01 s the ends are hundreds of units away, by
-// the fifth the solver's residual is NaN (λ itself is reset to 0 when it
-// overflows). Bounding it needs a regularised (compliant) solve or a smaller
-// step, not a CG tweak; kept here for whoever adds that.
+// Known to fail, kept for whoever adds a regularised (compliant) solve. The
+// two wires touch the chain's ends at the only points where it fits, so the
+// configuration is locked, and a straight chain can hold a transverse load
+// only with unbounded tension. After the first step the chain is no longer
+// exactly straight, J W Jᵀ is nearly singular rather than singular, and the
+// consistent λ it asks for (about 4e5 at the end of the first RK4 step) throws
+// the ends off the wires: by the third step of 0.01 s they are hundreds of
+// units away, by the fifth the solver's residual is NaN (λ itself is reset to
+// 0 when it overflows). A smaller step (1e-4 s) explodes just the same.
 TEST(ConstraintSolver, DISABLED_StraightChainBetweenTwoWiresStaysBoundedUnderRk4) {
   ParticleSystem system = makeStraightChainBetweenWires(RodForm::Squared);
   Rk4Integrator rk4;
