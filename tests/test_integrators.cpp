@@ -97,7 +97,7 @@ TEST(Integrators, GlobalErrorOnHarmonicOscillatorHasTheExpectedOrder) {
   }
 }
 
-TEST(Integrators, TableOrdersMatchTheMeasuredOnes) {
+TEST(Integrators, TableGivesEachSchemeItsTestedOrder) {
   for (const OrderCase& c : kOrderCases) {
     bool found = false;
     for (const IntegratorInfo& info : integratorTable())
