@@ -268,6 +268,7 @@ TEST(CollisionParameters, RejectedWithTheirName) {
   };
   expectRejected(addWall(-0.1, 0.0), "wall restitution");
   expectRejected(addWall(1.5, 0.0), "wall restitution");
+  expectRejected(addWall(1.5, 0.0), "got 1.5");
   expectRejected(addWall(std::nan(""), 0.0), "wall restitution");
   expectRejected(addWall(0.5, -0.2), "wall friction");
   expectRejected(addWall(0.5, 1.2), "wall friction");
