@@ -101,6 +101,11 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
 
 void ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
+  // Settings are public fields: check them before anything moves, so a bad
+  // value never leaves a step half done.
+  solver_.settings.validate();
+  if (collidable_.size() > 1)
+    requireInRange("particle contact restitution", contacts_.restitution, 0.0, 1.0);
   integrator.step(*this, dt);
   // Disc contacts first, walls last: separating two discs can push one into a
   // wall, and a wall is the hard boundary a step must never end inside.

@@ -313,3 +313,14 @@ TEST(CollisionParameters, ParticleRestitutionOutsideUnitIntervalIsRejected) {
     expectRejected([&] { system.step(*integrator, 0.01); }, "restitution");
   }
 }
+
+TEST(ParticleContacts, FarFlungAndNonFiniteParticlesDoNotBreakTheBroadPhase) {
+  // An exploded simulation leaves particles at huge or non-finite positions;
+  // the grid must neither overflow its cell indices nor lose the ordinary pair.
+  Eigen::VectorXd x(8), v = Eigen::VectorXd::Zero(8), w = Eigen::VectorXd::Ones(4);
+  Eigen::VectorXd r = Eigen::VectorXd::Constant(4, 0.1);
+  x << 0.0, 0.0, 0.15, 0.0, 1e300, -1e300, std::nan(""), 0.0;
+  ParticleContacts contacts;
+  EXPECT_EQ(contacts.resolve({0, 1, 2, 3}, w, r, x, v), 1);
+  EXPECT_NEAR((x.segment<2>(0) - x.segment<2>(2)).norm(), 0.2, 1e-12);
+}

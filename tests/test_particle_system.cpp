@@ -51,6 +51,22 @@ TEST(ParticleSystem, StepRejectsNonPositiveOrNanDtAndLeavesTheStateAlone) {
   EXPECT_EQ(system.time(), 0.0);
 }
 
+TEST(ParticleSystem, StepRejectsBadSettingsBeforeAnythingMoves) {
+  ParticleSystem system = makePendulum();
+  auto integrator = makeIntegrator("rk4");
+  const Snapshot before = system.snapshot();
+  system.solver().settings.tolerance = std::nan("");
+  expectRejected([&] { system.step(*integrator, 0.01); }, "solver tolerance");
+  system.solver().settings.tolerance = 1e-8;
+  system.setCollidable(1, 0.05);
+  system.setCollidable(2, 0.05);
+  system.particleContacts().restitution = 1.5;
+  expectRejected([&] { system.step(*integrator, 0.01); }, "particle contact restitution");
+  EXPECT_EQ(system.positions(), before.x);
+  EXPECT_EQ(system.velocities(), before.v);
+  EXPECT_EQ(system.time(), 0.0);
+}
+
 TEST(ParticleSystem, RejectedParticleIsNotAdded) {
   ParticleSystem system;
   for (double mass : {0.0, -1.0, std::nan("")})
