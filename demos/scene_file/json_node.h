@@ -46,8 +46,7 @@ class JsonNode {
   std::string text() const;
   Eigen::Vector2d vec2() const;  // [x, y], finite
 
-  // The same reads with a default for an absent member.
-  double number(double fallback) const { return present() ? number() : fallback; }
+  // boolean() with a default for an absent member.
   bool boolean(bool fallback) const { return present() ? boolean() : fallback; }
 
   // Throws SceneFileError "path: expected <what>, got <value>".
