@@ -60,10 +60,16 @@ int ParticleContacts::resolve(const std::vector<int>& collidable, const Eigen::V
   // sort particles by bucket (counting sort, linear time).
   int buckets = 1;
   while (buckets < 2 * count) buckets <<= 1;
-  auto cellOf = [&](int i) {
-    return Eigen::Vector2i(static_cast<int>(std::floor(x[2 * i] / cell)),
-                           static_cast<int>(std::floor(x[2 * i + 1] / cell)));
+  // Cell coordinates are clamped before the cast to int: a particle flung far
+  // away (or NaN, after a diverged step) must not overflow the conversion,
+  // which is undefined behaviour. Clamped far cells share edge cells, which
+  // costs only extra narrow-phase checks.
+  auto coordinate = [&](double v) {
+    const double c = std::floor(v / cell);
+    constexpr double limit = 1e9;
+    return static_cast<int>(c > -limit ? (c < limit ? c : limit) : -limit);
   };
+  auto cellOf = [&](int i) { return Eigen::Vector2i(coordinate(x[2 * i]), coordinate(x[2 * i + 1])); };
   auto bucketOf = [&](const Eigen::Vector2i& c) {
     const unsigned long long h = static_cast<unsigned long long>(c.x()) * 73856093ULL ^
                                  static_cast<unsigned long long>(c.y()) * 19349663ULL;
