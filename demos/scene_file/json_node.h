@@ -56,6 +56,7 @@ class JsonNode {
 
  private:
   const Json& require(bool ok, const char* what) const;
+  int integerWhere(const std::string& what, int lo, int hi) const;  // an integer in [lo, hi]
   // A finite number for which ok(x, lo, hi) holds, or an error naming what.
   double numberWhere(const std::string& what, bool (*ok)(double, double, double), double lo = 0.0,
                      double hi = 0.0) const;
