@@ -1,0 +1,110 @@
+#pragma once
+// The application object that every GLUT callback reaches: the panes being
+// simulated, the user's input, and one frame = input → step → draw → output.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "options.h"
+#include "renderer.h"
+#include "scene_keys.h"
+#include "script.h"
+#include "simulation.h"
+#include "view.h"
+
+namespace demo {
+
+// What the left or right mouse button is doing.
+enum class MouseTool {
+  None,
+  Drag,  // a mouse spring pulls the grabbed particle toward the cursor
+  Pin,   // the particle is pinned and follows the cursor; a click on a pinned one unpins it
+};
+
+// Mouse-spring settings from the panel; damping defaults to critical for the
+// grabbed mass, k_d = 2√(k_s m).
+struct MouseSpringSettings {
+  double stiffness = 2.0;   // k_s, force / length
+  bool criticalDamping = true;
+  double damping = 0.0;     // k_d when not critical, force / speed
+  double pickPixels = 16;   // a press farther than this from every particle grabs nothing
+};
+
+class App {
+ public:
+  // Builds the first scene and reads the script: throws std::invalid_argument
+  // for a bad scene, parameter, integrator or script. Touches no OpenGL.
+  explicit App(DemoOptions options);
+  ~App();
+
+  // Needs a current GL context: sets up ImGui.
+  void initGraphics();
+
+  // --- the GLUT-facing handlers (scripted events call the same ones) --------
+  void keyboard(unsigned char key);
+  void mouse(int button, int state, int x, int y, bool shift);
+  void motion(int x, int y);
+  void reshape(int width, int height);
+  // One frame: scripted input, stepping, drawing, and the outputs of the last frame.
+  void display();
+
+  bool quitRequested() const { return quit_; }
+  // Written at exit (also after q/Esc): --log-state.
+  void writeStateLog() const;
+
+ private:
+  // --- frame phases -------------------------------------------------------
+  void playScript();
+  void advance();
+  void draw();
+  void drawHud();
+  void drawPaneLines();
+  void drawHelp();
+  void drawDivergenceMessages();
+  void drawPanel();
+  void finishFrame();
+
+  // --- actions ------------------------------------------------------------
+  void loadScene(const SceneChoice& choice, bool keepIntegrators);
+  void resetScene();
+  void setPaneCount(int count);
+  void cycleIntegrators();
+  void scaleDt(double factor);
+  void rewind();
+  void setStatus(const std::string& text);
+
+  // --- layout -------------------------------------------------------------
+  PixelRect worldArea() const;
+  std::vector<ViewTransform> paneViews() const;
+  int paneAt(int x, int y) const;  // −1 outside every pane
+
+  DemoOptions options_;
+  SceneChoice scene_;
+  std::vector<std::unique_ptr<Simulation>> panes_;
+  std::vector<ScriptEvent> script_;
+  std::size_t nextScriptEvent_ = 0;
+  Renderer renderer_;
+
+  StepMode stepMode_ = StepMode::FixedTime;
+  double speed_ = 1.0;  // simulated seconds per real second (frames at 60 per second)
+  bool paused_ = false;
+  bool stepRequested_ = false;
+  DrawOptions drawOptions_;
+  bool showHelp_ = false;
+  bool showPanel_ = true;
+  MouseSpringSettings springSettings_;
+
+  MouseTool tool_ = MouseTool::None;
+  int toolParticle_ = -1;
+  int toolPane_ = -1;
+  bool pinWasPinned_ = false, pinMoved_ = false;
+
+  int windowWidth_, windowHeight_;
+  long long frame_ = 0;
+  std::string status_;
+  int statusFrames_ = 0;
+  bool quit_ = false;
+  bool imguiReady_ = false;
+};
+
+}  // namespace demo

@@ -1,0 +1,136 @@
+// Text over the panes: the HUD, the per-pane lines of compare mode, the
+// divergence message and the help overlay (key h).
+#include <imgui.h>
+
+#include <cstdarg>
+#include <cstdio>
+#include <string>
+
+#include "app.h"
+
+namespace demo {
+
+namespace {
+// Every key the demo understands, as the help overlay lists them.
+struct KeyHelp {
+  const char* keys;
+  const char* action;
+};
+constexpr KeyHelp keyHelp[] = {
+    {"1 ... 0", "load a scene (see the list below)"},
+    {"i", "next integrator, keeping the state"},
+    {"+ / -", "double / halve dt"},
+    {"space", "pause / run"},
+    {".", "one step (pauses)"},
+    {"r", "reset the scene"},
+    {"b", "rewind about one second"},
+    {"f", "force arrows on / off (colour per force type)"},
+    {"c", "constraints on / off"},
+    {"v", "compare mode: 2, 3, 4 panes, then back to 1"},
+    {"l", "lockstep: one step per frame / fixed time per frame"},
+    {"p", "control panel on / off"},
+    {"h", "this help"},
+    {"Esc / q", "quit"},
+    {"left drag", "pull a particle with a mouse spring"},
+    {"right drag, shift+left", "pin a particle and move it; click a pinned one to unpin"},
+};
+
+constexpr ImGuiWindowFlags overlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                          ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+  char buffer[512];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buffer, sizeof buffer, fmt, args);
+  va_end(args);
+  return buffer;
+}
+
+// Text on a dark box, drawn over everything.
+void boxedText(const ImVec2& at, const std::string& text, ImU32 colour) {
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  draw->AddRectFilled(at, ImVec2(at.x + size.x + 12, at.y + size.y + 8), IM_COL32(10, 12, 16, 200), 4.0f);
+  draw->AddText(ImVec2(at.x + 6, at.y + 4), colour, text.c_str());
+}
+}  // namespace
+
+void App::drawHud() {
+  if (panes_.size() > 1) {
+    drawPaneLines();
+  } else {
+    const Simulation& sim = *panes_.front();
+    const particles::ParticleSystem& s = sim.system();
+    const PixelRect area = worldArea();
+    ImGui::SetNextWindowPos(ImVec2(area.x + 8.0f, area.y + 8.0f));
+    ImGui::SetNextWindowBgAlpha(0.65f);
+    ImGui::Begin("##hud", nullptr, overlayFlags);
+    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", scene_.label.c_str());
+    ImGui::SameLine();
+    ImGui::Text("  t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "");
+    ImGui::Text("%s   dt %g   %d substep%s/frame%s", sim.integratorName(), sim.dt(), sim.lastFrame().substeps,
+                sim.lastFrame().substeps == 1 ? "" : "s", stepMode_ == StepMode::Lockstep ? " (lockstep)" : "");
+    ImGui::Text("simulation %.2f ms/frame   %d particles", sim.lastFrame().simulationMs, s.size());
+    ImGui::Text("CG %d iterations, residual %.1e", s.lastSolve().iterations, s.lastSolve().residual);
+    ImGui::Text("max |C| %.2e   energy %.5g", s.maxConstraintError(), s.totalEnergy());
+    ImGui::TextDisabled("h help   p panel   v compare");
+    ImGui::End();
+  }
+  if (statusFrames_ > 0) {
+    const PixelRect area = worldArea();
+    boxedText(ImVec2(area.x + 8.0f, area.y + area.height - 34.0f), status_, IM_COL32(230, 230, 235, 255));
+  }
+}
+
+void App::drawPaneLines() {
+  const std::vector<ViewTransform> views = paneViews();
+  for (std::size_t k = 0; k < panes_.size(); ++k) {
+    const Simulation& sim = *panes_[k];
+    const particles::ParticleSystem& s = sim.system();
+    std::string line = format("%s   dt %g   %.2f ms/frame   E %.5g   max |C| %.1e", sim.integratorName(), sim.dt(),
+                              sim.lastFrame().simulationMs, s.totalEnergy(), s.maxConstraintError());
+    if (k == 0) line = scene_.label + format("   t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "") + "\n" + line;
+    boxedText(ImVec2(views[k].pane.x + 6.0f, views[k].pane.y + 6.0f), line, IM_COL32(235, 235, 240, 255));
+  }
+}
+
+void App::drawDivergenceMessages() {
+  const std::vector<ViewTransform> views = paneViews();
+  for (std::size_t k = 0; k < panes_.size(); ++k) {
+    if (!panes_[k]->divergedAt()) continue;
+    const std::string text =
+        format("diverged at t = %.3f s: press r to reset or b to rewind", *panes_[k]->divergedAt());
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    const PixelRect& p = views[k].pane;
+    boxedText(ImVec2(p.x + 0.5f * (p.width - size.x) - 6, p.y + 0.5f * p.height - 14), text,
+              IM_COL32(255, 110, 100, 255));
+  }
+}
+
+void App::drawHelp() {
+  const PixelRect area = worldArea();
+  ImGui::SetNextWindowPos(ImVec2(area.x + 0.5f * area.width, area.y + 0.5f * area.height), ImGuiCond_Always,
+                          ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.88f);
+  ImGui::Begin("Keys", nullptr, overlayFlags & ~ImGuiWindowFlags_NoTitleBar);
+  if (ImGui::BeginTable("keys", 2)) {
+    for (const KeyHelp& k : keyHelp) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", k.keys);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(k.action);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Separator();
+  for (const SceneKey& k : sceneKeys()) {
+    ImGui::Text("%c  %s", k.key, k.choice.label.c_str());
+  }
+  ImGui::End();
+}
+
+}  // namespace demo
