@@ -98,6 +98,7 @@ class App {
   int toolParticle_ = -1;
   int toolPane_ = -1;
   bool pinWasPinned_ = false, pinMoved_ = false;
+  int pressX_ = 0, pressY_ = 0;  // where the tool started, pixels
 
   int windowWidth_, windowHeight_;
   long long frame_ = 0;

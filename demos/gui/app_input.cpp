@@ -2,6 +2,7 @@
 #include <GL/freeglut.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "app.h"
 
@@ -57,6 +58,8 @@ void App::mouse(int button, int state, int x, int y, bool shift) {
   if (!particle) return;  // a press in empty space does nothing
   toolParticle_ = *particle;
   toolPane_ = k;
+  pressX_ = x;
+  pressY_ = y;
   if (pinTool) {
     tool_ = MouseTool::Pin;
     pinWasPinned_ = panes_[k]->system().pinned(*particle);
@@ -80,7 +83,8 @@ void App::motion(int x, int y) {
     if (tool_ == MouseTool::Drag) pane->moveGrab(world);
     else pane->placePinned(toolParticle_, world);
   }
-  pinMoved_ = true;
+  // A click that wobbles by a pixel or two is still a click (it unpins).
+  if (std::abs(x - pressX_) + std::abs(y - pressY_) > 3) pinMoved_ = true;
 }
 
 }  // namespace demo

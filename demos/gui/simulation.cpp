@@ -75,7 +75,9 @@ bool Simulation::checkDiverged() {
   const particles::ParticleSystem& s = system();
   if (!s.finite()) return true;
   if (s.maxRelativeConstraintError() > limits_.relativeConstraintError) return true;
-  const double far = limits_.distanceInViews * (scene_.viewMax - scene_.viewMin).norm();
+  const double diagonal = (scene_.viewMax - scene_.viewMin).norm();
+  if (s.maxConstraintError() > limits_.constraintErrorInViews * diagonal) return true;
+  const double far = limits_.distanceInViews * diagonal;
   return s.positions().size() > 0 && s.positions().cwiseAbs().maxCoeff() > far;
 }
 

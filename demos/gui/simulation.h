@@ -21,9 +21,11 @@ enum class StepMode {
 };
 
 // When a state counts as diverged: non-finite, or a constraint violated by
-// more than its own length scale, or a particle flung far outside the view.
+// more than its own length scale (or, for one without, by more than the
+// view), or a particle flung far outside the view.
 struct DivergenceLimits {
   double relativeConstraintError = 1.0;  // max |C| / length scale
+  double constraintErrorInViews = 1.0;   // max |C| in units of the view's diagonal
   double distanceInViews = 1000.0;       // |x| in units of the view's diagonal
 };
 

@@ -28,6 +28,8 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
       out << "particle," << k << "," << i << "," << x.x() << "," << x.y() << "," << u.x() << "," << u.y() << ","
           << s.masses()[i] << "," << (s.pinned(i) ? 1 : 0) << "\n";
     }
+    for (const particles::Wall& w : s.walls())
+      out << "wall," << k << "," << w.min.x() << "," << w.min.y() << "," << w.max.x() << "," << w.max.y() << "\n";
   }
   return out ? "" : "error writing state log '" + path + "'";
 }

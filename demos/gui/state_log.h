@@ -7,6 +7,7 @@
 //   pane,<pane>,<scene label>,<integrator>,<dt>,<t>,<steps>,<diverged 0|1>,<mouse springs>,<energy>,<max |C|>
 //   view,<pane>,<pixel x>,<pixel y>,<pixel width>,<pixel height>,<world xmin>,<world ymin>,<world xmax>,<world ymax>
 //   particle,<pane>,<index>,<x>,<y>,<vx>,<vy>,<mass>,<pinned 0|1>
+//   wall,<pane>,<xmin>,<ymin>,<xmax>,<ymax>
 // view maps the pane's pixel rectangle (window pixels, origin top-left, as in
 // the screenshot) onto the world rectangle it shows, at one scale on both axes.
 // Numbers are written with 17 significant digits.
