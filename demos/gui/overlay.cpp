@@ -49,6 +49,11 @@ std::string format(const char* fmt, ...) {
   return buffer;
 }
 
+ImU32 hudColour() {
+  const Rgb c = palette::hudText;
+  return IM_COL32(c.r, c.g, c.b, 255);
+}
+
 // Text on a dark box, drawn over everything.
 void boxedText(const ImVec2& at, const std::string& text, ImU32 colour) {
   ImDrawList* draw = ImGui::GetForegroundDrawList();
@@ -93,7 +98,7 @@ void App::drawPaneLines() {
     std::string line = format("%s   dt %g   %.2f ms/frame   E %.5g   max |C| %.1e", sim.integratorName(), sim.dt(),
                               sim.lastFrame().simulationMs, s.totalEnergy(), s.maxConstraintError());
     if (k == 0) line = scene_.label + format("   t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "") + "\n" + line;
-    boxedText(ImVec2(views[k].pane.x + 6.0f, views[k].pane.y + 6.0f), line, IM_COL32(235, 235, 240, 255));
+    boxedText(ImVec2(views[k].pane.x + 6.0f, views[k].pane.y + 6.0f), line, hudColour());
   }
 }
 
@@ -105,8 +110,11 @@ void App::drawDivergenceMessages() {
         format("diverged at t = %.3f s: press r to reset or b to rewind", *panes_[k]->divergedAt());
     const ImVec2 size = ImGui::CalcTextSize(text.c_str());
     const PixelRect& p = views[k].pane;
-    boxedText(ImVec2(p.x + 0.5f * (p.width - size.x) - 6, p.y + 0.5f * p.height - 14), text,
-              IM_COL32(255, 110, 100, 255));
+    const ImVec2 at(p.x + 0.5f * (p.width - size.x) - 6, p.y + 0.5f * p.height - 14);
+    const Rgb c = palette::divergenceText;
+    boxedText(at, text, IM_COL32(c.r, c.g, c.b, 255));
+    ImGui::GetForegroundDrawList()->AddRect(at, ImVec2(at.x + size.x + 12, at.y + size.y + 8),
+                                            IM_COL32(c.r, c.g, c.b, 255), 4.0f, 0, 1.5f);
   }
 }
 

@@ -22,6 +22,8 @@ constexpr Rgb mouseSpring{120, 235, 140};
 constexpr Rgb constraint{232, 178, 62};
 constexpr Rgb constraintForceArrow{255, 214, 0};  // Jᵀλ, which is no force object's
 constexpr Rgb otherForceArrow{200, 200, 200};
+constexpr Rgb divergenceText{255, 92, 150};
+constexpr Rgb hudText{235, 235, 240};
 }  // namespace palette
 
 // Arrow colour of each force type ("f"), by Force::type(); a type not listed
