@@ -3,6 +3,7 @@
 #include <GL/freeglut.h>
 #include <imgui.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -46,12 +47,17 @@ App::App(DemoOptions options)
   } else {
     first.name = first.label = options_.scene;
     first.params = options_.params;
-    for (const SceneKey& k : sceneKeys())
-      if (k.choice.name == first.name && (first.params.empty() || k.choice.params == first.params)) {
-        first.label = k.choice.label;
-        first.params.insert(k.choice.params.begin(), k.choice.params.end());
-        break;
-      }
+    // The first key's variant that agrees with the given parameters names it.
+    for (const SceneKey& k : sceneKeys()) {
+      if (k.choice.name != first.name) continue;
+      bool agrees = true;
+      for (const auto& [key, value] : k.choice.params)
+        agrees &= !first.params.count(key) || first.params.at(key) == value;
+      if (!agrees) continue;
+      first.label = k.choice.label;
+      first.params.insert(k.choice.params.begin(), k.choice.params.end());
+      break;
+    }
   }
   scenes::Scene scene = buildChoice(first);
   const int integrator = integratorIndexByName(options_.integrator.value_or(scene.integrator));
@@ -138,15 +144,19 @@ void App::advance() {
 }
 
 void App::draw() {
+  const auto start = std::chrono::steady_clock::now();
   renderer_.clearWindow(windowWidth_, windowHeight_, palette::paneBorder);
   const std::vector<ViewTransform> views = paneViews();
   for (std::size_t k = 0; k < panes_.size(); ++k)
     renderer_.drawPane(*panes_[k], views[k], windowHeight_, drawOptions_);
+  glFinish();  // so that the time includes the GL work, not just its submission
+  drawMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   glViewport(0, 0, windowWidth_, windowHeight_);
 
   if (!imguiReady_) return;
   ImGui_ImplOpenGL2_NewFrame();
   ImGui_ImplGLUT_NewFrame();  // also ImGui::NewFrame() in 1.86
+  overlays_.clear();
   drawHud();
   drawDivergenceMessages();
   if (showHelp_) drawHelp();
@@ -175,7 +185,7 @@ void App::writeStateLog() const {
   std::vector<PaneState> states;
   const std::vector<ViewTransform> views = paneViews();
   for (std::size_t k = 0; k < panes_.size(); ++k) states.push_back({scene_.label, panes_[k].get(), views[k]});
-  const std::string error = writeStateFile(options_.logState, states, frame_, paused_);
+  const std::string error = writeStateFile(options_.logState, states, overlays_, frame_, paused_);
   if (!error.empty()) std::fprintf(stderr, "particle-demo: %s\n", error.c_str());
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "options.h"
+#include "state_log.h"
 #include "renderer.h"
 #include "scene_keys.h"
 #include "script.h"
@@ -102,6 +103,8 @@ class App {
 
   int windowWidth_, windowHeight_;
   long long frame_ = 0;
+  double drawMs_ = 0.0;
+  std::vector<Overlay> overlays_;  // the text drawn over the panes in the last frame  // wall time of the last frame's scene drawing, GL work included
   std::string status_;
   int statusFrames_ = 0;
   bool quit_ = false;

@@ -54,12 +54,19 @@ ImU32 hudColour() {
   return IM_COL32(c.r, c.g, c.b, 255);
 }
 
-// Text on a dark box, drawn over everything.
-void boxedText(const ImVec2& at, const std::string& text, ImU32 colour) {
+// Text on a dark box, drawn over everything; returns the box.
+PixelRect boxedText(const ImVec2& at, const std::string& text, ImU32 colour) {
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const ImVec2 size = ImGui::CalcTextSize(text.c_str());
   draw->AddRectFilled(at, ImVec2(at.x + size.x + 12, at.y + size.y + 8), IM_COL32(10, 12, 16, 200), 4.0f);
   draw->AddText(ImVec2(at.x + 6, at.y + 4), colour, text.c_str());
+  return {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x) + 13, static_cast<int>(size.y) + 9};
+}
+
+// The rectangle of the current ImGui window.
+PixelRect windowRect() {
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  return {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x) + 1, static_cast<int>(size.y) + 1};
 }
 }  // namespace
 
@@ -78,15 +85,18 @@ void App::drawHud() {
     ImGui::Text("  t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "");
     ImGui::Text("%s   dt %g   %d substep%s/frame%s", sim.integratorName(), sim.dt(), sim.lastFrame().substeps,
                 sim.lastFrame().substeps == 1 ? "" : "s", stepMode_ == StepMode::Lockstep ? " (lockstep)" : "");
-    ImGui::Text("simulation %.2f ms/frame   %d particles", sim.lastFrame().simulationMs, s.size());
+    ImGui::Text("simulation %.2f ms/frame   draw %.1f ms   %d particles", sim.lastFrame().simulationMs, drawMs_,
+                s.size());
     ImGui::Text("CG %d iterations, residual %.1e", s.lastSolve().iterations, s.lastSolve().residual);
     ImGui::Text("max |C| %.2e   energy %.5g", s.maxConstraintError(), s.totalEnergy());
     ImGui::TextDisabled("h help   p panel   v compare");
+    overlays_.push_back({"hud", windowRect()});
     ImGui::End();
   }
   if (statusFrames_ > 0) {
     const PixelRect area = worldArea();
-    boxedText(ImVec2(area.x + 8.0f, area.y + area.height - 34.0f), status_, IM_COL32(230, 230, 235, 255));
+    overlays_.push_back(
+        {"status", boxedText(ImVec2(area.x + 8.0f, area.y + area.height - 34.0f), status_, hudColour())});
   }
 }
 
@@ -98,7 +108,7 @@ void App::drawPaneLines() {
     std::string line = format("%s   dt %g   %.2f ms/frame   E %.5g   max |C| %.1e", sim.integratorName(), sim.dt(),
                               sim.lastFrame().simulationMs, s.totalEnergy(), s.maxConstraintError());
     if (k == 0) line = scene_.label + format("   t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "") + "\n" + line;
-    boxedText(ImVec2(views[k].pane.x + 6.0f, views[k].pane.y + 6.0f), line, hudColour());
+    overlays_.push_back({"pane-hud", boxedText(ImVec2(views[k].pane.x + 6.0f, views[k].pane.y + 6.0f), line, hudColour())});
   }
 }
 
@@ -112,7 +122,7 @@ void App::drawDivergenceMessages() {
     const PixelRect& p = views[k].pane;
     const ImVec2 at(p.x + 0.5f * (p.width - size.x) - 6, p.y + 0.5f * p.height - 14);
     const Rgb c = palette::divergenceText;
-    boxedText(at, text, IM_COL32(c.r, c.g, c.b, 255));
+    overlays_.push_back({"divergence", boxedText(at, text, IM_COL32(c.r, c.g, c.b, 255))});
     ImGui::GetForegroundDrawList()->AddRect(at, ImVec2(at.x + size.x + 12, at.y + size.y + 8),
                                             IM_COL32(c.r, c.g, c.b, 255), 4.0f, 0, 1.5f);
   }
@@ -138,6 +148,7 @@ void App::drawHelp() {
   for (const SceneKey& k : sceneKeys()) {
     ImGui::Text("%c  %s", k.key, k.choice.label.c_str());
   }
+  overlays_.push_back({"help", windowRect()});
   ImGui::End();
 }
 

@@ -107,8 +107,20 @@ void App::drawPanel() {
     if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) setPaneCount(paneCount);
   }
 
+  // --- live plots -------------------------------------------------------------
+  if (ImGui::CollapsingHeader("Energy and constraint error", ImGuiTreeNodeFlags_DefaultOpen)) {
+    const float height = panes_.size() > 1 ? 36.0f : 60.0f;
+    for (std::size_t k = 0; k < panes_.size(); ++k) {
+      ImGui::PushID(static_cast<int>(k));
+      if (panes_.size() > 1) ImGui::TextDisabled("%s", panes_[k]->integratorName());
+      plot("energy", panes_[k]->trace().energy(), height);
+      plot("max |C|", panes_[k]->trace().constraintError(), height);
+      ImGui::PopID();
+    }
+    ImGui::TextDisabled("last %d frames", Trace::capacity);
+  }
   // --- constraint solver and mouse spring ------------------------------------
-  if (ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Solver and mouse spring")) {
     particles::SolverSettings settings = panes_.front()->system().solver().settings;
     bool changed = false;
     float logTolerance = static_cast<float>(std::log10(settings.tolerance));
@@ -148,19 +160,9 @@ void App::drawPanel() {
     ImGui::Checkbox("help (h)", &showHelp_);
   }
 
-  // --- live plots -------------------------------------------------------------
-  if (ImGui::CollapsingHeader("Energy and constraint error", ImGuiTreeNodeFlags_DefaultOpen)) {
-    const float height = panes_.size() > 1 ? 36.0f : 60.0f;
-    for (std::size_t k = 0; k < panes_.size(); ++k) {
-      ImGui::PushID(static_cast<int>(k));
-      if (panes_.size() > 1) ImGui::TextDisabled("%s", panes_[k]->integratorName());
-      plot("energy", panes_[k]->trace().energy(), height);
-      plot("max |C|", panes_[k]->trace().constraintError(), height);
-      ImGui::PopID();
-    }
-    ImGui::TextDisabled("last %d frames", Trace::capacity);
-  }
   ImGui::PopItemWidth();
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  overlays_.push_back({"panel", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}});
   ImGui::End();
 }
 

@@ -13,12 +13,21 @@ constexpr double arrowReferencePixels = 28.0;  // length of a typical (90th perc
 constexpr double arrowMaxPixels = 90.0;
 constexpr double arrowMinPixels = 2.0;
 constexpr int circleSegments = 96;
+constexpr std::size_t smoothLineLimit = 8000;  // lines drawn antialiased up to this many
 
 // Diameter in pixels of a point particle: large enough to grab in a small
-// scene, small enough not to hide the mesh of a large cloth.
-int pointDiameter(int particleCount, double pixelsPerUnit) {
+// scene, and at most half the typical spacing so a dense cloth shows its mesh.
+int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
   const double byScale = std::clamp(0.016 * pixelsPerUnit, 4.0, 9.0);
-  return static_cast<int>(particleCount > 2000 ? std::min(byScale, 3.0) : particleCount > 400 ? std::min(byScale, 5.0) : byScale);
+  if (system.size() < 2) return static_cast<int>(byScale);
+  Eigen::Vector2d lo = system.position(0), hi = lo;
+  for (int i = 1; i < system.size(); ++i) {
+    lo = lo.cwiseMin(system.position(i));
+    hi = hi.cwiseMax(system.position(i));
+  }
+  const Eigen::Vector2d extent = (hi - lo) * pixelsPerUnit;
+  const double spacing = std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / system.size());
+  return static_cast<int>(std::clamp(0.5 * spacing, 1.0, byScale));
 }
 }  // namespace
 
@@ -57,13 +66,16 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
 
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  glEnable(GL_LINE_SMOOTH);
-  glEnable(GL_POINT_SMOOTH);
+  // Antialiasing costs a software rasteriser (llvmpipe, Xvfb) far more than
+  // a GPU; large scenes draw crisp instead so that they stay interactive there.
+  const bool smooth = springs_.xy.size() + arrows_.xy.size() < 2 * smoothLineLimit;
+  if (smooth) glEnable(GL_LINE_SMOOTH); else glDisable(GL_LINE_SMOOTH);
+  if (smooth) glEnable(GL_POINT_SMOOTH); else glDisable(GL_POINT_SMOOTH);
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
 
   draw(walls_, GL_TRIANGLES);
-  glLineWidth(1.4f);
+  glLineWidth(smooth ? 1.4f : 1.0f);
   draw(springs_, GL_LINES);
   glLineWidth(2.0f);
   draw(constraints_, GL_LINES);
@@ -182,7 +194,7 @@ void Renderer::collectForceArrows(const particles::ParticleSystem& system, const
 void Renderer::collectParticles(const Simulation& simulation, const ViewTransform& view) {
   const particles::ParticleSystem& system = simulation.system();
   const int grabbed = simulation.mouseSpring() ? simulation.mouseSpring()->particle() : -1;
-  const int diameter = pointDiameter(system.size(), view.pixelsPerUnit);
+  const int diameter = pointDiameter(system, view.pixelsPerUnit);
   for (int i = 0; i < system.size(); ++i) {
     const int d = system.collidable(i)
                       ? std::max(3, static_cast<int>(std::lround(2.0 * system.radii()[i] * view.pixelsPerUnit)))

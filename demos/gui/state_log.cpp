@@ -5,8 +5,8 @@
 
 namespace demo {
 
-std::string writeStateFile(const std::string& path, const std::vector<PaneState>& panes, long long frames,
-                           bool paused) {
+std::string writeStateFile(const std::string& path, const std::vector<PaneState>& panes,
+                           const std::vector<Overlay>& overlays, long long frames, bool paused) {
   std::ofstream out(path);
   if (!out) return "cannot write state log '" + path + "'";
   out.precision(17);
@@ -31,6 +31,9 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
     for (const particles::Wall& w : s.walls())
       out << "wall," << k << "," << w.min.x() << "," << w.min.y() << "," << w.max.x() << "," << w.max.y() << "\n";
   }
+  for (const Overlay& o : overlays)
+    out << "overlay," << o.kind << "," << o.rect.x << "," << o.rect.y << "," << o.rect.width << "," << o.rect.height
+        << "\n";
   return out ? "" : "error writing state log '" + path + "'";
 }
 

@@ -134,6 +134,8 @@ StateLog readStateLog(const std::string& path) {
       log.panes.at(std::stoul(f.at(1))).particles.push_back(q);
     } else if (record == "wall") {
       log.panes.at(std::stoul(f.at(1))).walls.push_back({{number(2), number(3)}, {number(4), number(5)}});
+    } else if (record == "overlay") {
+      log.overlays.push_back({f.at(1), std::stoi(f.at(2)), std::stoi(f.at(3)), std::stoi(f.at(4)), std::stoi(f.at(5))});
     } else {
       throw std::runtime_error("unknown record '" + record + "' in " + path);
     }

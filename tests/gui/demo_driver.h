@@ -52,10 +52,30 @@ struct LoggedPane {
   // Window pixel (column, row) of a world point, as the demo's view maps it.
   Eigen::Vector2d toPixel(const Eigen::Vector2d& world) const;
 };
+struct LoggedOverlay {
+  std::string kind;  // hud, pane-hud, status, divergence, help, panel
+  int x = 0, y = 0, width = 0, height = 0;
+  bool covers(const Eigen::Vector2d& pixel, double margin) const {
+    return pixel.x() > x - margin && pixel.x() < x + width + margin && pixel.y() > y - margin &&
+           pixel.y() < y + height + margin;
+  }
+};
 struct StateLog {
   long long frames = 0;
   bool paused = false;
   std::vector<LoggedPane> panes;
+  std::vector<LoggedOverlay> overlays;
+  // Whether text or a panel is drawn at (or within margin pixels of) a pixel.
+  bool underOverlay(const Eigen::Vector2d& pixel, double margin = 3) const {
+    for (const LoggedOverlay& o : overlays)
+      if (o.covers(pixel, margin)) return true;
+    return false;
+  }
+  const LoggedOverlay* overlay(const std::string& kind) const {
+    for (const LoggedOverlay& o : overlays)
+      if (o.kind == kind) return &o;
+    return nullptr;
+  }
 };
 StateLog readStateLog(const std::string& path);  // throws on failure
 

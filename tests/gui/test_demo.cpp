@@ -18,17 +18,14 @@ namespace {
 
 const char* const noPanel = "--no-panel --window 900x700";
 
-// The single-pane HUD sits in the top-left corner; nothing else is checked there.
-bool inHud(const Eigen::Vector2d& pixel) { return pixel.x() < 330 && pixel.y() < 150; }
-
 // Pixels (columns, rows) where a particle of pane p is drawn: the particle's
 // colour must appear within a pixel of its mapped position.
-int particlesDrawn(const Image& image, const LoggedPane& p, int* checked) {
+int particlesDrawn(const Image& image, const StateLog& log, const LoggedPane& p, int* checked) {
   int drawn = 0;
   *checked = 0;
   for (const LoggedParticle& q : p.particles) {
     const Eigen::Vector2d px = p.toPixel(q.x);
-    if (inHud(px) || px.y() < p.pixelY + 60) continue;  // under the HUD or a pane's HUD line
+    if (log.underOverlay(px, 4)) continue;
     if (px.x() < p.pixelX + 2 || px.y() < p.pixelY + 2 || px.x() > p.pixelX + p.pixelWidth - 3 ||
         px.y() > p.pixelY + p.pixelHeight - 3)
       continue;
@@ -45,7 +42,7 @@ int particlesDrawn(const Image& image, const LoggedPane& p, int* checked) {
 
 // Pixels of pane p well away from every particle (and the springs between
 // them), wall and the HUD: where only the background may be drawn.
-std::vector<Eigen::Vector2i> emptyPixels(const LoggedPane& p) {
+std::vector<Eigen::Vector2i> emptyPixels(const StateLog& log, const LoggedPane& p) {
   Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
   for (const LoggedParticle& q : p.particles) {
     lo = lo.cwiseMin(p.toPixel(q.x));
@@ -55,7 +52,7 @@ std::vector<Eigen::Vector2i> emptyPixels(const LoggedPane& p) {
   for (int y = p.pixelY + 4; y < p.pixelY + p.pixelHeight - 4; y += 12)
     for (int x = p.pixelX + 4; x < p.pixelX + p.pixelWidth - 4; x += 12) {
       const Eigen::Vector2d px(x, y);
-      if (inHud(px)) continue;
+      if (log.underOverlay(px)) continue;
       if (px.x() > lo.x() - 24 && px.x() < hi.x() + 24 && px.y() > lo.y() - 24 && px.y() < hi.y() + 24) continue;
       bool inWall = false;
       for (const LoggedWall& w : p.walls) {
@@ -239,16 +236,17 @@ TEST(DemoScreenshot, ParticlesWhereTheLogSaysBackgroundElsewhereHudNotEmpty) {
                               "--screenshot shot.png --log-state state.txt", "0 key c\n");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const Image image = readPng(dir + "/shot.png");
-  const LoggedPane pane = readStateLog(dir + "/state.txt").panes.at(0);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  const LoggedPane& pane = log.panes.at(0);
   EXPECT_EQ(image.width, 900);
   EXPECT_EQ(image.height, 700);
 
   int checked = 0;
-  const int drawn = particlesDrawn(image, pane, &checked);
+  const int drawn = particlesDrawn(image, log, pane, &checked);
   EXPECT_GE(checked, 50);
   EXPECT_EQ(drawn, checked);
 
-  const std::vector<Eigen::Vector2i> empty = emptyPixels(pane);
+  const std::vector<Eigen::Vector2i> empty = emptyPixels(log, pane);
   EXPECT_GE(empty.size(), 100u);
   for (const Eigen::Vector2i& px : empty) {
     const demo::Rgb c = image.at(px.x(), px.y());
@@ -256,7 +254,11 @@ TEST(DemoScreenshot, ParticlesWhereTheLogSaysBackgroundElsewhereHudNotEmpty) {
                                                         << int(c.g) << "," << int(c.b);
   }
   // The HUD: text on its box in the top-left corner.
-  EXPECT_GT(countNear(image, {255, 255, 255}, 60, 10, 10, 300, 130), 300);
+  const LoggedOverlay* hud = log.overlay("hud");
+  ASSERT_NE(hud, nullptr);
+  EXPECT_LT(hud->x + hud->y, 40);
+  EXPECT_GT(countNear(image, demo::palette::hudText, 40, hud->x, hud->y, hud->x + hud->width, hud->y + hud->height),
+            300);
 }
 
 TEST(DemoScreenshot, ForceKeyAddsArrowPixelsNextToParticles) {
@@ -265,14 +267,15 @@ TEST(DemoScreenshot, ForceKeyAddsArrowPixelsNextToParticles) {
   ASSERT_EQ(runDemo(dir, args + "--screenshot plain.png", "0 key c\n").exitCode, 0);
   ASSERT_EQ(runDemo(dir, args + "--screenshot arrows.png", "0 key c\n0 key f\n").exitCode, 0);
   const Image plain = readPng(dir + "/plain.png"), arrows = readPng(dir + "/arrows.png");
-  const LoggedPane pane = readStateLog(dir + "/state.txt").panes.at(0);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  const LoggedPane& pane = log.panes.at(0);
 
   // Pixels in each force type's arrow colour within 40 pixels of a particle.
   auto arrowPixels = [&](const Image& image, demo::Rgb colour) {
     int count = 0;
-    for (int y = 150; y < image.height; ++y)
+    for (int y = 0; y < image.height; ++y)
       for (int x = 0; x < image.width; ++x) {
-        if (!near(image.at(x, y), colour, 20)) continue;
+        if (!near(image.at(x, y), colour, 20) || log.underOverlay({x, y})) continue;
         for (const LoggedParticle& q : pane.particles)
           if ((pane.toPixel(q.x) - Eigen::Vector2d(x, y)).norm() < 40) {
             ++count;
@@ -314,7 +317,7 @@ TEST(DemoCompare, EulerAndRk4PanesStartAlikeDivergeApartAndAreBothDrawn) {
   const Image image = readPng(dir + "/shot.png");
   for (const LoggedPane* pane : {&euler, &rk4}) {
     int checked = 0;
-    const int drawn = particlesDrawn(image, *pane, &checked);
+    const int drawn = particlesDrawn(image, log, *pane, &checked);
     EXPECT_GE(checked, 5);
     EXPECT_EQ(drawn, checked);
     // Its HUD line in its top-left corner.
