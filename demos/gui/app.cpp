@@ -159,6 +159,7 @@ void App::draw() {
   overlays_.clear();
   drawHud();
   drawDivergenceMessages();
+  if (drawOptions_.forces) drawForceLegend();
   if (showHelp_) drawHelp();
   if (showPanel_) drawPanel();
   ImGui::Render();

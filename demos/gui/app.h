@@ -25,7 +25,7 @@ enum class MouseTool {
 // Mouse-spring settings from the panel; damping defaults to critical for the
 // grabbed mass, k_d = 2√(k_s m).
 struct MouseSpringSettings {
-  double stiffness = 2.0;   // k_s, force / length
+  double stiffness = 5.0;   // k_s, force / length
   bool criticalDamping = true;
   double damping = 0.0;     // k_d when not critical, force / speed
   double pickPixels = 16;   // a press farther than this from every particle grabs nothing
@@ -60,6 +60,7 @@ class App {
   void draw();
   void drawHud();
   void drawPaneLines();
+  void drawForceLegend();
   void drawHelp();
   void drawDivergenceMessages();
   void drawPanel();

@@ -2,6 +2,7 @@
 // divergence message and the help overlay (key h).
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <string>
@@ -17,7 +18,7 @@ struct KeyHelp {
   const char* action;
 };
 constexpr KeyHelp keyHelp[] = {
-    {"1 ... 0", "load a scene (see the list below)"},
+    {"1, 2, ...", "load a scene (listed below)"},
     {"i", "next integrator, keeping the state"},
     {"+ / -", "double / halve dt"},
     {"space", "pause / run"},
@@ -98,6 +99,29 @@ void App::drawHud() {
     overlays_.push_back(
         {"status", boxedText(ImVec2(area.x + 8.0f, area.y + area.height - 34.0f), status_, hudColour())});
   }
+}
+
+// Which colour is which force type, for the types present in the first pane.
+void App::drawForceLegend() {
+  const particles::ParticleSystem& s = panes_.front()->system();
+  std::vector<std::string> types;
+  for (const auto& force : s.forceObjects())
+    if (std::find(types.begin(), types.end(), force->type()) == types.end()) types.push_back(force->type());
+  const PixelRect area = worldArea();
+  ImGui::SetNextWindowPos(ImVec2(area.x + area.width - 8.0f, area.y + area.height - 8.0f), ImGuiCond_Always,
+                          ImVec2(1.0f, 1.0f));
+  ImGui::SetNextWindowBgAlpha(0.65f);
+  ImGui::Begin("##legend", nullptr, overlayFlags);
+  ImGui::TextDisabled("force arrows (f)");
+  auto entry = [](const char* name, Rgb c) {
+    ImGui::TextColored(ImVec4(c.r / 255.f, c.g / 255.f, c.b / 255.f, 1.f), "-->");
+    ImGui::SameLine();
+    ImGui::TextUnformatted(name);
+  };
+  for (const std::string& type : types) entry(type.c_str(), forceArrowColour(type.c_str()));
+  if (!s.constraints().empty()) entry("constraint force J^T lambda", palette::constraintForceArrow);
+  overlays_.push_back({"legend", windowRect()});
+  ImGui::End();
 }
 
 void App::drawPaneLines() {

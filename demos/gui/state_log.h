@@ -10,7 +10,7 @@
 //   wall,<pane>,<xmin>,<ymin>,<xmax>,<ymax>
 //   overlay,<kind>,<pixel x>,<pixel y>,<pixel width>,<pixel height>
 //     (text and panels drawn over the panes in the last frame: hud, pane-hud,
-//     status, divergence, help, panel)
+//     status, divergence, help, legend, panel)
 // view maps the pane's pixel rectangle (window pixels, origin top-left, as in
 // the screenshot) onto the world rectangle it shows, at one scale on both axes.
 // Numbers are written with 17 significant digits.
