@@ -117,6 +117,10 @@ void App::playScript() {
       keyboard(e.key);
       continue;
     }
+    if (e.action == ScriptAction::Resize) {  // GLUT calls reshape() when the window has its new size
+      glutReshapeWindow(static_cast<int>(e.x), static_cast<int>(e.y));
+      continue;
+    }
     Eigen::Vector2d pixel(e.x, e.y);
     if (e.space == ScriptSpace::World) pixel = paneViews().front().toPixel({e.x, e.y});
     const int x = static_cast<int>(std::lround(pixel.x())), y = static_cast<int>(std::lround(pixel.y()));
@@ -126,7 +130,7 @@ void App::playScript() {
       case ScriptAction::MouseDown: mouse(button, GLUT_DOWN, x, y, shift); break;
       case ScriptAction::MouseMove: motion(x, y); break;
       case ScriptAction::MouseUp: mouse(button, GLUT_UP, x, y, shift); break;
-      case ScriptAction::Key: break;
+      case ScriptAction::Key: case ScriptAction::Resize: break;
     }
   }
 }

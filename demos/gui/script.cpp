@@ -38,17 +38,21 @@ std::vector<ScriptEvent> readScript(const std::string& path) {
     }
     try {
       if (in.fail() || e.frame < 0) throw std::invalid_argument("expected a frame number >= 0 first");
-      if (!(in >> action)) throw std::invalid_argument("expected key, down, move or up after the frame");
+      if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up or resize after the frame");
       if (action == "key") {
         std::string key;
         if (!(in >> key)) throw std::invalid_argument("expected a key after 'key'");
         e.action = ScriptAction::Key;
         e.key = parseKey(key);
+      } else if (action == "resize") {
+        e.action = ScriptAction::Resize;
+        if (!(in >> e.x >> e.y) || e.x < 100 || e.y < 100 || e.x > 8192 || e.y > 8192)
+          throw std::invalid_argument("expected a width and height between 100 and 8192 after 'resize'");
       } else {
         if (action == "down") e.action = ScriptAction::MouseDown;
         else if (action == "move") e.action = ScriptAction::MouseMove;
         else if (action == "up") e.action = ScriptAction::MouseUp;
-        else throw std::invalid_argument("expected key, down, move or up, got '" + action + "'");
+        else throw std::invalid_argument("expected key, down, move, up or resize, got '" + action + "'");
         std::string space, button;
         if (!(in >> space >> e.x >> e.y)) throw std::invalid_argument("expected world|window x y after '" + action + "'");
         if (space == "world") e.space = ScriptSpace::World;

@@ -5,6 +5,7 @@
 // One event per line; '#' starts a comment:
 //   <frame> key <k>                          k: one character, or space, esc, enter, tab
 //   <frame> down|move|up world|window <x> <y> [left|right|shift-left]
+//   <frame> resize <width> <height>          asks the window system for a new size
 // <frame> counts frames from 0; events of frame k are handled before frame k
 // steps and draws. world coordinates are mapped to pixels through the first
 // pane's view at that frame; window coordinates are pixels, origin top-left.
@@ -13,7 +14,7 @@
 
 namespace demo {
 
-enum class ScriptAction { Key, MouseDown, MouseMove, MouseUp };
+enum class ScriptAction { Key, MouseDown, MouseMove, MouseUp, Resize };
 enum class ScriptSpace { World, Window };
 enum class ScriptButton { Left, Right, ShiftLeft };
 

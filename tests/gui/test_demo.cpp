@@ -377,3 +377,50 @@ TEST(DemoDivergence, HugeDtDivergesShowsTheMessageRewindsAndKeepsRunning) {
   EXPECT_GT(resumed.panes[0].time, rewound.panes[0].time + 1.5);
   EXPECT_TRUE(std::isfinite(resumed.panes[0].energy));
 }
+
+// ---------------------------------------------------------------------------
+// Window shape
+
+TEST(DemoView, ResizeKeepsTheWorldsAspectRatioAndShowsTheWholeView) {
+  const std::string dir = outputDirectory("Resize");
+  const RunResult r = runDemo(dir, "--scene pendulum --frames 40 --screenshot shot.png --log-state state.txt",
+                              "5 resize 700 900\n");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Image image = readPng(dir + "/shot.png");
+  EXPECT_EQ(image.width, 700);
+  EXPECT_EQ(image.height, 900);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  const LoggedPane& p = log.panes.at(0);
+  const scenes::Scene scene = scenes::buildScene("pendulum");
+  // One scale on both axes ...
+  const double sx = p.pixelWidth / (p.worldMax.x() - p.worldMin.x());
+  const double sy = p.pixelHeight / (p.worldMax.y() - p.worldMin.y());
+  EXPECT_NEAR(sx, sy, 1e-9 * sx);
+  // ... and the scene's whole view rectangle inside the pane, which fills the window beside the panel.
+  EXPECT_LE(p.worldMin.x(), scene.viewMin.x() + 1e-12);
+  EXPECT_LE(p.worldMin.y(), scene.viewMin.y() + 1e-12);
+  EXPECT_GE(p.worldMax.x(), scene.viewMax.x() - 1e-12);
+  EXPECT_GE(p.worldMax.y(), scene.viewMax.y() - 1e-12);
+  EXPECT_EQ(p.pixelHeight, 900);
+  const LoggedOverlay* panel = log.overlay("panel");
+  ASSERT_NE(panel, nullptr);
+  EXPECT_EQ(p.pixelWidth + panel->width, 700);
+}
+
+TEST(DemoCompare, MouseDragReachesEveryPane) {
+  const std::string dir = outputDirectory("CompareDrag");
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --frames 1 --paused --log-state state.txt").exitCode, 0);
+  const LoggedPane start = readStateLog(dir + "/state.txt").panes.at(0);
+  const Eigen::Vector2d from = start.particles.back().x, to = from + Eigen::Vector2d(-0.2, 0.2);  // within reach
+  std::ostringstream drag;
+  drag << "2 down world " << from.x() << " " << from.y() << "\n3 move world " << to.x() << " " << to.y() << "\n";
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --compare midpoint,rk4,symplectic-euler --frames 90 --log-state state.txt",
+                    drag.str()).exitCode, 0);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(log.panes.size(), 3u);
+  for (const LoggedPane& pane : log.panes) {
+    SCOPED_TRACE(pane.integrator);
+    EXPECT_EQ(pane.mouseSprings, 1);
+    EXPECT_LT((pane.particles.back().x - to).norm(), 0.5 * (from - to).norm());
+  }
+}
