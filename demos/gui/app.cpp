@@ -43,7 +43,7 @@ App::App(DemoOptions options)
   SceneChoice first;
   if (!options_.sceneFile.empty()) {
     first.file = options_.sceneFile;
-    first.label = options_.sceneFile;
+    first.label = options_.sceneFile.substr(options_.sceneFile.find_last_of('/') + 1);
   } else {
     first.name = first.label = options_.scene;
     first.params = options_.params;

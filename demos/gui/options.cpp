@@ -31,9 +31,11 @@ DemoOptions parseOptions(int argc, char** argv) {
   double dt = 0.0;
   long long frames = 0;
   std::string integrator;
-  cli.add_option("--scene", o.scene, "built-in scene to start with (see particle-lab list)")->capture_default_str();
-  cli.add_option("--scene-file", o.sceneFile, "JSON scene file to start with instead of --scene");
-  cli.add_option("--param", params, "scene parameter override key=value (repeatable)");
+  auto* byName =
+      cli.add_option("--scene", o.scene, "built-in scene to start with (see particle-lab list)")->capture_default_str();
+  auto* byFile = cli.add_option("--scene-file", o.sceneFile, "JSON scene file to start with (format: demos/scenes/FORMAT.md)");
+  byName->excludes(byFile);
+  cli.add_option("--param", params, "scene parameter override key=value (repeatable)")->excludes(byFile);
   auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
   auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
   cli.add_option("--compare", compare, "start in compare mode, one pane per integrator: e.g. euler,rk4 (2 to 4)");

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "scene.h"
+#include "scene_file/scene_file.h"
 
 namespace demo {
 
@@ -44,7 +45,7 @@ std::vector<SceneKey> sceneKeys() {
 
 namespace demo {
 scenes::Scene buildChoice(const SceneChoice& choice) {
-  if (!choice.file.empty()) throw std::invalid_argument("scene files are not supported yet: " + choice.file);
+  if (!choice.file.empty()) return scenes::loadSceneFile(choice.file);
   return scenes::buildScene(choice.name, choice.params);
 }
 }  // namespace demo

@@ -28,7 +28,7 @@ std::vector<SceneKey> sceneKeys();
 namespace scenes { struct Scene; }
 
 namespace demo {
-// Builds the chosen scene; throws std::invalid_argument for a bad name,
-// parameter or file.
+// Builds the chosen scene; throws std::invalid_argument for a bad name or
+// parameter, scenes::SceneFileError for a file that cannot be read or is malformed.
 scenes::Scene buildChoice(const SceneChoice& choice);
 }  // namespace demo

@@ -87,7 +87,8 @@ TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
       "--param links=3",           "--param nosuch=1",                "--param links",
       "--compare euler",           "--compare euler,nosuch",          "--window 10x10",
       "--script missing.txt",      "--script bad-script.txt",         "--no-such-option",
-      "--scene-file missing.json",
+      "--scene-file missing.json",      "--scene-file " MALFORMED_DIR "/nan.json",
+      "--scene-file " MALFORMED_DIR "/unknown-type.json", "--scene cloth --scene-file " SCENES_DIR "/rod.json",
   };
   for (const std::string& args : cases) {
     SCOPED_TRACE(args);
@@ -97,6 +98,25 @@ TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
     ASSERT_EQ(r.errLines().size(), 1u) << r.err;
     EXPECT_EQ(r.errLines()[0].rfind("particle-demo: error: ", 0), 0u) << r.err;
   }
+}
+
+TEST(DemoCommandLine, MalformedSceneFileNamesTheFileAndTheJsonPath) {
+  const std::string dir = outputDirectory("MalformedSceneFile");
+  const RunResult r = runDemo(dir, "--scene-file " MALFORMED_DIR "/non-positive-mass.json");
+  EXPECT_EQ(r.exitCode, 2);
+  ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("non-positive-mass.json: $.particles[1].mass: expected a number > 0, got 0"), std::string::npos)
+      << r.err;
+}
+
+TEST(DemoCommandLine, SceneFileRuns) {
+  const std::string dir = outputDirectory("SceneFile");
+  const RunResult r = runDemo(dir, "--scene-file " SCENES_DIR "/rod.json --frames 30 --log-state state.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const StateLog log = readStateLog(dir + "/state.txt");
+  EXPECT_EQ(log.panes.at(0).scene, "rod.json");
+  EXPECT_GT(log.panes.at(0).steps, 0);
+  EXPECT_FALSE(log.panes.at(0).particles.empty());
 }
 
 // ---------------------------------------------------------------------------
