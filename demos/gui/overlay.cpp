@@ -78,7 +78,8 @@ void App::drawHud() {
     const Simulation& sim = *panes_.front();
     const particles::ParticleSystem& s = sim.system();
     const PixelRect area = worldArea();
-    ImGui::SetNextWindowPos(ImVec2(area.x + 8.0f, area.y + 8.0f));
+    // Bottom left: the scenes hang from rails at the top of the view.
+    ImGui::SetNextWindowPos(ImVec2(area.x + 8.0f, area.y + area.height - 8.0f), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
     ImGui::SetNextWindowBgAlpha(0.65f);
     ImGui::Begin("##hud", nullptr, overlayFlags);
     ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", scene_.label.c_str());
@@ -86,18 +87,20 @@ void App::drawHud() {
     ImGui::Text("  t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "");
     ImGui::Text("%s   dt %g   %d substep%s/frame%s", sim.integratorName(), sim.dt(), sim.lastFrame().substeps,
                 sim.lastFrame().substeps == 1 ? "" : "s", stepMode_ == StepMode::Lockstep ? " (lockstep)" : "");
-    ImGui::Text("simulation %.2f ms/frame   draw %.1f ms   %d particles", sim.lastFrame().simulationMs, drawMs_,
-                s.size());
-    ImGui::Text("CG %d iterations, residual %.1e", s.lastSolve().iterations, s.lastSolve().residual);
-    ImGui::Text("max |C| %.2e   energy %.5g", s.maxConstraintError(), s.totalEnergy());
+    // Fixed-width numbers, so the auto-sized box does not change size from frame to frame.
+    ImGui::Text("simulation %7.2f ms   draw %6.1f ms   per frame", sim.lastFrame().simulationMs, drawMs_);
+    ImGui::Text("%d particles   CG %d iterations, residual %.1e", s.size(), s.lastSolve().iterations,
+                s.lastSolve().residual);
+    ImGui::Text("max |C| %.2e   energy % .5e", s.maxConstraintError(), s.totalEnergy());
     ImGui::TextDisabled("h help   p panel   v compare");
     overlays_.push_back({"hud", windowRect()});
     ImGui::End();
   }
   if (statusFrames_ > 0) {
     const PixelRect area = worldArea();
+    const float width = ImGui::CalcTextSize(status_.c_str()).x + 12.0f;
     overlays_.push_back(
-        {"status", boxedText(ImVec2(area.x + 8.0f, area.y + area.height - 34.0f), status_, hudColour())});
+        {"status", boxedText(ImVec2(area.x + 0.5f * (area.width - width), area.y + 8.0f), status_, hudColour())});
   }
 }
 

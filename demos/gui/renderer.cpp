@@ -43,6 +43,7 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   const particles::ParticleSystem& system = simulation.system();
   for (Batch* b : {&walls_, &springs_, &constraints_, &arrows_}) b->clear();
   for (auto& entry : pointsBySize_) entry.second.clear();
+  for (auto& entry : discsBySize_) entry.second.clear();
 
   collectWalls(system);
   collectSketches(system, options);
@@ -75,6 +76,10 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   glEnableClientState(GL_COLOR_ARRAY);
 
   draw(walls_, GL_TRIANGLES);
+  for (const auto& [diameter, batch] : discsBySize_) {
+    glPointSize(static_cast<float>(diameter));
+    draw(batch, GL_POINTS);
+  }
   glLineWidth(smooth ? 1.4f : 1.0f);
   draw(springs_, GL_LINES);
   glLineWidth(2.0f);
@@ -196,13 +201,15 @@ void Renderer::collectParticles(const Simulation& simulation, const ViewTransfor
   const int grabbed = simulation.mouseSpring() ? simulation.mouseSpring()->particle() : -1;
   const int diameter = pointDiameter(system, view.pixelsPerUnit);
   for (int i = 0; i < system.size(); ++i) {
-    const int d = system.collidable(i)
-                      ? std::max(3, static_cast<int>(std::lround(2.0 * system.radii()[i] * view.pixelsPerUnit)))
-                      : diameter;
     const Rgb colour = i == grabbed            ? palette::grabbedParticle
                        : system.pinned(i)      ? palette::pinnedParticle
                                                : palette::particle;
-    pointsBySize_[i == grabbed || system.pinned(i) ? d + 2 : d].add(system.position(i), colour);
+    // A collidable particle also shows its collision disc, faintly, under the mesh.
+    if (system.collidable(i)) {
+      const int disc = static_cast<int>(std::lround(2.0 * system.radii()[i] * view.pixelsPerUnit));
+      if (disc > diameter) discsBySize_[disc].add(system.position(i), colour, 56);
+    }
+    pointsBySize_[i == grabbed || system.pinned(i) ? diameter + 2 : diameter].add(system.position(i), colour);
   }
 }
 

@@ -50,6 +50,7 @@ class Renderer {
 
   Batch walls_, springs_, constraints_, arrows_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
+  std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
   particles::Sketch sketch_;
   std::vector<Eigen::VectorXd> forceByType_;
   Eigen::VectorXd totalForce_;
