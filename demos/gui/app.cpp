@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 
@@ -65,10 +66,24 @@ App::App(DemoOptions options)
   scene_ = first;
   panes_.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
   if (!options_.compare.empty()) {
-    std::vector<int> indices;
-    for (const std::string& name : options_.compare) indices.push_back(integratorIndexByName(name));
-    setPaneCount(static_cast<int>(indices.size()));
-    for (std::size_t k = 0; k < indices.size(); ++k) panes_[k]->setIntegrator(indices[k]);
+    // Each entry is an integrator, optionally with its own dt: "rk4" or "rk4:0.02".
+    std::vector<std::pair<int, double>> settings;
+    for (const std::string& entry : options_.compare) {
+      const auto colon = entry.find(':');
+      double paneDt = dt;
+      if (colon != std::string::npos) {
+        char* end = nullptr;
+        paneDt = std::strtod(entry.c_str() + colon + 1, &end);
+        if (end == entry.c_str() + colon + 1 || *end != '\0' || !(paneDt > 0.0) || !std::isfinite(paneDt))
+          throw std::invalid_argument("--compare: dt in '" + entry + "' must be a finite number > 0");
+      }
+      settings.emplace_back(integratorIndexByName(entry.substr(0, colon)), paneDt);
+    }
+    setPaneCount(static_cast<int>(settings.size()));
+    for (std::size_t k = 0; k < settings.size(); ++k) {
+      panes_[k]->setIntegrator(settings[k].first);
+      panes_[k]->setDt(settings[k].second);
+    }
   }
 }
 

@@ -38,7 +38,7 @@ DemoOptions parseOptions(int argc, char** argv) {
   cli.add_option("--param", params, "scene parameter override key=value (repeatable)")->excludes(byFile);
   auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
   auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
-  cli.add_option("--compare", compare, "start in compare mode, one pane per integrator: e.g. euler,rk4 (2 to 4)");
+  cli.add_option("--compare", compare, "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or rk4:0.02,rk4:0.005 (2 to 4)");
   cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
   cli.add_flag("--no-panel", o.hidePanel, "start with the control panel hidden (key p shows it)");
   cli.add_flag("--paused", o.startPaused, "start paused");

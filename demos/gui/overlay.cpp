@@ -86,7 +86,8 @@ void App::drawHud() {
     ImGui::SameLine();
     ImGui::Text("  t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "");
     ImGui::Text("%s   dt %g   %d substep%s/frame%s", sim.integratorName(), sim.dt(), sim.lastFrame().substeps,
-                sim.lastFrame().substeps == 1 ? "" : "s", stepMode_ == StepMode::Lockstep ? " (lockstep)" : "");
+                sim.lastFrame().substeps == 1 ? "" : "s",
+                stepMode_ == StepMode::Lockstep ? " (lockstep)" : sim.lastFrame().capped ? " (capped: slow motion)" : "");
     // Fixed-width numbers, so the auto-sized box does not change size from frame to frame.
     ImGui::Text("simulation %7.2f ms   draw %6.1f ms   per frame", sim.lastFrame().simulationMs, drawMs_);
     ImGui::Text("%d particles   CG %d iterations, residual %.1e", s.size(), s.lastSolve().iterations,
@@ -132,10 +133,13 @@ void App::drawPaneLines() {
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     const Simulation& sim = *panes_[k];
     const particles::ParticleSystem& s = sim.system();
-    std::string line = format("%s   dt %g   %.2f ms/frame   E %.5g   max |C| %.1e", sim.integratorName(), sim.dt(),
+    std::string text = format("%s   dt %g   %.2f ms/frame\nE % .5e   max |C| %.1e", sim.integratorName(), sim.dt(),
                               sim.lastFrame().simulationMs, s.totalEnergy(), s.maxConstraintError());
-    if (k == 0) line = scene_.label + format("   t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "") + "\n" + line;
-    overlays_.push_back({"pane-hud", boxedText(ImVec2(views[k].pane.x + 6.0f, views[k].pane.y + 6.0f), line, hudColour())});
+    if (k == 0) text = scene_.label + format("   t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "") + "\n" + text;
+    const PixelRect& p = views[k].pane;
+    ImGui::GetForegroundDrawList()->PushClipRect(ImVec2(p.x, p.y), ImVec2(p.x + p.width, p.y + p.height), true);
+    overlays_.push_back({"pane-hud", boxedText(ImVec2(p.x + 6.0f, p.y + 6.0f), text, hudColour())});
+    ImGui::GetForegroundDrawList()->PopClipRect();
   }
 }
 

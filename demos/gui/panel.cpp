@@ -88,12 +88,17 @@ void App::drawPanel() {
         }
         ImGui::EndCombo();
       }
+      // One dt for all panes, or one per pane in compare mode.
+      if (k == 0 || panes_.size() > 1) {
+        double dt = panes_[k]->dt();
+        if (ImGui::InputDouble(panes_.size() > 1 ? "dt" : "dt (s)", &dt, 0.0, 0.0, "%.3e",
+                               ImGuiInputTextFlags_EnterReturnsTrue) && dt > 0.0 && std::isfinite(dt)) {
+          if (panes_.size() > 1) panes_[k]->setDt(dt);
+          else for (auto& pane : panes_) pane->setDt(dt);
+        }
+      }
       ImGui::PopID();
     }
-    double dt = panes_.front()->dt();
-    if (ImGui::InputDouble("dt (s)", &dt, 0.0, 0.0, "%.3e", ImGuiInputTextFlags_EnterReturnsTrue) && dt > 0.0 &&
-        std::isfinite(dt))
-      for (auto& pane : panes_) pane->setDt(dt);
     if (ImGui::Button("dt x2 (+)")) scaleDt(2.0);
     ImGui::SameLine();
     if (ImGui::Button("dt /2 (-)")) scaleDt(0.5);

@@ -42,6 +42,10 @@ void Simulation::advanceFrame(double frameTime, StepMode mode) {
     // Fixed simulated time per frame: the frame rate changes how often this
     // runs, never what it computes. Time short of a whole dt carries over.
     owedTime_ += frameTime;
+    if (owedTime_ > maxSubstepsPerFrame * dt_) {
+      owedTime_ = maxSubstepsPerFrame * dt_;
+      lastFrame_.capped = true;
+    }
     while (owedTime_ >= dt_ * (1.0 - 1e-9) && !divergedAt_) {
       stepAndWatch();
       owedTime_ -= dt_;

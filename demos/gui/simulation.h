@@ -29,9 +29,14 @@ struct DivergenceLimits {
   double distanceInViews = 1000.0;       // |x| in units of the view's diagonal
 };
 
+// At most this many steps per frame: with a tiny dt the simulation then runs
+// slower than the fixed simulated time per frame instead of freezing the window.
+constexpr int maxSubstepsPerFrame = 2000;
+
 // Measurements of the last frame, for the HUD.
 struct FrameStats {
   int substeps = 0;
+  bool capped = false;        // maxSubstepsPerFrame cut the frame's simulated time short
   double simulationMs = 0.0;  // wall time spent stepping this frame
 };
 

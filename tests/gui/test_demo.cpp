@@ -85,7 +85,7 @@ TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
       "--scene no-such-scene",     "--integrator no-such-integrator", "--dt -1",  "--dt 0", "--dt nan",
       "--dt abc",                  "--frames 0",                      "--frames x",
       "--param links=3",           "--param nosuch=1",                "--param links",
-      "--compare euler",           "--compare euler,nosuch",          "--window 10x10",
+      "--compare euler",           "--compare euler,nosuch", "--compare rk4:0,rk4", "--compare rk4:x,euler",          "--window 10x10",
       "--script missing.txt",      "--script bad-script.txt",         "--no-such-option",
       "--scene-file missing.json",      "--scene-file " MALFORMED_DIR "/nan.json",
       "--scene-file " MALFORMED_DIR "/unknown-type.json", "--scene cloth --scene-file " SCENES_DIR "/rod.json",
@@ -426,6 +426,18 @@ TEST(DemoView, ResizeKeepsTheWorldsAspectRatioAndShowsTheWholeView) {
   const LoggedOverlay* panel = log.overlay("panel");
   ASSERT_NE(panel, nullptr);
   EXPECT_EQ(p.pixelWidth + panel->width, 700);
+}
+
+TEST(DemoCompare, PanesCanDifferInDtAndKeepTheSameClock) {
+  const std::string dir = outputDirectory("CompareDt");
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --compare rk4:0.02,rk4:0.005 --frames 60 --log-state state.txt").exitCode, 0);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(log.panes.size(), 2u);
+  EXPECT_DOUBLE_EQ(log.panes[0].dt, 0.02);
+  EXPECT_DOUBLE_EQ(log.panes[1].dt, 0.005);
+  EXPECT_NEAR(log.panes[0].time, 1.0, 1e-9);  // 60 frames of 1/60 s in both
+  EXPECT_NEAR(log.panes[1].time, 1.0, 1e-9);
+  EXPECT_EQ(log.panes[1].steps, 4 * log.panes[0].steps);
 }
 
 TEST(DemoCompare, MouseDragReachesEveryPane) {
