@@ -74,6 +74,28 @@ class App {
   void scaleDt(double factor);
   void rewind();
   void setStatus(const std::string& text);
+  // The rest of the keys' actions, one each.
+  void doubleDt() { scaleDt(2.0); }
+  void halveDt() { scaleDt(0.5); }
+  void togglePause() { paused_ = !paused_; }
+  void stepOnce() { paused_ = true; stepRequested_ = true; }
+  void toggleForces() { drawOptions_.forces = !drawOptions_.forces; }
+  void toggleConstraints() { drawOptions_.constraints = !drawOptions_.constraints; }
+  void toggleHelp() { showHelp_ = !showHelp_; }
+  void togglePanel() { showPanel_ = !showPanel_; }
+  void toggleLockstep();
+  void cyclePaneCount() { setPaneCount(panes_.size() >= 4 ? 1 : static_cast<int>(panes_.size()) + 1); }
+  void requestQuit() { quit_ = true; }
+
+  // Every key besides the scene keys: what the help overlay lists and what
+  // keyboard() dispatches, from one table.
+  struct KeyBinding {
+    const char* keys;   // the characters that trigger it
+    const char* label;  // as the help shows the keys
+    const char* help;
+    void (App::*action)();
+  };
+  static const std::vector<KeyBinding>& keyBindings();
 
   // --- layout -------------------------------------------------------------
   PixelRect worldArea() const;

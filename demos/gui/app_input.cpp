@@ -3,10 +3,31 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 #include "app.h"
 
 namespace demo {
+
+const std::vector<App::KeyBinding>& App::keyBindings() {
+  static const std::vector<KeyBinding> table = {
+      {"i", "i", "next integrator, keeping the state", &App::cycleIntegrators},
+      {"+=", "+ / -", "double / halve dt", &App::doubleDt},
+      {"-_", nullptr, nullptr, &App::halveDt},
+      {" ", "space", "pause / run", &App::togglePause},
+      {".", ".", "one step (pauses)", &App::stepOnce},
+      {"r", "r", "reset the scene", &App::resetScene},
+      {"b", "b", "rewind about one second", &App::rewind},
+      {"f", "f", "force arrows on / off (colour per force type)", &App::toggleForces},
+      {"c", "c", "constraints on / off", &App::toggleConstraints},
+      {"v", "v", "compare mode: 2, 3, 4 panes, then back to 1", &App::cyclePaneCount},
+      {"l", "l", "lockstep: one step per frame / fixed time per frame", &App::toggleLockstep},
+      {"p", "p", "control panel on / off", &App::togglePanel},
+      {"h", "h", "this help", &App::toggleHelp},
+      {"\x1bq", "Esc / q", "quit", &App::requestQuit},
+  };
+  return table;
+}
 
 void App::keyboard(unsigned char key) {
   for (const SceneKey& k : sceneKeys())
@@ -15,26 +36,16 @@ void App::keyboard(unsigned char key) {
       setStatus("scene: " + k.choice.label);
       return;
     }
-  switch (key) {
-    case 'i': cycleIntegrators(); break;
-    case '+': case '=': scaleDt(2.0); break;
-    case '-': case '_': scaleDt(0.5); break;
-    case ' ': paused_ = !paused_; break;
-    case '.': paused_ = true; stepRequested_ = true; break;
-    case 'r': resetScene(); break;
-    case 'b': rewind(); break;
-    case 'f': drawOptions_.forces = !drawOptions_.forces; break;
-    case 'c': drawOptions_.constraints = !drawOptions_.constraints; break;
-    case 'h': showHelp_ = !showHelp_; break;
-    case 'p': showPanel_ = !showPanel_; break;
-    case 'l':
-      stepMode_ = stepMode_ == StepMode::Lockstep ? StepMode::FixedTime : StepMode::Lockstep;
-      setStatus(stepMode_ == StepMode::Lockstep ? "lockstep: one step per frame" : "fixed simulated time per frame");
-      break;
-    case 'v': setPaneCount(panes_.size() >= 4 ? 1 : static_cast<int>(panes_.size()) + 1); break;
-    case 27: case 'q': quit_ = true; break;
-    default: break;
-  }
+  for (const KeyBinding& binding : keyBindings())
+    if (key != 0 && std::strchr(binding.keys, key)) {
+      (this->*binding.action)();
+      return;
+    }
+}
+
+void App::toggleLockstep() {
+  stepMode_ = stepMode_ == StepMode::Lockstep ? StepMode::FixedTime : StepMode::Lockstep;
+  setStatus(stepMode_ == StepMode::Lockstep ? "lockstep: one step per frame" : "fixed simulated time per frame");
 }
 
 void App::mouse(int button, int state, int x, int y, bool shift) {

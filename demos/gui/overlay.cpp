@@ -12,26 +12,12 @@
 namespace demo {
 
 namespace {
-// Every key the demo understands, as the help overlay lists them.
-struct KeyHelp {
-  const char* keys;
+// What the mouse does, for the help overlay (the keys come from App::keyBindings()).
+struct MouseHelp {
+  const char* buttons;
   const char* action;
 };
-constexpr KeyHelp keyHelp[] = {
-    {"1, 2, ...", "load a scene (listed below)"},
-    {"i", "next integrator, keeping the state"},
-    {"+ / -", "double / halve dt"},
-    {"space", "pause / run"},
-    {".", "one step (pauses)"},
-    {"r", "reset the scene"},
-    {"b", "rewind about one second"},
-    {"f", "force arrows on / off (colour per force type)"},
-    {"c", "constraints on / off"},
-    {"v", "compare mode: 2, 3, 4 panes, then back to 1"},
-    {"l", "lockstep: one step per frame / fixed time per frame"},
-    {"p", "control panel on / off"},
-    {"h", "this help"},
-    {"Esc / q", "quit"},
+constexpr MouseHelp mouseHelp[] = {
     {"left drag", "pull a particle with a mouse spring"},
     {"right drag, shift+left", "pin a particle and move it; click a pinned one to unpin"},
 };
@@ -166,13 +152,17 @@ void App::drawHelp() {
   ImGui::SetNextWindowBgAlpha(0.88f);
   ImGui::Begin("Keys", nullptr, overlayFlags & ~ImGuiWindowFlags_NoTitleBar);
   if (ImGui::BeginTable("keys", 2)) {
-    for (const KeyHelp& k : keyHelp) {
+    auto row = [](const char* keys, const char* action) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", k.keys);
+      ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", keys);
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(k.action);
-    }
+      ImGui::TextUnformatted(action);
+    };
+    row("1, 2, ...", "load a scene (listed below)");
+    for (const KeyBinding& k : keyBindings())
+      if (k.label) row(k.label, k.help);
+    for (const MouseHelp& m : mouseHelp) row(m.buttons, m.action);
     ImGui::EndTable();
   }
   ImGui::Separator();

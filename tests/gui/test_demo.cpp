@@ -144,6 +144,8 @@ TEST(DemoKeys, EveryScenePlusEveryIntegratorByKeyThenQuitExitsZero) {
     EXPECT_EQ(log.panes[0].scene, key.choice.label);
     EXPECT_EQ(log.panes[0].integrator, scenes::buildScene(key.choice.name, key.choice.params).integrator);
     EXPECT_GT(log.panes[0].steps, 0);
+    EXPECT_NE(log.overlay("help"), nullptr);    // h shows the help overlay
+    EXPECT_NE(log.overlay("legend"), nullptr);  // f shows the force legend
   }
 }
 
