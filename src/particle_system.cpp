@@ -102,9 +102,11 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
 void ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
   integrator.step(*this, dt);
-  if (!walls_.empty()) resolveWallContacts(walls_, inverseMass_, radius_, x_, v_);
+  // Disc contacts first, walls last: separating two discs can push one into a
+  // wall, and a wall is the hard boundary a step must never end inside.
   contactsLastStep_ =
       collidable_.size() > 1 ? contacts_.resolve(collidable_, inverseMass_, radius_, x_, v_) : 0;
+  if (!walls_.empty()) resolveWallContacts(walls_, inverseMass_, radius_, x_, v_);
   time_ += dt;
 }
 
