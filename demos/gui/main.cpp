@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   try {
     application = std::make_unique<demo::App>(options);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "particle-demo: error: %s\n", e.what());
+    demo::reportBadUsage(e.what());
     return demo::exitBadUsage;
   }
 

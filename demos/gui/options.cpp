@@ -7,11 +7,23 @@
 
 #include <CLI/CLI.hpp>
 
+#include "particles/check.h"
+
 namespace demo {
 
 namespace {
+}  // namespace
+
+void reportBadUsage(const std::string& message) {
+  std::string line = message;
+  for (char& c : line)
+    if (c == '\n') c = ' ';
+  std::fprintf(stderr, "particle-demo: %s\n", line.c_str());
+}
+
+namespace {
 [[noreturn]] void badUsage(const std::string& message) {
-  std::fprintf(stderr, "particle-demo: error: %s\n", message.c_str());
+  reportBadUsage(message);
   std::exit(exitBadUsage);
 }
 
@@ -62,7 +74,11 @@ DemoOptions parseOptions(int argc, char** argv) {
   }
   if (*integratorOption) o.integrator = integrator;
   if (*dtOption) {
-    if (!(dt > 0.0) || !std::isfinite(dt)) badUsage("--dt must be a finite number > 0, got " + std::to_string(dt));
+    try {
+      particles::requirePositive("--dt", dt);  // the same message as particle-lab's
+    } catch (const std::invalid_argument& e) {
+      badUsage(e.what());
+    }
     o.dt = dt;
   }
   if (*framesOption) {

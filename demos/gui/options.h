@@ -27,8 +27,11 @@ struct DemoOptions {
 // Exit codes: 0 success, 2 a bad command line (one line on stderr).
 constexpr int exitBadUsage = 2;
 
+// Writes "particle-demo: <message>" as one line on stderr, as particle-lab does.
+void reportBadUsage(const std::string& message);
+
 // Parses argv; on --help prints the help and exits 0; on a bad value prints
-// one line "particle-demo: error: …" and exits 2. Checks values that need no
+// one line "particle-demo: …" and exits 2. Checks values that need no
 // window (scene and integrator names, dt, files) so errors come before GLUT.
 DemoOptions parseOptions(int argc, char** argv);
 

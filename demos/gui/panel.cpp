@@ -62,7 +62,8 @@ void App::drawPanel() {
             setStatus(e.what());
           }
         }
-        if (ImGui::IsItemHovered() && !spec.help.empty()) ImGui::SetTooltip("%s", spec.help.c_str());
+        if (ImGui::IsItemHovered() && !spec.help.empty())
+          ImGui::SetTooltip("%s\n(Enter rebuilds the scene)", spec.help.c_str());
       }
     }
     if (ImGui::Button("Reset (r)")) resetScene();

@@ -96,8 +96,19 @@ TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_TRUE(r.out.empty()) << r.out;
     ASSERT_EQ(r.errLines().size(), 1u) << r.err;
-    EXPECT_EQ(r.errLines()[0].rfind("particle-demo: error: ", 0), 0u) << r.err;
+    EXPECT_EQ(r.errLines()[0].rfind("particle-demo: ", 0), 0u) << r.err;
   }
+}
+
+TEST(DemoCommandLine, MessagesMatchParticleLabs) {
+  const std::string dir = outputDirectory("Messages");
+  EXPECT_EQ(runDemo(dir, "--dt nan").err, "particle-demo: --dt must be > 0, got nan\n");
+  EXPECT_EQ(runDemo(dir, "--dt 0").err, "particle-demo: --dt must be > 0, got 0\n");
+  EXPECT_NE(runDemo(dir, "--scene clot").err.find("particle-demo: unknown scene 'clot' (valid: cloth, hair"),
+            std::string::npos);
+  EXPECT_NE(runDemo(dir, "--integrator rk5").err.find(
+                "particle-demo: unknown integrator 'rk5' (valid: euler, symplectic-euler, midpoint, rk4)"),
+            std::string::npos);
 }
 
 TEST(DemoCommandLine, MalformedSceneFileNamesTheFileAndTheJsonPath) {
