@@ -18,7 +18,7 @@ constexpr std::size_t smoothLineLimit = 8000;  // lines drawn antialiased up to 
 // Diameter in pixels of a point particle: large enough to grab in a small
 // scene, and at most half the typical spacing so a dense cloth shows its mesh.
 int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
-  const double byScale = std::clamp(0.016 * pixelsPerUnit, 4.0, 9.0);
+  const double byScale = std::clamp(0.022 * pixelsPerUnit, 5.0, 10.0);
   if (system.size() < 2) return static_cast<int>(byScale);
   Eigen::Vector2d lo = system.position(0), hi = lo;
   for (int i = 1; i < system.size(); ++i) {
