@@ -3,6 +3,7 @@
 #include <GL/freeglut.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -268,8 +269,13 @@ void App::scaleDt(double factor) {
 }
 
 void App::rewind() {
+  // One target time for every pane, so compare panes stay side by side in
+  // time: a second before the earliest divergence (or before now).
+  double target = panes_.front()->timeReached();
+  for (const auto& pane : panes_) target = std::min(target, pane->timeReached());
+  target -= rewindSeconds;
   std::optional<double> to;
-  for (auto& pane : panes_) to = pane->rewind(rewindSeconds);
+  for (auto& pane : panes_) to = pane->rewindTo(target);
   if (!to) return;
   paused_ = true;
   char text[128];

@@ -10,8 +10,11 @@ namespace demo {
 // seconds. Only finite states are recorded, so a rewind always lands on one.
 class RewindBuffer {
  public:
-  static constexpr double interval = 0.1;  // simulated seconds between snapshots
-  static constexpr double span = 3.0;      // simulated seconds kept
+  // 40 snapshots: 20 MB for a 128 × 128 cloth. The span covers a compare pane
+  // that ran on for seconds after another diverged, since 'b' rewinds every
+  // pane to a second before the first divergence.
+  static constexpr double interval = 0.2;  // simulated seconds between snapshots
+  static constexpr double span = 8.0;      // simulated seconds kept
 
   void clear() { snapshots_.clear(); }
   // Records the state if `interval` has passed since the last record.

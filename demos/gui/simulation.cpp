@@ -85,9 +85,8 @@ bool Simulation::checkDiverged() {
   return s.positions().size() > 0 && s.positions().cwiseAbs().maxCoeff() > far;
 }
 
-std::optional<double> Simulation::rewind(double seconds) {
-  const double now = divergedAt_ ? *divergedAt_ : system().time();
-  const particles::Snapshot* snapshot = history_.rewindTo(now - seconds);
+std::optional<double> Simulation::rewindTo(double time) {
+  const particles::Snapshot* snapshot = history_.rewindTo(time);
   if (!snapshot) return std::nullopt;
   system().restore(*snapshot);
   divergedAt_.reset();

@@ -69,9 +69,11 @@ class Simulation {
 
   // --- divergence and rewind ------------------------------------------------
   std::optional<double> divergedAt() const { return divergedAt_; }
-  // Restores the recorded state about `seconds` before now (or before the
-  // divergence) and clears the divergence. Returns the time restored to.
-  std::optional<double> rewind(double seconds);
+  // The simulated time it stopped at if diverged, else its clock.
+  double timeReached() const { return divergedAt_ ? *divergedAt_ : system().time(); }
+  // Restores the newest recorded state at or before `time` (the oldest kept
+  // if none is that old) and clears the divergence. Returns the time restored to.
+  std::optional<double> rewindTo(double time);
   // Copies the dynamic state and pins of another simulation of the same scene.
   void copyStateFrom(const Simulation& other);
 

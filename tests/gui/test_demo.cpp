@@ -470,3 +470,26 @@ TEST(DemoCompare, MouseDragReachesEveryPane) {
     EXPECT_LT((pane.particles.back().x - to).norm(), 0.5 * (from - to).norm());
   }
 }
+
+TEST(DemoDivergence, InCompareModeTheDivergedPaneStopsAloneAndRewindKeepsPanesTogether) {
+  const std::string dir = outputDirectory("CompareDivergence");
+  const std::string args = std::string(noPanel) + " --scene test-chain --compare rk4:0.5,rk4:0.05 --log-state state.txt ";
+  ASSERT_EQ(runDemo(dir, args + "--frames 300").exitCode, 0);
+  const StateLog before = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(before.panes.size(), 2u);
+  ASSERT_TRUE(before.panes[0].diverged);
+  EXPECT_FALSE(before.panes[1].diverged);
+  EXPECT_FALSE(before.paused);                        // the other pane ran on
+  EXPECT_NEAR(before.panes[1].time, 5.0, 1e-9);       // 300 frames of 1/60 s
+  EXPECT_LT(before.panes[0].time, before.panes[1].time);
+
+  ASSERT_EQ(runDemo(dir, args + "--frames 302", "300 key b\n").exitCode, 0);
+  const StateLog after = readStateLog(dir + "/state.txt");
+  EXPECT_FALSE(after.panes[0].diverged);
+  EXPECT_TRUE(after.paused);
+  const double target = before.panes[0].time - 1.0;
+  for (const LoggedPane& pane : after.panes) {
+    EXPECT_LE(pane.time, target + 1e-9);
+    EXPECT_GT(pane.time, target - 0.5 - 1e-9);  // the nearest snapshot, at most one dt (0.5) back
+  }
+}
