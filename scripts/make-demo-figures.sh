@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures of the demo with the program's own
-# --screenshot: the cloth with a corner pulled by a scripted mouse drag, and the hair.
+# --screenshot: the cloth with a corner pulled by a scripted mouse drag, the hair,
+# and compare mode.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 demo=./build/demos/particle-demo
@@ -29,4 +30,7 @@ run "${cloth[@]}" --frames 400 --script "$script" --screenshot "$out/demo-cloth.
 # Hair: the curls hanging from their rail after a few seconds.
 : > "$script"
 run --scene hair --frames 300 --screenshot "$out/demo-hair.png"
-echo "wrote $out/demo-cloth.png $out/demo-hair.png"
+# Compare mode: the test chain at dt = 0.1 under the four integrators, 7 s in.
+run --scene test-chain --compare euler,symplectic-euler,midpoint,rk4 --dt 0.1 --frames 420 \
+    --no-panel --window 1000x700 --screenshot "$out/demo-compare.png"
+echo "wrote $out/demo-cloth.png $out/demo-hair.png $out/demo-compare.png"
