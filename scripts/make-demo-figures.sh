@@ -28,7 +28,6 @@ awk -v x="$cx" -v y="$cy" 'BEGIN {
 run "${cloth[@]}" --frames 400 --script "$script" --screenshot "$out/demo-cloth.png"
 
 # Hair: the curls hanging from their rail after a few seconds.
-: > "$script"
 run --scene hair --frames 300 --screenshot "$out/demo-hair.png"
 # Compare mode: the test chain at dt = 0.1 under the four integrators, 7 s in.
 run --scene test-chain --compare euler,symplectic-euler,midpoint,rk4 --dt 0.1 --frames 420 \
