@@ -120,6 +120,12 @@ void App::initGraphics() {
 // One frame
 
 void App::display() {
+  if (!frameDue_ && !quit_) {
+    draw();
+    glutSwapBuffers();
+    return;
+  }
+  frameDue_ = false;
   playScript();
   advance();
   draw();

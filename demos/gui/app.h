@@ -46,7 +46,12 @@ class App {
   void mouse(int button, int state, int x, int y, bool shift);
   void motion(int x, int y);
   void reshape(int width, int height);
-  // One frame: scripted input, stepping, drawing, and the outputs of the last frame.
+  // Called by the frame clock (a 60 Hz timer, or idle in scripted runs): the
+  // next display() is a new frame.
+  void requestFrame() { frameDue_ = true; }
+  // One frame when one is due: scripted input, stepping, drawing, and the
+  // outputs of the last frame. Otherwise (an expose, a resize) it only redraws,
+  // so extra redisplays never speed up the simulation.
   void display();
 
   bool quitRequested() const { return quit_; }
@@ -131,6 +136,7 @@ class App {
   std::string status_;
   int statusFrames_ = 0;
   bool quit_ = false;
+  bool frameDue_ = false;
   bool imguiReady_ = false;
 };
 

@@ -19,7 +19,6 @@ demo::App& app() { return *static_cast<demo::App*>(glutGetWindowData()); }
 void onKeyboard(unsigned char key, int x, int y) {
   ImGui_ImplGLUT_KeyboardFunc(key, x, y);
   if (!ImGui::GetIO().WantTextInput) app().keyboard(key);
-  glutPostRedisplay();
 }
 void onKeyboardUp(unsigned char key, int x, int y) { ImGui_ImplGLUT_KeyboardUpFunc(key, x, y); }
 void onSpecial(int key, int x, int y) { ImGui_ImplGLUT_SpecialFunc(key, x, y); }
@@ -38,12 +37,24 @@ void onWheel(int button, int direction, int x, int y) { ImGui_ImplGLUT_MouseWhee
 void onReshape(int width, int height) { app().reshape(width, height); }
 void onDisplay() { app().display(); }
 
-// Interactive: about 60 frames per second. Scripted runs (--frames): as fast as possible.
+// The frame clock. Interactive: about 60 frames per second. Scripted runs
+// (--frames, --script): as fast as possible.
 void onTimer(int) {
+  app().requestFrame();
   glutPostRedisplay();
-  glutTimerFunc(16, onTimer, 0);
+  // The next tick of a 60 Hz grid since glutInit, so frames average 60 per
+  // second (a fixed 16 ms delay would give 62.5, and drift).
+  // Tick k is due at ceil(1000 k / 60) ms; schedule the first one after now.
+  const int now = glutGet(GLUT_ELAPSED_TIME);
+  auto tickTime = [](int k) { return (1000 * k + 59) / 60; };
+  int k = now * 60 / 1000 + 1;
+  while (tickTime(k) <= now) ++k;
+  glutTimerFunc(static_cast<unsigned>(tickTime(k) - now), onTimer, 0);
 }
-void onIdle() { glutPostRedisplay(); }
+void onIdle() {
+  app().requestFrame();
+  glutPostRedisplay();
+}
 
 }  // namespace
 
@@ -75,7 +86,7 @@ int main(int argc, char** argv) {
   glutMotionFunc(onMotion);
   glutPassiveMotionFunc(onPassiveMotion);
   glutMouseWheelFunc(onWheel);
-  if (options.frames || !options.script.empty()) glutIdleFunc(onIdle);
+  if ((options.frames || !options.script.empty()) && !options.realtime) glutIdleFunc(onIdle);
   else glutTimerFunc(16, onTimer, 0);
 
   glutMainLoop();

@@ -54,6 +54,7 @@ DemoOptions parseOptions(int argc, char** argv) {
   cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
   cli.add_flag("--no-panel", o.hidePanel, "start with the control panel hidden (key p shows it)");
   cli.add_flag("--paused", o.startPaused, "start paused");
+  cli.add_flag("--realtime", o.realtime, "with --script or --frames: keep to 60 frames per second instead of running flat out");
   cli.add_option("--window", window, "window size WIDTHxHEIGHT in pixels (default 1180x760)");
   cli.add_option("--script", o.script, "timed input events to play (see docs/demo-script.md)");
   auto* framesOption = cli.add_option("--frames", frames, "exit after this many frames");

@@ -17,6 +17,7 @@ struct DemoOptions {
   bool lockstep = false;
   bool hidePanel = false;
   bool startPaused = false;
+  bool realtime = false;                        // scripted runs at 60 frames/s instead of flat out
   int windowWidth = 1180, windowHeight = 760;
   std::string script;                           // --script FILE
   std::optional<long long> frames;              // --frames N: exit after N frames
