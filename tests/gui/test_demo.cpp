@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -191,6 +192,17 @@ TEST(DemoStepping, FixedSimulatedTimePerFrameAndLockstep) {
   EXPECT_NEAR(readStateLog(dir + "/fixed.txt").panes[0].time, 1.0, 1e-9);  // 60 frames of 1/60 s
   EXPECT_EQ(readStateLog(dir + "/fixed.txt").panes[0].steps, 200);
   EXPECT_EQ(readStateLog(dir + "/lockstep.txt").panes[0].steps, 60);
+}
+
+TEST(DemoStepping, RealtimeFramesComeFromTheSixtyHertzClock) {
+  // The interactive frame clock: 60 frames cannot take less than about a
+  // second (only a lower bound; a slow machine may take longer), and simulate 1 s.
+  const std::string dir = outputDirectory("Realtime");
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --frames 60 --realtime --log-state state.txt").exitCode, 0);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GT(seconds, 0.9);
+  EXPECT_NEAR(readStateLog(dir + "/state.txt").panes.at(0).time, 1.0, 1e-9);
 }
 
 // ---------------------------------------------------------------------------
