@@ -27,8 +27,17 @@ awk -v x="$cx" -v y="$cy" 'BEGIN {
 }' > "$script"
 run "${cloth[@]}" --frames 400 --script "$script" --screenshot "$out/demo-cloth.png"
 
-# Hair: the curls hanging from their rail after a few seconds.
-run --scene hair --frames 300 --screenshot "$out/demo-hair.png"
+# Hair: after the curls settle, the mouse pulls the tip of the third curl to
+# the right, against its neighbour (disc contacts between curls).
+log=$(mktemp)
+run --scene hair --frames 120 --log-state "$log"
+read -r tx ty < <(awk -F, '$1 == "particle" && $3 == 74 {print $4, $5}' "$log")
+rm -f "$log"
+awk -v x="$tx" -v y="$ty" 'BEGIN {
+  print 120, "down world", x, y
+  for (k = 1; k <= 90; ++k) print 120 + k, "move world", x + 0.3 * k / 90, y + 0.1 * k / 90
+}' > "$script"
+run --scene hair --frames 300 --script "$script" --screenshot "$out/demo-hair.png"
 # Compare mode: the test chain at dt = 0.1 under the four integrators, 7 s in.
 run --scene test-chain --compare euler,symplectic-euler,midpoint,rk4 --dt 0.1 --frames 420 \
     --no-panel --window 1000x700 --screenshot "$out/demo-compare.png"

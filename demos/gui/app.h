@@ -22,10 +22,12 @@ enum class MouseTool {
   Pin,   // the particle is pinned and follows the cursor; a click on a pinned one unpins it
 };
 
-// Mouse-spring settings from the panel; damping defaults to critical for the
-// grabbed mass, k_d = 2√(k_s m).
+// Mouse-spring settings from the panel. The stiffness is set per unit of the
+// grabbed mass, k_s = ω² m, so a drag feels the same on a 0.2 cloth particle and
+// a 10-unit hair bead; damping defaults to critical, k_d = 2√(k_s m).
 struct MouseSpringSettings {
-  double stiffness = 5.0;   // k_s, force / length
+  double stiffnessPerMass = 25.0;  // ω², 1/s²: k_s = ω² m
+  double stiffness(double mass) const { return stiffnessPerMass * mass; }
   bool criticalDamping = true;
   double damping = 0.0;     // k_d when not critical, force / speed
   double pickPixels = 16;   // a press farther than this from every particle grabs nothing

@@ -81,9 +81,10 @@ void App::mouse(int button, int state, int x, int y, bool shift) {
   tool_ = MouseTool::Drag;
   for (auto& pane : panes_) {
     const double mass = pane->system().masses()[*particle];
-    const double damping = springSettings_.criticalDamping ? 2.0 * std::sqrt(springSettings_.stiffness * mass)
-                                                           : springSettings_.damping;
-    pane->grab(*particle, world, springSettings_.stiffness, damping);
+    const double stiffness = springSettings_.stiffness(mass);
+    const double damping =
+        springSettings_.criticalDamping ? 2.0 * std::sqrt(stiffness * mass) : springSettings_.damping;
+    pane->grab(*particle, world, stiffness, damping);
   }
 }
 

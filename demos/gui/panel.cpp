@@ -147,9 +147,10 @@ void App::drawPanel() {
       }
     }
     ImGui::Separator();
-    float ks = static_cast<float>(springSettings_.stiffness);
-    if (ImGui::SliderFloat("mouse k_s", &ks, 0.05f, 50.0f, "%.3g", ImGuiSliderFlags_Logarithmic))
-      springSettings_.stiffness = ks;
+    float omega2 = static_cast<float>(springSettings_.stiffnessPerMass);
+    if (ImGui::SliderFloat("mouse k_s / m", &omega2, 0.25f, 400.0f, "%.3g /s^2", ImGuiSliderFlags_Logarithmic))
+      springSettings_.stiffnessPerMass = omega2;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the mouse spring's k_s is this times the grabbed particle's mass");
     ImGui::Checkbox("critical damping 2 sqrt(k_s m)", &springSettings_.criticalDamping);
     if (!springSettings_.criticalDamping) {
       float kd = static_cast<float>(springSettings_.damping);
