@@ -1,0 +1,370 @@
+#include "particles/integrators/implicit_euler.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "particles/check.h"
+#include "particles/particle_system.h"
+
+namespace particles {
+
+void ImplicitEulerSettings::validate() const {
+  requireNonNegative("implicit stabilization beta", stabilization);
+  if (constraintPasses < 1)
+    throw std::invalid_argument("implicit constraint passes must be >= 1, got " +
+                                std::to_string(constraintPasses));
+  requirePositive("implicit compliance", compliance);
+  requirePositive("implicit CG tolerance", cgTolerance);
+  if (cgMaxIterations < 1)
+    throw std::invalid_argument("implicit CG max iterations must be >= 1, got " +
+                                std::to_string(cgMaxIterations));
+}
+
+void ImplicitEulerIntegrator::requireJacobians(const ParticleSystem& system) {
+  const auto& forces = system.forceObjects();
+  for (std::size_t k = 0; k < forces.size(); ++k)
+    if (!forces[k]->hasJacobians())
+      throw std::invalid_argument(std::string("implicit-euler needs force Jacobians, but force #") +
+                                  std::to_string(k) + " ('" + forces[k]->type() +
+                                  "') provides none");
+}
+
+// Rows of J and J̇ at (x, v), in the compressed layout of ConstraintSolver.
+void ImplicitEulerIntegrator::gatherConstraints(ParticleSystem& system, const Eigen::VectorXd& x,
+                                                const Eigen::VectorXd& v) {
+  const ConstraintList& constraints = system.constraints();
+  const Phase s = system.phase(x, v);
+  const int m = static_cast<int>(constraints.size());
+  rowStart_.resize(m + 1);
+  rowStart_[0] = 0;
+  for (int k = 0; k < m; ++k)
+    rowStart_[k + 1] = rowStart_[k] + static_cast<int>(constraints[k]->particles().size());
+  entryParticle_.resize(rowStart_[m]);
+  J_.resize(rowStart_[m]);
+  Jdot_.resize(rowStart_[m]);
+  C_.resize(m);
+  for (int k = 0; k < m; ++k) {
+    ConstraintRow row;
+    row.J = &J_[rowStart_[k]];
+    row.Jdot = &Jdot_[rowStart_[k]];
+    constraints[k]->evaluate(s, row);
+    C_[k] = row.C;
+    for (int e = rowStart_[k], i = 0; e < rowStart_[k + 1]; ++e, ++i)
+      entryParticle_[e] = constraints[k]->particles()[i];
+  }
+}
+
+double ImplicitEulerIntegrator::worstRelativeViolation(ParticleSystem& system,
+                                                      const Eigen::VectorXd& x,
+                                                      const Eigen::VectorXd& v) const {
+  const Phase s = system.phase(x, v);
+  double worst = 0.0;
+  for (const auto& c : system.constraints()) {
+    const double scale = c->lengthScale();
+    worst = std::max(worst, c->violation(s) / (scale > 0.0 ? scale : 1.0));
+  }
+  return worst;
+}
+
+bool ImplicitEulerIntegrator::patternMatches(int n, const Eigen::VectorXd& inverseMass,
+                                             bool withConstraints) const {
+  if (!analysed_ || withConstraints != cachedWithConstraints_) return false;
+  if (static_cast<int>(cachedPinned_.size()) != n) return false;
+  for (int i = 0; i < n; ++i)
+    if (cachedPinned_[i] != (inverseMass[i] == 0.0)) return false;
+  if (dfdx_.size() != xRow_.size() || dfdv_.size() != vRow_.size()) return false;
+  for (std::size_t k = 0; k < dfdx_.size(); ++k)
+    if (dfdx_[k].row() != xRow_[k] || dfdx_[k].col() != xCol_[k]) return false;
+  for (std::size_t k = 0; k < dfdv_.size(); ++k)
+    if (dfdv_[k].row() != vRow_[k] || dfdv_[k].col() != vCol_[k]) return false;
+  if (withConstraints && (rowStart_ != cachedRowStart_ || entryParticle_ != cachedEntryParticle_))
+    return false;
+  return true;
+}
+
+// The lower triangle of the KKT matrix: A on the 2n velocity unknowns, then one
+// row per constraint. Every value's destination in matrix_.valuePtr() is
+// recorded so that fillValues() is a scatter, with no search and no allocation.
+void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withConstraints) {
+  const Eigen::VectorXd& inverseMass = system.inverseMasses();
+  const int n = system.size(), dofs = 2 * n;
+  const int m = withConstraints ? static_cast<int>(rowStart_.size()) - 1 : 0;
+  auto free = [&](int dof) { return inverseMass[dof / 2] != 0.0; };
+  auto lower = [](int r, int c) { return std::make_pair(std::max(r, c), std::min(r, c)); };
+
+  Triplets pattern;
+  pattern.reserve(dofs + dfdx_.size() + dfdv_.size() + 2 * J_.size() + m);
+  for (int d = 0; d < dofs; ++d) pattern.emplace_back(d, d, 1.0);
+  for (const Triplets* list : {&dfdx_, &dfdv_})
+    for (const auto& t : *list)
+      if (free(t.row()) && free(t.col())) {
+        const auto rc = lower(t.row(), t.col());
+        pattern.emplace_back(rc.first, rc.second, 1.0);
+      }
+  for (int k = 0; k < m; ++k) {
+    for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e)
+      if (inverseMass[entryParticle_[e]] != 0.0)
+        for (int r = 0; r < 2; ++r) pattern.emplace_back(dofs + k, 2 * entryParticle_[e] + r, 1.0);
+    pattern.emplace_back(dofs + k, dofs + k, 1.0);
+    // Geometric stiffness couples every pair of free particles of the constraint.
+    for (int eb = rowStart_[k]; eb < rowStart_[k + 1]; ++eb)
+      for (int ea = rowStart_[k]; ea < rowStart_[k + 1]; ++ea)
+        for (int c = 0; c < 2; ++c)
+          for (int r = 0; r < 2; ++r) {
+            const int row = 2 * entryParticle_[ea] + r, col = 2 * entryParticle_[eb] + c;
+            if (free(row) && free(col)) {
+              const auto rc = lower(row, col);
+              pattern.emplace_back(rc.first, rc.second, 1.0);
+            }
+          }
+  }
+  matrix_.resize(dofs + m, dofs + m);
+  matrix_.setFromTriplets(pattern.begin(), pattern.end());
+  matrix_.makeCompressed();
+
+  auto slot = [&](int r, int c) {
+    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c];
+    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c + 1];
+    return static_cast<int>(std::lower_bound(begin, end, r) - matrix_.innerIndexPtr());
+  };
+  diagonalSlot_.resize(dofs);
+  for (int d = 0; d < dofs; ++d) diagonalSlot_[d] = slot(d, d);
+  auto record = [&](const Triplets& list, std::vector<int>& rows, std::vector<int>& cols,
+                    std::vector<int>& slots) {
+    rows.resize(list.size());
+    cols.resize(list.size());
+    slots.resize(list.size());
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      rows[k] = list[k].row();
+      cols[k] = list[k].col();
+      const auto rc = lower(rows[k], cols[k]);
+      slots[k] = free(rows[k]) && free(cols[k]) ? slot(rc.first, rc.second) : -1;
+    }
+  };
+  record(dfdx_, xRow_, xCol_, xSlot_);
+  record(dfdv_, vRow_, vCol_, vSlot_);
+  jSlot_.assign(2 * J_.size(), -1);
+  complianceSlot_.resize(m);
+  for (int k = 0; k < m; ++k) {
+    for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e)
+      if (inverseMass[entryParticle_[e]] != 0.0)
+        for (int r = 0; r < 2; ++r) jSlot_[2 * e + r] = slot(dofs + k, 2 * entryParticle_[e] + r);
+    complianceSlot_[k] = slot(dofs + k, dofs + k);
+  }
+  // In the loop order of addGeometricStiffness: k, then column (b, c), then row (a, r).
+  gSlot_.clear();
+  for (int k = 0; k < m; ++k)
+    for (int eb = rowStart_[k]; eb < rowStart_[k + 1]; ++eb)
+      for (int c = 0; c < 2; ++c)
+        for (int ea = rowStart_[k]; ea < rowStart_[k + 1]; ++ea)
+          for (int r = 0; r < 2; ++r) {
+            const int row = 2 * entryParticle_[ea] + r, col = 2 * entryParticle_[eb] + c;
+            const auto rc = lower(row, col);
+            gSlot_.push_back(free(row) && free(col) ? slot(rc.first, rc.second) : -1);
+          }
+
+  cachedPinned_.resize(n);
+  for (int i = 0; i < n; ++i) cachedPinned_[i] = inverseMass[i] == 0.0;
+  cachedWithConstraints_ = withConstraints;
+  cachedRowStart_ = withConstraints ? rowStart_ : std::vector<int>{};
+  cachedEntryParticle_ = withConstraints ? entryParticle_ : std::vector<int>{};
+  if (withConstraints || settings.solver == ImplicitLinearSolver::Direct)
+    ldlt_.analyzePattern(matrix_);
+  analysed_ = true;
+}
+
+// Values of the lower KKT triangle. A triplet (r, c, a) of K or D lands in the
+// lower slot of (r, c) with weight ½ off the diagonal, so the matrix is the
+// symmetric part of what the forces report (the definite Jacobians already are).
+void ImplicitEulerIntegrator::fillValues(int n, double h, const Eigen::VectorXd& mass,
+                                         const Eigen::VectorXd& inverseMass, bool withConstraints) {
+  double* value = matrix_.valuePtr();
+  std::fill(value, value + matrix_.nonZeros(), 0.0);
+  for (int d = 0; d < 2 * n; ++d)
+    value[diagonalSlot_[d]] = inverseMass[d / 2] == 0.0 ? 1.0 : mass[d / 2];
+  const double hx = -h * h, hv = -h;
+  for (std::size_t k = 0; k < dfdx_.size(); ++k)
+    if (xSlot_[k] >= 0)
+      value[xSlot_[k]] += (xRow_[k] == xCol_[k] ? hx : 0.5 * hx) * dfdx_[k].value();
+  for (std::size_t k = 0; k < dfdv_.size(); ++k)
+    if (vSlot_[k] >= 0)
+      value[vSlot_[k]] += (vRow_[k] == vCol_[k] ? hv : 0.5 * hv) * dfdv_[k].value();
+  if (!withConstraints) return;
+  const int m = static_cast<int>(rowStart_.size()) - 1;
+  for (int k = 0; k < m; ++k) {
+    double diagonal = 0.0;  // row k of diag(J W Jᵀ)
+    for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e) {
+      const double w = inverseMass[entryParticle_[e]];
+      if (w == 0.0) continue;
+      diagonal += w * J_[e].squaredNorm();
+      for (int r = 0; r < 2; ++r) value[jSlot_[2 * e + r]] = J_[e][r];
+    }
+    // A row with nothing free (all pinned, or a degenerate J) becomes −ν = 0.
+    value[complianceSlot_[k]] = diagonal > 0.0 ? -settings.compliance * diagonal : -1.0;
+  }
+}
+
+// Adds G = h Σ_k max(ν_k, 0) ∂²C_k/∂q² at x to the matrix. The Hessian of C_k
+// is read column by column through the constraint interface: J̇ = (∂J/∂q) q̇ is
+// linear in q̇, so J̇ at a unit velocity e_j is column j of ∂²C_k/∂q².
+void ImplicitEulerIntegrator::addGeometricStiffness(ParticleSystem& system, const Eigen::VectorXd& x,
+                                                    double h) {
+  const ConstraintList& constraints = system.constraints();
+  const Eigen::VectorXd& w = system.inverseMasses();
+  double* value = matrix_.valuePtr();
+  probe_.setZero(x.size());
+  std::size_t g = 0;
+  for (std::size_t k = 0; k < constraints.size(); ++k) {
+    const std::vector<int>& ps = constraints[k]->particles();
+    const std::size_t count = ps.size();
+    const double tension = static_cast<Eigen::Index>(k) < nuOld_.size() ? std::max(nuOld_[k], 0.0) : 0.0;
+    if (probeJ_.size() < count) probeJ_.resize(count), probeJdot_.resize(count);
+    ConstraintRow row;
+    row.J = probeJ_.data();
+    row.Jdot = probeJdot_.data();
+    for (std::size_t b = 0; b < count; ++b)
+      for (int c = 0; c < 2; ++c) {
+        if (tension > 0.0 && w[ps[b]] != 0.0) {
+          probe_[2 * ps[b] + c] = 1.0;
+          constraints[k]->evaluate(system.phase(x, probe_), row);
+          probe_[2 * ps[b] + c] = 0.0;
+        }
+        for (std::size_t a = 0; a < count; ++a)
+          for (int r = 0; r < 2; ++r, ++g) {
+            if (tension == 0.0 || gSlot_[g] < 0) continue;
+            const bool diagonal = a == b && r == c;
+            value[gSlot_[g]] += (diagonal ? h : 0.5 * h) * tension * probeJdot_[a][r];
+          }
+      }
+  }
+}
+
+// out += G dv = h Σ_k max(ν_k, 0) ∂²C_k/∂q² dv, read as J̇ at velocity dv.
+void ImplicitEulerIntegrator::addGeometricStiffnessTimes(ParticleSystem& system,
+                                                         const Eigen::VectorXd& x,
+                                                         const Eigen::VectorXd& dv, double h,
+                                                         Eigen::VectorXd& out) {
+  const ConstraintList& constraints = system.constraints();
+  const Eigen::VectorXd& w = system.inverseMasses();
+  for (std::size_t k = 0; k < constraints.size(); ++k) {
+    const double tension = static_cast<Eigen::Index>(k) < nuOld_.size() ? std::max(nuOld_[k], 0.0) : 0.0;
+    if (tension == 0.0) continue;
+    const std::vector<int>& ps = constraints[k]->particles();
+    if (probeJ_.size() < ps.size()) probeJ_.resize(ps.size()), probeJdot_.resize(ps.size());
+    ConstraintRow row;
+    row.J = probeJ_.data();
+    row.Jdot = probeJdot_.data();
+    constraints[k]->evaluate(system.phase(x, dv), row);
+    for (std::size_t a = 0; a < ps.size(); ++a)
+      if (w[ps[a]] != 0.0) out.segment<2>(2 * ps[a]) += h * tension * probeJdot_[a];
+  }
+}
+
+void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
+  settings.validate();
+  requireJacobians(system);
+  Eigen::VectorXd& x = system.positions();
+  Eigen::VectorXd& v = system.velocities();
+  const Eigen::VectorXd& mass = system.masses();
+  const Eigen::VectorXd& w = system.inverseMasses();
+  const int n = system.size(), dofs = 2 * n;
+  x0_ = x;
+  v0_ = v;
+  const bool coupled = settings.coupledConstraints && !system.constraints().empty();
+  const int m = coupled ? static_cast<int>(system.constraints().size()) : 0;
+
+  // f₀: the forces alone when the constraints are in the solve, forces plus
+  // the explicit constraint forces Jᵀλ when they are lagged.
+  const Phase s = system.phase(x0_, v0_);
+  if (!coupled && !system.constraints().empty()) {
+    system.acceleration(x0_, v0_, a_);
+    f0_ = system.forces();
+  } else {
+    f0_.setZero(dofs);
+    for (const auto& force : system.forceObjects()) force->apply(s, f0_);
+  }
+  dfdx_.clear();
+  dfdv_.clear();
+  for (const auto& force : system.forceObjects()) force->addDefiniteJacobians(s, dfdx_, dfdv_);
+  if (coupled) gatherConstraints(system, x0_, v0_);
+  if (!patternMatches(n, w, coupled)) buildPattern(system, coupled);
+
+  // Right-hand side h (f₀ + h K v₀) on the free degrees of freedom.
+  Kv_.setZero(dofs);
+  for (const auto& t : dfdx_) Kv_[t.row()] += t.value() * v0_[t.col()];
+  rhsForces_.resize(dofs);
+  for (int d = 0; d < dofs; ++d) rhsForces_[d] = w[d / 2] == 0.0 ? 0.0 : h * (f0_[d] + h * Kv_[d]);
+  rhs_.resize(dofs + m);
+
+  usedDirect_ = coupled || settings.solver == ImplicitLinearSolver::Direct;
+  iterations_ = 0;
+  // The impulses of the last step start the Newton iteration (their tension
+  // gives the first pass its geometric stiffness).
+  if (nuOld_.size() != m) nuOld_.setZero(m);
+
+  // Newton on the constraints (see the header). Pass 0 starts from Δv = 0,
+  // linearised at x₀ with the curvature term; pass p > 0 from the last
+  // (Δv, ν), linearised at x̃ = x₀ + h v̄:
+  //   [A + G  J̃ᵀ] [Δv]   [r₁ + G Δv_old     ]
+  //   [J̃     −E ] [ν ] = [J̃ Δv_old − β C̃/h ]
+  const int passes = coupled ? settings.constraintPasses : 1;
+  for (passes_ = 0; passes_ < passes; ++passes_) {
+    const Eigen::VectorXd* xLin = &x0_;
+    if (passes_ > 0) {
+      xTrial_ = x0_ + h * vBar_;
+      if (worstRelativeViolation(system, xTrial_, vBar_) <= settings.constraintTolerance) break;
+      gatherConstraints(system, xTrial_, vBar_);
+      xLin = &xTrial_;
+    }
+    fillValues(n, h, mass, w, coupled);
+    if (coupled && settings.geometricStiffness) addGeometricStiffness(system, *xLin, h);
+    rhs_.head(dofs) = rhsForces_;
+    if (passes_ > 0 && settings.geometricStiffness) {
+      dvOld_ = vBar_ - v0_;
+      Eigen::VectorXd head = rhs_.head(dofs);
+      addGeometricStiffnessTimes(system, xTrial_, dvOld_, h, head);
+      rhs_.head(dofs) = head;
+    }
+    for (int k = 0; k < m; ++k) {
+      // Row k: J v⁺ = c, written for the unknown Δv = v⁺ − v₀.
+      double jv0 = 0.0, jvbar = 0.0, curvature = 0.0;
+      bool anyFree = false;
+      for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e) {
+        const int p = entryParticle_[e];
+        if (passes_ == 0) curvature += Jdot_[e].dot(v0_.segment<2>(2 * p));
+        if (w[p] == 0.0) continue;
+        anyFree = true;
+        jv0 += J_[e].dot(v0_.segment<2>(2 * p));
+        if (passes_ > 0) jvbar += J_[e].dot(vBar_.segment<2>(2 * p));
+      }
+      const double c = passes_ == 0 ? -settings.stabilization * C_[k] / h - 0.5 * h * curvature
+                                    : jvbar - settings.stabilization * C_[k] / h;
+      rhs_[dofs + k] = anyFree ? c - jv0 : 0.0;
+    }
+    if (usedDirect_) {
+      ldlt_.factorize(matrix_);
+      if (ldlt_.info() != Eigen::Success)
+        throw std::runtime_error("implicit-euler: the KKT matrix could not be factorised");
+      z_ = ldlt_.solve(rhs_);
+    } else {
+      cg_.setTolerance(settings.cgTolerance);
+      cg_.setMaxIterations(settings.cgMaxIterations);
+      cg_.compute(matrix_);
+      if (dvGuess_.size() != dofs) dvGuess_.setZero(dofs);
+      z_ = cg_.solveWithGuess(rhs_, dvGuess_);
+      iterations_ = static_cast<int>(cg_.iterations());
+      dvGuess_ = z_;
+    }
+    if (!z_.allFinite())
+      throw std::runtime_error("implicit-euler: the linear solve gave non-finite values");
+    vBar_ = v0_ + z_.head(dofs);
+    nuOld_ = z_.tail(m);
+  }
+
+  v = vBar_;
+  x = x0_ + h * v;
+  lastStep_ = h;
+}
+
+}  // namespace particles
