@@ -1,6 +1,7 @@
 #include "particles/integrators/implicit_euler.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -169,8 +170,8 @@ void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withCons
   cachedWithConstraints_ = withConstraints;
   cachedRowStart_ = withConstraints ? rowStart_ : std::vector<int>{};
   cachedEntryParticle_ = withConstraints ? entryParticle_ : std::vector<int>{};
-  if (withConstraints || settings.solver == ImplicitLinearSolver::Direct)
-    ldlt_.analyzePattern(matrix_);
+  ldltAnalysed_ = false;  // analysed on first use, by whichever solver is chosen
+  cgAnalysed_ = false;
   analysed_ = true;
 }
 
@@ -261,6 +262,20 @@ void ImplicitEulerIntegrator::addGeometricStiffnessTimes(ParticleSystem& system,
   }
 }
 
+template <class Cg>
+const Eigen::VectorXd& ImplicitEulerIntegrator::solveByCg(Cg& cg) {
+  cg.setTolerance(settings.cgTolerance);
+  cg.setMaxIterations(settings.cgMaxIterations);
+  if (!cgAnalysed_) {
+    cg.analyzePattern(matrix_);
+    cgAnalysed_ = true;
+  }
+  cg.factorize(matrix_);
+  cgSolution_ = cg.solveWithGuess(rhs_, dvGuess_);
+  iterations_ = static_cast<int>(cg.iterations());
+  return cgSolution_;
+}
+
 void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   settings.validate();
   requireJacobians(system);
@@ -322,9 +337,7 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
     rhs_.head(dofs) = rhsForces_;
     if (passes_ > 0 && settings.geometricStiffness) {
       dvOld_ = vBar_ - v0_;
-      Eigen::VectorXd head = rhs_.head(dofs);
-      addGeometricStiffnessTimes(system, xTrial_, dvOld_, h, head);
-      rhs_.head(dofs) = head;
+      addGeometricStiffnessTimes(system, xTrial_, dvOld_, h, rhs_);  // writes rows < 2n only
     }
     for (int k = 0; k < m; ++k) {
       // Row k: J v⁺ = c, written for the unknown Δv = v⁺ − v₀.
@@ -343,21 +356,24 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
       rhs_[dofs + k] = anyFree ? c - jv0 : 0.0;
     }
     if (usedDirect_) {
+      if (!ldltAnalysed_) {
+        ldlt_.analyzePattern(matrix_);
+        ldltAnalysed_ = true;
+      }
       ldlt_.factorize(matrix_);
-      if (ldlt_.info() != Eigen::Success)
-        throw std::runtime_error("implicit-euler: the KKT matrix could not be factorised");
-      z_ = ldlt_.solve(rhs_);
+      // A failed factorisation (only a blown-up, non-finite state gets here:
+      // the matrix is quasi-definite) leaves NaN, which ParticleSystem::finite()
+      // reports as it does for every other integrator.
+      if (ldlt_.info() != Eigen::Success) z_.setConstant(dofs + m, NAN);
+      else z_ = ldlt_.solve(rhs_);
     } else {
-      cg_.setTolerance(settings.cgTolerance);
-      cg_.setMaxIterations(settings.cgMaxIterations);
-      cg_.compute(matrix_);
       if (dvGuess_.size() != dofs) dvGuess_.setZero(dofs);
-      z_ = cg_.solveWithGuess(rhs_, dvGuess_);
-      iterations_ = static_cast<int>(cg_.iterations());
+      if (settings.solver == ImplicitLinearSolver::IncompleteCholeskyGradient)
+        z_ = solveByCg(icg_);
+      else
+        z_ = solveByCg(cg_);
       dvGuess_ = z_;
     }
-    if (!z_.allFinite())
-      throw std::runtime_error("implicit-euler: the linear solve gave non-finite values");
     vBar_ = v0_ + z_.head(dofs);
     nuOld_ = z_.tail(m);
   }
