@@ -74,11 +74,8 @@ bool ImplicitEulerIntegrator::patternMatches(int n, const Eigen::VectorXd& inver
   if (static_cast<int>(cachedPinned_.size()) != n) return false;
   for (int i = 0; i < n; ++i)
     if (cachedPinned_[i] != (inverseMass[i] == 0.0)) return false;
+  // Each triplet's position is checked while fillValues() scatters it.
   if (dfdx_.size() != xRow_.size() || dfdv_.size() != vRow_.size()) return false;
-  for (std::size_t k = 0; k < dfdx_.size(); ++k)
-    if (dfdx_[k].row() != xRow_[k] || dfdx_[k].col() != xCol_[k]) return false;
-  for (std::size_t k = 0; k < dfdv_.size(); ++k)
-    if (dfdv_[k].row() != vRow_[k] || dfdv_[k].col() != vCol_[k]) return false;
   if (withConstraints && (rowStart_ != cachedRowStart_ || entryParticle_ != cachedEntryParticle_))
     return false;
   return true;
@@ -178,20 +175,28 @@ void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withCons
 // Values of the lower KKT triangle. A triplet (r, c, a) of K or D lands in the
 // lower slot of (r, c) with weight ½ off the diagonal, so the matrix is the
 // symmetric part of what the forces report (the definite Jacobians already are).
-void ImplicitEulerIntegrator::fillValues(int n, double h, const Eigen::VectorXd& mass,
-                                         const Eigen::VectorXd& inverseMass, bool withConstraints) {
+// With Kv given, K v₀ is summed in the same pass. Returns false, having written
+// only part of the values, when a triplet is not where the pattern has it.
+bool ImplicitEulerIntegrator::fillValues(int n, double h, const Eigen::VectorXd& mass,
+                                         const Eigen::VectorXd& inverseMass, bool withConstraints,
+                                         Eigen::VectorXd* Kv) {
   double* value = matrix_.valuePtr();
   std::fill(value, value + matrix_.nonZeros(), 0.0);
   for (int d = 0; d < 2 * n; ++d)
     value[diagonalSlot_[d]] = inverseMass[d / 2] == 0.0 ? 1.0 : mass[d / 2];
   const double hx = -h * h, hv = -h;
-  for (std::size_t k = 0; k < dfdx_.size(); ++k)
-    if (xSlot_[k] >= 0)
-      value[xSlot_[k]] += (xRow_[k] == xCol_[k] ? hx : 0.5 * hx) * dfdx_[k].value();
-  for (std::size_t k = 0; k < dfdv_.size(); ++k)
-    if (vSlot_[k] >= 0)
-      value[vSlot_[k]] += (vRow_[k] == vCol_[k] ? hv : 0.5 * hv) * dfdv_[k].value();
-  if (!withConstraints) return;
+  for (std::size_t k = 0; k < dfdx_.size(); ++k) {
+    const Eigen::Triplet<double>& t = dfdx_[k];
+    if (t.row() != xRow_[k] || t.col() != xCol_[k]) return false;
+    if (Kv) (*Kv)[t.row()] += t.value() * v0_[t.col()];
+    if (xSlot_[k] >= 0) value[xSlot_[k]] += (t.row() == t.col() ? hx : 0.5 * hx) * t.value();
+  }
+  for (std::size_t k = 0; k < dfdv_.size(); ++k) {
+    const Eigen::Triplet<double>& t = dfdv_[k];
+    if (t.row() != vRow_[k] || t.col() != vCol_[k]) return false;
+    if (vSlot_[k] >= 0) value[vSlot_[k]] += (t.row() == t.col() ? hv : 0.5 * hv) * t.value();
+  }
+  if (!withConstraints) return true;
   const int m = static_cast<int>(rowStart_.size()) - 1;
   for (int k = 0; k < m; ++k) {
     double diagonal = 0.0;  // row k of diag(J W Jᵀ)
@@ -204,6 +209,7 @@ void ImplicitEulerIntegrator::fillValues(int n, double h, const Eigen::VectorXd&
     // A row with nothing free (all pinned, or a degenerate J) becomes −ν = 0.
     value[complianceSlot_[k]] = diagonal > 0.0 ? -settings.compliance * diagonal : -1.0;
   }
+  return true;
 }
 
 // Adds G = h Σ_k max(ν_k, 0) ∂²C_k/∂q² at x to the matrix. The Hessian of C_k
@@ -304,10 +310,14 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   for (const auto& force : system.forceObjects()) force->addDefiniteJacobians(s, dfdx_, dfdv_);
   if (coupled) gatherConstraints(system, x0_, v0_);
   if (!patternMatches(n, w, coupled)) buildPattern(system, coupled);
+  Kv_.setZero(dofs);
+  if (!fillValues(n, h, mass, w, coupled, &Kv_)) {
+    buildPattern(system, coupled);
+    Kv_.setZero(dofs);
+    fillValues(n, h, mass, w, coupled, &Kv_);
+  }
 
   // Right-hand side h (f₀ + h K v₀) on the free degrees of freedom.
-  Kv_.setZero(dofs);
-  for (const auto& t : dfdx_) Kv_[t.row()] += t.value() * v0_[t.col()];
   rhsForces_.resize(dofs);
   for (int d = 0; d < dofs; ++d) rhsForces_[d] = w[d / 2] == 0.0 ? 0.0 : h * (f0_[d] + h * Kv_[d]);
   rhs_.resize(dofs + m);
@@ -332,7 +342,7 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
       gatherConstraints(system, xTrial_, vBar_);
       xLin = &xTrial_;
     }
-    fillValues(n, h, mass, w, coupled);
+    if (passes_ > 0) fillValues(n, h, mass, w, coupled, nullptr);
     if (coupled && settings.geometricStiffness) addGeometricStiffness(system, *xLin, h);
     rhs_.head(dofs) = rhsForces_;
     if (passes_ > 0 && settings.geometricStiffness) {

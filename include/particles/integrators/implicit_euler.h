@@ -108,8 +108,8 @@ class ImplicitEulerIntegrator : public Integrator {
   void addGeometricStiffness(ParticleSystem& system, const Eigen::VectorXd& x, double h);
   void addGeometricStiffnessTimes(ParticleSystem& system, const Eigen::VectorXd& x,
                                   const Eigen::VectorXd& dv, double h, Eigen::VectorXd& out);
-  void fillValues(int n, double h, const Eigen::VectorXd& mass, const Eigen::VectorXd& inverseMass,
-                  bool withConstraints);
+  bool fillValues(int n, double h, const Eigen::VectorXd& mass, const Eigen::VectorXd& inverseMass,
+                  bool withConstraints, Eigen::VectorXd* Kv);
 
   // Force and constraint data of the current step.
   Triplets dfdx_, dfdv_;
