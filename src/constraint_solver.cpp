@@ -281,9 +281,9 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
     ldlt_.analyzePattern(assembled_);
     ldltAnalysed_ = true;
   }
-  ldlt_.factorize(assembled_);
+  ldlt_.factorizeInPlace(assembled_);
   if (ldlt_.info() != Eigen::Success) return false;
-  if (!(ldlt_.vectorD().minCoeff() > 1e-10 * diagonal_.maxCoeff())) return false;
+  if (!(ldlt_.pivots().minCoeff() > 1e-10 * diagonal_.maxCoeff())) return false;
   permuted_.resize(m);
   for (int k = 0; k < m; ++k) permuted_[order_[k]] = b_[k];
   permutedSolution_ = ldlt_.solve(permuted_);

@@ -102,7 +102,14 @@ class ConstraintSolver {
   std::vector<int> pairStart_, pairFirst_, pairSecond_, diagonalSlot_;
   std::vector<int> patternRowStart_, patternEntryParticle_;  // structure it was built for
   bool patternValid_ = false, ldltAnalysed_ = false, incompleteCholeskyUsable_ = false;
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
+  // SimplicialLDLT whose numeric factorisation reads the (already permuted,
+  // upper-triangular) matrix directly: Eigen's factorize() builds an empty
+  // temporary matrix first, one heap allocation per solve.
+  struct InPlaceLdlt : Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> {
+    void factorizeInPlace(const SparseMatrix& upper) { this->template factorize_preordered<true>(upper); }
+    const Eigen::VectorXd& pivots() const { return this->m_diag; }  // D; vectorD() copies
+  };
+  InPlaceLdlt ldlt_;
   Eigen::IncompleteCholesky<double, Eigen::Upper, Eigen::NaturalOrdering<int>> incompleteCholesky_;
 };
 

@@ -69,8 +69,8 @@ double ImplicitEulerIntegrator::worstRelativeViolation(ParticleSystem& system,
 }
 
 bool ImplicitEulerIntegrator::patternMatches(int n, const Eigen::VectorXd& inverseMass,
-                                             bool withConstraints) const {
-  if (!analysed_ || withConstraints != cachedWithConstraints_) return false;
+                                             bool withConstraints, bool direct) const {
+  if (!analysed_ || withConstraints != cachedWithConstraints_ || direct != cachedDirect_) return false;
   if (static_cast<int>(cachedPinned_.size()) != n) return false;
   for (int i = 0; i < n; ++i)
     if (cachedPinned_[i] != (inverseMass[i] == 0.0)) return false;
@@ -81,25 +81,26 @@ bool ImplicitEulerIntegrator::patternMatches(int n, const Eigen::VectorXd& inver
   return true;
 }
 
-// The lower triangle of the KKT matrix: A on the 2n velocity unknowns, then one
-// row per constraint. Every value's destination in matrix_.valuePtr() is
-// recorded so that fillValues() is a scatter, with no search and no allocation.
-void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withConstraints) {
+// The KKT matrix: A on the 2n velocity unknowns, then one row per constraint,
+// stored as the upper triangle in a permuted numbering (unknown i at order_[i]):
+// an AMD fill-reducing order for the direct solve, so that the LDLᵀ
+// factorises the stored matrix in place without a per-step permuted copy, and
+// the identity for CG, whose products are faster in the mesh's own order.
+// Every value's destination in matrix_.valuePtr() is recorded so that
+// fillValues() is a scatter, with no search and no allocation.
+void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withConstraints, bool direct) {
   const Eigen::VectorXd& inverseMass = system.inverseMasses();
   const int n = system.size(), dofs = 2 * n;
   const int m = withConstraints ? static_cast<int>(rowStart_.size()) - 1 : 0;
   auto free = [&](int dof) { return inverseMass[dof / 2] != 0.0; };
-  auto lower = [](int r, int c) { return std::make_pair(std::max(r, c), std::min(r, c)); };
 
+  // Every (row, column) of the symmetric matrix, in the original numbering.
   Triplets pattern;
   pattern.reserve(dofs + dfdx_.size() + dfdv_.size() + 2 * J_.size() + m);
   for (int d = 0; d < dofs; ++d) pattern.emplace_back(d, d, 1.0);
   for (const Triplets* list : {&dfdx_, &dfdv_})
     for (const auto& t : *list)
-      if (free(t.row()) && free(t.col())) {
-        const auto rc = lower(t.row(), t.col());
-        pattern.emplace_back(rc.first, rc.second, 1.0);
-      }
+      if (free(t.row()) && free(t.col())) pattern.emplace_back(t.row(), t.col(), 1.0);
   for (int k = 0; k < m; ++k) {
     for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e)
       if (inverseMass[entryParticle_[e]] != 0.0)
@@ -111,20 +112,42 @@ void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withCons
         for (int c = 0; c < 2; ++c)
           for (int r = 0; r < 2; ++r) {
             const int row = 2 * entryParticle_[ea] + r, col = 2 * entryParticle_[eb] + c;
-            if (free(row) && free(col)) {
-              const auto rc = lower(row, col);
-              pattern.emplace_back(rc.first, rc.second, 1.0);
-            }
+            if (free(row) && free(col)) pattern.emplace_back(row, col, 1.0);
           }
   }
-  matrix_.resize(dofs + m, dofs + m);
+  const int size = dofs + m;
+  order_.resize(size);
+  if (direct) {
+    const std::size_t oneSided = pattern.size();
+    for (std::size_t i = 0; i < oneSided; ++i)
+      pattern.emplace_back(pattern[i].col(), pattern[i].row(), 1.0);
+    SparseMatrix symmetric(size, size);
+    symmetric.setFromTriplets(pattern.begin(), pattern.end());
+    pattern.resize(oneSided);
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+    Eigen::AMDOrdering<int>()(symmetric, inverse);
+    for (int i = 0; i < size; ++i) order_[inverse.indices()[i]] = i;
+  } else {
+    for (int i = 0; i < size; ++i) order_[i] = i;
+  }
+  // (r, c) in the original numbering → (row, column) of the stored upper triangle.
+  auto upper = [&](int r, int c) {
+    const int a = order_[r], b = order_[c];
+    return std::make_pair(std::min(a, b), std::max(a, b));
+  };
+  for (auto& t : pattern) {
+    const auto rc = upper(t.row(), t.col());
+    t = Eigen::Triplet<double>(rc.first, rc.second, 1.0);
+  }
+  matrix_.resize(size, size);
   matrix_.setFromTriplets(pattern.begin(), pattern.end());
   matrix_.makeCompressed();
 
   auto slot = [&](int r, int c) {
-    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c];
-    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c + 1];
-    return static_cast<int>(std::lower_bound(begin, end, r) - matrix_.innerIndexPtr());
+    const auto rc = upper(r, c);
+    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[rc.second];
+    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[rc.second + 1];
+    return static_cast<int>(std::lower_bound(begin, end, rc.first) - matrix_.innerIndexPtr());
   };
   diagonalSlot_.resize(dofs);
   for (int d = 0; d < dofs; ++d) diagonalSlot_[d] = slot(d, d);
@@ -136,8 +159,7 @@ void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withCons
     for (std::size_t k = 0; k < list.size(); ++k) {
       rows[k] = list[k].row();
       cols[k] = list[k].col();
-      const auto rc = lower(rows[k], cols[k]);
-      slots[k] = free(rows[k]) && free(cols[k]) ? slot(rc.first, rc.second) : -1;
+      slots[k] = free(rows[k]) && free(cols[k]) ? slot(rows[k], cols[k]) : -1;
     }
   };
   record(dfdx_, xRow_, xCol_, xSlot_);
@@ -158,22 +180,21 @@ void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withCons
         for (int ea = rowStart_[k]; ea < rowStart_[k + 1]; ++ea)
           for (int r = 0; r < 2; ++r) {
             const int row = 2 * entryParticle_[ea] + r, col = 2 * entryParticle_[eb] + c;
-            const auto rc = lower(row, col);
-            gSlot_.push_back(free(row) && free(col) ? slot(rc.first, rc.second) : -1);
+            gSlot_.push_back(free(row) && free(col) ? slot(row, col) : -1);
           }
 
   cachedPinned_.resize(n);
   for (int i = 0; i < n; ++i) cachedPinned_[i] = inverseMass[i] == 0.0;
   cachedWithConstraints_ = withConstraints;
+  cachedDirect_ = direct;
   cachedRowStart_ = withConstraints ? rowStart_ : std::vector<int>{};
   cachedEntryParticle_ = withConstraints ? entryParticle_ : std::vector<int>{};
   ldltAnalysed_ = false;  // analysed on first use, by whichever solver is chosen
-  cgAnalysed_ = false;
   analysed_ = true;
 }
 
-// Values of the lower KKT triangle. A triplet (r, c, a) of K or D lands in the
-// lower slot of (r, c) with weight ½ off the diagonal, so the matrix is the
+// Values of the stored KKT triangle. A triplet (r, c, a) of K or D lands in the
+// slot of (r, c) — shared with (c, r) — with weight ½ off the diagonal, so the matrix is the
 // symmetric part of what the forces report (the definite Jacobians already are).
 // With Kv given, K v₀ is summed in the same pass. Returns false, having written
 // only part of the values, when a triplet is not where the pattern has it.
@@ -268,18 +289,41 @@ void ImplicitEulerIntegrator::addGeometricStiffnessTimes(ParticleSystem& system,
   }
 }
 
-template <class Cg>
-const Eigen::VectorXd& ImplicitEulerIntegrator::solveByCg(Cg& cg) {
-  cg.setTolerance(settings.cgTolerance);
-  cg.setMaxIterations(settings.cgMaxIterations);
-  if (!cgAnalysed_) {
-    cg.analyzePattern(matrix_);
-    cgAnalysed_ = true;
+// Jacobi-preconditioned CG on the stored (symmetric, upper) A, from the guess
+// in cgSolution_, with scratch kept between steps (Eigen's ConjugateGradient
+// allocates four vectors per solve). Pinned rows are the identity with a zero
+// right-hand side, so they stay 0.
+void ImplicitEulerIntegrator::jacobiConjugateGradient(const Eigen::VectorXd& b) {
+  Eigen::VectorXd& x = cgSolution_;
+  const Eigen::Index size = b.size();
+  inverseDiagonal_.resize(size);
+  for (Eigen::Index i = 0; i < size; ++i) {  // CG runs unconstrained and unpermuted: i is a DOF
+    const double d = matrix_.valuePtr()[diagonalSlot_[i]];
+    inverseDiagonal_[i] = d > 0.0 ? 1.0 / d : 1.0;
   }
-  cg.factorize(matrix_);
-  cgSolution_ = cg.solveWithGuess(rhs_, dvGuess_);
-  iterations_ = static_cast<int>(cg.iterations());
-  return cgSolution_;
+  const double bNorm = b.norm();
+  iterations_ = 0;
+  if (bNorm == 0.0) {
+    x.setZero(size);
+    return;
+  }
+  cgAp_.noalias() = matrix_.selfadjointView<Eigen::Upper>() * x;
+  cgR_ = b - cgAp_;
+  cgZ_ = inverseDiagonal_.cwiseProduct(cgR_);
+  cgP_ = cgZ_;
+  double rz = cgR_.dot(cgZ_);
+  const double target = settings.cgTolerance * bNorm;
+  while (iterations_ < settings.cgMaxIterations && cgR_.norm() > target) {
+    cgAp_.noalias() = matrix_.selfadjointView<Eigen::Upper>() * cgP_;
+    const double alpha = rz / cgP_.dot(cgAp_);
+    x += alpha * cgP_;
+    cgR_ -= alpha * cgAp_;
+    cgZ_ = inverseDiagonal_.cwiseProduct(cgR_);
+    const double rzNext = cgR_.dot(cgZ_);
+    cgP_ = cgZ_ + (rzNext / rz) * cgP_;
+    rz = rzNext;
+    ++iterations_;
+  }
 }
 
 void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
@@ -309,10 +353,11 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   dfdv_.clear();
   for (const auto& force : system.forceObjects()) force->addDefiniteJacobians(s, dfdx_, dfdv_);
   if (coupled) gatherConstraints(system, x0_, v0_);
-  if (!patternMatches(n, w, coupled)) buildPattern(system, coupled);
+  usedDirect_ = coupled || settings.solver == ImplicitLinearSolver::Direct;
+  if (!patternMatches(n, w, coupled, usedDirect_)) buildPattern(system, coupled, usedDirect_);
   Kv_.setZero(dofs);
   if (!fillValues(n, h, mass, w, coupled, &Kv_)) {
-    buildPattern(system, coupled);
+    buildPattern(system, coupled, usedDirect_);
     Kv_.setZero(dofs);
     fillValues(n, h, mass, w, coupled, &Kv_);
   }
@@ -322,7 +367,6 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   for (int d = 0; d < dofs; ++d) rhsForces_[d] = w[d / 2] == 0.0 ? 0.0 : h * (f0_[d] + h * Kv_[d]);
   rhs_.resize(dofs + m);
 
-  usedDirect_ = coupled || settings.solver == ImplicitLinearSolver::Direct;
   iterations_ = 0;
   // The impulses of the last step start the Newton iteration (their tension
   // gives the first pass its geometric stiffness).
@@ -365,25 +409,27 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
                                     : jvbar - settings.stabilization * C_[k] / h;
       rhs_[dofs + k] = anyFree ? c - jv0 : 0.0;
     }
+    // Solve in the stored numbering: unknown i sits at order_[i].
+    permutedRhs_.resize(dofs + m);
+    for (int i = 0; i < dofs + m; ++i) permutedRhs_[order_[i]] = rhs_[i];
     if (usedDirect_) {
       if (!ldltAnalysed_) {
         ldlt_.analyzePattern(matrix_);
         ldltAnalysed_ = true;
       }
-      ldlt_.factorize(matrix_);
+      ldlt_.factorizeInPlace(matrix_);
       // A failed factorisation (only a blown-up, non-finite state gets here:
       // the matrix is quasi-definite) leaves NaN, which ParticleSystem::finite()
       // reports as it does for every other integrator.
-      if (ldlt_.info() != Eigen::Success) z_.setConstant(dofs + m, NAN);
-      else z_ = ldlt_.solve(rhs_);
+      if (ldlt_.info() != Eigen::Success) cgSolution_.setConstant(dofs + m, NAN);
+      else cgSolution_ = ldlt_.solve(permutedRhs_);
     } else {
-      if (dvGuess_.size() != dofs) dvGuess_.setZero(dofs);
-      if (settings.solver == ImplicitLinearSolver::IncompleteCholeskyGradient)
-        z_ = solveByCg(icg_);
-      else
-        z_ = solveByCg(cg_);
-      dvGuess_ = z_;
+      // Warm start from the last step's Δv (cgSolution_ still holds it).
+      if (cgSolution_.size() != dofs) cgSolution_.setZero(dofs);
+      jacobiConjugateGradient(permutedRhs_);
     }
+    z_.resize(dofs + m);
+    for (int i = 0; i < dofs + m; ++i) z_[i] = cgSolution_[order_[i]];
     vBar_ = v0_ + z_.head(dofs);
     nuOld_ = z_.tail(m);
   }

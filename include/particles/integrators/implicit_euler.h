@@ -2,7 +2,7 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -48,17 +48,17 @@ namespace particles {
 // - The sparsity pattern is analysed once and reused while the forces,
 //   constraints and pins keep the same structure; each step only refills the
 //   values and refactorises numerically.
-// - Without constraints, conjugate gradient on A alone (warm-started from the
-//   last Δv; Jacobi or incomplete-Cholesky preconditioned) is offered for large
-//   cloth. Measured on 8-way cloth (tests/bench/bench_solvers.cpp): Jacobi CG
-//   wins on ordinary cloth (~5 iterations), incomplete-Cholesky CG on stiff cloth
-//   (k_s h²/m ≫ 1, where Jacobi CG needs hundreds), the direct KKT solve costs
-//   O(n^1.5) and loses on large cloth.
+// - Without constraints, Jacobi-preconditioned conjugate gradient on A alone,
+//   warm-started from the last Δv, is the default: measured on 8-way cloth
+//   (tests/bench/bench_solvers.cpp) it needs ~5 iterations on ordinary cloth
+//   and beats the direct solve (O(n^1.5) fill) by 4-10×; on stiff cloth
+//   (k_s h²/m ≫ 1) it needs a few hundred and the two are about even. Eigen's
+//   IncompleteCholesky as preconditioner halved the iterations on stiff cloth
+//   but cost more than it saved (its factorisation is list-based) and was dropped.
 // A force without Jacobians is refused with an exception naming it.
 enum class ImplicitLinearSolver {
-  Direct,                       // SimplicialLDLT of the KKT matrix above
-  ConjugateGradient,            // Jacobi-preconditioned CG on A; constrained systems use Direct
-  IncompleteCholeskyGradient,   // CG on A preconditioned by Eigen's IncompleteCholesky
+  Direct,             // SimplicialLDLT of the KKT matrix above
+  ConjugateGradient,  // Jacobi-preconditioned CG on A; constrained systems use Direct
 };
 
 struct ImplicitEulerSettings {
@@ -101,10 +101,10 @@ class ImplicitEulerIntegrator : public Integrator {
   void gatherConstraints(ParticleSystem& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   double worstRelativeViolation(ParticleSystem& system, const Eigen::VectorXd& x,
                                 const Eigen::VectorXd& v) const;
-  bool patternMatches(int n, const Eigen::VectorXd& inverseMass, bool withConstraints) const;
-  void buildPattern(ParticleSystem& system, bool withConstraints);
-  template <class Cg>
-  const Eigen::VectorXd& solveByCg(Cg& cg);
+  bool patternMatches(int n, const Eigen::VectorXd& inverseMass, bool withConstraints,
+                      bool direct) const;
+  void buildPattern(ParticleSystem& system, bool withConstraints, bool direct);
+  void jacobiConjugateGradient(const Eigen::VectorXd& b);
   void addGeometricStiffness(ParticleSystem& system, const Eigen::VectorXd& x, double h);
   void addGeometricStiffnessTimes(ParticleSystem& system, const Eigen::VectorXd& x,
                                   const Eigen::VectorXd& dv, double h, Eigen::VectorXd& out);
@@ -125,13 +125,19 @@ class ImplicitEulerIntegrator : public Integrator {
   std::vector<char> cachedPinned_;
   bool cachedWithConstraints_ = false;
   bool analysed_ = false;
-  SparseMatrix matrix_;  // lower triangle of the KKT matrix (or of A)
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt_;
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower> cg_;  // Jacobi-preconditioned
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, Eigen::IncompleteCholesky<double, Eigen::Lower>> icg_;
-  bool cgAnalysed_ = false, ldltAnalysed_ = false;
+  SparseMatrix matrix_;     // upper triangle of the KKT matrix (or of A), permuted
+  Eigen::VectorXi order_;   // unknown i is row order_[i] of matrix_
+  bool cachedDirect_ = false;
+  // SimplicialLDLT that factorises the stored, already permuted matrix in
+  // place (Eigen's factorize() makes a temporary copy, allocating each step).
+  struct InPlaceLdlt : Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> {
+    void factorizeInPlace(const SparseMatrix& upper) { this->template factorize_preordered<true>(upper); }
+  };
+  InPlaceLdlt ldlt_;
+  bool ldltAnalysed_ = false;
+  Eigen::VectorXd permutedRhs_, inverseDiagonal_, cgR_, cgZ_, cgP_, cgAp_;
 
-  Eigen::VectorXd f0_, Kv_, rhs_, z_, x0_, v0_, vBar_, a_, dvGuess_;
+  Eigen::VectorXd f0_, Kv_, rhs_, z_, x0_, v0_, vBar_, a_;
   Eigen::VectorXd cgSolution_, xTrial_, rhsForces_, dvOld_, nuOld_, probe_;
   std::vector<Eigen::Vector2d> probeJ_, probeJdot_;
   int iterations_ = 0, passes_ = 0;
