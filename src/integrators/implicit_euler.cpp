@@ -290,11 +290,11 @@ void ImplicitEulerIntegrator::addGeometricStiffnessTimes(ParticleSystem& system,
 }
 
 // Jacobi-preconditioned CG on the stored (symmetric, upper) A, from the guess
-// in cgSolution_, with scratch kept between steps (Eigen's ConjugateGradient
+// in solution_ (the last step's Δv), with scratch kept between steps (Eigen's ConjugateGradient
 // allocates four vectors per solve). Pinned rows are the identity with a zero
 // right-hand side, so they stay 0.
 void ImplicitEulerIntegrator::jacobiConjugateGradient(const Eigen::VectorXd& b) {
-  Eigen::VectorXd& x = cgSolution_;
+  Eigen::VectorXd& x = solution_;
   const Eigen::Index size = b.size();
   inverseDiagonal_.resize(size);
   for (Eigen::Index i = 0; i < size; ++i) {  // CG runs unconstrained and unpermuted: i is a DOF
@@ -421,15 +421,15 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
       // A failed factorisation (only a blown-up, non-finite state gets here:
       // the matrix is quasi-definite) leaves NaN, which ParticleSystem::finite()
       // reports as it does for every other integrator.
-      if (ldlt_.info() != Eigen::Success) cgSolution_.setConstant(dofs + m, NAN);
-      else cgSolution_ = ldlt_.solve(permutedRhs_);
+      if (ldlt_.info() != Eigen::Success) solution_.setConstant(dofs + m, NAN);
+      else solution_ = ldlt_.solve(permutedRhs_);
     } else {
-      // Warm start from the last step's Δv (cgSolution_ still holds it).
-      if (cgSolution_.size() != dofs) cgSolution_.setZero(dofs);
+      // Warm start from the last step's Δv (solution_ still holds it).
+      if (solution_.size() != dofs || !solution_.allFinite()) solution_.setZero(dofs);
       jacobiConjugateGradient(permutedRhs_);
     }
     z_.resize(dofs + m);
-    for (int i = 0; i < dofs + m; ++i) z_[i] = cgSolution_[order_[i]];
+    for (int i = 0; i < dofs + m; ++i) z_[i] = solution_[order_[i]];
     vBar_ = v0_ + z_.head(dofs);
     nuOld_ = z_.tail(m);
   }

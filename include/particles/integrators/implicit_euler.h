@@ -138,7 +138,8 @@ class ImplicitEulerIntegrator : public Integrator {
   Eigen::VectorXd permutedRhs_, inverseDiagonal_, cgR_, cgZ_, cgP_, cgAp_;
 
   Eigen::VectorXd f0_, Kv_, rhs_, z_, x0_, v0_, vBar_, a_;
-  Eigen::VectorXd cgSolution_, xTrial_, rhsForces_, dvOld_, nuOld_, probe_;
+  // solution_: (Δv, ν) of the last solve in the stored numbering (CG's warm start).
+  Eigen::VectorXd solution_, xTrial_, rhsForces_, dvOld_, nuOld_, probe_;
   std::vector<Eigen::Vector2d> probeJ_, probeJdot_;
   int iterations_ = 0, passes_ = 0;
   bool usedDirect_ = true;
