@@ -101,9 +101,10 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
       // A near-zero pivot (J W Jᵀ losing rank) would make the preconditioner
       // huge in one direction; CG then falls back to Jacobi for this solve.
       assemble(dead);
-      incompleteCholesky_.compute(assembled_);
-      incompleteCholeskyUsable_ = incompleteCholesky_.info() == Eigen::Success &&
-                                  incompleteCholesky_.matrixL().diagonal().cwiseAbs2().minCoeff() > 1e-10;
+      if (!incompleteCholesky_) incompleteCholesky_ = std::make_unique<IncompleteCholesky>();
+      incompleteCholesky_->compute(assembled_);
+      incompleteCholeskyUsable_ = incompleteCholesky_->info() == Eigen::Success &&
+                                  incompleteCholesky_->matrixL().diagonal().cwiseAbs2().minCoeff() > 1e-10;
     }
     stats_.iterations = conjugateGradient(residual);
   }
@@ -133,7 +134,7 @@ int ConstraintSolver::conjugateGradient(double& relativeResidual) {
     if (preconditioner == Preconditioner::IncompleteCholesky) {
       // The factor is of the permuted matrix (see assemble()).
       for (int k = 0; k < m; ++k) permuted_[order_[k]] = r[k];
-      permutedSolution_ = incompleteCholesky_.solve(permuted_);
+      permutedSolution_ = incompleteCholesky_->solve(permuted_);
       z.resize(m);
       for (int k = 0; k < m; ++k) z[k] = diagonal_[k] <= dead ? 0.0 : permutedSolution_[order_[k]];
       return;
@@ -277,16 +278,17 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
   for (int k = 0; k < m; ++k)
     if (diagonal_[k] <= dead) b_[k] = 0.0;
   assemble(dead);
+  if (!ldlt_) ldlt_ = std::make_unique<InPlaceLdlt>();
   if (!ldltAnalysed_) {
-    ldlt_.analyzePattern(assembled_);
+    ldlt_->analyzePattern(assembled_);
     ldltAnalysed_ = true;
   }
-  ldlt_.factorizeInPlace(assembled_);
-  if (ldlt_.info() != Eigen::Success) return false;
-  if (!(ldlt_.pivots().minCoeff() > 1e-10 * diagonal_.maxCoeff())) return false;
+  ldlt_->factorizeInPlace(assembled_);
+  if (ldlt_->info() != Eigen::Success) return false;
+  if (!(ldlt_->pivots().minCoeff() > 1e-10 * diagonal_.maxCoeff())) return false;
   permuted_.resize(m);
   for (int k = 0; k < m; ++k) permuted_[order_[k]] = b_[k];
-  permutedSolution_ = ldlt_.solve(permuted_);
+  permutedSolution_ = ldlt_->solve(permuted_);
   for (int k = 0; k < m; ++k) lambda_[k] = permutedSolution_[order_[k]];
   // Residual in the permuted numbering, with the assembled matrix.
   const double bNorm = permuted_.norm();

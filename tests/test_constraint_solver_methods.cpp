@@ -2,6 +2,7 @@
 // matrix-free CG with and without warm start, incomplete-Cholesky CG, and the
 // sparse direct LDLᵀ — against a dense solve of the same J W Jᵀ λ = b.
 #include <random>
+#include <type_traits>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -15,6 +16,10 @@
 
 using namespace particles;
 using Eigen::Vector2d;
+
+// The factorisations the solver keeps must not stop a ParticleSystem from
+// being returned by value (scene builders and tests do).
+static_assert(std::is_move_constructible<ParticleSystem>::value, "ParticleSystem must stay movable");
 
 namespace {
 

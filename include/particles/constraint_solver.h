@@ -109,8 +109,11 @@ class ConstraintSolver {
     void factorizeInPlace(const SparseMatrix& upper) { this->template factorize_preordered<true>(upper); }
     const Eigen::VectorXd& pivots() const { return this->m_diag; }  // D; vectorD() copies
   };
-  InPlaceLdlt ldlt_;
-  Eigen::IncompleteCholesky<double, Eigen::Upper, Eigen::NaturalOrdering<int>> incompleteCholesky_;
+  using IncompleteCholesky = Eigen::IncompleteCholesky<double, Eigen::Upper, Eigen::NaturalOrdering<int>>;
+  // Eigen's solvers cannot be moved; held by pointer (made on first use) so
+  // that ConstraintSolver, and with it ParticleSystem, stays movable.
+  std::unique_ptr<InPlaceLdlt> ldlt_;
+  std::unique_ptr<IncompleteCholesky> incompleteCholesky_;
 };
 
 }  // namespace particles
