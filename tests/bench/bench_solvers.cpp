@@ -14,7 +14,8 @@
 //     CG 212 µs (79), IC-CG 43.3 µs (1), direct LDLᵀ 15.0 µs   → direct default
 //   RK4 step, test chain cl = 500: 7831 µs (499), 8586 µs (499), 262 µs (1), 95.5 µs
 //   RK4 step, 32×32 curtain (top row on a line: J W Jᵀ diagonal): 111 µs for all (1 it)
-//   RK4 step, 8-way cloth 32² / 64² / 128²: 0.116 / 0.437 / 1.79 ms
+//   RK4 step, 8-way cloth 32² / 64² / 128² / 256²: 0.105 / 0.451 / 1.92 / 9.13 ms
+//     (log-log slope in particle count 32² → 256²: 1.07)
 //   implicit Euler step at 1/60, k_s = 50:  Jacobi CG 0.67 / 3.05 / 12.6 ms (5-8 it),
 //                                            direct   2.38 / 17.6 / 175 ms
 //   implicit Euler step at 1/60, k_s = 4e5: Jacobi CG 3.39 / 22.7 / 122 ms (155-352 it),
@@ -146,7 +147,7 @@ void BM_ClothRk4(benchmark::State& state) {
   auto system = cloth(p);
   timeRk4(state, *system, 1e-3);
 }
-BENCHMARK(BM_ClothRk4)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClothRk4)->Arg(32)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
 
 // One implicit-Euler step at dt = 1/60 of an 8-way cloth hanging from two
 // corners. stiff = 1 raises k_s to 4·10⁵ (mass 0.2): RK4 then blows up at
