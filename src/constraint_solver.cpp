@@ -24,11 +24,18 @@ void SolverSettings::validate() const {
 // Algorithm 1 sizes d as 2n and uses J where J̇ belongs; b has m entries.)
 void ConstraintSolver::gather(const Phase& s, const ConstraintList& constraints) {
   const int m = static_cast<int>(constraints.size());
+  // Any change in which particles the rows name invalidates the assembled
+  // pattern; it is noticed here, while the rows are written anyway.
+  bool changed = static_cast<int>(rowStart_.size()) != m + 1;
   rowStart_.resize(m + 1);
   rowStart_[0] = 0;
-  for (int k = 0; k < m; ++k)
-    rowStart_[k + 1] = rowStart_[k] + static_cast<int>(constraints[k]->particles().size());
+  for (int k = 0; k < m; ++k) {
+    const int next = rowStart_[k] + static_cast<int>(constraints[k]->particles().size());
+    changed |= rowStart_[k + 1] != next;
+    rowStart_[k + 1] = next;
+  }
   const int entries = rowStart_[m];
+  changed |= static_cast<int>(entryParticle_.size()) != entries;
   entryParticle_.resize(entries);
   J_.resize(entries);
   Jdot_.resize(entries);
@@ -45,9 +52,12 @@ void ConstraintSolver::gather(const Phase& s, const ConstraintList& constraints)
     c.evaluate(s, row);
     C_[k] = row.C;
     Cdot_[k] = row.Cdot;
-    for (int e = rowStart_[k], n = 0; e < rowStart_[k + 1]; ++e, ++n)
+    for (int e = rowStart_[k], n = 0; e < rowStart_[k + 1]; ++e, ++n) {
+      changed |= entryParticle_[e] != c.particles()[n];
       entryParticle_[e] = c.particles()[n];
+    }
   }
+  if (changed) patternValid_ = false;
 }
 
 void ConstraintSolver::applyOperator(const Eigen::VectorXd& y, Eigen::VectorXd& out) const {
@@ -188,7 +198,7 @@ int ConstraintSolver::conjugateGradient(double& relativeResidual) {
 // only sums the pairs into the values.
 void ConstraintSolver::assemble(double dead) {
   const int m = static_cast<int>(rowStart_.size()) - 1;
-  if (!patternValid_ || rowStart_ != patternRowStart_ || entryParticle_ != patternEntryParticle_) {
+  if (!patternValid_) {  // gather() clears it when the rows name other particles
     // Every pair of entries on the same particle meets in slot (k, l).
     const int entries = rowStart_[m];
     std::vector<int> constraintOf(entries);
@@ -247,8 +257,6 @@ void ConstraintSolver::assemble(double dead) {
     for (std::size_t k = 1; k < pairStart_.size(); ++k) pairStart_[k] += pairStart_[k - 1];
     diagonalSlot_.resize(m);
     for (int k = 0; k < m; ++k) diagonalSlot_[k] = slot(order_[k], order_[k]);
-    patternRowStart_ = rowStart_;
-    patternEntryParticle_ = entryParticle_;
     patternValid_ = true;
     ldltAnalysed_ = false;
   }

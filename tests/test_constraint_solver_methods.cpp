@@ -177,3 +177,22 @@ TEST(ConstraintSolverMethods, TautChainBetweenWiresStaysFiniteInEveryMethod) {
     }
   }
 }
+
+TEST(ConstraintSolverMethods, AddedConstraintRebuildsTheAssembledPattern) {
+  for (const Method& method : kMethods) {
+    ParticleSystem s;
+    for (int i = 0; i < 10; ++i) s.addParticle(Vector2d(0.1 * i, 0.02 * (i % 2)), 1.0, Vector2d(0.0, 0.1 * i));
+    s.setPinned(0, true);
+    for (int i = 0; i + 1 < 10; ++i) s.addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1));
+    s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+    s.solver().settings.method = method.method;
+    s.solver().settings.preconditioner = method.preconditioner;
+    s.solver().settings.tolerance = 1e-12;
+    Eigen::VectorXd a;
+    s.acceleration(s.positions(), s.velocities(), a);
+    s.addConstraint(std::make_unique<RodConstraint>(2, 7, 0.45));  // couples rows far apart
+    s.acceleration(s.positions(), s.velocities(), a);
+    const Eigen::VectorXd expected = denseLambda(s);
+    EXPECT_LT((s.solver().lambda() - expected).norm(), 1e-7 * expected.norm()) << method.name;
+  }
+}

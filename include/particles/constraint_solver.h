@@ -100,7 +100,6 @@ class ConstraintSolver {
   Eigen::VectorXi order_;
   Eigen::VectorXd permuted_, permutedSolution_;
   std::vector<int> pairStart_, pairFirst_, pairSecond_, diagonalSlot_;
-  std::vector<int> patternRowStart_, patternEntryParticle_;  // structure it was built for
   bool patternValid_ = false, ldltAnalysed_ = false, incompleteCholeskyUsable_ = false;
   // SimplicialLDLT whose numeric factorisation reads the (already permuted,
   // upper-triangular) matrix directly: Eigen's factorize() builds an empty
