@@ -132,9 +132,11 @@ void App::drawPaneLines() {
 void App::drawDivergenceMessages() {
   const std::vector<ViewTransform> views = paneViews();
   for (std::size_t k = 0; k < panes_.size(); ++k) {
-    if (!panes_[k]->divergedAt()) continue;
+    if (!panes_[k]->stopped()) continue;
     const std::string text =
-        format("diverged at t = %.3f s: press r to reset or b to rewind", *panes_[k]->divergedAt());
+        panes_[k]->divergedAt()
+            ? format("diverged at t = %.3f s: press r to reset or b to rewind", *panes_[k]->divergedAt())
+            : *panes_[k]->refusal() + "\npress i for another integrator";
     const ImVec2 size = ImGui::CalcTextSize(text.c_str());
     const PixelRect& p = views[k].pane;
     const ImVec2 at(p.x + 0.5f * (p.width - size.x) - 6, p.y + 0.5f * p.height - 14);

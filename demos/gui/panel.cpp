@@ -100,6 +100,17 @@ void App::drawPanel() {
       }
       ImGui::PopID();
     }
+    // Schemes with settings of their own (adaptive-rk4's error tolerance).
+    bool anyTolerance = false;
+    for (const auto& pane : panes_) anyTolerance |= table[pane->integratorIndex()].usesTolerance;
+    if (anyTolerance) {
+      float logTolerance = static_cast<float>(std::log10(panes_.front()->integratorSettings().tolerance));
+      if (ImGui::SliderFloat("log10 step tolerance", &logTolerance, -12.0f, -2.0f, "%.1f")) {
+        particles::IntegratorSettings settings = panes_.front()->integratorSettings();
+        settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
+        for (auto& pane : panes_) pane->setIntegratorSettings(settings);
+      }
+    }
     if (ImGui::Button("dt x2 (+)")) scaleDt(2.0);
     ImGui::SameLine();
     if (ImGui::Button("dt /2 (-)")) scaleDt(0.5);

@@ -20,7 +20,15 @@ void Simulation::setIntegrator(int index) {
   if (index < 0 || index >= static_cast<int>(table.size()))
     throw std::invalid_argument("integrator index out of range");
   integrator_ = table[index].make();
+  integrator_->configure(integratorSettings_);
   integratorIndex_ = index;
+  refusal_.reset();
+}
+
+void Simulation::setIntegratorSettings(const particles::IntegratorSettings& settings) {
+  settings.validate();
+  integratorSettings_ = settings;
+  integrator_->configure(settings);
 }
 
 const char* Simulation::integratorName() const {
@@ -34,7 +42,7 @@ void Simulation::setDt(double dt) {
 
 void Simulation::advanceFrame(double frameTime, StepMode mode) {
   lastFrame_ = {};
-  if (divergedAt_) return;
+  if (stopped()) return;
   const auto start = std::chrono::steady_clock::now();
   if (mode == StepMode::Lockstep) {
     stepAndWatch();
@@ -46,25 +54,33 @@ void Simulation::advanceFrame(double frameTime, StepMode mode) {
       owedTime_ = maxSubstepsPerFrame * dt_;
       lastFrame_.capped = true;
     }
-    while (owedTime_ >= dt_ * (1.0 - 1e-9) && !divergedAt_) {
+    while (owedTime_ >= dt_ * (1.0 - 1e-9) && !stopped()) {
       stepAndWatch();
       owedTime_ -= dt_;
     }
   }
   lastFrame_.simulationMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (!divergedAt_) trace_.add(system().totalEnergy(), system().maxConstraintError());
+  if (!stopped()) trace_.add(system().totalEnergy(), system().maxConstraintError());
 }
 
 void Simulation::stepOnce() {
-  if (divergedAt_) return;
+  if (stopped()) return;
   lastFrame_ = {};
   stepAndWatch();
-  if (!divergedAt_) trace_.add(system().totalEnergy(), system().maxConstraintError());
+  if (!stopped()) trace_.add(system().totalEnergy(), system().maxConstraintError());
 }
 
 void Simulation::stepAndWatch() {
-  system().step(*integrator_, dt_);
+  try {
+    system().step(*integrator_, dt_);
+  } catch (const std::exception& e) {
+    // Raised before the step changes anything (an integrator's or the
+    // solver's precondition): stop here and say why, never crash the window.
+    refusal_ = e.what();
+    owedTime_ = 0.0;
+    return;
+  }
   ++steps_;
   ++lastFrame_.substeps;
   if (checkDiverged()) {

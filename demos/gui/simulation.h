@@ -51,9 +51,13 @@ class Simulation {
   void stepOnce();  // one dt step (the '.' key)
 
   // --- settings -----------------------------------------------------------
-  void setIntegrator(int index);  // keeps the state
+  void setIntegrator(int index);  // keeps the state; clears a refusal
   int integratorIndex() const { return integratorIndex_; }
   const char* integratorName() const;
+  // Settings of schemes that take them (adaptive-rk4's tolerance); kept across
+  // integrator changes. Throws naming a bad field.
+  void setIntegratorSettings(const particles::IntegratorSettings& settings);
+  const particles::IntegratorSettings& integratorSettings() const { return integratorSettings_; }
   void setDt(double dt);  // throws for dt ≤ 0 or NaN
   double dt() const { return dt_; }
 
@@ -69,6 +73,10 @@ class Simulation {
 
   // --- divergence and rewind ------------------------------------------------
   std::optional<double> divergedAt() const { return divergedAt_; }
+  // Why the integrator refused to step this system (e.g. implicit-euler on a
+  // force without Jacobians); the pane stops until another integrator is chosen.
+  const std::optional<std::string>& refusal() const { return refusal_; }
+  bool stopped() const { return divergedAt_ || refusal_; }
   // The simulated time it stopped at if diverged, else its clock.
   double timeReached() const { return divergedAt_ ? *divergedAt_ : system().time(); }
   // Restores the newest recorded state at or before `time` (the oldest kept
@@ -98,6 +106,8 @@ class Simulation {
   particles::MouseSpringForce* spring_ = nullptr;  // owned by the system
   DivergenceLimits limits_;
   std::optional<double> divergedAt_;
+  std::optional<std::string> refusal_;
+  particles::IntegratorSettings integratorSettings_;
   RewindBuffer history_;
   FrameStats lastFrame_;
   Trace trace_;
