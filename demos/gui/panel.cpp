@@ -17,6 +17,43 @@ const scenes::SceneInfo* findScene(const std::string& name) {
   return nullptr;
 }
 
+// Names of the constraint solver's choices, as the panel offers them.
+struct MethodName {
+  particles::SolveMethod method;
+  const char* name;
+};
+constexpr MethodName solveMethods[] = {
+    {particles::SolveMethod::Direct, "direct (LDLT)"},
+    {particles::SolveMethod::ConjugateGradient, "conjugate gradient"},
+};
+struct PreconditionerName {
+  particles::Preconditioner preconditioner;
+  const char* name;
+};
+constexpr PreconditionerName preconditioners[] = {
+    {particles::Preconditioner::None, "none"},
+    {particles::Preconditioner::Jacobi, "Jacobi"},
+    {particles::Preconditioner::IncompleteCholesky, "incomplete Cholesky"},
+};
+
+// A combo over one of the tables above; true when the choice changed.
+template <class Entry, class Value, std::size_t N>
+bool choose(const char* label, const Entry (&table)[N], Value Entry::*field, Value& value) {
+  const char* current = "?";
+  for (const Entry& e : table)
+    if (e.*field == value) current = e.name;
+  bool changed = false;
+  if (ImGui::BeginCombo(label, current)) {
+    for (const Entry& e : table)
+      if (ImGui::Selectable(e.name, e.*field == value)) {
+        changed = e.*field != value;
+        value = e.*field;
+      }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
 void plot(const char* label, const std::vector<float>& values, float height) {
   if (values.empty()) return;
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
@@ -139,7 +176,9 @@ void App::drawPanel() {
   // --- constraint solver and mouse spring ------------------------------------
   if (ImGui::CollapsingHeader("Solver and mouse spring")) {
     particles::SolverSettings settings = panes_.front()->system().solver().settings;
-    bool changed = false;
+    bool changed = choose("constraint solve", solveMethods, &MethodName::method, settings.method);
+    if (settings.method == particles::SolveMethod::ConjugateGradient)
+      changed |= choose("preconditioner", preconditioners, &PreconditionerName::preconditioner, settings.preconditioner);
     float logTolerance = static_cast<float>(std::log10(settings.tolerance));
     if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
       settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
