@@ -94,13 +94,17 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
   const Phase s = phase(x, v);
   f_.setZero(x.size());
   for (const auto& force : forces_) force->apply(s, f_);
-  if (!constraints_.empty()) solver_.addConstraintForces(s, constraints_, f_);
+  if (!constraints_.empty()) {
+    solver_.addConstraintForces(s, constraints_, f_);
+    iterationsThisStep_ += solver_.stats().iterations;
+  }
   a.resize(x.size());
   for (int i = 0; i < size(); ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
 }
 
 void ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
+  iterationsThisStep_ = 0;
   integrator.step(*this, dt);
   if (!walls_.empty()) resolveWallContacts(walls_, inverseMass_, radius_, x_, v_);
   contactsLastStep_ =

@@ -90,6 +90,8 @@ class ParticleSystem {
   double maxConstraintError() const;          // max violation, world units
   double maxRelativeConstraintError() const;  // max violation / length scale
   const SolveStats& lastSolve() const { return solver_.stats(); }
+  // CG iterations summed over every solve of the last step (an RK4 step solves four times).
+  int cgIterationsLastStep() const { return iterationsThisStep_; }
   bool finite() const;  // every position and velocity finite
   int contactsLastStep() const { return contactsLastStep_; }
 
@@ -104,6 +106,7 @@ class ParticleSystem {
   ConstraintSolver solver_;
   ParticleContacts contacts_;
   int contactsLastStep_ = 0;
+  int iterationsThisStep_ = 0;
 };
 
 }  // namespace particles
