@@ -1,0 +1,69 @@
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "scene.h"
+#include "scenes/param_fields.h"
+
+namespace scenes {
+
+std::string formatParam(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string formatParam(int value) { return std::to_string(value); }
+
+void requireAtLeast(const char* name, int value, int minimum) {
+  if (value < minimum)
+    throw std::invalid_argument(std::string(name) + " must be >= " + std::to_string(minimum) +
+                                ", got " + std::to_string(value));
+}
+
+SceneParams::SceneParams(const std::vector<ParamSpec>& specs,
+                         const std::map<std::string, std::string>& values) {
+  for (const ParamSpec& spec : specs) {
+    values_[spec.name] = spec.defaultValue;
+    validNames_ += validNames_.empty() ? "" : ", ";
+    validNames_ += spec.name;
+  }
+  if (validNames_.empty()) validNames_ = "none";
+  for (const auto& [name, value] : values) {
+    if (!values_.count(name))
+      throw std::invalid_argument("unknown parameter '" + name + "' (valid: " + validNames_ + ")");
+    values_[name] = value;
+  }
+}
+
+const std::string& SceneParams::raw(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end())
+    throw std::invalid_argument("unknown parameter '" + name + "' (valid: " + validNames_ + ")");
+  return it->second;
+}
+
+double SceneParams::number(const std::string& name) const {
+  const std::string& text = raw(name);
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+    throw std::invalid_argument("parameter '" + name + "' must be a finite number, got '" + text +
+                                "' (valid parameters: " + validNames_ + ")");
+  return value;
+}
+
+int SceneParams::integer(const std::string& name) const {
+  const std::string& text = raw(name);
+  int value = 0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size())
+    throw std::invalid_argument("parameter '" + name + "' must be an integer, got '" + text +
+                                "' (valid parameters: " + validNames_ + ")");
+  return value;
+}
+
+const std::string& SceneParams::text(const std::string& name) const { return raw(name); }
+
+}  // namespace scenes

@@ -1,0 +1,35 @@
+#pragma once
+#include "scene.h"
+
+namespace scenes {
+
+// The report's cloth testing ground: a width × height grid of particles joined
+// by damped springs, its top row sliding on a horizontal line like a curtain,
+// under gravity, beside a big wall on the left that stops most of the cloth
+// and a small "nail" on the right it can catch on.
+struct ClothParams {
+  int width = 10, height = 10;
+  int links = 4;
+  double rest = 0.05;
+  double stiffness = 0.9;
+  double damping = 0.6;
+  double mass = 0.2;
+  double gravity = 0.05;
+
+  template <class Visit>
+  void visit(Visit&& field) {
+    field("width", width, "particles across");
+    field("height", height, "particles down");
+    field("links", links, "4: springs to the 4 neighbours; 8: also the diagonals, at sqrt(2)*rest");
+    field("rest", rest, "spring rest length between neighbours, world units");
+    field("stiffness", stiffness, "spring k_s, force/length");
+    field("damping", damping, "spring k_d, force/speed");
+    field("mass", mass, "mass of each particle");
+    field("gravity", gravity, "downward acceleration, world units/s^2");
+  }
+  void validate() const;
+};
+
+Scene buildCloth(const ClothParams& p);
+
+}  // namespace scenes

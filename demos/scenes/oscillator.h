@@ -1,0 +1,36 @@
+#pragma once
+#include "scene.h"
+
+namespace scenes {
+
+// A mass on a damped spring to a pinned anchor, no gravity: the anchor at the
+// origin, the mass on the x axis stretched from rest and released at rest.
+// The motion stays on the axis, so the displacement u = |x| − rest obeys
+//   m ü + k_d u̇ + k_s u = 0,   u(0) = stretch, u̇(0) = 0.
+struct OscillatorParams {
+  double mass = 1.0;
+  double stiffness = 1.0;
+  double damping = 0.1;
+  double rest = 0.5;
+  double stretch = 0.3;
+
+  template <class Visit>
+  void visit(Visit&& field) {
+    field("mass", mass, "mass of the moving particle");
+    field("stiffness", stiffness, "spring k_s, force/length");
+    field("damping", damping, "spring k_d, force/speed");
+    field("rest", rest, "spring rest length, world units");
+    field("stretch", stretch, "initial displacement from rest, world units (|stretch| < rest)");
+  }
+  void validate() const;
+};
+
+Scene buildOscillator(const OscillatorParams& p);
+
+// The closed-form displacement u(t) from rest, with γ = k_d/(2m), ω₀² = k_s/m:
+//   under-damped  u = s e^(−γt) (cos ω_d t + (γ/ω_d) sin ω_d t),  ω_d = √(ω₀² − γ²)
+//   critical      u = s e^(−γt) (1 + γ t)
+//   over-damped   u = s (r₁ e^(r₂t) − r₂ e^(r₁t)) / (r₁ − r₂),      r₁,₂ = −γ ± √(γ² − ω₀²)
+double oscillatorDisplacement(const OscillatorParams& p, double t);
+
+}  // namespace scenes

@@ -1,0 +1,38 @@
+#include "scenes/pendulum.h"
+
+#include <cmath>
+#include <memory>
+
+#include "particles/check.h"
+#include "particles/constraints/circular_wire.h"
+#include "scenes/param_fields.h"
+#include "scenes/world.h"
+
+namespace scenes {
+
+void PendulumParams::validate() const {
+  particles::requirePositive("length", length);
+  particles::requireInRange("angle", angle, -179.0, 179.0);
+  particles::requirePositive("mass", mass);
+  particles::requirePositive("gravity", gravity);
+}
+
+Scene buildPendulum(const PendulumParams& p) {
+  Scene scene;
+  scene.name = "pendulum";
+  scene.dt = 0.01;
+  scene.system = std::make_unique<particles::ParticleSystem>();
+  particles::ParticleSystem& s = *scene.system;
+  const Eigen::Vector2d centre(0.0, 0.0);
+  const double theta0 = radians(p.angle);
+  const int bead = s.addParticle(centre + p.length * Eigen::Vector2d(std::sin(theta0), -std::cos(theta0)), p.mass);
+  s.addConstraint(std::make_unique<particles::CircularWireConstraint>(bead, centre, p.length));
+  addGravity(s, p.gravity);
+  return scene;
+}
+
+double pendulumPeriod(const PendulumParams& p) {
+  return 4.0 * std::sqrt(p.length / p.gravity) * std::comp_ellint_1(std::sin(0.5 * radians(p.angle)));
+}
+
+}  // namespace scenes

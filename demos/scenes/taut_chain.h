@@ -1,0 +1,34 @@
+#pragma once
+#include <string>
+
+#include "scene.h"
+
+namespace scenes {
+
+// The report's explosion case: a chain of rods pulled fully straight between
+// two beads that ride on circular wires, each bead at the far side of its
+// wire, under gravity. While the chain is straight every rod and both wire
+// normals are parallel, so J W Jᵀ loses rank: a stress test for the solver.
+struct TautChainParams {
+  int links = 8;
+  double separation = 1.2;
+  double radius = 0.2;
+  double mass = 1.0;
+  std::string rod = "squared";
+  double gravity = 0.05;
+
+  template <class Visit>
+  void visit(Visit&& field) {
+    field("links", links, "number of rods between the two beads");
+    field("separation", separation, "distance between the two wire centres, world units");
+    field("radius", radius, "radius of both wires, world units");
+    field("mass", mass, "mass of each particle");
+    field("rod", rod, "rod constraint form: squared (|d|^2 - r^2) or root (|d| - r)");
+    field("gravity", gravity, "downward acceleration, world units/s^2");
+  }
+  void validate() const;
+};
+
+Scene buildTautChain(const TautChainParams& p);
+
+}  // namespace scenes

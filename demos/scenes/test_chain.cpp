@@ -1,0 +1,41 @@
+#include "scenes/test_chain.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "particles/check.h"
+#include "scenes/param_fields.h"
+#include "scenes/world.h"
+
+namespace scenes {
+
+void TestChainParams::validate() const {
+  requireAtLeast("cl", cl, 2);
+  particles::requirePositive("length", length);
+  particles::requirePositive("mass", mass);
+  particles::parseRodForm(rod);
+  particles::requireFinite("gravity", gravity);
+}
+
+Scene buildTestChain(const TestChainParams& p) {
+  Scene scene;
+  scene.name = "test-chain";
+  scene.dt = 0.01;
+  scene.system = std::make_unique<particles::ParticleSystem>();
+  particles::ParticleSystem& s = *scene.system;
+
+  const int links = p.cl - 1;
+  const double span = links * p.length;
+  const int pin = addRodChain(s, Eigen::Vector2d::Zero(), Eigen::Vector2d(span, 0.0), links, p.mass,
+                              particles::parseRodForm(p.rod));
+  s.setPinned(pin, true);
+  addGravity(s, p.gravity);
+
+  // The pin at the centre; the chain swings through the lower half.
+  const double half = std::max(1.0, 1.1 * span);
+  scene.viewMin = Eigen::Vector2d::Constant(-half);
+  scene.viewMax = Eigen::Vector2d::Constant(half);
+  return scene;
+}
+
+}  // namespace scenes

@@ -1,0 +1,31 @@
+#pragma once
+#include <string>
+
+#include "scene.h"
+
+namespace scenes {
+
+// The integrator test scene of the report (its Fig. 4): cl particles joined by
+// rods, the first pinned, released at rest from a horizontal line under
+// gravity only. The experiments sweep cl, dt and the rod form on it.
+struct TestChainParams {
+  int cl = 12;
+  double length = 0.1;
+  double mass = 1.0;
+  std::string rod = "squared";
+  double gravity = 0.05;
+
+  template <class Visit>
+  void visit(Visit&& field) {
+    field("cl", cl, "chain length: number of particles, the first pinned");
+    field("length", length, "rod length, world units");
+    field("mass", mass, "mass of each particle");
+    field("rod", rod, "rod constraint form: squared (|d|^2 - r^2) or root (|d| - r)");
+    field("gravity", gravity, "downward acceleration, world units/s^2");
+  }
+  void validate() const;
+};
+
+Scene buildTestChain(const TestChainParams& p);
+
+}  // namespace scenes
