@@ -43,6 +43,13 @@ int ParticleSystem::addParticles(const std::vector<Eigen::Vector2d>& positions,
   return first;
 }
 
+void ParticleSystem::setMass(int i, double mass) {
+  requireIndex("setMass", i, size());
+  requirePositive("particle mass", mass);
+  mass_[i] = mass;
+  if (inverseMass_[i] != 0.0) inverseMass_[i] = 1.0 / mass;
+}
+
 void ParticleSystem::setPinned(int i, bool pin) {
   requireIndex("setPinned", i, size());
   inverseMass_[i] = pin ? 0.0 : 1.0 / mass_[i];

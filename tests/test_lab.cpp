@@ -102,7 +102,7 @@ TEST(RenderTemplate, FillsTablesAndValuesAndRejectsMissingOnes) {
 TEST(StabilityQuick, WritesTheBoundaryAndRk4StableRegionContainsEulers) {
   LabOptions o = quickOptions("stability");
   StabilityOptions s;
-  s.duration = 2.0;
+  s.duration = 10.0;
   ASSERT_EQ(runStability(o, s), 0);
   const Table rows = readCsv(o.outDir + "/stability_boundary.csv",
                              {"integrator", "chain_length", "duration", "max_dt", "max_dt_dimensionless"});

@@ -63,7 +63,7 @@ int runAccuracy(const LabOptions& options) {
                                                      : logSpace(0.0025, 0.08, 6)},
       {"test-chain", "test-chain", {{"cl", q ? "4" : "10"}}, q ? 1.0 : 4.0,
        q ? std::vector<double>{0.02, 0.01} : logSpace(0.0025, 0.04, 5)},
-      {"cloth", "cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"}, {"walls", "0"}},
+      {"cloth", "cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"}},
        q ? 0.5 : 2.0, q ? std::vector<double>{0.02, 0.01} : logSpace(0.0025, 0.04, 5)},
   };
   long total = 0;

@@ -9,8 +9,9 @@
 namespace lab {
 
 struct ChainSpec {
-  int length = 80;                // particles, cl
-  std::string rodForm = "squared";  // "squared" | "root"
+  ChainSpec(int particles, std::string rod = "squared") : length(particles), rodForm(std::move(rod)) {}
+  int length;                                // particles, cl
+  std::string rodForm;                       // "squared" | "root"
   std::map<std::string, std::string> extra;  // further test-chain parameters
 };
 

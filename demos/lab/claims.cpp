@@ -71,20 +71,14 @@ int runClaims(const LabOptions& options) {
     const int cl = q ? 6 : 24;
     const double duration = q ? 2.0 : 20.0;
     auto maxStep = [&](const std::string& name) {
-      double lo = 1e-3, hi = 0.5;
-      auto survives = [&](double dt) {
-        scenes::Scene chain = buildChain({cl});
-        auto stepper = particles::makeIntegrator(name);
-        progress.tick();
-        return !simulate(chain, *stepper, dt, duration, explosion).exploded;
-      };
-      if (survives(hi)) return hi;
-      if (!survives(lo)) return 0.0;
-      for (int k = 0; k < (q ? 4 : 8); ++k) {
-        const double m = std::sqrt(lo * hi);
-        (survives(m) ? lo : hi) = m;
-      }
-      return lo;
+      return bisectStep(
+          [&](double dt) {
+            scenes::Scene chain = buildChain({cl});
+            auto stepper = particles::makeIntegrator(name);
+            progress.tick();
+            return !simulate(chain, *stepper, dt, duration, explosion).exploded;
+          },
+          1e-3, 0.5, q ? 4 : 8);
     };
     const double dtRk4 = maxStep("rk4"), dtMid = maxStep("midpoint");
     recordValue(options, "claims.rk4_midpoint_cost_ratio", fixed(rk4 / mid, 2));

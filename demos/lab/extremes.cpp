@@ -15,19 +15,14 @@ namespace {
 template <class Build>
 double maxStableStep(Build build, const std::string& integrator, double duration, double lo,
                      double hi, int rounds, const Explosion& explosion, Progress& progress) {
-  auto survives = [&](double dt) {
-    scenes::Scene scene = build();
-    auto stepper = particles::makeIntegrator(integrator);
-    progress.tick();
-    return !simulate(scene, *stepper, dt, duration, explosion).exploded;
-  };
-  if (survives(hi)) return hi;
-  if (!survives(lo)) return 0.0;
-  for (int k = 0; k < rounds && !interrupted(); ++k) {
-    const double mid = std::sqrt(lo * hi);
-    (survives(mid) ? lo : hi) = mid;
-  }
-  return lo;
+  return bisectStep(
+      [&](double dt) {
+        scenes::Scene scene = build();
+        auto stepper = particles::makeIntegrator(integrator);
+        progress.tick();
+        return !simulate(scene, *stepper, dt, duration, explosion).exploded;
+      },
+      lo, hi, rounds);
 }
 
 std::string stepText(double dt, double lo, double hi) {

@@ -84,6 +84,23 @@ std::vector<std::string> selectedIntegrators(const LabOptions& options) {
   return names;
 }
 
+double bisectStep(const std::function<bool(double)>& survives, double lo, double hi, int rounds) {
+  if (survives(hi)) return hi;
+  bool found = false;
+  const double bottom = lo;
+  for (int k = 0; k < rounds && !interrupted(); ++k) {
+    const double mid = std::sqrt(lo * hi);
+    if (survives(mid)) {
+      lo = mid;
+      found = true;
+    } else {
+      hi = mid;
+    }
+  }
+  if (!found) return survives(bottom) ? bottom : 0.0;
+  return lo;
+}
+
 std::vector<double> logSpace(double lo, double hi, int count) {
   std::vector<double> values(count);
   for (int k = 0; k < count; ++k)

@@ -60,6 +60,12 @@ double gravityMagnitude(const particles::ParticleSystem& system);
 // Integrators selected by the options, in table order.
 std::vector<std::string> selectedIntegrators(const LabOptions& options);
 
+// Largest x in [lo, hi] with survives(x), by bisection in log x over `rounds`
+// halvings; hi if it survives, 0 if nothing does. Assumes survival is monotone.
+// Surviving probes are the costly ones, so lo is probed only when every
+// bisection probe failed.
+double bisectStep(const std::function<bool(double)>& survives, double lo, double hi, int rounds);
+
 // Log-spaced values from lo to hi inclusive.
 std::vector<double> logSpace(double lo, double hi, int count);
 

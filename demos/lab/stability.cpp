@@ -32,23 +32,19 @@ class Prober {
   }
 
   // Largest dt in [lo, hi] (log bisection, `rounds` halvings) that survives;
-  // 0 when even lo explodes. Assumes survival is monotone in dt.
+  // 0 when even lo explodes. Assumes survival is monotone in dt. Surviving
+  // probes are the costly ones (they run all of T), so lo itself is probed
+  // only when every bisection probe exploded.
   double maxStep(const std::string& integrator, int cl, double duration, double lo, double hi,
                  int rounds) {
-    if (survives(integrator, cl, hi, duration)) return hi;
-    if (!survives(integrator, cl, lo, duration)) return 0.0;
-    for (int k = 0; k < rounds && !interrupted(); ++k) {
-      const double mid = std::sqrt(lo * hi);
-      (survives(integrator, cl, mid, duration) ? lo : hi) = mid;
-    }
-    return lo;
+    return bisectStep([&](double dt) { return survives(integrator, cl, dt, duration); }, lo, hi, rounds);
   }
 
-  // Longest chain in [1, maxLength] that survives at dt; 0 when none does.
+  // Longest chain in [2, maxLength] that survives at dt; 0 when none does.
   int maxLength(const std::string& integrator, double dt, double duration, int maxLength) {
     if (survives(integrator, maxLength, dt, duration)) return maxLength;
-    if (!survives(integrator, 1, dt, duration)) return 0;
-    int lo = 1, hi = maxLength;
+    if (!survives(integrator, 2, dt, duration)) return 0;
+    int lo = 2, hi = maxLength;
     while (hi - lo > 1 && !interrupted()) {
       const int mid = (lo + hi) / 2;
       (survives(integrator, mid, dt, duration) ? lo : hi) = mid;
@@ -67,8 +63,8 @@ class Prober {
 int runStability(const LabOptions& options, const StabilityOptions& so) {
   prepareOutput(options);
   const auto integrators = selectedIntegrators(options);
-  const std::vector<int> lengths = options.quick ? std::vector<int>{1, 6, 12}
-                                                 : std::vector<int>{1, 2, 4, 6, 12, 24, 48, 80, 160, 320, 500};
+  const std::vector<int> lengths = options.quick ? std::vector<int>{2, 6, 12}
+                                                 : std::vector<int>{2, 3, 6, 12, 24, 48, 80, 160, 320, 500};
   const int rounds = options.quick ? 4 : 8;
   const int maxChain = options.quick ? 24 : 500;
   const std::vector<double> durations =

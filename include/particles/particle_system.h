@@ -29,6 +29,8 @@ class ParticleSystem {
   // Adds many particles at rest with one reallocation (large cloths); returns
   // the index of the first.
   int addParticles(const std::vector<Eigen::Vector2d>& positions, const std::vector<double>& masses);
+  // Changes the mass (finite, > 0) of particle i; a pinned particle stays pinned.
+  void setMass(int i, double mass);
   // A pinned particle has inverse mass 0 and never moves; pinning zeroes its velocity.
   void setPinned(int i, bool pinned);
   bool pinned(int i) const { return inverseMass_[i] == 0.0; }
