@@ -8,12 +8,6 @@
 
 namespace scenes {
 
-std::string formatParam(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
-
 std::string formatParam(int value) { return std::to_string(value); }
 
 void requireAtLeast(const char* name, int value, int minimum) {

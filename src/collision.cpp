@@ -50,6 +50,8 @@ void resolveWallContacts(const std::vector<Wall>& walls, const Eigen::VectorXd& 
 
 int ParticleContacts::resolve(const std::vector<int>& collidable, const Eigen::VectorXd& inverseMass,
                               const Eigen::VectorXd& radius, Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  // A public field rather than a constructor argument, so it is checked where it is used.
+  requireInRange("particle contact restitution", restitution, 0.0, 1.0);
   const int count = static_cast<int>(collidable.size());
   if (count < 2) return 0;
   double maxRadius = 0.0;

@@ -9,9 +9,9 @@ namespace particles {
 
 int ParticleSystem::addParticle(const Eigen::Vector2d& position, double mass,
                                 const Eigen::Vector2d& velocity) {
-  const int i = addParticles({position}, {mass});
   requireFinite("particle velocity.x", velocity.x());
   requireFinite("particle velocity.y", velocity.y());
+  const int i = addParticles({position}, {mass});
   v_.segment<2>(2 * i) = velocity;
   return i;
 }

@@ -4,10 +4,6 @@
 
 #include "lab/lab.h"
 
-namespace CLI {
-class App;
-}
-
 namespace lab {
 
 struct StabilityOptions {
@@ -25,9 +21,6 @@ int runTiming(const LabOptions& options, const TimingOptions& timing);
 int runAccuracy(const LabOptions& options);
 int runExtremes(const LabOptions& options);
 int runClaims(const LabOptions& options);
-
-// Adds `stability`, `timing`, `accuracy`, `extremes` and `claims` to the CLI.
-void registerLabCommands(CLI::App& app);
 
 // Median wall time of one step (seconds) and mean CG iterations per step of a
 // scene under an integrator: warm-up steps, then `repeats` × `steps` timed

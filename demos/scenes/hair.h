@@ -9,6 +9,11 @@ namespace scenes {
 // other as discs. Departing from the report, a small gravity makes the curls
 // hang down (the report's future work: its curls flipped without it).
 //
+// The angular damping k_d = 3 acts on levers of length rest, a rate of order
+// k_d / (m rest²) that explicit schemes must resolve; the mass (10) keeps that
+// rate within reach of dt = 0.002, and the gravity (0.005, a tenth of the
+// world's) keeps the curl's weight m g small against the bending stiffness k_s = 1.
+//
 // The angle spring is signed (θ counter-clockwise from arm x₁−x₂ to arm
 // x₃−x₂), so a curl with every rest angle +π/2 would close into a square after
 // four links and fold onto itself; the rest angles alternate ±θ₀ instead, and
@@ -17,14 +22,14 @@ struct HairParams {
   int curls = 6;
   int particles = 25;
   double rest = 0.08;
-  double mass = 1.0;
+  double mass = 10.0;
   double stiffness = 300.0;
   double damping = 1.0;
   double bendAngle = 90.0;
   double bendStiffness = 1.0;
   double bendDamping = 3.0;
   double radius = 0.025;
-  double gravity = 0.05;
+  double gravity = 0.005;
 
   template <class Visit>
   void visit(Visit&& field) {

@@ -6,11 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "format_number.h"
 #include "scene.h"
 
 namespace scenes {
 
-std::string formatParam(double value);  // shortest text that reads back to the same double
+inline std::string formatParam(double value) { return formatNumber(value); }
 std::string formatParam(int value);
 inline std::string formatParam(const std::string& value) { return value; }
 

@@ -1,0 +1,41 @@
+#pragma once
+// The subcommands of particle-lab. Each lives in its own file and adds itself
+// to the application through one add function listed in main.cpp; it returns
+// the action main runs when that subcommand was given.
+#include <functional>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+namespace cli {
+
+enum ExitCode : int {
+  kSuccess = 0,
+  kBadInput = 2,  // a bad option value, a missing or malformed scene file
+  kDiverged = 3,  // the state became non-finite during a run
+};
+
+// A bad option value or combination found after parsing; exits kBadInput.
+class UsageError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+struct Command {
+  CLI::App* app;                // the subcommand
+  std::function<int()> run;     // returns the exit code; throws UsageError,
+                                // std::invalid_argument or SceneFileError for bad input
+};
+
+Command addRunCommand(CLI::App& app);
+Command addListCommand(CLI::App& app);
+Command addExportCommand(CLI::App& app);
+// The laboratory (cli/lab_commands.cpp).
+Command addStabilityCommand(CLI::App& app);
+Command addTimingCommand(CLI::App& app);
+Command addAccuracyCommand(CLI::App& app);
+Command addExtremesCommand(CLI::App& app);
+Command addClaimsCommand(CLI::App& app);
+Command addRenderReportCommand(CLI::App& app);
+
+}  // namespace cli

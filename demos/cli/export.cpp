@@ -1,0 +1,38 @@
+// particle-lab export: writes a scene as a JSON scene file.
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "cli/command.h"
+#include "cli/scene_source.h"
+#include "scene_file/scene_file.h"
+
+namespace cli {
+
+namespace {
+struct ExportOptions {
+  SceneSource source;
+  std::string output;  // empty: stdout
+};
+
+int exportScene(const ExportOptions& o) {
+  const std::string json = scenes::writeScene(o.source.load());
+  if (o.output.empty()) {
+    std::cout << json;
+    return kSuccess;
+  }
+  std::ofstream out(o.output);
+  if (!(out << json)) throw UsageError("cannot write --output file '" + o.output + "'");
+  return kSuccess;
+}
+}  // namespace
+
+Command addExportCommand(CLI::App& app) {
+  auto options = std::make_shared<ExportOptions>();
+  CLI::App* sub = app.add_subcommand("export", "write a scene (with its parameters applied) as a JSON scene file");
+  options->source.addOptions(*sub);
+  sub->add_option("-o,--output", options->output, "file to write (default: stdout)");
+  return {sub, [options] { return exportScene(*options); }};
+}
+
+}  // namespace cli

@@ -1,0 +1,57 @@
+// particle-lab: the headless runner. Subcommands are listed in one table;
+// errors become one line on stderr and an exit code (cli::ExitCode).
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli/command.h"
+#include "scene_file/json_node.h"
+
+namespace {
+
+// Every subcommand, in the order --help lists them.
+constexpr cli::Command (*kCommands[])(CLI::App&) = {
+    cli::addRunCommand,
+    cli::addListCommand,
+    cli::addExportCommand,
+    cli::addStabilityCommand,
+    cli::addTimingCommand,
+    cli::addAccuracyCommand,
+    cli::addExtremesCommand,
+    cli::addClaimsCommand,
+    cli::addRenderReportCommand,
+};
+
+int fail(const std::string& message) {
+  std::string line = message;
+  for (char& c : line)
+    if (c == '\n') c = ' ';
+  std::cerr << "particle-lab: " << line << '\n';
+  return cli::kBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"particle-lab: run particle-system scenes without a window, list and export them, and run the laboratory's experiments"};
+  app.require_subcommand(1);
+  std::vector<cli::Command> commands;
+  for (auto add : kCommands) commands.push_back(add(app));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    return fail(e.what());
+  }
+  for (const cli::Command& command : commands) {
+    if (!command.app->parsed()) continue;
+    try {
+      return command.run();
+    } catch (const scenes::SceneFileError& e) {
+      return fail(e.what());
+    } catch (const std::invalid_argument& e) {
+      return fail(e.what());
+    }
+  }
+  return fail("no subcommand given");
+}

@@ -1,0 +1,32 @@
+#pragma once
+// The options that choose a scene, shared by the subcommands that need one:
+// --scene NAME [--param key=value ...] or --scene-file PATH.
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "scene.h"
+
+namespace cli {
+
+struct SceneSource {
+  std::string scene;
+  std::string sceneFile;
+  std::vector<std::string> params;  // key=value
+
+  void addOptions(CLI::App& app);
+  // Builds or loads the scene; throws UsageError, std::invalid_argument
+  // (scene table) or SceneFileError.
+  scenes::Scene load() const;
+};
+
+// "a, b, c" from the names of a table (scenes, integrators).
+template <class Table>
+std::string joinNames(const Table& table) {
+  std::string names;
+  for (const auto& entry : table) names += (names.empty() ? "" : ", ") + std::string(entry.name);
+  return names;
+}
+
+}  // namespace cli

@@ -1,0 +1,67 @@
+#pragma once
+// Reading a JSON scene file value by value, each read knowing the JSON path of
+// its value, so that anything malformed is rejected with one line naming the
+// path, what was expected and what was found.
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+namespace scenes {
+
+// Objects keep their members in file order, so written files read naturally.
+using Json = nlohmann::ordered_json;
+
+// A rejected scene file: what() is the whole one-line message.
+class SceneFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class JsonNode {
+ public:
+  JsonNode(const Json* value, std::string path) : value_(value), path_(std::move(path)) {}
+
+  const std::string& path() const { return path_; }
+  bool present() const { return value_ != nullptr; }
+
+  // Members and elements. A missing member is not an error until it is read.
+  JsonNode operator[](const char* key) const;
+  JsonNode operator[](std::size_t index) const;
+  std::size_t arraySize() const;  // requires an array; an absent one counts as empty
+  // Rejects members other than these (catches misspelt optional fields).
+  void allowOnly(std::initializer_list<const char*> keys) const;
+
+  double number() const;        // finite
+  double positive() const;      // finite, > 0
+  double nonNegative() const;   // finite, >= 0
+  double inRange(double lo, double hi) const;
+  int integer(int lo, int hi) const;
+  int particle(int particleCount) const;  // an index in [0, particleCount)
+  std::vector<int> particles(std::size_t count, int particleCount) const;  // array of indices
+  bool boolean() const;
+  std::string text() const;
+  Eigen::Vector2d vec2() const;  // [x, y], finite
+
+  // The same reads with a default for an absent member.
+  double number(double fallback) const { return present() ? number() : fallback; }
+  bool boolean(bool fallback) const { return present() ? boolean() : fallback; }
+
+  // Throws SceneFileError "path: expected <what>, got <value>".
+  [[noreturn]] void expected(const std::string& what) const;
+  // Throws SceneFileError "path: <reason>" (an engine object refused the values).
+  [[noreturn]] void reject(const std::string& reason) const;
+
+ private:
+  const Json& require(bool ok, const char* what) const;
+  // A finite number for which ok(x, lo, hi) holds, or an error naming what.
+  double numberWhere(const std::string& what, bool (*ok)(double, double, double), double lo = 0.0,
+                     double hi = 0.0) const;
+  const Json* value_;
+  std::string path_;
+};
+
+}  // namespace scenes

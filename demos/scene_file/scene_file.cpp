@@ -1,0 +1,254 @@
+#include "scene_file/scene_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "particles/integrator.h"
+#include "scene_file/codecs.h"
+
+namespace scenes {
+
+namespace {
+
+// Runs build(); an engine object refusing its values (std::invalid_argument)
+// becomes a SceneFileError at node's path.
+template <class Build>
+auto guarded(const JsonNode& node, Build&& build) {
+  try {
+    return build();
+  } catch (const std::invalid_argument& e) {
+    node.reject(e.what());
+  }
+}
+
+// The table entry whose type matches the node's "type", or an error listing the types.
+template <class Codec>
+const Codec& codecFor(const JsonNode& node, const std::vector<Codec>& table, const char* kind) {
+  const JsonNode type = node["type"];
+  std::string names;
+  for (const Codec& codec : table) {
+    names += names.empty() ? "" : ", ";
+    names += codec.type;
+  }
+  const std::string name = type.present() ? type.text() : "";
+  for (const Codec& codec : table)
+    if (name == codec.type) return codec;
+  type.expected(std::string("a ") + kind + " type (" + names + ")");
+}
+
+template <class Codec, class Object>
+Json writeWith(const std::vector<Codec>& table, const Object& object) {
+  for (const Codec& codec : table)
+    if (std::strcmp(codec.type, object.type()) == 0) return codec.write(object);
+  throw std::logic_error(std::string("no scene-file writer for type '") + object.type() + "'");
+}
+
+void readIntegrator(const JsonNode& node, Scene& scene) {
+  if (!node.present()) return;
+  std::string names;
+  for (const particles::IntegratorInfo& info : particles::integratorTable()) {
+    if (node.text() == info.name) {
+      scene.integrator = info.name;
+      return;
+    }
+    names += names.empty() ? "" : ", ";
+    names += info.name;
+  }
+  node.expected("an integrator (" + names + ")");
+}
+
+void readView(const JsonNode& node, Scene& scene) {
+  if (!node.present()) return;
+  node.allowOnly({"min", "max"});
+  scene.viewMin = node["min"].vec2();
+  scene.viewMax = node["max"].vec2();
+  if (!(scene.viewMax.array() > scene.viewMin.array()).all()) node["max"].expected("a point above and right of min");
+}
+
+void readSolver(const JsonNode& node, particles::SolverSettings& s) {
+  if (!node.present()) return;
+  node.allowOnly({"tolerance", "maxIterations", "stiffness", "damping", "warmStart", "preconditioner"});
+  if (node["tolerance"].present()) s.tolerance = node["tolerance"].positive();
+  if (node["maxIterations"].present()) s.maxIterations = node["maxIterations"].integer(0, 1000000);
+  if (node["stiffness"].present()) s.stiffness = node["stiffness"].nonNegative();
+  if (node["damping"].present()) s.damping = node["damping"].nonNegative();
+  s.warmStart = node["warmStart"].boolean(s.warmStart);
+  const JsonNode preconditioner = node["preconditioner"];
+  if (preconditioner.present()) {
+    const std::string name = preconditioner.text();
+    if (name != "none" && name != "jacobi") preconditioner.expected("\"none\" or \"jacobi\"");
+    s.preconditioner = name == "none" ? particles::Preconditioner::None : particles::Preconditioner::Jacobi;
+  }
+}
+
+void readParticle(const JsonNode& node, particles::ParticleSystem& s) {
+  node.allowOnly({"position", "velocity", "mass", "pinned", "radius"});
+  const Eigen::Vector2d x = node["position"].vec2();
+  const JsonNode velocity = node["velocity"];
+  const Eigen::Vector2d v = velocity.present() ? velocity.vec2() : Eigen::Vector2d::Zero();
+  const int i = s.addParticle(x, node["mass"].positive(), v);
+  if (node["pinned"].boolean(false)) s.setPinned(i, true);
+  if (node["radius"].present()) s.setCollidable(i, node["radius"].positive());
+}
+
+particles::Wall readWall(const JsonNode& node) {
+  node.allowOnly({"min", "max", "restitution", "friction"});
+  particles::Wall wall;
+  wall.min = node["min"].vec2();
+  wall.max = node["max"].vec2();
+  wall.restitution = node["restitution"].present() ? node["restitution"].inRange(0.0, 1.0) : wall.restitution;
+  wall.friction = node["friction"].present() ? node["friction"].inRange(0.0, 1.0) : wall.friction;
+  return wall;
+}
+
+Scene readDocument(const JsonNode& root, const std::string& source) {
+  root.allowOnly({"name", "integrator", "dt", "view", "solver", "particleRestitution", "particles", "forces",
+                  "constraints", "walls"});
+  Scene scene;
+  scene.name = root["name"].present() ? root["name"].text() : source;
+  readIntegrator(root["integrator"], scene);
+  if (root["dt"].present()) scene.dt = root["dt"].positive();
+  readView(root["view"], scene);
+  scene.system = std::make_unique<particles::ParticleSystem>();
+  particles::ParticleSystem& s = *scene.system;
+  readSolver(root["solver"], s.solver().settings);
+  if (root["particleRestitution"].present())
+    s.particleContacts().restitution = root["particleRestitution"].inRange(0.0, 1.0);
+
+  const JsonNode particleList = root["particles"];
+  if (!particleList.present()) particleList.expected("an array of particles");
+  for (std::size_t k = 0; k < particleList.arraySize(); ++k) {
+    const JsonNode node = particleList[k];
+    guarded(node, [&] { readParticle(node, s); });
+  }
+  const int n = s.size();
+  for (std::size_t k = 0, count = root["forces"].arraySize(); k < count; ++k) {
+    const JsonNode node = root["forces"][k];
+    const ForceCodec& codec = codecFor(node, forceCodecs(), "force");
+    guarded(node, [&] { s.addForce(codec.read(node, n)); });
+  }
+  for (std::size_t k = 0, count = root["constraints"].arraySize(); k < count; ++k) {
+    const JsonNode node = root["constraints"][k];
+    const ConstraintCodec& codec = codecFor(node, constraintCodecs(), "constraint");
+    guarded(node, [&] { s.addConstraint(codec.read(node, n)); });
+  }
+  for (std::size_t k = 0, count = root["walls"].arraySize(); k < count; ++k) {
+    const JsonNode node = root["walls"][k];
+    guarded(node, [&] { s.addWall(readWall(node)); });
+  }
+  return scene;
+}
+
+// nlohmann's what() reads "[json.exception.parse_error.101] parse error at ...".
+std::string withoutExceptionId(const char* what) {
+  const char* detail = std::strstr(what, "] ");
+  return detail ? detail + 2 : what;
+}
+
+// The bare word (NaN, Infinity, -inf, ...) at which parsing stopped, with its
+// sign, as [start, start + length) of text; length 0 when there is none.
+std::pair<std::size_t, std::size_t> nonNumberAt(const std::string& text, std::size_t byte) {
+  const auto alpha = [&](std::size_t k) { return std::isalpha(static_cast<unsigned char>(text[k])) != 0; };
+  std::size_t start = std::min(byte, text.size()), end = start;
+  while (start > 0 && alpha(start - 1)) --start;
+  while (end < text.size() && alpha(end)) ++end;
+  std::string word = text.substr(start, end - start);
+  for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (word != "nan" && word != "inf" && word != "infinity") return {start, 0};
+  if (start > 0 && (text[start - 1] == '-' || text[start - 1] == '+')) --start;
+  return {start, end - start};
+}
+
+Scene readText(const std::string& text, const std::string& source, bool locateNonNumbers) {
+  Json document;
+  try {
+    document = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    const auto [start, length] = nonNumberAt(text, e.byte);
+    if (locateNonNumbers && length > 0) {
+      // JSON cannot hold NaN or Infinity. Read the file again with the word as
+      // a string, so that the error names the JSON path of the value.
+      std::string quoted = text;
+      quoted.replace(start, length, "\"" + text.substr(start, length) + " (not a JSON number)\"");
+      readText(quoted, source, false);
+    }
+    throw SceneFileError(source + ": $: expected valid JSON, got a " + withoutExceptionId(e.what()));
+  } catch (const Json::exception& e) {  // a number too large for a double
+    throw SceneFileError(source + ": $: expected valid JSON, got a " + withoutExceptionId(e.what()));
+  }
+  try {
+    return readDocument(JsonNode(&document, "$"), source);
+  } catch (const SceneFileError& e) {
+    throw SceneFileError(source + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+Scene readScene(const std::string& text, const std::string& source) { return readText(text, source, true); }
+
+Scene loadSceneFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  if (!(in && text << in.rdbuf())) throw SceneFileError(path + ": cannot read the file");
+  return readScene(text.str(), path);
+}
+
+Json sceneToJson(const Scene& scene) {
+  const particles::ParticleSystem& s = *scene.system;
+  const particles::SolverSettings& solver = s.solver().settings;
+  Json doc;
+  doc["name"] = scene.name;
+  doc["integrator"] = scene.integrator;
+  doc["dt"] = scene.dt;
+  doc["view"] = {{"min", toJson(scene.viewMin)}, {"max", toJson(scene.viewMax)}};
+  doc["solver"] = {{"tolerance", solver.tolerance},
+                   {"maxIterations", solver.maxIterations},
+                   {"stiffness", solver.stiffness},
+                   {"damping", solver.damping},
+                   {"warmStart", solver.warmStart},
+                   {"preconditioner", solver.preconditioner == particles::Preconditioner::None ? "none" : "jacobi"}};
+  doc["particleRestitution"] = s.particleContacts().restitution;
+  doc["particles"] = Json::array();
+  for (int i = 0; i < s.size(); ++i) {
+    Json p = {{"position", toJson(s.position(i))}, {"velocity", toJson(s.velocity(i))}, {"mass", s.masses()[i]}};
+    if (s.pinned(i)) p["pinned"] = true;
+    if (s.collidable(i)) p["radius"] = s.radii()[i];
+    doc["particles"].push_back(std::move(p));
+  }
+  doc["forces"] = Json::array();
+  for (const auto& force : s.forceObjects()) doc["forces"].push_back(writeWith(forceCodecs(), *force));
+  doc["constraints"] = Json::array();
+  for (const auto& constraint : s.constraints()) doc["constraints"].push_back(writeWith(constraintCodecs(), *constraint));
+  doc["walls"] = Json::array();
+  for (const particles::Wall& wall : s.walls())
+    doc["walls"].push_back({{"min", toJson(wall.min)},
+                            {"max", toJson(wall.max)},
+                            {"restitution", wall.restitution},
+                            {"friction", wall.friction}});
+  return doc;
+}
+
+// One top-level field per line, and one line per particle, force, constraint
+// and wall, so that a file reads (and diffs) as a list of objects.
+std::string writeScene(const Scene& scene) {
+  const Json doc = sceneToJson(scene);
+  std::string out = "{";
+  for (auto field = doc.begin(); field != doc.end(); ++field) {
+    out += (field == doc.begin() ? "\n  \"" : ",\n  \"") + field.key() + "\": ";
+    const Json& value = field.value();
+    if (value.is_array() && !value.empty() && value.front().is_object()) {
+      out += "[";
+      for (std::size_t k = 0; k < value.size(); ++k) out += (k ? ",\n    " : "\n    ") + value[k].dump();
+      out += "\n  ]";
+    } else {
+      out += value.dump();
+    }
+  }
+  return out + "\n}\n";
+}
+
+}  // namespace scenes

@@ -1,0 +1,69 @@
+#pragma once
+// Helpers shared by the unit tests: parameter-rejection checks, central finite
+// differences, and dense views of force contributions.
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Core>
+#include <gtest/gtest.h>
+
+#include "particles/force.h"
+
+namespace test_support {
+
+// Expects `action` to throw std::invalid_argument whose message contains `text`
+// (the parameter's name, or the value it was given).
+inline void expectRejected(const std::function<void()>& action, const std::string& text) {
+  try {
+    action();
+    ADD_FAILURE() << "no std::invalid_argument thrown; expected one naming '" << text << "'";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos)
+        << "message '" << e.what() << "' does not name '" << text << "'";
+  }
+}
+
+// ∂g/∂y by central differences, for a scalar g.
+inline Eigen::VectorXd centralGradient(const std::function<double(const Eigen::VectorXd&)>& g,
+                                       const Eigen::VectorXd& y, double h = 1e-6) {
+  Eigen::VectorXd grad(y.size());
+  for (int k = 0; k < y.size(); ++k) {
+    Eigen::VectorXd yp = y, ym = y;
+    yp[k] += h;
+    ym[k] -= h;
+    grad[k] = (g(yp) - g(ym)) / (2 * h);
+  }
+  return grad;
+}
+
+// ∂g/∂y by central differences, for a vector g (column k is ∂g/∂y_k).
+inline Eigen::MatrixXd centralJacobian(
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& g, const Eigen::VectorXd& y,
+    double h = 1e-6) {
+  const Eigen::VectorXd g0 = g(y);
+  Eigen::MatrixXd jac(g0.size(), y.size());
+  for (int k = 0; k < y.size(); ++k) {
+    Eigen::VectorXd yp = y, ym = y;
+    yp[k] += h;
+    ym[k] -= h;
+    jac.col(k) = (g(yp) - g(ym)) / (2 * h);
+  }
+  return jac;
+}
+
+// The contribution of one force alone at phase s (2n).
+inline Eigen::VectorXd forceAt(const particles::Force& force, const particles::Phase& s) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(s.x.size());
+  force.apply(s, f);
+  return f;
+}
+
+// Sums triplets (duplicates add) into a dense size × size matrix.
+inline Eigen::MatrixXd denseFromTriplets(const particles::Triplets& triplets, int size) {
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(size, size);
+  for (const auto& t : triplets) m(t.row(), t.col()) += t.value();
+  return m;
+}
+
+}  // namespace test_support
