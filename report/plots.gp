@@ -11,6 +11,8 @@ set style data linespoints
 # Distinct values of column 1 (integrator names) of a CSV, in order of appearance.
 names(file) = system(sprintf("tail -n +2 '%s' | cut -d, -f1 | awk '!seen[$0]++' | tr '\\n' ' '", file))
 positive(x) = (x > 0 ? x : NaN)
+set format x '10^{%L}'
+set format y '10^{%L}'
 
 # --- stability -------------------------------------------------------------
 f = data.'/stability_boundary.csv'
