@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "join_names.h"
 #include "scene.h"
 #include "scenes/param_fields.h"
 
@@ -18,12 +19,8 @@ void requireAtLeast(const char* name, int value, int minimum) {
 
 SceneParams::SceneParams(const std::vector<ParamSpec>& specs,
                          const std::map<std::string, std::string>& values) {
-  for (const ParamSpec& spec : specs) {
-    values_[spec.name] = spec.defaultValue;
-    validNames_ += validNames_.empty() ? "" : ", ";
-    validNames_ += spec.name;
-  }
-  if (validNames_.empty()) validNames_ = "none";
+  for (const ParamSpec& spec : specs) values_[spec.name] = spec.defaultValue;
+  validNames_ = specs.empty() ? "none" : joinNames(specs);
   for (const auto& [name, value] : values) {
     if (!values_.count(name))
       throw std::invalid_argument("unknown parameter '" + name + "' (valid: " + validNames_ + ")");

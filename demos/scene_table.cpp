@@ -1,5 +1,6 @@
 #include <stdexcept>
 
+#include "join_names.h"
 #include "scene.h"
 #include "scenes/cloth.h"
 #include "scenes/hair.h"
@@ -42,19 +43,15 @@ const std::vector<SceneInfo>& sceneTable() {
 }
 
 Scene buildScene(const std::string& name, const std::map<std::string, std::string>& overrides) {
-  std::string names;
   for (const SceneInfo& info : sceneTable()) {
-    if (name == info.name) {
-      try {
-        return info.build(SceneParams(info.params, overrides));
-      } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument("scene '" + name + "': " + e.what());
-      }
+    if (name != info.name) continue;
+    try {
+      return info.build(SceneParams(info.params, overrides));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("scene '" + name + "': " + e.what());
     }
-    names += names.empty() ? "" : ", ";
-    names += info.name;
   }
-  throw std::invalid_argument("unknown scene '" + name + "' (valid: " + names + ")");
+  throw std::invalid_argument("unknown scene '" + name + "' (valid: " + joinNames(sceneTable()) + ")");
 }
 
 }  // namespace scenes

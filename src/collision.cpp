@@ -62,10 +62,13 @@ int ParticleContacts::resolve(const std::vector<int>& collidable, const Eigen::V
   // sort particles by bucket (counting sort, linear time).
   int buckets = 1;
   while (buckets < 2 * count) buckets <<= 1;
-  auto cellOf = [&](int i) {
-    return Eigen::Vector2i(static_cast<int>(std::floor(x[2 * i] / cell)),
-                           static_cast<int>(std::floor(x[2 * i + 1] / cell)));
+  // Cell coordinates are clamped so that a far-flung (or exploded) particle
+  // cannot overflow the integer conversion; such particles share edge cells.
+  auto toCell = [&](double coordinate) {
+    const double c = std::floor(coordinate / cell);
+    return static_cast<int>(std::isfinite(c) ? std::clamp(c, -1e9, 1e9) : 1e9);
   };
+  auto cellOf = [&](int i) { return Eigen::Vector2i(toCell(x[2 * i]), toCell(x[2 * i + 1])); };
   auto bucketOf = [&](const Eigen::Vector2i& c) {
     const unsigned long long h = static_cast<unsigned long long>(c.x()) * 73856093ULL ^
                                  static_cast<unsigned long long>(c.y()) * 19349663ULL;

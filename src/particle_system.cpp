@@ -112,10 +112,17 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
 void ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
   iterationsThisStep_ = 0;
+  // Settings are public fields: check them before anything moves, so a bad
+  // value never leaves a step half done.
+  solver_.settings.validate();
+  if (collidable_.size() > 1)
+    requireInRange("particle contact restitution", contacts_.restitution, 0.0, 1.0);
   integrator.step(*this, dt);
-  if (!walls_.empty()) resolveWallContacts(walls_, inverseMass_, radius_, x_, v_);
+  // Disc contacts first, walls last: separating two discs can push one into a
+  // wall, and a wall is the hard boundary a step must never end inside.
   contactsLastStep_ =
       collidable_.size() > 1 ? contacts_.resolve(collidable_, inverseMass_, radius_, x_, v_) : 0;
+  if (!walls_.empty()) resolveWallContacts(walls_, inverseMass_, radius_, x_, v_);
   time_ += dt;
 }
 

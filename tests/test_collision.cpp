@@ -130,6 +130,28 @@ TEST(WallContact, PinnedParticleIsNeverMoved) {
   EXPECT_GE(system.position(1).y(), 0.0) << "the movable particle was pushed out";
 }
 
+// Disc contacts push the lower discs of a stack down; the floor must still have
+// the last word, so that no disc ends a step inside it.
+TEST(WallContact, StackedDiscsNeverEndAStepInsideTheFloor) {
+  const double radius = 0.1;
+  ParticleSystem system;
+  system.addParticle(Vector2d(0.0, 0.1), 1.0);
+  system.addParticle(Vector2d(0.0, 0.35), 1.0);
+  system.addParticle(Vector2d(0.01, 0.6), 1.0);
+  for (int i = 0; i < 3; ++i) system.setCollidable(i, radius);
+  system.addWall(floorWall(0.3));
+  system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
+  auto integrator = makeIntegrator("symplectic-euler");
+  int contacts = 0;
+  for (int step = 0; step < 300; ++step) {
+    system.step(*integrator, 0.01);
+    contacts += system.contactsLastStep();
+    for (int i = 0; i < 3; ++i)
+      ASSERT_GE(system.position(i).y(), radius) << "disc " << i << " inside the floor after step " << step;
+  }
+  EXPECT_GT(contacts, 0);
+}
+
 // --- particle–particle ---------------------------------------------------------
 
 TEST(ParticleContacts, HeadOnEqualMassesWithUnitRestitutionExchangeVelocities) {
@@ -268,6 +290,7 @@ TEST(CollisionParameters, RejectedWithTheirName) {
   };
   expectRejected(addWall(-0.1, 0.0), "wall restitution");
   expectRejected(addWall(1.5, 0.0), "wall restitution");
+  expectRejected(addWall(1.5, 0.0), "got 1.5");
   expectRejected(addWall(std::nan(""), 0.0), "wall restitution");
   expectRejected(addWall(0.5, -0.2), "wall friction");
   expectRejected(addWall(0.5, 1.2), "wall friction");
@@ -289,4 +312,15 @@ TEST(CollisionParameters, ParticleRestitutionOutsideUnitIntervalIsRejected) {
     auto integrator = makeIntegrator("rk4");
     expectRejected([&] { system.step(*integrator, 0.01); }, "restitution");
   }
+}
+
+TEST(ParticleContacts, FarFlungAndNonFiniteParticlesDoNotBreakTheBroadPhase) {
+  // An exploded simulation leaves particles at huge or non-finite positions;
+  // the grid must neither overflow its cell indices nor lose the ordinary pair.
+  Eigen::VectorXd x(8), v = Eigen::VectorXd::Zero(8), w = Eigen::VectorXd::Ones(4);
+  Eigen::VectorXd r = Eigen::VectorXd::Constant(4, 0.1);
+  x << 0.0, 0.0, 0.15, 0.0, 1e300, -1e300, std::nan(""), 0.0;
+  ParticleContacts contacts;
+  EXPECT_EQ(contacts.resolve({0, 1, 2, 3}, w, r, x, v), 1);
+  EXPECT_NEAR((x.segment<2>(0) - x.segment<2>(2)).norm(), 0.2, 1e-12);
 }

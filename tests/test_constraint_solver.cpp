@@ -71,7 +71,8 @@ void perturb(ParticleSystem& system, std::mt19937& rng) {
 // the solver: Q from the force objects, C and Ċ from the constraint objects.
 struct ConstraintTerms {
   VectorXd Q, C, Cdot;
-  MatrixXd W;  // 2n × 2n diagonal of inverse masses
+  MatrixXd J, Jdot;  // m × 2n, from the constraint objects' own rows
+  MatrixXd W;        // 2n × 2n diagonal of inverse masses
 };
 
 ConstraintTerms gatherIndependently(const ParticleSystem& system) {
@@ -82,14 +83,20 @@ ConstraintTerms gatherIndependently(const ParticleSystem& system) {
   const int m = static_cast<int>(system.constraints().size());
   t.C.resize(m);
   t.Cdot.resize(m);
+  t.J = t.Jdot = MatrixXd::Zero(m, 2 * system.size());
   for (int k = 0; k < m; ++k) {
-    std::vector<Vector2d> J(system.constraints()[k]->particles().size()), Jdot(J.size());
+    const Constraint& c = *system.constraints()[k];
+    std::vector<Vector2d> J(c.particles().size()), Jdot(J.size());
     ConstraintRow row;
     row.J = J.data();
     row.Jdot = Jdot.data();
-    system.constraints()[k]->evaluate(s, row);
+    c.evaluate(s, row);
     t.C[k] = row.C;
     t.Cdot[k] = row.Cdot;
+    for (std::size_t e = 0; e < J.size(); ++e) {
+      t.J.block<1, 2>(k, 2 * c.particles()[e]) += J[e].transpose();
+      t.Jdot.block<1, 2>(k, 2 * c.particles()[e]) += Jdot[e].transpose();
+    }
   }
   VectorXd w(2 * system.size());
   for (int i = 0; i < system.size(); ++i) w.segment<2>(2 * i).setConstant(system.inverseMasses()[i]);
@@ -108,6 +115,8 @@ void expectSolveMatchesDenseSystem(ParticleSystem& system) {
   const MatrixXd J = solver.denseJ(n), Jdot = solver.denseJdot(n);
   const ConstraintTerms t = gatherIndependently(system);
   const VectorXd& v = system.velocities();
+  EXPECT_EQ(J, t.J) << "the solver gathered rows other than the constraints'";
+  EXPECT_EQ(Jdot, t.Jdot);
 
   const VectorXd b = -Jdot * v - J * t.W * t.Q - settings.stiffness * t.C - settings.damping * t.Cdot;
   const MatrixXd A = J * t.W * J.transpose();

@@ -45,6 +45,23 @@ TEST(ParticleSystem, StepRejectsNonPositiveOrNanDtAndLeavesTheStateAlone) {
   const Snapshot before = system.snapshot();
   for (double dt : {0.0, -0.01, std::nan(""), std::numeric_limits<double>::infinity()})
     expectRejected([&] { system.step(*integrator, dt); }, "dt");
+  expectRejected([&] { system.step(*integrator, -0.25); }, "dt must be > 0, got -0.25");
+  EXPECT_EQ(system.positions(), before.x);
+  EXPECT_EQ(system.velocities(), before.v);
+  EXPECT_EQ(system.time(), 0.0);
+}
+
+TEST(ParticleSystem, StepRejectsBadSettingsBeforeAnythingMoves) {
+  ParticleSystem system = makePendulum();
+  auto integrator = makeIntegrator("rk4");
+  const Snapshot before = system.snapshot();
+  system.solver().settings.tolerance = std::nan("");
+  expectRejected([&] { system.step(*integrator, 0.01); }, "solver tolerance");
+  system.solver().settings.tolerance = 1e-8;
+  system.setCollidable(1, 0.05);
+  system.setCollidable(2, 0.05);
+  system.particleContacts().restitution = 1.5;
+  expectRejected([&] { system.step(*integrator, 0.01); }, "particle contact restitution");
   EXPECT_EQ(system.positions(), before.x);
   EXPECT_EQ(system.velocities(), before.v);
   EXPECT_EQ(system.time(), 0.0);
@@ -54,6 +71,7 @@ TEST(ParticleSystem, RejectedParticleIsNotAdded) {
   ParticleSystem system;
   for (double mass : {0.0, -1.0, std::nan("")})
     expectRejected([&] { system.addParticle(Vector2d::Zero(), mass); }, "particle mass");
+  expectRejected([&] { system.addParticle(Vector2d::Zero(), -3.5); }, "got -3.5");
   expectRejected([&] { system.addParticle(Vector2d(std::nan(""), 0.0), 1.0); }, "particle position.x");
   expectRejected([&] { system.addParticle(Vector2d::Zero(), 1.0, Vector2d(0.0, std::nan(""))); },
                  "particle velocity.y");

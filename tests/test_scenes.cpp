@@ -37,10 +37,29 @@ TEST(Scenes, EveryBuiltInSceneStepsWithMidpointAndRk4WithinOnePercentConstraintE
     for (const char* integrator : {"midpoint", "rk4"}) {
       scenes::Scene scene = scenes::buildScene(info.name);
       const StepResult r = stepScene(scene, integrator, 200);
+      std::printf("[ %-8s ] %-11s max|C|/r=%.3g\n", integrator, info.name, r.worstRelativeError);
       EXPECT_TRUE(r.finite) << info.name << " with " << integrator;
       EXPECT_LE(r.worstRelativeError, 0.01) << info.name << " with " << integrator;
     }
   }
+}
+
+// A scene carries no constraint, collider or gravity it does not need, so the
+// engine skips the solve and the collision passes for it.
+TEST(Scenes, ModelOnlyWhatTheyNeed) {
+  const scenes::Scene oscillator = scenes::buildScene("oscillator");
+  EXPECT_TRUE(oscillator.system->constraints().empty());
+  EXPECT_TRUE(oscillator.system->walls().empty());
+  EXPECT_EQ(oscillator.system->forceObjects().size(), 1u);  // the spring; no gravity
+  const scenes::Scene pendulum = scenes::buildScene("pendulum");
+  EXPECT_EQ(pendulum.system->constraints().size(), 1u);
+  EXPECT_TRUE(pendulum.system->walls().empty());
+  const scenes::Scene cloth = scenes::buildScene("cloth");
+  EXPECT_EQ(cloth.system->walls().size(), 2u);  // the big wall and the nail
+  for (int i = 0; i < cloth.system->size(); ++i) EXPECT_FALSE(cloth.system->collidable(i));
+  const scenes::Scene hair = scenes::buildScene("hair");
+  for (int i = 0; i < hair.system->size(); ++i) EXPECT_TRUE(hair.system->collidable(i));
+  EXPECT_TRUE(hair.system->walls().empty());
 }
 
 // Explicit Euler is reported, not required: it may fail the 1 % bound.

@@ -6,7 +6,8 @@
 
 #include "cli/command.h"
 #include "cli/scene_source.h"
-#include "format_number.h"
+#include "cli/step_output.h"
+#include "join_names.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
@@ -32,27 +33,6 @@ std::ofstream openOutput(const std::string& path, const char* option, const char
   return out;
 }
 
-// step,t,kinetic,potential,total_energy,max_constraint_error,cg_iterations,cg_residual,step_us
-void writeDiagnostics(std::ostream& out, long long step, const particles::ParticleSystem& s, double stepMicros) {
-  using scenes::formatNumber;
-  const double kinetic = s.kineticEnergy(), potential = s.potentialEnergy();
-  out << step << ',' << formatNumber(s.time()) << ',' << formatNumber(kinetic) << ',' << formatNumber(potential)
-      << ',' << formatNumber(kinetic + potential) << ',' << formatNumber(s.maxConstraintError()) << ','
-      << s.lastSolve().iterations << ',' << formatNumber(s.lastSolve().residual) << ','
-      << formatNumber(stepMicros) << '\n';
-}
-
-// step,t,particle,x,y,vx,vy — one row per particle.
-void writeTrajectory(std::ostream& out, long long step, const particles::ParticleSystem& s) {
-  using scenes::formatNumber;
-  const std::string prefix = std::to_string(step) + ',' + formatNumber(s.time()) + ',';
-  for (int i = 0; i < s.size(); ++i) {
-    const Eigen::Vector2d x = s.position(i), v = s.velocity(i);
-    out << prefix << i << ',' << formatNumber(x.x()) << ',' << formatNumber(x.y()) << ','
-        << formatNumber(v.x()) << ',' << formatNumber(v.y()) << '\n';
-  }
-}
-
 int run(const RunOptions& o) {
   // Check every input before the first output.
   scenes::Scene scene = o.source.load();
@@ -64,9 +44,8 @@ int run(const RunOptions& o) {
   if (o.every < 1) throw UsageError("--every must be >= 1, got " + std::to_string(o.every));
   std::ofstream csv, trajectory;
   if (!o.csvPath.empty())
-    csv = openOutput(o.csvPath, "--csv",
-                     "step,t,kinetic,potential,total_energy,max_constraint_error,cg_iterations,cg_residual,step_us");
-  if (!o.trajectoryPath.empty()) trajectory = openOutput(o.trajectoryPath, "--trajectory", "step,t,particle,x,y,vx,vy");
+    csv = openOutput(o.csvPath, "--csv", kDiagnosticsHeader);
+  if (!o.trajectoryPath.empty()) trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
 
   particles::ParticleSystem& s = *scene.system;
   if (csv.is_open()) writeDiagnostics(csv, 0, s, 0.0);
@@ -78,9 +57,9 @@ int run(const RunOptions& o) {
     s.step(*integrator, dt);
     const Clock::duration elapsed = Clock::now() - start;
     simulated += elapsed;
-    if (!s.finite()) {
+    if (diverged(s)) {
       std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time()
-                << "): a position or velocity is no longer finite\n";
+                << "): the positions or velocities are no longer finite (|q|^2 or |v|^2 overflows)\n";
       return kDiverged;
     }
     if (csv.is_open()) writeDiagnostics(csv, step, s, std::chrono::duration<double, std::micro>(elapsed).count());
@@ -101,7 +80,7 @@ Command addRunCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
-                  "integrator: " + joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
+                  "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
   sub->add_option("--steps", options->steps, "number of steps, >= 0")->required();
   sub->add_option("--csv", options->csvPath,
@@ -114,7 +93,8 @@ Command addRunCommand(CLI::App& app) {
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
-      "non-finite: the run stops, stderr names the step and time, and the CSV holds every step before it.");
+      "non-finite (|q|^2 or |v|^2 overflows): the run stops, stderr names the step and time, and the\n"
+      "CSV holds every step before it.");
   return {sub, [options] { return run(*options); }};
 }
 

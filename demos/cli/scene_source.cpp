@@ -1,12 +1,13 @@
 #include "cli/scene_source.h"
 
 #include "cli/command.h"
+#include "join_names.h"
 #include "scene_file/scene_file.h"
 
 namespace cli {
 
 void SceneSource::addOptions(CLI::App& app) {
-  auto* byName = app.add_option("--scene", scene, "built-in scene: " + joinNames(scenes::sceneTable()) +
+  auto* byName = app.add_option("--scene", scene, "built-in scene: " + scenes::joinNames(scenes::sceneTable()) +
                                                       " (parameters: particle-lab list)");
   auto* byFile = app.add_option("--scene-file", sceneFile, "JSON scene file (format: demos/scenes/FORMAT.md)");
   byName->excludes(byFile);

@@ -21,12 +21,4 @@ struct SceneSource {
   scenes::Scene load() const;
 };
 
-// "a, b, c" from the names of a table (scenes, integrators).
-template <class Table>
-std::string joinNames(const Table& table) {
-  std::string names;
-  for (const auto& entry : table) names += (names.empty() ? "" : ", ") + std::string(entry.name);
-  return names;
-}
-
 }  // namespace cli

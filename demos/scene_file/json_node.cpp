@@ -91,22 +91,22 @@ double JsonNode::inRange(double lo, double hi) const {
                      [](double x, double a, double b) { return x >= a && x <= b; }, lo, hi);
 }
 
-int JsonNode::integer(int lo, int hi) const {
-  const std::string what = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+int JsonNode::integerWhere(const std::string& what, int lo, int hi) const {
   const Json& v = require(value_ && value_->is_number_integer(), what.c_str());
-  if (v.is_number_unsigned() ? v.get<std::uint64_t>() > std::uint64_t(hi)
-                             : (v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi))
-    expected(what);
+  // Non-negative integers are stored unsigned and may exceed int64.
+  const bool inRange = v.is_number_unsigned()
+                           ? hi >= 0 && v.get<std::uint64_t>() <= std::uint64_t(hi)
+                           : v.get<std::int64_t>() >= lo && v.get<std::int64_t>() <= hi;
+  if (!inRange) expected(what);
   return static_cast<int>(v.get<std::int64_t>());
 }
 
+int JsonNode::integer(int lo, int hi) const {
+  return integerWhere("an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", lo, hi);
+}
+
 int JsonNode::particle(int particleCount) const {
-  const std::string what = "a particle index in [0, " + std::to_string(particleCount) + ")";
-  const Json& v = require(value_ && value_->is_number_integer(), what.c_str());
-  if (v.is_number_unsigned() ? v.get<std::uint64_t>() >= std::uint64_t(particleCount)
-                             : (v.get<std::int64_t>() < 0 || v.get<std::int64_t>() >= particleCount))
-    expected(what);
-  return static_cast<int>(v.get<std::int64_t>());
+  return integerWhere("a particle index in [0, " + std::to_string(particleCount) + ")", 0, particleCount - 1);
 }
 
 std::vector<int> JsonNode::particles(std::size_t count, int particleCount) const {

@@ -46,8 +46,7 @@ class JsonNode {
   std::string text() const;
   Eigen::Vector2d vec2() const;  // [x, y], finite
 
-  // The same reads with a default for an absent member.
-  double number(double fallback) const { return present() ? number() : fallback; }
+  // boolean() with a default for an absent member.
   bool boolean(bool fallback) const { return present() ? boolean() : fallback; }
 
   // Throws SceneFileError "path: expected <what>, got <value>".
@@ -57,6 +56,7 @@ class JsonNode {
 
  private:
   const Json& require(bool ok, const char* what) const;
+  int integerWhere(const std::string& what, int lo, int hi) const;  // an integer in [lo, hi]
   // A finite number for which ok(x, lo, hi) holds, or an error naming what.
   double numberWhere(const std::string& what, bool (*ok)(double, double, double), double lo = 0.0,
                      double hi = 0.0) const;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "join_names.h"
 #include "particles/integrator.h"
 #include "scene_file/codecs.h"
 
@@ -28,15 +29,11 @@ auto guarded(const JsonNode& node, Build&& build) {
 template <class Codec>
 const Codec& codecFor(const JsonNode& node, const std::vector<Codec>& table, const char* kind) {
   const JsonNode type = node["type"];
-  std::string names;
-  for (const Codec& codec : table) {
-    names += names.empty() ? "" : ", ";
-    names += codec.type;
-  }
   const std::string name = type.present() ? type.text() : "";
   for (const Codec& codec : table)
     if (name == codec.type) return codec;
-  type.expected(std::string("a ") + kind + " type (" + names + ")");
+  type.expected(std::string("a ") + kind + " type (" +
+                joinNames(table, [](const Codec& codec) { return std::string(codec.type); }) + ")");
 }
 
 template <class Codec, class Object>
@@ -48,16 +45,12 @@ Json writeWith(const std::vector<Codec>& table, const Object& object) {
 
 void readIntegrator(const JsonNode& node, Scene& scene) {
   if (!node.present()) return;
-  std::string names;
-  for (const particles::IntegratorInfo& info : particles::integratorTable()) {
+  for (const particles::IntegratorInfo& info : particles::integratorTable())
     if (node.text() == info.name) {
       scene.integrator = info.name;
       return;
     }
-    names += names.empty() ? "" : ", ";
-    names += info.name;
-  }
-  node.expected("an integrator (" + names + ")");
+  node.expected("an integrator (" + joinNames(particles::integratorTable()) + ")");
 }
 
 void readView(const JsonNode& node, Scene& scene) {

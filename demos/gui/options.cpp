@@ -1,0 +1,106 @@
+#include "options.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "particles/check.h"
+
+namespace demo {
+
+namespace {
+}  // namespace
+
+void reportBadUsage(const std::string& message) {
+  std::string line = message;
+  for (char& c : line)
+    if (c == '\n') c = ' ';
+  std::fprintf(stderr, "particle-demo: %s\n", line.c_str());
+}
+
+namespace {
+[[noreturn]] void badUsage(const std::string& message) {
+  reportBadUsage(message);
+  std::exit(exitBadUsage);
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+  return items;
+}
+}  // namespace
+
+DemoOptions parseOptions(int argc, char** argv) {
+  DemoOptions o;
+  CLI::App cli{"particle-demo: the interactive particle-system laboratory (press h in the window for the keys)"};
+  std::vector<std::string> params;
+  std::string compare, window;
+  double dt = 0.0;
+  long long frames = 0;
+  std::string integrator;
+  auto* byName =
+      cli.add_option("--scene", o.scene, "built-in scene to start with (see particle-lab list)")->capture_default_str();
+  auto* byFile = cli.add_option("--scene-file", o.sceneFile, "JSON scene file to start with (format: demos/scenes/FORMAT.md)");
+  byName->excludes(byFile);
+  cli.add_option("--param", params, "scene parameter override key=value (repeatable)")->excludes(byFile);
+  auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
+  auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
+  cli.add_option("--compare", compare, "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or rk4:0.02,rk4:0.005 (2 to 4)");
+  cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
+  cli.add_flag("--no-panel", o.hidePanel, "start with the control panel hidden (key p shows it)");
+  cli.add_flag("--paused", o.startPaused, "start paused");
+  cli.add_flag("--realtime", o.realtime, "with --script or --frames: keep to 60 frames per second instead of running flat out");
+  cli.add_option("--window", window, "window size WIDTHxHEIGHT in pixels (default 1180x760)");
+  cli.add_option("--script", o.script, "timed input events to play (see docs/demo-script.md)");
+  auto* framesOption = cli.add_option("--frames", frames, "exit after this many frames");
+  cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
+  cli.add_option("--log-state", o.logState, "write the state at exit to this file (see docs/demo-script.md)");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    std::exit(cli.exit(e));
+  } catch (const CLI::ParseError& e) {
+    badUsage(e.what());
+  }
+
+  for (const std::string& p : params) {
+    const auto eq = p.find('=');
+    if (eq == std::string::npos || eq == 0) badUsage("--param expects key=value, got '" + p + "'");
+    o.params[p.substr(0, eq)] = p.substr(eq + 1);
+  }
+  if (*integratorOption) o.integrator = integrator;
+  if (*dtOption) {
+    try {
+      particles::requirePositive("--dt", dt);  // the same message as particle-lab's
+    } catch (const std::invalid_argument& e) {
+      badUsage(e.what());
+    }
+    o.dt = dt;
+  }
+  if (*framesOption) {
+    if (frames < 1) badUsage("--frames must be at least 1, got " + std::to_string(frames));
+    o.frames = frames;
+  }
+  if (!compare.empty()) {
+    o.compare = splitList(compare);
+    if (o.compare.size() < 2 || o.compare.size() > 4)
+      badUsage("--compare needs 2 to 4 comma-separated integrators, got '" + compare + "'");
+  }
+  if (!window.empty()) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(window.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 200 || h < 150 ||
+        w > 8192 || h > 8192)
+      badUsage("--window expects WIDTHxHEIGHT between 200x150 and 8192x8192, got '" + window + "'");
+    o.windowWidth = w;
+    o.windowHeight = h;
+  }
+  return o;
+}
+
+}  // namespace demo

@@ -1,0 +1,39 @@
+#pragma once
+// Command-line options of particle-demo.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace demo {
+
+struct DemoOptions {
+  std::string scene = "cloth";
+  std::string sceneFile;                        // overrides scene when set
+  std::map<std::string, std::string> params;    // --param key=value
+  std::optional<std::string> integrator;        // default: the scene's
+  std::optional<double> dt;                     // default: the scene's
+  std::vector<std::string> compare;             // --compare euler,rk4: start in compare mode
+  bool lockstep = false;
+  bool hidePanel = false;
+  bool startPaused = false;
+  bool realtime = false;                        // scripted runs at 60 frames/s instead of flat out
+  int windowWidth = 1180, windowHeight = 760;
+  std::string script;                           // --script FILE
+  std::optional<long long> frames;              // --frames N: exit after N frames
+  std::string screenshot;                       // --screenshot FILE.png: the last frame
+  std::string logState;                         // --log-state FILE: the state at exit
+};
+
+// Exit codes: 0 success, 2 a bad command line (one line on stderr).
+constexpr int exitBadUsage = 2;
+
+// Writes "particle-demo: <message>" as one line on stderr, as particle-lab does.
+void reportBadUsage(const std::string& message);
+
+// Parses argv; on --help prints the help and exits 0; on a bad value prints
+// one line "particle-demo: …" and exits 2. Checks values that need no
+// window (scene and integrator names, dt, files) so errors come before GLUT.
+DemoOptions parseOptions(int argc, char** argv);
+
+}  // namespace demo

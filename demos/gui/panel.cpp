@@ -1,0 +1,175 @@
+// The ImGui control panel at the right edge of the window (key p).
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "app.h"
+
+namespace demo {
+
+namespace {
+const scenes::SceneInfo* findScene(const std::string& name) {
+  for (const scenes::SceneInfo& info : scenes::sceneTable())
+    if (name == info.name) return &info;
+  return nullptr;
+}
+
+void plot(const char* label, const std::vector<float>& values, float height) {
+  if (values.empty()) return;
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "%.4g", values.back());
+  ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay, *lo,
+                   *hi > *lo ? *hi : *lo + 1e-12f, ImVec2(0.0f, height));
+}
+}  // namespace
+
+void App::drawPanel() {
+  const PixelRect area = worldArea();
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(area.width), 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(windowWidth_ - area.width), static_cast<float>(windowHeight_)));
+  ImGui::Begin("Control panel", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
+  ImGui::PushItemWidth(-110.0f);
+
+  // --- scene ----------------------------------------------------------------
+  if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+    const std::vector<SceneKey> keys = sceneKeys();
+    if (ImGui::BeginCombo("scene", scene_.label.c_str())) {
+      for (const SceneKey& k : keys)
+        if (ImGui::Selectable((std::string(1, static_cast<char>(k.key)) + "  " + k.choice.label).c_str(),
+                              k.choice.label == scene_.label))
+          keyboard(k.key);
+      ImGui::EndCombo();
+    }
+    // Parameters: changing one rebuilds the scene (grid size, chain length, ...).
+    if (const scenes::SceneInfo* info = findScene(scene_.name)) {
+      for (const scenes::ParamSpec& spec : info->params) {
+        auto it = scene_.params.find(spec.name);
+        char buffer[64];
+        std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.defaultValue.c_str());
+        if (ImGui::InputText(spec.name.c_str(), buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue)) {
+          SceneChoice changed = scene_;
+          changed.params[spec.name] = buffer;
+          try {
+            loadScene(changed, true);
+            setStatus("rebuilt with " + spec.name + " = " + buffer);
+          } catch (const std::exception& e) {
+            setStatus(e.what());
+          }
+        }
+        if (ImGui::IsItemHovered() && !spec.help.empty())
+          ImGui::SetTooltip("%s\n(Enter rebuilds the scene)", spec.help.c_str());
+      }
+    }
+    if (ImGui::Button("Reset (r)")) resetScene();
+    ImGui::SameLine();
+    if (ImGui::Button(paused_ ? "Run (space)" : "Pause (space)")) paused_ = !paused_;
+    ImGui::SameLine();
+    if (ImGui::Button("Step (.)")) keyboard('.');
+    ImGui::SameLine();
+    if (ImGui::Button("Rewind (b)")) rewind();
+  }
+
+  // --- time stepping --------------------------------------------------------
+  if (ImGui::CollapsingHeader("Integration", ImGuiTreeNodeFlags_DefaultOpen)) {
+    const auto& table = particles::integratorTable();
+    for (std::size_t k = 0; k < panes_.size(); ++k) {
+      ImGui::PushID(static_cast<int>(k));
+      const std::string label = panes_.size() > 1 ? "pane " + std::to_string(k + 1) : "integrator";
+      if (ImGui::BeginCombo(label.c_str(), panes_[k]->integratorName())) {
+        for (std::size_t t = 0; t < table.size(); ++t) {
+          if (ImGui::Selectable(table[t].name, static_cast<int>(t) == panes_[k]->integratorIndex()))
+            panes_[k]->setIntegrator(static_cast<int>(t));
+          if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (order %d)", table[t].summary, table[t].order);
+        }
+        ImGui::EndCombo();
+      }
+      // One dt for all panes, or one per pane in compare mode.
+      if (k == 0 || panes_.size() > 1) {
+        double dt = panes_[k]->dt();
+        if (ImGui::InputDouble(panes_.size() > 1 ? "dt" : "dt (s)", &dt, 0.0, 0.0, "%.3e",
+                               ImGuiInputTextFlags_EnterReturnsTrue) && dt > 0.0 && std::isfinite(dt)) {
+          if (panes_.size() > 1) panes_[k]->setDt(dt);
+          else for (auto& pane : panes_) pane->setDt(dt);
+        }
+      }
+      ImGui::PopID();
+    }
+    if (ImGui::Button("dt x2 (+)")) scaleDt(2.0);
+    ImGui::SameLine();
+    if (ImGui::Button("dt /2 (-)")) scaleDt(0.5);
+    float speed = static_cast<float>(speed_);
+    if (ImGui::SliderFloat("speed", &speed, 0.125f, 8.0f, "%.3gx", ImGuiSliderFlags_Logarithmic)) speed_ = speed;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("simulated seconds per second of frames (60 frames)");
+    bool lockstep = stepMode_ == StepMode::Lockstep;
+    if (ImGui::Checkbox("lockstep: one step per frame (l)", &lockstep))
+      stepMode_ = lockstep ? StepMode::Lockstep : StepMode::FixedTime;
+    int paneCount = static_cast<int>(panes_.size());
+    if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) setPaneCount(paneCount);
+  }
+
+  // --- live plots -------------------------------------------------------------
+  if (ImGui::CollapsingHeader("Energy and constraint error", ImGuiTreeNodeFlags_DefaultOpen)) {
+    const float height = panes_.size() > 1 ? 36.0f : 60.0f;
+    for (std::size_t k = 0; k < panes_.size(); ++k) {
+      ImGui::PushID(static_cast<int>(k));
+      if (panes_.size() > 1) ImGui::TextDisabled("%s", panes_[k]->integratorName());
+      plot("energy", panes_[k]->trace().energy(), height);
+      plot("max |C|", panes_[k]->trace().constraintError(), height);
+      ImGui::PopID();
+    }
+    ImGui::TextDisabled("last %d frames", Trace::capacity);
+  }
+  // --- constraint solver and mouse spring ------------------------------------
+  if (ImGui::CollapsingHeader("Solver and mouse spring")) {
+    particles::SolverSettings settings = panes_.front()->system().solver().settings;
+    bool changed = false;
+    float logTolerance = static_cast<float>(std::log10(settings.tolerance));
+    if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
+      settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
+      changed = true;
+    }
+    changed |= ImGui::InputInt("iteration cap", &settings.maxIterations);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: 4m + 100 for m constraints");
+    changed |= ImGui::InputDouble("feedback k_s", &settings.stiffness, 1.0, 10.0, "%.3g");
+    changed |= ImGui::InputDouble("feedback k_d", &settings.damping, 0.5, 5.0, "%.3g");
+    if (changed) {
+      try {
+        settings.validate();
+        for (auto& pane : panes_) pane->system().solver().settings = settings;
+      } catch (const std::exception& e) {
+        setStatus(e.what());
+      }
+    }
+    ImGui::Separator();
+    float ks = static_cast<float>(springSettings_.stiffness);
+    if (ImGui::SliderFloat("mouse k_s", &ks, 0.05f, 50.0f, "%.3g", ImGuiSliderFlags_Logarithmic))
+      springSettings_.stiffness = ks;
+    ImGui::Checkbox("critical damping 2 sqrt(k_s m)", &springSettings_.criticalDamping);
+    if (!springSettings_.criticalDamping) {
+      float kd = static_cast<float>(springSettings_.damping);
+      if (ImGui::SliderFloat("mouse k_d", &kd, 0.0f, 20.0f, "%.3g")) springSettings_.damping = kd;
+    }
+  }
+
+  // --- display --------------------------------------------------------------
+  if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("forces (f)", &drawOptions_.forces);
+    ImGui::SameLine();
+    ImGui::Checkbox("constraints (c)", &drawOptions_.constraints);
+    ImGui::SameLine();
+    ImGui::Checkbox("help (h)", &showHelp_);
+  }
+
+  ImGui::PopItemWidth();
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  overlays_.push_back({"panel", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}});
+  ImGui::End();
+}
+
+}  // namespace demo

@@ -1,0 +1,216 @@
+#include "renderer.h"
+
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace demo {
+
+namespace {
+constexpr double arrowReferencePixels = 28.0;  // length of a typical (90th percentile) arrow
+constexpr double arrowMaxPixels = 90.0;
+constexpr double arrowMinPixels = 2.0;
+constexpr int circleSegments = 96;
+constexpr std::size_t smoothLineLimit = 8000;  // lines drawn antialiased up to this many
+
+// Diameter in pixels of a point particle: large enough to grab in a small
+// scene, and at most half the typical spacing so a dense cloth shows its mesh.
+int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
+  const double byScale = std::clamp(0.022 * pixelsPerUnit, 5.0, 10.0);
+  if (system.size() < 2) return static_cast<int>(byScale);
+  Eigen::Vector2d lo = system.position(0), hi = lo;
+  for (int i = 1; i < system.size(); ++i) {
+    lo = lo.cwiseMin(system.position(i));
+    hi = hi.cwiseMax(system.position(i));
+  }
+  const Eigen::Vector2d extent = (hi - lo) * pixelsPerUnit;
+  const double spacing = std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / system.size());
+  return static_cast<int>(std::clamp(0.5 * spacing, 1.0, byScale));
+}
+}  // namespace
+
+void Renderer::clearWindow(int width, int height, Rgb colour) {
+  glViewport(0, 0, width, height);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(colour.r / 255.f, colour.g / 255.f, colour.b / 255.f, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT);
+}
+
+void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
+                        const DrawOptions& options) {
+  const particles::ParticleSystem& system = simulation.system();
+  for (Batch* b : {&walls_, &springs_, &constraints_, &arrows_}) b->clear();
+  for (auto& entry : pointsBySize_) entry.second.clear();
+  for (auto& entry : discsBySize_) entry.second.clear();
+
+  collectWalls(system);
+  collectSketches(system, options);
+  if (options.forces) collectForceArrows(system, view);
+  collectParticles(simulation, view);
+
+  // GL's window origin is bottom-left, the pane's top-left.
+  const PixelRect& p = view.pane;
+  glViewport(p.x, windowHeight - p.y - p.height, p.width, p.height);
+  glScissor(p.x, windowHeight - p.y - p.height, p.width, p.height);
+  glEnable(GL_SCISSOR_TEST);
+  const Rgb bg = palette::background;
+  glClearColor(bg.r / 255.f, bg.g / 255.f, bg.b / 255.f, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT);
+
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(view.worldMin.x(), view.worldMax.x(), view.worldMin.y(), view.worldMax.y(), -1, 1);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  // Antialiasing costs a software rasteriser (llvmpipe, Xvfb) far more than
+  // a GPU; large scenes draw crisp instead so that they stay interactive there.
+  const bool smooth = springs_.xy.size() + arrows_.xy.size() < 2 * smoothLineLimit;
+  if (smooth) glEnable(GL_LINE_SMOOTH); else glDisable(GL_LINE_SMOOTH);
+  if (smooth) glEnable(GL_POINT_SMOOTH); else glDisable(GL_POINT_SMOOTH);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+
+  draw(walls_, GL_TRIANGLES);
+  for (const auto& [diameter, batch] : discsBySize_) {
+    glPointSize(static_cast<float>(diameter));
+    draw(batch, GL_POINTS);
+  }
+  glLineWidth(smooth ? 1.4f : 1.0f);
+  draw(springs_, GL_LINES);
+  glLineWidth(2.0f);
+  draw(constraints_, GL_LINES);
+  glLineWidth(1.6f);
+  draw(arrows_, GL_LINES);
+  for (const auto& [diameter, batch] : pointsBySize_) {
+    glPointSize(static_cast<float>(diameter));
+    draw(batch, GL_POINTS);
+  }
+
+  glDisableClientState(GL_COLOR_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glDisable(GL_SCISSOR_TEST);
+}
+
+void Renderer::draw(const Batch& batch, unsigned mode) {
+  if (batch.xy.empty()) return;
+  glVertexPointer(2, GL_FLOAT, 0, batch.xy.data());
+  glColorPointer(4, GL_UNSIGNED_BYTE, 0, batch.rgba.data());
+  glDrawArrays(mode, 0, static_cast<GLsizei>(batch.xy.size() / 2));
+}
+
+void Renderer::collectWalls(const particles::ParticleSystem& system) {
+  for (const particles::Wall& w : system.walls()) {
+    const Eigen::Vector2d a = w.min, b(w.max.x(), w.min.y()), c = w.max, d(w.min.x(), w.max.y());
+    for (const Eigen::Vector2d& v : {a, b, c, a, c, d}) walls_.add(v, palette::wall);
+  }
+}
+
+void Renderer::collectSketches(const particles::ParticleSystem& system, const DrawOptions& options) {
+  const particles::Phase phase = system.phase();
+  for (const auto& force : system.forceObjects()) {
+    sketch_.lines.clear();
+    sketch_.circles.clear();
+    force->sketch(phase, sketch_);
+    const bool mouse = std::strcmp(force->type(), "mouse-spring") == 0;
+    const Rgb colour = mouse ? palette::mouseSpring : palette::spring;
+    for (const auto& l : sketch_.lines) springs_.line(l.a, l.b, colour, mouse ? 255 : 200);
+    for (const auto& c : sketch_.circles) addCircle(springs_, c.centre, c.radius, colour);
+  }
+  if (!options.constraints) return;
+  for (const auto& constraint : system.constraints()) {
+    sketch_.lines.clear();
+    sketch_.circles.clear();
+    constraint->sketch(phase, sketch_);
+    for (const auto& l : sketch_.lines) constraints_.line(l.a, l.b, palette::constraint);
+    for (const auto& c : sketch_.circles) addCircle(constraints_, c.centre, c.radius, palette::constraint);
+  }
+}
+
+void Renderer::addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour) {
+  for (int k = 0; k < circleSegments; ++k) {
+    const double a0 = 2 * M_PI * k / circleSegments, a1 = 2 * M_PI * (k + 1) / circleSegments;
+    batch.line(centre + radius * Eigen::Vector2d(std::cos(a0), std::sin(a0)),
+               centre + radius * Eigen::Vector2d(std::cos(a1), std::sin(a1)), colour);
+  }
+}
+
+void Renderer::collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view) {
+  // Each force type's contribution Q_type at the current state, and the
+  // constraint force Jᵀλ as the difference between (Q + Jᵀλ) and Q.
+  const particles::Phase phase = system.phase();
+  const int n2 = 2 * system.size();
+  std::vector<const char*> types;
+  std::vector<Rgb> colours;
+  for (const auto& force : system.forceObjects()) {
+    auto it = std::find_if(types.begin(), types.end(), [&](const char* t) { return std::strcmp(t, force->type()) == 0; });
+    std::size_t k = it - types.begin();
+    if (it == types.end()) {
+      types.push_back(force->type());
+      colours.push_back(forceArrowColour(force->type()));
+      if (forceByType_.size() < types.size()) forceByType_.emplace_back();
+      forceByType_[k].setZero(n2);
+    }
+    force->apply(phase, forceByType_[k]);
+  }
+  totalForce_.setZero(n2);
+  for (std::size_t k = 0; k < types.size(); ++k) totalForce_ += forceByType_[k];
+  if (!system.constraints().empty()) {
+    const Eigen::VectorXd applied = totalForce_;
+    arrowSolver_.settings = system.solver().settings;
+    arrowSolver_.addConstraintForces(phase, system.constraints(), totalForce_);
+    if (forceByType_.size() <= types.size()) forceByType_.emplace_back();
+    forceByType_[types.size()] = totalForce_ - applied;
+    types.push_back("constraint");
+    colours.push_back(palette::constraintForceArrow);
+  }
+
+  // One scale for every arrow in the pane: the 90th-percentile magnitude is
+  // drawn arrowReferencePixels long, so both a gentle field and a hard pull show.
+  std::vector<double> magnitudes;
+  for (std::size_t k = 0; k < types.size(); ++k)
+    for (int i = 0; i < system.size(); ++i) {
+      const double m = forceByType_[k].segment<2>(2 * i).norm();
+      if (m > 0.0 && std::isfinite(m)) magnitudes.push_back(m);
+    }
+  if (magnitudes.empty()) return;
+  auto percentile = magnitudes.begin() + static_cast<long>(0.9 * (magnitudes.size() - 1));
+  std::nth_element(magnitudes.begin(), percentile, magnitudes.end());
+  const double pixelsPerForce = arrowReferencePixels / *percentile;
+
+  for (std::size_t k = 0; k < types.size(); ++k)
+    for (int i = 0; i < system.size(); ++i) {
+      const Eigen::Vector2d f = forceByType_[k].segment<2>(2 * i);
+      const double pixels = std::min(f.norm() * pixelsPerForce, arrowMaxPixels);
+      if (!(pixels >= arrowMinPixels)) continue;
+      const Eigen::Vector2d dir = f.normalized(), side(-dir.y(), dir.x());
+      const Eigen::Vector2d from = system.position(i), to = from + dir * (pixels / view.pixelsPerUnit);
+      const double head = std::min(6.0, 0.4 * pixels) / view.pixelsPerUnit;
+      arrows_.line(from, to, colours[k]);
+      arrows_.line(to, to - head * (dir + 0.5 * side), colours[k]);
+      arrows_.line(to, to - head * (dir - 0.5 * side), colours[k]);
+    }
+}
+
+void Renderer::collectParticles(const Simulation& simulation, const ViewTransform& view) {
+  const particles::ParticleSystem& system = simulation.system();
+  const int grabbed = simulation.mouseSpring() ? simulation.mouseSpring()->particle() : -1;
+  const int diameter = pointDiameter(system, view.pixelsPerUnit);
+  for (int i = 0; i < system.size(); ++i) {
+    const Rgb colour = i == grabbed            ? palette::grabbedParticle
+                       : system.pinned(i)      ? palette::pinnedParticle
+                                               : palette::particle;
+    // A collidable particle also shows its collision disc, faintly, under the mesh.
+    if (system.collidable(i)) {
+      const int disc = static_cast<int>(std::lround(2.0 * system.radii()[i] * view.pixelsPerUnit));
+      if (disc > diameter) discsBySize_[disc].add(system.position(i), colour, 56);
+    }
+    pointsBySize_[i == grabbed || system.pinned(i) ? diameter + 2 : diameter].add(system.position(i), colour);
+  }
+}
+
+}  // namespace demo

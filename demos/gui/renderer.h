@@ -1,0 +1,60 @@
+#pragma once
+// Draws a simulation into a pane with OpenGL vertex arrays: a handful of draw
+// calls per pane (walls, lines by width, points by size), whatever the
+// number of particles.
+#include <map>
+#include <vector>
+
+#include "palette.h"
+#include "particles/constraint_solver.h"
+#include "simulation.h"
+#include "view.h"
+
+namespace demo {
+
+struct DrawOptions {
+  bool forces = false;      // arrows per force type ('f')
+  bool constraints = true;  // wires, rods, lines ('c')
+};
+
+class Renderer {
+ public:
+  // Clears the whole window (the colour shows between panes).
+  void clearWindow(int width, int height, Rgb colour);
+  void drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
+                const DrawOptions& options);
+
+ private:
+  // Vertices of one primitive kind: 2 floats and 4 bytes of colour each.
+  struct Batch {
+    std::vector<float> xy;
+    std::vector<unsigned char> rgba;
+    void clear() { xy.clear(); rgba.clear(); }
+    void add(const Eigen::Vector2d& p, Rgb c, unsigned char alpha = 255) {
+      xy.push_back(static_cast<float>(p.x()));
+      xy.push_back(static_cast<float>(p.y()));
+      rgba.insert(rgba.end(), {c.r, c.g, c.b, alpha});
+    }
+    void line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Rgb c, unsigned char alpha = 255) {
+      add(a, c, alpha);
+      add(b, c, alpha);
+    }
+  };
+
+  void collectWalls(const particles::ParticleSystem& system);
+  void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options);
+  void collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view);
+  void collectParticles(const Simulation& simulation, const ViewTransform& view);
+  void addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour);
+  static void draw(const Batch& batch, unsigned mode);
+
+  Batch walls_, springs_, constraints_, arrows_;
+  std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
+  std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
+  particles::Sketch sketch_;
+  std::vector<Eigen::VectorXd> forceByType_;
+  Eigen::VectorXd totalForce_;
+  particles::ConstraintSolver arrowSolver_;  // its own λ, so drawing never disturbs the run
+};
+
+}  // namespace demo

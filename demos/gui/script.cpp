@@ -1,0 +1,80 @@
+#include "script.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace demo {
+
+namespace {
+struct KeyName {
+  const char* name;
+  unsigned char key;
+};
+constexpr KeyName keyNames[] = {{"space", ' '}, {"esc", 27}, {"enter", '\r'}, {"tab", '\t'}};
+
+unsigned char parseKey(const std::string& word) {
+  for (const KeyName& k : keyNames)
+    if (word == k.name) return k.key;
+  if (word.size() == 1 && word[0] > ' ' && word[0] < 127) return static_cast<unsigned char>(word[0]);
+  throw std::invalid_argument("expected a key (one character, space, esc, enter or tab), got '" + word + "'");
+}
+}  // namespace
+
+std::vector<ScriptEvent> readScript(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw std::invalid_argument("cannot read script file '" + path + "'");
+  std::vector<ScriptEvent> events;
+  int lineNumber = 0;
+  for (std::string line; std::getline(file, line);) {
+    ++lineNumber;
+    line = line.substr(0, line.find('#'));
+    std::istringstream in(line);
+    std::string action;
+    ScriptEvent e;
+    if (!(in >> e.frame)) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    }
+    try {
+      if (in.fail() || e.frame < 0) throw std::invalid_argument("expected a frame number >= 0 first");
+      if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up or resize after the frame");
+      if (action == "key") {
+        std::string key;
+        if (!(in >> key)) throw std::invalid_argument("expected a key after 'key'");
+        e.action = ScriptAction::Key;
+        e.key = parseKey(key);
+      } else if (action == "resize") {
+        e.action = ScriptAction::Resize;
+        if (!(in >> e.x >> e.y) || e.x < 100 || e.y < 100 || e.x > 8192 || e.y > 8192)
+          throw std::invalid_argument("expected a width and height between 100 and 8192 after 'resize'");
+      } else {
+        if (action == "down") e.action = ScriptAction::MouseDown;
+        else if (action == "move") e.action = ScriptAction::MouseMove;
+        else if (action == "up") e.action = ScriptAction::MouseUp;
+        else throw std::invalid_argument("expected key, down, move, up or resize, got '" + action + "'");
+        std::string space, button;
+        if (!(in >> space >> e.x >> e.y)) throw std::invalid_argument("expected world|window x y after '" + action + "'");
+        if (space == "world") e.space = ScriptSpace::World;
+        else if (space == "window") e.space = ScriptSpace::Window;
+        else throw std::invalid_argument("expected world or window, got '" + space + "'");
+        if (in >> button) {
+          if (button == "left") e.button = ScriptButton::Left;
+          else if (button == "right") e.button = ScriptButton::Right;
+          else if (button == "shift-left") e.button = ScriptButton::ShiftLeft;
+          else throw std::invalid_argument("expected left, right or shift-left, got '" + button + "'");
+        }
+      }
+      std::string extra;
+      if (in >> extra) throw std::invalid_argument("unexpected '" + extra + "' at the end of the line");
+    } catch (const std::invalid_argument& err) {
+      throw std::invalid_argument(path + ":" + std::to_string(lineNumber) + ": " + err.what());
+    }
+    events.push_back(e);
+  }
+  std::stable_sort(events.begin(), events.end(),
+                   [](const ScriptEvent& a, const ScriptEvent& b) { return a.frame < b.frame; });
+  return events;
+}
+
+}  // namespace demo

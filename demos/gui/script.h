@@ -1,0 +1,34 @@
+#pragma once
+// Scripted input: timed key and mouse events, read from a text file and fed
+// to the application through the same handlers as GLUT's callbacks.
+//
+// One event per line; '#' starts a comment:
+//   <frame> key <k>                          k: one character, or space, esc, enter, tab
+//   <frame> down|move|up world|window <x> <y> [left|right|shift-left]
+//   <frame> resize <width> <height>          asks the window system for a new size
+// <frame> counts frames from 0; events of frame k are handled before frame k
+// steps and draws. world coordinates are mapped to pixels through the first
+// pane's view at that frame; window coordinates are pixels, origin top-left.
+#include <string>
+#include <vector>
+
+namespace demo {
+
+enum class ScriptAction { Key, MouseDown, MouseMove, MouseUp, Resize };
+enum class ScriptSpace { World, Window };
+enum class ScriptButton { Left, Right, ShiftLeft };
+
+struct ScriptEvent {
+  long long frame = 0;
+  ScriptAction action = ScriptAction::Key;
+  unsigned char key = 0;
+  ScriptSpace space = ScriptSpace::Window;
+  double x = 0.0, y = 0.0;
+  ScriptButton button = ScriptButton::Left;
+};
+
+// Reads a script; throws std::invalid_argument naming the file, line and what
+// was expected.
+std::vector<ScriptEvent> readScript(const std::string& path);
+
+}  // namespace demo

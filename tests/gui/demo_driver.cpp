@@ -1,0 +1,150 @@
+#include "demo_driver.h"
+
+#include <png.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace demotest {
+
+namespace {
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> split(const std::string& line, char separator) {
+  std::vector<std::string> fields;
+  std::stringstream in(line);
+  for (std::string field; std::getline(in, field, separator);) fields.push_back(field);
+  return fields;
+}
+}  // namespace
+
+std::vector<std::string> RunResult::errLines() const {
+  std::vector<std::string> lines;
+  for (const std::string& line : split(err, '\n'))
+    if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+std::string outputDirectory(const std::string& testName) {
+  const std::string dir = std::string(TEST_OUTPUT_DIR) + "/" + testName;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script) {
+  std::string command = std::string("cd '") + directory + "' && '" + PARTICLE_DEMO + "' " + args;
+  if (!script.empty()) {
+    std::ofstream(directory + "/script.txt") << script;
+    command += " --script script.txt";
+  }
+  command += " > stdout.txt 2> stderr.txt";
+  const int status = std::system(command.c_str());
+  RunResult result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = readFile(directory + "/stdout.txt");
+  result.err = readFile(directory + "/stderr.txt");
+  return result;
+}
+
+demo::Rgb Image::at(int x, int y) const {
+  const std::size_t k = (static_cast<std::size_t>(y) * width + x) * 3;
+  return {rgb[k], rgb[k + 1], rgb[k + 2]};
+}
+
+Image readPng(const std::string& path) {
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) throw std::runtime_error("cannot open " + path);
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(file);
+    throw std::runtime_error("libpng failed reading " + path);
+  }
+  png_init_io(png, file);
+  png_read_info(png, info);
+  Image image;
+  image.width = static_cast<int>(png_get_image_width(png, info));
+  image.height = static_cast<int>(png_get_image_height(png, info));
+  if (png_get_color_type(png, info) != PNG_COLOR_TYPE_RGB || png_get_bit_depth(png, info) != 8)
+    throw std::runtime_error(path + " is not 8-bit RGB");
+  image.rgb.resize(static_cast<std::size_t>(image.width) * image.height * 3);
+  for (int row = 0; row < image.height; ++row)
+    png_read_row(png, image.rgb.data() + static_cast<std::size_t>(row) * image.width * 3, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(file);
+  return image;
+}
+
+Eigen::Vector2d LoggedPane::toPixel(const Eigen::Vector2d& w) const {
+  const double pixelsPerUnit = pixelWidth / (worldMax.x() - worldMin.x());
+  return {pixelX + (w.x() - worldMin.x()) * pixelsPerUnit, pixelY + (worldMax.y() - w.y()) * pixelsPerUnit};
+}
+
+StateLog readStateLog(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  StateLog log;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const std::vector<std::string> f = split(line, ',');
+    auto number = [&](std::size_t k) { return std::stod(f.at(k)); };
+    const std::string& record = f.at(0);
+    if (record == "frame") {
+      log.frames = std::stoll(f.at(1));
+    } else if (record == "paused") {
+      log.paused = f.at(1) == "1";
+    } else if (record == "pane") {
+      LoggedPane p;
+      p.scene = f.at(2);
+      p.integrator = f.at(3);
+      p.dt = number(4);
+      p.time = number(5);
+      p.steps = std::stoll(f.at(6));
+      p.diverged = f.at(7) == "1";
+      p.mouseSprings = std::stoi(f.at(8));
+      p.energy = number(9);
+      p.maxConstraintError = number(10);
+      log.panes.push_back(p);
+    } else if (record == "view") {
+      LoggedPane& p = log.panes.at(std::stoul(f.at(1)));
+      p.pixelX = std::stoi(f.at(2));
+      p.pixelY = std::stoi(f.at(3));
+      p.pixelWidth = std::stoi(f.at(4));
+      p.pixelHeight = std::stoi(f.at(5));
+      p.worldMin = {number(6), number(7)};
+      p.worldMax = {number(8), number(9)};
+    } else if (record == "particle") {
+      LoggedParticle q;
+      q.x = {number(3), number(4)};
+      q.v = {number(5), number(6)};
+      q.mass = number(7);
+      q.pinned = f.at(8) == "1";
+      log.panes.at(std::stoul(f.at(1))).particles.push_back(q);
+    } else if (record == "wall") {
+      log.panes.at(std::stoul(f.at(1))).walls.push_back({{number(2), number(3)}, {number(4), number(5)}});
+    } else if (record == "overlay") {
+      log.overlays.push_back({f.at(1), std::stoi(f.at(2)), std::stoi(f.at(3)), std::stoi(f.at(4)), std::stoi(f.at(5))});
+    } else {
+      throw std::runtime_error("unknown record '" + record + "' in " + path);
+    }
+  }
+  return log;
+}
+
+bool near(demo::Rgb a, demo::Rgb b, int tolerance) {
+  return std::abs(a.r - b.r) <= tolerance && std::abs(a.g - b.g) <= tolerance && std::abs(a.b - b.b) <= tolerance;
+}
+
+}  // namespace demotest

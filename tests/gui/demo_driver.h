@@ -1,0 +1,84 @@
+#pragma once
+// Runs particle-demo as a user would (options, a script of timed input) and
+// reads back what it wrote: the screenshot and the state log.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "palette.h"
+
+namespace demotest {
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out, err;
+  std::vector<std::string> errLines() const;
+};
+
+// Runs the demo with `args` (shell words) in `directory`; if `script` is not
+// empty it is written to directory/script.txt and passed with --script.
+RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script = "");
+
+// A fresh directory for one test's files, kept after the run for inspection.
+std::string outputDirectory(const std::string& testName);
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;  // rows top to bottom
+  demo::Rgb at(int x, int y) const;
+  bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
+};
+Image readPng(const std::string& path);  // throws on failure
+
+struct LoggedParticle {
+  Eigen::Vector2d x, v;
+  double mass = 0.0;
+  bool pinned = false;
+};
+struct LoggedWall {
+  Eigen::Vector2d min, max;
+};
+struct LoggedPane {
+  std::string scene, integrator;
+  double dt = 0.0, time = 0.0, energy = 0.0, maxConstraintError = 0.0;
+  long long steps = 0;
+  bool diverged = false;
+  int mouseSprings = 0;
+  int pixelX = 0, pixelY = 0, pixelWidth = 0, pixelHeight = 0;
+  Eigen::Vector2d worldMin, worldMax;
+  std::vector<LoggedParticle> particles;
+  std::vector<LoggedWall> walls;
+  // Window pixel (column, row) of a world point, as the demo's view maps it.
+  Eigen::Vector2d toPixel(const Eigen::Vector2d& world) const;
+};
+struct LoggedOverlay {
+  std::string kind;  // hud, pane-hud, status, divergence, help, panel
+  int x = 0, y = 0, width = 0, height = 0;
+  bool covers(const Eigen::Vector2d& pixel, double margin) const {
+    return pixel.x() > x - margin && pixel.x() < x + width + margin && pixel.y() > y - margin &&
+           pixel.y() < y + height + margin;
+  }
+};
+struct StateLog {
+  long long frames = 0;
+  bool paused = false;
+  std::vector<LoggedPane> panes;
+  std::vector<LoggedOverlay> overlays;
+  // Whether text or a panel is drawn at (or within margin pixels of) a pixel.
+  bool underOverlay(const Eigen::Vector2d& pixel, double margin = 3) const {
+    for (const LoggedOverlay& o : overlays)
+      if (o.covers(pixel, margin)) return true;
+    return false;
+  }
+  const LoggedOverlay* overlay(const std::string& kind) const {
+    for (const LoggedOverlay& o : overlays)
+      if (o.kind == kind) return &o;
+    return nullptr;
+  }
+};
+StateLog readStateLog(const std::string& path);  // throws on failure
+
+bool near(demo::Rgb a, demo::Rgb b, int tolerance);
+
+}  // namespace demotest

@@ -1,0 +1,507 @@
+// particle-demo under Xvfb: runs the program with scripted input and checks
+// its exit code, its state log and its screenshots.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "demo_driver.h"
+#include "particles/integrator.h"
+#include "scene.h"
+#include "scene_keys.h"
+
+using namespace demotest;
+
+namespace {
+
+const char* const noPanel = "--no-panel --window 900x700";
+
+// Pixels (columns, rows) where a particle of pane p is drawn: the particle's
+// colour must appear within a pixel of its mapped position.
+int particlesDrawn(const Image& image, const StateLog& log, const LoggedPane& p, int* checked) {
+  int drawn = 0;
+  *checked = 0;
+  for (const LoggedParticle& q : p.particles) {
+    const Eigen::Vector2d px = p.toPixel(q.x);
+    if (log.underOverlay(px, 4)) continue;
+    if (px.x() < p.pixelX + 2 || px.y() < p.pixelY + 2 || px.x() > p.pixelX + p.pixelWidth - 3 ||
+        px.y() > p.pixelY + p.pixelHeight - 3)
+      continue;
+    ++*checked;
+    const demo::Rgb expected = q.pinned ? demo::palette::pinnedParticle : demo::palette::particle;
+    bool found = false;
+    for (int dy = -1; dy <= 1 && !found; ++dy)
+      for (int dx = -1; dx <= 1 && !found; ++dx)
+        found = near(image.at(static_cast<int>(px.x()) + dx, static_cast<int>(px.y()) + dy), expected, 12);
+    drawn += found;
+  }
+  return drawn;
+}
+
+// Pixels of pane p well away from every particle (and the springs between
+// them), wall and the HUD: where only the background may be drawn.
+std::vector<Eigen::Vector2i> emptyPixels(const StateLog& log, const LoggedPane& p) {
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (const LoggedParticle& q : p.particles) {
+    lo = lo.cwiseMin(p.toPixel(q.x));
+    hi = hi.cwiseMax(p.toPixel(q.x));
+  }
+  std::vector<Eigen::Vector2i> result;
+  for (int y = p.pixelY + 4; y < p.pixelY + p.pixelHeight - 4; y += 12)
+    for (int x = p.pixelX + 4; x < p.pixelX + p.pixelWidth - 4; x += 12) {
+      const Eigen::Vector2d px(x, y);
+      if (log.underOverlay(px)) continue;
+      if (px.x() > lo.x() - 24 && px.x() < hi.x() + 24 && px.y() > lo.y() - 24 && px.y() < hi.y() + 24) continue;
+      bool inWall = false;
+      for (const LoggedWall& w : p.walls) {
+        const Eigen::Vector2d a = p.toPixel({w.min.x(), w.max.y()}), b = p.toPixel({w.max.x(), w.min.y()});
+        inWall |= px.x() > a.x() - 4 && px.x() < b.x() + 4 && px.y() > a.y() - 4 && px.y() < b.y() + 4;
+      }
+      if (!inWall) result.push_back({x, y});
+    }
+  return result;
+}
+
+int countNear(const Image& image, demo::Rgb colour, int tolerance, int x0, int y0, int x1, int y1) {
+  int count = 0;
+  for (int y = std::max(0, y0); y < std::min(image.height, y1); ++y)
+    for (int x = std::max(0, x0); x < std::min(image.width, x1); ++x) count += near(image.at(x, y), colour, tolerance);
+  return count;
+}
+
+double distance(const LoggedParticle& a, const LoggedParticle& b) { return (a.x - b.x).norm(); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Command line
+
+TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
+  const std::string dir = outputDirectory("BadValues");
+  std::ofstream(dir + "/bad-script.txt") << "0 key r\n5 jump world 0 0\n";
+  const std::vector<std::string> cases = {
+      "--scene no-such-scene",     "--integrator no-such-integrator", "--dt -1",  "--dt 0", "--dt nan",
+      "--dt abc",                  "--frames 0",                      "--frames x",
+      "--param links=3",           "--param nosuch=1",                "--param links",
+      "--compare euler",           "--compare euler,nosuch", "--compare rk4:0,rk4", "--compare rk4:x,euler",          "--window 10x10",
+      "--script missing.txt",      "--script bad-script.txt",         "--no-such-option",
+      "--scene-file missing.json",      "--scene-file " MALFORMED_DIR "/nan.json",
+      "--scene-file " MALFORMED_DIR "/unknown-type.json", "--scene cloth --scene-file " SCENES_DIR "/rod.json",
+  };
+  for (const std::string& args : cases) {
+    SCOPED_TRACE(args);
+    const RunResult r = runDemo(dir, args);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+    EXPECT_EQ(r.errLines()[0].rfind("particle-demo: ", 0), 0u) << r.err;
+  }
+}
+
+TEST(DemoCommandLine, MessagesMatchParticleLabs) {
+  const std::string dir = outputDirectory("Messages");
+  EXPECT_EQ(runDemo(dir, "--dt nan").err, "particle-demo: --dt must be > 0, got nan\n");
+  EXPECT_EQ(runDemo(dir, "--dt 0").err, "particle-demo: --dt must be > 0, got 0\n");
+  EXPECT_NE(runDemo(dir, "--scene clot").err.find("particle-demo: unknown scene 'clot' (valid: cloth, hair"),
+            std::string::npos);
+  EXPECT_NE(runDemo(dir, "--integrator rk5").err.find(
+                "particle-demo: unknown integrator 'rk5' (valid: euler, symplectic-euler, midpoint, rk4)"),
+            std::string::npos);
+}
+
+TEST(DemoCommandLine, MalformedSceneFileNamesTheFileAndTheJsonPath) {
+  const std::string dir = outputDirectory("MalformedSceneFile");
+  const RunResult r = runDemo(dir, "--scene-file " MALFORMED_DIR "/non-positive-mass.json");
+  EXPECT_EQ(r.exitCode, 2);
+  ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("non-positive-mass.json: $.particles[1].mass: expected a number > 0, got 0"), std::string::npos)
+      << r.err;
+}
+
+TEST(DemoCommandLine, SceneFileRuns) {
+  const std::string dir = outputDirectory("SceneFile");
+  const RunResult r = runDemo(dir, "--scene-file " SCENES_DIR "/rod.json --frames 30 --log-state state.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const StateLog log = readStateLog(dir + "/state.txt");
+  EXPECT_EQ(log.panes.at(0).scene, "rod.json");
+  EXPECT_GT(log.panes.at(0).steps, 0);
+  EXPECT_FALSE(log.panes.at(0).particles.empty());
+}
+
+// ---------------------------------------------------------------------------
+// Keys
+
+TEST(DemoKeys, EveryScenePlusEveryIntegratorByKeyThenQuitExitsZero) {
+  const std::string dir = outputDirectory("Keys");
+  const int integrators = static_cast<int>(particles::integratorTable().size());
+  const std::vector<demo::SceneKey> keys = demo::sceneKeys();
+  ASSERT_GE(keys.size(), 8u);
+  for (const demo::SceneKey& key : keys) {
+    SCOPED_TRACE(key.choice.label);
+    // The scene's key, then i through every integrator and back, the other
+    // toggles, and q: the run ends on q, not on --frames.
+    std::ostringstream script;
+    script << "0 key " << key.key << "\n";
+    for (int k = 1; k <= integrators; ++k) script << 2 * k << " key i\n";
+    script << "12 key f\n13 key c\n14 key h\n15 key v\n16 key v\n17 key v\n18 key v\n20 key q\n";
+    const RunResult r = runDemo(dir, "--frames 500 --log-state state.txt", script.str());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const StateLog log = readStateLog(dir + "/state.txt");
+    EXPECT_EQ(log.frames, 21);  // frames 0..20: q ends the run after drawing frame 20
+    ASSERT_EQ(log.panes.size(), 1u);  // v four times: 2, 3, 4 panes, then 1
+    EXPECT_EQ(log.panes[0].scene, key.choice.label);
+    EXPECT_EQ(log.panes[0].integrator, scenes::buildScene(key.choice.name, key.choice.params).integrator);
+    EXPECT_GT(log.panes[0].steps, 0);
+    EXPECT_NE(log.overlay("help"), nullptr);    // h shows the help overlay
+    EXPECT_NE(log.overlay("legend"), nullptr);  // f shows the force legend
+  }
+}
+
+TEST(DemoKeys, IntegratorKeyKeepsTheState) {
+  const std::string dir = outputDirectory("IntegratorKeepsState");
+  // Paused: i must change the integrator and nothing else.
+  runDemo(dir, "--scene test-chain --frames 30 --log-state before.txt", "");
+  const RunResult r = runDemo(dir, "--scene test-chain --frames 31 --log-state after.txt", "30 key space\n30 key i\n");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const StateLog before = readStateLog(dir + "/before.txt"), after = readStateLog(dir + "/after.txt");
+  EXPECT_NE(before.panes[0].integrator, after.panes[0].integrator);
+  EXPECT_EQ(before.panes[0].time, after.panes[0].time);
+  for (std::size_t i = 0; i < before.panes[0].particles.size(); ++i)
+    EXPECT_EQ(before.panes[0].particles[i].x, after.panes[0].particles[i].x);
+}
+
+TEST(DemoKeys, DtKeysDoubleAndHalve) {
+  const std::string dir = outputDirectory("DtKeys");
+  const RunResult r = runDemo(dir, "--scene pendulum --dt 0.01 --frames 5 --log-state state.txt",
+                              "1 key +\n2 key +\n3 key -\n");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_DOUBLE_EQ(readStateLog(dir + "/state.txt").panes[0].dt, 0.02);
+}
+
+// ---------------------------------------------------------------------------
+// Frame-rate independence: a fixed simulated time per frame
+
+TEST(DemoStepping, FixedSimulatedTimePerFrameAndLockstep) {
+  const std::string dir = outputDirectory("Stepping");
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --dt 0.005 --frames 60 --log-state fixed.txt").exitCode, 0);
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --dt 0.005 --frames 60 --lockstep --log-state lockstep.txt").exitCode, 0);
+  EXPECT_NEAR(readStateLog(dir + "/fixed.txt").panes[0].time, 1.0, 1e-9);  // 60 frames of 1/60 s
+  EXPECT_EQ(readStateLog(dir + "/fixed.txt").panes[0].steps, 200);
+  EXPECT_EQ(readStateLog(dir + "/lockstep.txt").panes[0].steps, 60);
+}
+
+TEST(DemoStepping, RealtimeFramesComeFromTheSixtyHertzClock) {
+  // The interactive frame clock: 60 frames cannot take less than about a
+  // second (only a lower bound; a slow machine may take longer), and simulate 1 s.
+  const std::string dir = outputDirectory("Realtime");
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --frames 60 --realtime --log-state state.txt").exitCode, 0);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GT(seconds, 0.9);
+  EXPECT_NEAR(readStateLog(dir + "/state.txt").panes.at(0).time, 1.0, 1e-9);
+}
+
+// ---------------------------------------------------------------------------
+// Mouse
+
+TEST(DemoMouse, DragPullsTheClothParticleTowardTheCursorAndReleaseRemovesTheSpring) {
+  const std::string dir = outputDirectory("Drag");
+  const std::string scene = "--scene cloth --param links=4 --log-state state.txt ";
+  ASSERT_EQ(runDemo(dir, scene + "--frames 1 --paused").exitCode, 0);
+  const LoggedPane start = readStateLog(dir + "/state.txt").panes.at(0);
+  // The bottom-right corner of the cloth, pulled down and to the right.
+  const auto corner = std::max_element(start.particles.begin(), start.particles.end(),
+                                       [](const LoggedParticle& a, const LoggedParticle& b) {
+                                         return a.x.x() - a.x.y() < b.x.x() - b.x.y();
+                                       }) - start.particles.begin();
+  const Eigen::Vector2d from = start.particles[corner].x, to = from + Eigen::Vector2d(0.3, -0.3);
+  std::ostringstream drag;
+  drag << "5 down world " << from.x() << " " << from.y() << "\n";
+  for (int k = 1; k <= 30; ++k) {
+    const Eigen::Vector2d at = from + (to - from) * (k / 30.0);
+    drag << 5 + k << " move world " << at.x() << " " << at.y() << "\n";
+  }
+  const std::string held = drag.str();
+  const std::string released = held + "150 up world " + std::to_string(to.x()) + " " + std::to_string(to.y()) + "\n";
+
+  ASSERT_EQ(runDemo(dir, scene + "--frames 150 --screenshot held.png", held).exitCode, 0);
+  const LoggedPane dragging = readStateLog(dir + "/state.txt").panes.at(0);
+  ASSERT_EQ(runDemo(dir, scene + "--frames 150").exitCode, 0);
+  const LoggedPane alone = readStateLog(dir + "/state.txt").panes.at(0);
+  ASSERT_EQ(runDemo(dir, scene + "--frames 160", released).exitCode, 0);
+  const LoggedPane after = readStateLog(dir + "/state.txt").panes.at(0);
+
+  const LoggedParticle target{to, {0, 0}, 0, false};
+  EXPECT_EQ(dragging.mouseSprings, 1);
+  EXPECT_LT(distance(dragging.particles[corner], target), 0.5 * (to - from).norm());
+  EXPECT_LT(distance(dragging.particles[corner], target), distance(alone.particles[corner], target) - 0.1);
+  EXPECT_EQ(after.mouseSprings, 0);
+}
+
+TEST(DemoMouse, PressInEmptySpaceGrabsNothing) {
+  const std::string dir = outputDirectory("EmptyPress");
+  const RunResult r = runDemo(dir, "--scene cloth --frames 20 --log-state state.txt",
+                              "5 down world 0.9 -0.9\n6 move world 0.8 -0.8\n");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(readStateLog(dir + "/state.txt").panes[0].mouseSprings, 0);
+}
+
+TEST(DemoMouse, RightDragPinsAndMovesAParticleAndAClickUnpinsIt) {
+  const std::string dir = outputDirectory("Pin");
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --frames 1 --paused --log-state state.txt").exitCode, 0);
+  const LoggedPane start = readStateLog(dir + "/state.txt").panes.at(0);
+  const int last = static_cast<int>(start.particles.size()) - 1;
+  const Eigen::Vector2d from = start.particles[last].x, to = from + Eigen::Vector2d(-0.1, 0.2);
+  std::ostringstream pin;
+  pin << "3 down world " << from.x() << " " << from.y() << " right\n"
+      << "4 move world " << to.x() << " " << to.y() << "\n"
+      << "5 up world " << to.x() << " " << to.y() << " right\n";
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --frames 40 --log-state state.txt", pin.str()).exitCode, 0);
+  const LoggedParticle pinned = readStateLog(dir + "/state.txt").panes[0].particles[last];
+  EXPECT_TRUE(pinned.pinned);
+  EXPECT_LT((pinned.x - to).norm(), 1e-2);
+  std::ostringstream unpin;
+  unpin << pin.str() << "10 down world " << to.x() << " " << to.y() << " shift-left\n"
+        << "11 up world " << to.x() << " " << to.y() << " shift-left\n";
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --frames 40 --log-state state.txt", unpin.str()).exitCode, 0);
+  EXPECT_FALSE(readStateLog(dir + "/state.txt").panes[0].particles[last].pinned);
+}
+
+// ---------------------------------------------------------------------------
+// Screenshots agree with the simulation
+
+TEST(DemoScreenshot, ParticlesWhereTheLogSaysBackgroundElsewhereHudNotEmpty) {
+  const std::string dir = outputDirectory("Screenshot");
+  // Constraints hidden (c) so that the rail line does not cross the background samples.
+  const RunResult r = runDemo(dir, std::string(noPanel) + " --scene cloth --param links=8 --frames 90 "
+                              "--screenshot shot.png --log-state state.txt", "0 key c\n");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Image image = readPng(dir + "/shot.png");
+  const StateLog log = readStateLog(dir + "/state.txt");
+  const LoggedPane& pane = log.panes.at(0);
+  EXPECT_EQ(image.width, 900);
+  EXPECT_EQ(image.height, 700);
+
+  int checked = 0;
+  const int drawn = particlesDrawn(image, log, pane, &checked);
+  EXPECT_GE(checked, 50);
+  EXPECT_EQ(drawn, checked);
+
+  const std::vector<Eigen::Vector2i> empty = emptyPixels(log, pane);
+  EXPECT_GE(empty.size(), 100u);
+  for (const Eigen::Vector2i& px : empty) {
+    const demo::Rgb c = image.at(px.x(), px.y());
+    EXPECT_TRUE(near(c, demo::palette::background, 0)) << "at " << px.transpose() << ": " << int(c.r) << ","
+                                                        << int(c.g) << "," << int(c.b);
+  }
+  // The HUD: text on its box in the bottom-left corner.
+  const LoggedOverlay* hud = log.overlay("hud");
+  ASSERT_NE(hud, nullptr);
+  EXPECT_LT(hud->x, 20);
+  EXPECT_GT(hud->y + hud->height, image.height - 20);
+  EXPECT_GT(countNear(image, demo::palette::hudText, 40, hud->x, hud->y, hud->x + hud->width, hud->y + hud->height),
+            300);
+}
+
+TEST(DemoScreenshot, ForceKeyAddsArrowPixelsNextToParticles) {
+  const std::string dir = outputDirectory("ForceArrows");
+  const std::string args = std::string(noPanel) + " --scene cloth --frames 60 --log-state state.txt ";
+  ASSERT_EQ(runDemo(dir, args + "--screenshot plain.png", "0 key c\n").exitCode, 0);
+  ASSERT_EQ(runDemo(dir, args + "--screenshot arrows.png", "0 key c\n0 key f\n").exitCode, 0);
+  const Image plain = readPng(dir + "/plain.png"), arrows = readPng(dir + "/arrows.png");
+  const StateLog log = readStateLog(dir + "/state.txt");
+  const LoggedPane& pane = log.panes.at(0);
+
+  // Pixels in each force type's arrow colour within 40 pixels of a particle.
+  auto arrowPixels = [&](const Image& image, demo::Rgb colour) {
+    int count = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        if (!near(image.at(x, y), colour, 20) || log.underOverlay({x, y})) continue;
+        for (const LoggedParticle& q : pane.particles)
+          if ((pane.toPixel(q.x) - Eigen::Vector2d(x, y)).norm() < 40) {
+            ++count;
+            break;
+          }
+      }
+    return count;
+  };
+  const demo::Rgb gravity = demo::forceArrowColour("gravity"), spring = demo::forceArrowColour("spring");
+  EXPECT_EQ(arrowPixels(plain, gravity), 0);
+  EXPECT_EQ(arrowPixels(plain, spring), 0);
+  EXPECT_GT(arrowPixels(arrows, gravity), 100);
+  EXPECT_GT(arrowPixels(arrows, spring), 20);
+}
+
+// ---------------------------------------------------------------------------
+// Compare mode
+
+TEST(DemoCompare, EulerAndRk4PanesStartAlikeDivergeApartAndAreBothDrawn) {
+  const std::string dir = outputDirectory("Compare");
+  const RunResult r = runDemo(dir, std::string(noPanel) + " --scene test-chain --compare euler,rk4 --frames 240 "
+                              "--screenshot shot.png --log-state state.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const StateLog log = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(log.panes.size(), 2u);
+  const LoggedPane &euler = log.panes[0], &rk4 = log.panes[1];
+  EXPECT_EQ(euler.integrator, "euler");
+  EXPECT_EQ(rk4.integrator, "rk4");
+  EXPECT_EQ(euler.time, rk4.time);
+  EXPECT_EQ(euler.steps, rk4.steps);
+  ASSERT_EQ(euler.particles.size(), rk4.particles.size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < euler.particles.size(); ++i)
+    largest = std::max(largest, distance(euler.particles[i], rk4.particles[i]));
+  EXPECT_GT(largest, 1e-4);
+  // Side by side, not overlapping.
+  EXPECT_LE(euler.pixelX + euler.pixelWidth, rk4.pixelX);
+
+  const Image image = readPng(dir + "/shot.png");
+  for (const LoggedPane* pane : {&euler, &rk4}) {
+    int checked = 0;
+    const int drawn = particlesDrawn(image, log, *pane, &checked);
+    EXPECT_GE(checked, 5);
+    EXPECT_EQ(drawn, checked);
+    // Its HUD line in its top-left corner.
+    EXPECT_GT(countNear(image, demo::palette::hudText, 40, pane->pixelX + 6, pane->pixelY + 6, pane->pixelX + 300,
+                        pane->pixelY + 50),
+              100);
+  }
+}
+
+TEST(DemoCompare, SameStartAsTheSinglePane) {
+  // The rk4 pane of a compare run and a plain rk4 run see the same simulation.
+  const std::string dir = outputDirectory("CompareSameStart");
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --compare euler,rk4 --frames 40 --log-state compare.txt").exitCode, 0);
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --integrator rk4 --frames 40 --log-state single.txt").exitCode, 0);
+  const LoggedPane a = readStateLog(dir + "/compare.txt").panes.at(1), b = readStateLog(dir + "/single.txt").panes.at(0);
+  for (std::size_t i = 0; i < a.particles.size(); ++i) EXPECT_EQ(a.particles[i].x, b.particles[i].x);
+}
+
+// ---------------------------------------------------------------------------
+// Divergence
+
+TEST(DemoDivergence, HugeDtDivergesShowsTheMessageRewindsAndKeepsRunning) {
+  const std::string dir = outputDirectory("Divergence");
+  // The test chain with RK4 at dt = 0.5 blows up within a few seconds.
+  const std::string args = std::string(noPanel) + " --scene test-chain --integrator rk4 --dt 0.5 ";
+  ASSERT_EQ(runDemo(dir, args + "--frames 300 --screenshot diverged.png --log-state diverged.txt").exitCode, 0);
+  const StateLog diverged = readStateLog(dir + "/diverged.txt");
+  ASSERT_TRUE(diverged.panes[0].diverged);
+  EXPECT_TRUE(diverged.paused);
+  const double divergedAt = diverged.panes[0].time;
+
+  // The message, in its colour, across the middle of the pane.
+  const LoggedPane& pane = diverged.panes[0];
+  const int midY = pane.pixelY + pane.pixelHeight / 2;
+  auto messagePixels = [&](const Image& image) {
+    return countNear(image, demo::palette::divergenceText, 30, pane.pixelX + 20, midY - 25, pane.pixelX + pane.pixelWidth - 20,
+                     midY + 25);
+  };
+  EXPECT_GT(messagePixels(readPng(dir + "/diverged.png")), 100);
+
+  // b: back about one second, paused, message gone.
+  ASSERT_EQ(runDemo(dir, args + "--frames 310 --screenshot rewound.png --log-state rewound.txt", "300 key b\n")
+                .exitCode, 0);
+  const StateLog rewound = readStateLog(dir + "/rewound.txt");
+  EXPECT_FALSE(rewound.panes[0].diverged);
+  EXPECT_TRUE(rewound.paused);
+  EXPECT_LE(rewound.panes[0].time, divergedAt - 1.0 + 1e-9);
+  EXPECT_GE(rewound.panes[0].time, divergedAt - 2.0);
+  EXPECT_EQ(messagePixels(readPng(dir + "/rewound.png")), 0);
+
+  // Smaller dt, run on: the program keeps going with finite values.
+  ASSERT_EQ(runDemo(dir, args + "--frames 420 --log-state resumed.txt",
+                    "300 key b\n301 key -\n302 key -\n303 key -\n304 key -\n305 key space\n").exitCode, 0);
+  const StateLog resumed = readStateLog(dir + "/resumed.txt");
+  EXPECT_FALSE(resumed.panes[0].diverged);
+  EXPECT_FALSE(resumed.paused);
+  EXPECT_GT(resumed.panes[0].time, rewound.panes[0].time + 1.5);
+  EXPECT_TRUE(std::isfinite(resumed.panes[0].energy));
+}
+
+// ---------------------------------------------------------------------------
+// Window shape
+
+TEST(DemoView, ResizeKeepsTheWorldsAspectRatioAndShowsTheWholeView) {
+  const std::string dir = outputDirectory("Resize");
+  const RunResult r = runDemo(dir, "--scene pendulum --frames 40 --screenshot shot.png --log-state state.txt",
+                              "5 resize 700 900\n");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Image image = readPng(dir + "/shot.png");
+  EXPECT_EQ(image.width, 700);
+  EXPECT_EQ(image.height, 900);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  const LoggedPane& p = log.panes.at(0);
+  const scenes::Scene scene = scenes::buildScene("pendulum");
+  // One scale on both axes ...
+  const double sx = p.pixelWidth / (p.worldMax.x() - p.worldMin.x());
+  const double sy = p.pixelHeight / (p.worldMax.y() - p.worldMin.y());
+  EXPECT_NEAR(sx, sy, 1e-9 * sx);
+  // ... and the scene's whole view rectangle inside the pane, which fills the window beside the panel.
+  EXPECT_LE(p.worldMin.x(), scene.viewMin.x() + 1e-12);
+  EXPECT_LE(p.worldMin.y(), scene.viewMin.y() + 1e-12);
+  EXPECT_GE(p.worldMax.x(), scene.viewMax.x() - 1e-12);
+  EXPECT_GE(p.worldMax.y(), scene.viewMax.y() - 1e-12);
+  EXPECT_EQ(p.pixelHeight, 900);
+  const LoggedOverlay* panel = log.overlay("panel");
+  ASSERT_NE(panel, nullptr);
+  EXPECT_EQ(p.pixelWidth + panel->width, 700);
+}
+
+TEST(DemoCompare, PanesCanDifferInDtAndKeepTheSameClock) {
+  const std::string dir = outputDirectory("CompareDt");
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --compare rk4:0.02,rk4:0.005 --frames 60 --log-state state.txt").exitCode, 0);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(log.panes.size(), 2u);
+  EXPECT_DOUBLE_EQ(log.panes[0].dt, 0.02);
+  EXPECT_DOUBLE_EQ(log.panes[1].dt, 0.005);
+  EXPECT_NEAR(log.panes[0].time, 1.0, 1e-9);  // 60 frames of 1/60 s in both
+  EXPECT_NEAR(log.panes[1].time, 1.0, 1e-9);
+  EXPECT_EQ(log.panes[1].steps, 4 * log.panes[0].steps);
+}
+
+TEST(DemoCompare, MouseDragReachesEveryPane) {
+  const std::string dir = outputDirectory("CompareDrag");
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --frames 1 --paused --log-state state.txt").exitCode, 0);
+  const LoggedPane start = readStateLog(dir + "/state.txt").panes.at(0);
+  const Eigen::Vector2d from = start.particles.back().x, to = from + Eigen::Vector2d(-0.2, 0.2);  // within reach
+  std::ostringstream drag;
+  drag << "2 down world " << from.x() << " " << from.y() << "\n3 move world " << to.x() << " " << to.y() << "\n";
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --compare midpoint,rk4,symplectic-euler --frames 90 --log-state state.txt",
+                    drag.str()).exitCode, 0);
+  const StateLog log = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(log.panes.size(), 3u);
+  for (const LoggedPane& pane : log.panes) {
+    SCOPED_TRACE(pane.integrator);
+    EXPECT_EQ(pane.mouseSprings, 1);
+    EXPECT_LT((pane.particles.back().x - to).norm(), 0.5 * (from - to).norm());
+  }
+}
+
+TEST(DemoDivergence, InCompareModeTheDivergedPaneStopsAloneAndRewindKeepsPanesTogether) {
+  const std::string dir = outputDirectory("CompareDivergence");
+  const std::string args = std::string(noPanel) + " --scene test-chain --compare rk4:0.5,rk4:0.05 --log-state state.txt ";
+  ASSERT_EQ(runDemo(dir, args + "--frames 300").exitCode, 0);
+  const StateLog before = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(before.panes.size(), 2u);
+  ASSERT_TRUE(before.panes[0].diverged);
+  EXPECT_FALSE(before.panes[1].diverged);
+  EXPECT_FALSE(before.paused);                        // the other pane ran on
+  EXPECT_NEAR(before.panes[1].time, 5.0, 1e-9);       // 300 frames of 1/60 s
+  EXPECT_LT(before.panes[0].time, before.panes[1].time);
+
+  ASSERT_EQ(runDemo(dir, args + "--frames 302", "300 key b\n").exitCode, 0);
+  const StateLog after = readStateLog(dir + "/state.txt");
+  EXPECT_FALSE(after.panes[0].diverged);
+  EXPECT_TRUE(after.paused);
+  const double target = before.panes[0].time - 1.0;
+  for (const LoggedPane& pane : after.panes) {
+    EXPECT_LE(pane.time, target + 1e-9);
+    EXPECT_GT(pane.time, target - 0.5 - 1e-9);  // the nearest snapshot, at most one dt (0.5) back
+  }
+}
