@@ -2,10 +2,14 @@
 
 #include <stdexcept>
 
+#include "particles/check.h"
+#include "particles/integrators/adaptive_rk4.h"
 #include "particles/integrators/explicit_euler.h"
+#include "particles/integrators/implicit_euler.h"
 #include "particles/integrators/midpoint.h"
 #include "particles/integrators/rk4.h"
 #include "particles/integrators/symplectic_euler.h"
+#include "particles/integrators/verlet.h"
 
 namespace particles {
 
@@ -23,14 +27,27 @@ const std::vector<IntegratorInfo>& integratorTable() {
        make<SymplecticEulerIntegrator>},
       {"midpoint", "explicit midpoint (RK2)", 2, make<MidpointIntegrator>},
       {"rk4", "classic fourth-order Runge-Kutta", 4, make<Rk4Integrator>},
+      {"verlet", "velocity Verlet, velocity-dependent forces at a predicted velocity", 2,
+       make<VerletIntegrator>},
+      {"implicit-euler", "backward Euler, one linearised Newton step, constraints in the solve", 1,
+       make<ImplicitEulerIntegrator>},
+      {"adaptive-rk4", "RK4 with step doubling: internal step chosen to meet --tolerance", 4,
+       make<AdaptiveRk4Integrator>, true},
   };
   return table;
 }
 
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name) {
+void IntegratorSettings::validate() const { requirePositive("integrator tolerance", tolerance); }
+
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
+                                           const IntegratorSettings& settings) {
   std::string names;
   for (const IntegratorInfo& info : integratorTable()) {
-    if (name == info.name) return info.make();
+    if (name == info.name) {
+      std::unique_ptr<Integrator> integrator = info.make();
+      integrator->configure(settings);
+      return integrator;
+    }
     names += names.empty() ? "" : ", ";
     names += info.name;
   }

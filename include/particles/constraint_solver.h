@@ -1,21 +1,36 @@
 #pragma once
 // The constraint solve: with forces Q accumulated, find λ from
 //   (J W Jᵀ) λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ
-// and add the constraint force Q̂ = Jᵀ λ. J W Jᵀ is never formed: it is applied
-// as an operator from the per-constraint blocks and the system is solved by
-// (preconditioned) conjugate gradient.
+// and add the constraint force Q̂ = Jᵀ λ. Three ways to solve it (settings):
+// - matrix-free conjugate gradient: J W Jᵀ is applied as an operator from the
+//   per-constraint blocks, never formed (plain or Jacobi-preconditioned);
+// - conjugate gradient preconditioned by an incomplete Cholesky factor of the
+//   assembled J W Jᵀ (exact for a chain, whose J W Jᵀ is tridiagonal);
+// - a sparse direct solve: SimplicialLDLT of the assembled J W Jᵀ, its
+//   sparsity pattern analysed once per constraint structure and only
+//   refactorised numerically each solve.
+// Rows whose diagonal is zero (every particle in them pinned) get λ = 0 in all three.
 #include <memory>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include "particles/constraint.h"
 
 namespace particles {
 
+enum class SolveMethod {
+  ConjugateGradient,  // iterative, with the preconditioner below
+  Direct,             // SimplicialLDLT of the assembled J W Jᵀ
+};
+
 enum class Preconditioner {
-  None,    // plain CG
-  Jacobi,  // diagonal of J W Jᵀ, which the blocks give at no extra cost
+  None,                // plain CG
+  Jacobi,              // diagonal of J W Jᵀ, which the blocks give at no extra cost
+  IncompleteCholesky,  // Eigen::IncompleteCholesky of the assembled J W Jᵀ
 };
 
 struct SolverSettings {
@@ -24,14 +39,16 @@ struct SolverSettings {
   double stiffness = 60.0;       // k_s of the feedback term, 1/s² (squared-rod units aside)
   double damping = 10.0;         // k_d of the feedback term, 1/s
   bool warmStart = true;         // start CG from the previous λ
-  Preconditioner preconditioner = Preconditioner::Jacobi;
+  // Default measured in tests/bench/bench_solvers.cpp (see the comment there).
+  SolveMethod method = SolveMethod::Direct;
+  Preconditioner preconditioner = Preconditioner::Jacobi;  // for ConjugateGradient
 
   void validate() const;  // throws naming the bad field
 };
 
 struct SolveStats {
   int constraints = 0;     // m
-  int iterations = 0;      // CG iterations of the last solve
+  int iterations = 0;      // CG iterations of the last solve (0 for a direct solve)
   double residual = 0.0;   // relative residual |r|/|b| at exit (0 when b = 0)
 };
 
@@ -56,8 +73,13 @@ class ConstraintSolver {
   void applyOperator(const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
 
  private:
+  using SparseMatrix = Eigen::SparseMatrix<double>;
   void gather(const Phase& s, const ConstraintList& constraints);
   int conjugateGradient(double& relativeResidual);
+  // Upper triangle of P (J W Jᵀ) Pᵀ into assembled_ (P an AMD ordering), re-analysing the pattern only
+  // when the constraint structure changed; dead rows get a unit diagonal.
+  void assemble(double dead);
+  bool directSolve(double dead, double& relativeResidual);  // false: fall back to CG
 
   // Rows in compressed form: entries rowStart_[k] .. rowStart_[k+1]−1 belong
   // to constraint k; each entry is one particle with its J and J̇ blocks.
@@ -70,6 +92,27 @@ class ConstraintSolver {
   Eigen::VectorXd r_, z_, p_, Ap_;
   mutable Eigen::VectorXd scatter_;  // W Jᵀ y inside applyOperator
   SolveStats stats_;
+
+  // Assembled P (J W Jᵀ) Pᵀ (upper triangle; constraint k at row order_[k])
+  // and its factorisations. Value s of the matrix is Σ w_p J_e1·J_e2 over the
+  // pairs pairStart_[s] .. pairStart_[s+1]−1.
+  SparseMatrix assembled_;
+  Eigen::VectorXi order_;
+  Eigen::VectorXd permuted_, permutedSolution_;
+  std::vector<int> pairStart_, pairFirst_, pairSecond_, diagonalSlot_;
+  bool patternValid_ = false, ldltAnalysed_ = false, incompleteCholeskyUsable_ = false;
+  // SimplicialLDLT whose numeric factorisation reads the (already permuted,
+  // upper-triangular) matrix directly: Eigen's factorize() builds an empty
+  // temporary matrix first, one heap allocation per solve.
+  struct InPlaceLdlt : Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> {
+    void factorizeInPlace(const SparseMatrix& upper) { this->template factorize_preordered<true>(upper); }
+    const Eigen::VectorXd& pivots() const { return this->m_diag; }  // D; vectorD() copies
+  };
+  using IncompleteCholesky = Eigen::IncompleteCholesky<double, Eigen::Upper, Eigen::NaturalOrdering<int>>;
+  // Eigen's solvers cannot be moved; held by pointer (made on first use) so
+  // that ConstraintSolver, and with it ParticleSystem, stays movable.
+  std::unique_ptr<InPlaceLdlt> ldlt_;
+  std::unique_ptr<IncompleteCholesky> incompleteCholesky_;
 };
 
 }  // namespace particles

@@ -33,6 +33,15 @@ class Force {
   virtual bool hasJacobians() const { return false; }
   virtual void addJacobians(const Phase&, Triplets& dfdx, Triplets& dfdv) const;
 
+  // The same Jacobians made symmetric negative semi-definite, so that an
+  // implicit step's M − h ∂f/∂v − h² ∂f/∂x is symmetric positive definite:
+  // springs under compression drop their transverse term (Choi & Ko 2002),
+  // non-symmetric damping parts of ∂f/∂x are dropped, angle springs keep the
+  // Gauss–Newton term. Forces whose exact Jacobians already are keep the default.
+  virtual void addDefiniteJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const {
+    addJacobians(s, dfdx, dfdv);
+  }
+
   // Lines and circles that show this force (springs as lines); none by default.
   virtual void sketch(const Phase&, Sketch&) const {}
 };

@@ -8,6 +8,17 @@ namespace particles {
 
 class ParticleSystem;
 
+// Settings an integrator may use, set by name from the command line and the
+// panel. Fixed-step schemes ignore them; one struct keeps makeIntegrator's
+// signature the same for every scheme.
+struct IntegratorSettings {
+  // adaptive-rk4: local error allowed per internal step, mixed absolute and
+  // relative: |error_i| ≤ tolerance·(1 + |y_i|) for every component of (x, v).
+  double tolerance = 1e-6;
+
+  void validate() const;  // throws naming the bad field
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -23,6 +34,9 @@ class Integrator {
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }
 
+  // Takes the settings this scheme uses (validated first); others are ignored.
+  virtual void configure(const IntegratorSettings& settings) { settings.validate(); }
+
  protected:
   double lastStep_ = 0.0;
 };
@@ -32,12 +46,15 @@ struct IntegratorInfo {
   const char* summary;  // one line for `list` and the help overlay
   int order;            // global order of accuracy on smooth problems
   std::unique_ptr<Integrator> (*make)();
+  bool usesTolerance = false;  // reads IntegratorSettings::tolerance
 };
 
 // Every integrator, in the order the demo cycles through them.
 const std::vector<IntegratorInfo>& integratorTable();
 
 // Throws std::invalid_argument listing the valid names for an unknown one.
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name);
+// The integrator is configured with the given settings.
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
+                                           const IntegratorSettings& settings = {});
 
 }  // namespace particles

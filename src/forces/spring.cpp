@@ -1,5 +1,7 @@
 #include "particles/forces/spring.h"
 
+#include <algorithm>
+
 #include "particles/check.h"
 
 namespace particles {
@@ -52,10 +54,36 @@ double SpringForce::potential(const Phase& s) const {
   return 0.5 * stiffness_ * stretch * stretch;
 }
 
+void springDefiniteJacobian(const Eigen::Vector2d& l, double rest, double stiffness,
+                            double damping, Eigen::Matrix2d& dfdl, Eigen::Matrix2d& dfdldot) {
+  const double length = l.norm();
+  if (length == 0.0) {
+    dfdl.setZero();
+    dfdldot.setZero();
+    return;
+  }
+  const Eigen::Vector2d u = l / length;
+  const Eigen::Matrix2d uu = u * u.transpose();
+  const double transverse = stiffness * std::max(0.0, 1.0 - rest / length);
+  dfdl = -stiffness * uu - transverse * (Eigen::Matrix2d::Identity() - uu);
+  dfdldot = -damping * uu;
+}
+
 void SpringForce::addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const {
   Eigen::Matrix2d dl, dldot;
   springJacobian(s.position(i_) - s.position(j_), s.velocity(i_) - s.velocity(j_), rest_,
                  stiffness_, damping_, dl, dldot);
+  addBlocks(dl, dldot, dfdx, dfdv);
+}
+
+void SpringForce::addDefiniteJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const {
+  Eigen::Matrix2d dl, dldot;
+  springDefiniteJacobian(s.position(i_) - s.position(j_), rest_, stiffness_, damping_, dl, dldot);
+  addBlocks(dl, dldot, dfdx, dfdv);
+}
+
+void SpringForce::addBlocks(const Eigen::Matrix2d& dl, const Eigen::Matrix2d& dldot,
+                            Triplets& dfdx, Triplets& dfdv) const {
   // f_i depends on x_i with +∂f/∂l and on x_j with −∂f/∂l; f_j = −f_i.
   const int idx[2] = {i_, j_};
   const double sign[2] = {1.0, -1.0};

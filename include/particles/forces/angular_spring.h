@@ -23,6 +23,21 @@ AngularSpringKernel angularSpringKernel(const Eigen::Vector2d& x1, const Eigen::
                                         const Eigen::Vector2d& x3, const Eigen::Vector2d& v1,
                                         const Eigen::Vector2d& v2, const Eigen::Vector2d& v3);
 
+// Force Jacobians of the angle spring, 6×6 over (x1, x2, x3). With g_k = ∂θ/∂x_k,
+// τ = k_s (θ − θ₀) + k_d θ̇ and H_kl = ∂g_k/∂x_l (the Hessian of θ),
+//   ∂f_k/∂x_l = −k_s g_k g_lᵀ − k_d g_k (Σ_j H_lj v_j)ᵀ − τ H_kl,   ∂f_k/∂v_l = −k_d g_k g_lᵀ.
+// With R the rotation by −90° (R a = (a_y, −a_x)), â = a/|a|, b̂ = b/|b|:
+//   G_a = R (I − 2 â âᵀ)/|a|²,  G_b = −R (I − 2 b̂ b̂ᵀ)/|b|²   (both symmetric),
+//   H = [ G_a  −G_a  0 ;  −G_a  G_a+G_b  −G_b ;  0  −G_b  G_b ].
+// definite = true keeps only the Gauss–Newton term −k_s g gᵀ of ∂f/∂x (symmetric
+// negative semi-definite; the τ H term is indefinite and the damping term is
+// not symmetric) for implicit solvers that need a definite matrix.
+void angularSpringJacobian(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2,
+                           const Eigen::Vector2d& x3, const Eigen::Vector2d& v1,
+                           const Eigen::Vector2d& v2, const Eigen::Vector2d& v3, double restAngle,
+                           double stiffness, double damping, bool definite,
+                           Eigen::Matrix<double, 6, 6>& dfdx, Eigen::Matrix<double, 6, 6>& dfdv);
+
 // θ − θ₀ wrapped into (−π, π].
 double angleDifference(double angle, double restAngle);
 
@@ -35,6 +50,9 @@ class AngularSpringForce : public Force {
   bool hasPotential() const override { return true; }
   double potential(const Phase& s) const override;
   std::vector<int> particles() const override { return {p_[0], p_[1], p_[2]}; }
+  bool hasJacobians() const override { return true; }
+  void addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
+  void addDefiniteJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
   void sketch(const Phase& s, Sketch& out) const override;
 
   const std::array<int, 3>& triple() const { return p_; }
@@ -43,6 +61,7 @@ class AngularSpringForce : public Force {
   double damping() const { return damping_; }
 
  private:
+  void addJacobiansImpl(const Phase& s, bool definite, Triplets& dfdx, Triplets& dfdv) const;
   std::array<int, 3> p_;
   double restAngle_;  // θ₀, radians, signed (counter-clockwise from arm a to arm b)
   double stiffness_;  // k_s, energy / rad²

@@ -15,6 +15,13 @@ Eigen::Vector2d springForce(const Eigen::Vector2d& l, const Eigen::Vector2d& ldo
 void springJacobian(const Eigen::Vector2d& l, const Eigen::Vector2d& ldot, double rest,
                     double stiffness, double damping, Eigen::Matrix2d& dfdl, Eigen::Matrix2d& dfdldot);
 
+// The definite approximation for implicit solvers: ∂f/∂l ≈ −k_s u uᵀ −
+// k_s max(0, 1 − r/|l|) P, symmetric negative semi-definite (the transverse
+// term is dropped under compression, where it is positive and buckles the
+// linear system, and so is the non-symmetric damping part); ∂f/∂l̇ exact.
+void springDefiniteJacobian(const Eigen::Vector2d& l, double rest, double stiffness,
+                            double damping, Eigen::Matrix2d& dfdl, Eigen::Matrix2d& dfdldot);
+
 class SpringForce : public Force {
  public:
   SpringForce(int i, int j, double restLength, double stiffness, double damping);
@@ -26,6 +33,7 @@ class SpringForce : public Force {
   std::vector<int> particles() const override { return {i_, j_}; }
   bool hasJacobians() const override { return true; }
   void addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
+  void addDefiniteJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
   void sketch(const Phase& s, Sketch& out) const override;
 
   int first() const { return i_; }
@@ -35,6 +43,8 @@ class SpringForce : public Force {
   double damping() const { return damping_; }
 
  private:
+  void addBlocks(const Eigen::Matrix2d& dl, const Eigen::Matrix2d& dldot, Triplets& dfdx,
+                 Triplets& dfdv) const;
   int i_, j_;
   double rest_;       // world units
   double stiffness_;  // k_s, force / length

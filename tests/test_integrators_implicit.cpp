@@ -1,0 +1,458 @@
+// The integrators of issue 7 — velocity Verlet, backward Euler with the
+// constraints in its solve, adaptive RK4 — and the force Jacobians the
+// implicit step relies on.
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+#include "particles/constraints/circular_wire.h"
+#include "particles/constraints/rod.h"
+#include "particles/forces/angular_spring.h"
+#include "particles/forces/drag.h"
+#include "particles/forces/gravity.h"
+#include "particles/forces/mouse_spring.h"
+#include "particles/forces/spring.h"
+#include "particles/integrators/adaptive_rk4.h"
+#include "particles/integrators/implicit_euler.h"
+#include "particles/particle_system.h"
+
+using namespace particles;
+using Eigen::Vector2d;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Unit mass on a zero-length spring of stiffness ω² to the origin (damping
+// optional): x(t) = x₀ cos ωt + (v₀/ω) sin ωt when undamped.
+std::unique_ptr<ParticleSystem> oscillator(double omega, double damping = 0.0) {
+  auto system = std::make_unique<ParticleSystem>();
+  system->addParticle(Vector2d(1.0, 0.0), 1.0, Vector2d(0.0, 0.5));
+  system->addForce(std::make_unique<MouseSpringForce>(0, Vector2d::Zero(), omega * omega, damping));
+  return system;
+}
+
+Vector2d oscillatorExact(double omega, double t) {
+  return Vector2d(std::cos(omega * t), 0.5 / omega * std::sin(omega * t));
+}
+
+// Error at t = T of the scheme run with n steps, against a reference.
+double errorAt(const std::string& scheme, double T, int steps, double damping,
+               const std::function<Vector2d(double)>& reference) {
+  auto system = oscillator(1.0, damping);
+  auto integrator = makeIntegrator(scheme);
+  for (int k = 0; k < steps; ++k) system->step(*integrator, T / steps);
+  return (system->position(0) - reference(T)).norm();
+}
+
+// Least-squares slope of log(error) against log(dt) over halving dt.
+double fittedOrder(const std::string& scheme, double damping,
+                   const std::function<Vector2d(double)>& reference) {
+  const double T = 2.0;
+  std::vector<double> lx, ly;
+  for (int steps = 20; steps <= 320; steps *= 2) {
+    lx.push_back(std::log(T / steps));
+    ly.push_back(std::log(errorAt(scheme, T, steps, damping, reference)));
+  }
+  const double n = lx.size();
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < lx.size(); ++i)
+    sx += lx[i], sy += ly[i], sxx += lx[i] * lx[i], sxy += lx[i] * ly[i];
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+std::function<Vector2d(double)> undamped = [](double t) { return oscillatorExact(1.0, t); };
+
+// Damped reference: RK4 with a very small step.
+std::function<Vector2d(double)> dampedReference(double damping) {
+  return [damping](double t) {
+    auto system = oscillator(1.0, damping);
+    auto rk4 = makeIntegrator("rk4");
+    for (int k = 0; k < 20000; ++k) system->step(*rk4, t / 20000);
+    return Vector2d(system->position(0));
+  };
+}
+
+}  // namespace
+
+TEST(Verlet, GlobalErrorIsSecondOrder) {
+  const double order = fittedOrder("verlet", 0.0, undamped);
+  RecordProperty("fitted_order", std::to_string(order));
+  EXPECT_NEAR(order, 2.0, 0.3);
+}
+
+TEST(Verlet, PredictedVelocityKeepsSecondOrderWithDamping) {
+  const double order = fittedOrder("verlet", 0.5, dampedReference(0.5));
+  RecordProperty("fitted_order", std::to_string(order));
+  EXPECT_NEAR(order, 2.0, 0.3);
+}
+
+TEST(ImplicitEuler, GlobalErrorIsFirstOrder) {
+  const double order = fittedOrder("implicit-euler", 0.0, undamped);
+  RecordProperty("fitted_order", std::to_string(order));
+  EXPECT_NEAR(order, 1.0, 0.3);
+}
+
+TEST(AdaptiveRk4, GlobalErrorIsFourthOrderAtFixedTolerance) {
+  // With a loose tolerance it takes exactly one internal step per dt, so it
+  // behaves as RK4 plus Richardson extrapolation: at least fourth order.
+  IntegratorSettings loose;
+  loose.tolerance = 1e3;
+  std::vector<double> errors;
+  for (int steps : {20, 40}) {
+    auto system = oscillator(1.0);
+    auto integrator = makeIntegrator("adaptive-rk4", loose);
+    for (int k = 0; k < steps; ++k) system->step(*integrator, 2.0 / steps);
+    errors.push_back((system->position(0) - oscillatorExact(1.0, 2.0)).norm());
+  }
+  EXPECT_GT(std::log2(errors[0] / errors[1]), 3.7);
+}
+
+// Energy of the undamped oscillator over 10⁴ steps of dt = 0.01 (ω = 1, 16 periods).
+std::vector<double> energyHistory(const std::string& scheme) {
+  auto system = oscillator(1.0);
+  auto integrator = makeIntegrator(scheme);
+  std::vector<double> energy{system->totalEnergy()};
+  for (int k = 0; k < 10000; ++k) {
+    system->step(*integrator, 0.01);
+    energy.push_back(system->totalEnergy());
+  }
+  return energy;
+}
+
+TEST(Verlet, EnergyErrorStaysBounded) {
+  const std::vector<double> e = energyHistory("verlet");
+  double early = 0.0, late = 0.0;  // worst error in the first and the last 1000 steps
+  for (int k = 0; k <= 1000; ++k) early = std::max(early, std::abs(e[k] - e[0]));
+  for (int k = 9000; k <= 10000; ++k) late = std::max(late, std::abs(e[k] - e[0]));
+  EXPECT_LT(late, 1.5 * early);    // no drift
+  EXPECT_LT(late, 1e-4 * e[0]);    // O(h²) oscillation only
+}
+
+TEST(ExplicitEuler, EnergyGrows) {
+  const std::vector<double> e = energyHistory("euler");
+  EXPECT_GT(e.back(), 2.0 * e.front());  // (1 + h²ω²)^N = e¹
+  for (std::size_t k = 1; k < e.size(); ++k) ASSERT_GE(e[k], e[k - 1] * (1 - 1e-12));
+}
+
+TEST(ImplicitEuler, EnergyDecays) {
+  const std::vector<double> e = energyHistory("implicit-euler");
+  EXPECT_LT(e.back(), 0.5 * e.front());  // (1 + h²ω²)^−N = e⁻¹
+  for (std::size_t k = 1; k < e.size(); ++k) ASSERT_LE(e[k], e[k - 1] * (1 + 1e-12));
+}
+
+// --- force Jacobians ------------------------------------------------------
+
+namespace {
+
+// Dense ∂f/∂x, ∂f/∂v of a force from its triplets, and the same by central
+// differences of Force::apply.
+struct DenseJacobians { Eigen::MatrixXd dfdx, dfdv; };
+
+DenseJacobians analytic(const Force& force, const ParticleSystem& system, bool definite) {
+  Triplets tx, tv;
+  if (definite) force.addDefiniteJacobians(system.phase(), tx, tv);
+  else force.addJacobians(system.phase(), tx, tv);
+  const int dofs = 2 * system.size();
+  Eigen::SparseMatrix<double> X(dofs, dofs), V(dofs, dofs);
+  X.setFromTriplets(tx.begin(), tx.end());
+  V.setFromTriplets(tv.begin(), tv.end());
+  return {Eigen::MatrixXd(X), Eigen::MatrixXd(V)};
+}
+
+DenseJacobians finiteDifference(const Force& force, const ParticleSystem& system) {
+  const int dofs = 2 * system.size();
+  DenseJacobians J{Eigen::MatrixXd(dofs, dofs), Eigen::MatrixXd(dofs, dofs)};
+  const double h = 1e-6;
+  auto f = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+    Eigen::VectorXd out = Eigen::VectorXd::Zero(dofs);
+    force.apply(system.phase(x, v), out);
+    return out;
+  };
+  for (int c = 0; c < dofs; ++c) {
+    Eigen::VectorXd xp = system.positions(), xm = xp, vp = system.velocities(), vm = vp;
+    xp[c] += h, xm[c] -= h, vp[c] += h, vm[c] -= h;
+    J.dfdx.col(c) = (f(xp, system.velocities()) - f(xm, system.velocities())) / (2 * h);
+    J.dfdv.col(c) = (f(system.positions(), vp) - f(system.positions(), vm)) / (2 * h);
+  }
+  return J;
+}
+
+// Three particles at random places with random velocities (particle 3 pinned
+// when asked, to check that forces still report their full Jacobian there).
+std::unique_ptr<ParticleSystem> randomTriple(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto system = std::make_unique<ParticleSystem>();
+  for (int i = 0; i < 3; ++i)
+    system->addParticle(Vector2d(u(rng), u(rng)), 1.0 + 0.5 * (u(rng) + 1.0), Vector2d(u(rng), u(rng)));
+  return system;
+}
+
+void expectJacobiansMatchFiniteDifference(const std::function<std::unique_ptr<Force>()>& make) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 30; ++trial) {
+    auto system = randomTriple(rng);
+    Force& force = system->addForce(make());
+    ASSERT_TRUE(force.hasJacobians()) << force.type();
+    const DenseJacobians a = analytic(force, *system, false), fd = finiteDifference(force, *system);
+    const double scale = 1.0 + fd.dfdx.cwiseAbs().maxCoeff() + fd.dfdv.cwiseAbs().maxCoeff();
+    EXPECT_LT((a.dfdx - fd.dfdx).cwiseAbs().maxCoeff(), 1e-6 * scale) << force.type() << " dfdx";
+    EXPECT_LT((a.dfdv - fd.dfdv).cwiseAbs().maxCoeff(), 1e-6 * scale) << force.type() << " dfdv";
+    // The definite approximation used by the implicit step: symmetric, and
+    // negative semi-definite so that M − h D − h² K is positive definite.
+    const DenseJacobians d = analytic(force, *system, true);
+    for (const Eigen::MatrixXd* m : {&d.dfdx, &d.dfdv}) {
+      EXPECT_LT((*m - m->transpose()).cwiseAbs().maxCoeff(), 1e-12 * scale) << force.type();
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(*m);
+      EXPECT_LT(eig.eigenvalues().maxCoeff(), 1e-9 * scale) << force.type();
+    }
+  }
+}
+
+}  // namespace
+
+TEST(ForceJacobians, SpringMatchesFiniteDifference) {
+  // Random rest length: stretched and compressed springs alike.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> rest(0.1, 2.0);
+  expectJacobiansMatchFiniteDifference(
+      [&] { return std::make_unique<SpringForce>(0, 2, rest(rng), 7.0, 0.8); });
+}
+
+TEST(ForceJacobians, AngularSpringMatchesFiniteDifference) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  expectJacobiansMatchFiniteDifference(
+      [&] { return std::make_unique<AngularSpringForce>(0, 1, 2, angle(rng), 3.0, 0.7); });
+}
+
+TEST(ForceJacobians, DragMatchesFiniteDifference) {
+  expectJacobiansMatchFiniteDifference([] { return std::make_unique<DragForce>(0.9); });
+}
+
+TEST(ForceJacobians, GravityMatchesFiniteDifference) {
+  expectJacobiansMatchFiniteDifference([] { return std::make_unique<GravityForce>(Vector2d(0.3, -9.8)); });
+}
+
+TEST(ForceJacobians, MouseSpringMatchesFiniteDifference) {
+  expectJacobiansMatchFiniteDifference(
+      [] { return std::make_unique<MouseSpringForce>(1, Vector2d(0.2, 0.4), 5.0, 0.6); });
+}
+
+// --- the implicit step with constraints ----------------------------------
+
+namespace {
+
+class NoJacobianForce : public Force {
+ public:
+  const char* type() const override { return "no-jacobian"; }
+  void apply(const Phase&, Eigen::VectorXd&) const override {}
+};
+
+// A bead on a circular wire of radius 1 under gravity, released from the
+// horizontal; max relative radius error over 10 s at dt = 0.1.
+double beadRadiusError(bool coupled) {
+  ParticleSystem system;
+  system.addParticle(Vector2d(1.0, 0.0), 1.0);
+  system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+  system.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), 1.0));
+  ImplicitEulerIntegrator integrator;
+  integrator.settings.coupledConstraints = coupled;
+  double worst = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    system.step(integrator, 0.1);
+    if (!system.finite()) return INFINITY;
+    worst = std::max(worst, system.maxRelativeConstraintError());
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(ImplicitEuler, RefusesAForceWithoutJacobiansNamingIt) {
+  auto system = oscillator(1.0);
+  system->addForce(std::make_unique<NoJacobianForce>());
+  auto integrator = makeIntegrator("implicit-euler");
+  try {
+    system->step(*integrator, 0.01);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no-jacobian"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ImplicitEuler, KeepsBeadOnWireWhereLaggedConstraintsDoNot) {
+  const double coupled = beadRadiusError(true), lagged = beadRadiusError(false);
+  RecordProperty("coupled_radius_error", std::to_string(coupled));
+  RecordProperty("lagged_radius_error", std::to_string(lagged));
+  EXPECT_LE(coupled, 0.01);
+  EXPECT_GT(lagged, 0.01);
+}
+
+namespace {
+
+// The test chain of the report at the issue's target: 200 particles, rods of
+// 0.1, the first pinned, released horizontally under g = 0.05; 100 s at
+// dt = 0.2 (k_s·dt² = 2.4 for the explicit feedback). Returns max |C|/r.
+double testChainError(bool coupled) {
+  ParticleSystem system;
+  const int n = 200;
+  for (int i = 0; i < n; ++i) system.addParticle(Vector2d(0.1 * i, 0.0), 1.0);
+  system.setPinned(0, true);
+  for (int i = 0; i + 1 < n; ++i) system.addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1));
+  system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -0.05)));
+  ImplicitEulerIntegrator integrator;
+  integrator.settings.coupledConstraints = coupled;
+  double worst = 0.0;
+  for (int k = 0; k < 500; ++k) {
+    system.step(integrator, 0.2);
+    if (!system.finite()) return INFINITY;
+    worst = std::max(worst, system.maxRelativeConstraintError());
+  }
+  EXPECT_EQ(system.position(0), Vector2d(0.0, 0.0));  // the pin stays put
+  return worst;
+}
+
+}  // namespace
+
+TEST(ImplicitEuler, TestChainHoldsItsRodsAtLargeStepWhereLaggedConstraintsDoNot) {
+  const double coupled = testChainError(true), lagged = testChainError(false);
+  RecordProperty("coupled_max_relative_C", std::to_string(coupled));
+  RecordProperty("lagged_max_relative_C", std::to_string(lagged));
+  EXPECT_LE(coupled, 0.01);
+  EXPECT_GT(lagged, 0.01);
+}
+
+TEST(ImplicitEuler, PinnedOnlyConstraintGivesFiniteStep) {
+  ParticleSystem system;
+  system.addParticle(Vector2d(0.0, 0.0), 1.0);
+  system.addParticle(Vector2d(0.3, 0.0), 1.0);  // violates the rod, both pinned
+  system.addParticle(Vector2d(0.0, -0.5), 1.0);
+  system.setPinned(0, true);
+  system.setPinned(1, true);
+  system.addConstraint(std::make_unique<RodConstraint>(0, 1, 0.5));
+  system.addConstraint(std::make_unique<RodConstraint>(0, 2, 0.5));
+  system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+  auto integrator = makeIntegrator("implicit-euler");
+  for (int k = 0; k < 10; ++k) system.step(*integrator, 0.1);
+  EXPECT_TRUE(system.finite());
+  EXPECT_LT(std::abs((system.position(2) - system.position(0)).norm() - 0.5), 0.005);
+}
+
+// --- adaptive RK4 ---------------------------------------------------------
+
+TEST(AdaptiveRk4, MeetsItsToleranceOnTheOscillator) {
+  for (double tol : {1e-4, 1e-6, 1e-8}) {
+    IntegratorSettings settings;
+    settings.tolerance = tol;
+    auto system = oscillator(2.0);
+    auto integrator = makeIntegrator("adaptive-rk4", settings);
+    double worst = 0.0;
+    for (int k = 1; k <= 100; ++k) {  // 10 s in frames of 0.1: ~3 periods
+      system->step(*integrator, 0.1);
+      worst = std::max(worst, (system->position(0) - oscillatorExact(2.0, 0.1 * k)).norm());
+    }
+    RecordProperty("error_over_tolerance_" + std::to_string(tol), std::to_string(worst / tol));
+    EXPECT_LT(worst, 10.0 * tol) << "tolerance " << tol;
+    EXPECT_GT(worst, 1e-4 * tol) << "tolerance " << tol << ": suspiciously exact";
+    EXPECT_LT(integrator->lastInternalStep(), 0.1 + 1e-15);
+  }
+}
+
+TEST(AdaptiveRk4, InternalStepFollowsTheTolerance) {
+  double previous = INFINITY;
+  for (double tol : {1e-3, 1e-6, 1e-9}) {
+    IntegratorSettings settings;
+    settings.tolerance = tol;
+    auto system = oscillator(2.0);
+    auto integrator = makeIntegrator("adaptive-rk4", settings);
+    for (int k = 0; k < 10; ++k) system->step(*integrator, 0.5);
+    const double h = static_cast<AdaptiveRk4Integrator&>(*integrator).internalStep();
+    EXPECT_LT(h, previous);
+    previous = h;
+  }
+}
+
+TEST(AdaptiveRk4, NeverAppliesARejectedStep) {
+  // Start with an internal step far too large so the first attempts are
+  // rejected; then replay only the accepted steps, each as a single step of an
+  // integrator that accepts everything. A rejected trial that leaked into the
+  // state would make the two differ.
+  IntegratorSettings tight;
+  tight.tolerance = 1e-9;
+  auto system = oscillator(3.0);
+  const Snapshot start = system->snapshot();
+  AdaptiveRk4Integrator adaptive;
+  adaptive.configure(tight);
+  adaptive.setInternalStep(1.0);
+  adaptive.step(*system, 1.0);
+  ASSERT_GT(adaptive.rejectedSteps(), 0);
+  const std::vector<double> accepted = adaptive.lastAcceptedSteps();
+  ASSERT_GT(accepted.size(), 1u);
+  const Eigen::VectorXd x = system->positions(), v = system->velocities();
+
+  system->restore(start);
+  IntegratorSettings loose;
+  loose.tolerance = 1e6;
+  for (double h : accepted) {
+    AdaptiveRk4Integrator replay;
+    replay.configure(loose);
+    replay.setInternalStep(h);
+    replay.step(*system, h);
+    ASSERT_EQ(replay.rejectedSteps(), 0);
+  }
+  EXPECT_EQ(system->positions(), x);
+  EXPECT_EQ(system->velocities(), v);
+}
+
+TEST(IntegratorTable, NewSchemesAreListedAndToleranceIsChecked) {
+  for (const char* name : {"verlet", "implicit-euler", "adaptive-rk4"})
+    EXPECT_STREQ(makeIntegrator(name)->name(), name);
+  IntegratorSettings bad;
+  bad.tolerance = -1.0;
+  EXPECT_THROW(makeIntegrator("adaptive-rk4", bad), std::invalid_argument);
+}
+
+TEST(ImplicitEuler, ReusedPatternGivesTheSameStepAsAFreshIntegrator) {
+  // The integrator caches the sparsity pattern; after the structure changes
+  // (a force added, a particle pinned, a constraint added) its step must equal
+  // that of an integrator that never saw the old structure.
+  auto build = [] {
+    auto s = std::make_unique<ParticleSystem>();
+    for (int i = 0; i < 6; ++i) s->addParticle(Vector2d(0.1 * i, 0.02 * (i % 2)), 1.0, Vector2d(0.0, 0.1 * i));
+    for (int i = 0; i + 1 < 6; ++i) s->addForce(std::make_unique<SpringForce>(i, i + 1, 0.1, 50.0, 0.3));
+    s->addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+    s->setPinned(0, true);
+    return s;
+  };
+  const std::vector<std::function<void(ParticleSystem&)>> changes = {
+      [](ParticleSystem& s) { s.addForce(std::make_unique<SpringForce>(1, 4, 0.3, 20.0, 0.1)); },
+      [](ParticleSystem& s) { s.setPinned(3, true); },
+      [](ParticleSystem& s) { s.addConstraint(std::make_unique<RodConstraint>(2, 5, 0.3)); },
+      [](ParticleSystem& s) { s.addForce(std::make_unique<AngularSpringForce>(1, 2, 3, 3.0, 0.5, 0.1)); },
+  };
+  for (ImplicitLinearSolver solver : {ImplicitLinearSolver::Direct, ImplicitLinearSolver::ConjugateGradient}) {
+    auto a = build(), b = build();
+    ImplicitEulerIntegrator reused;
+    reused.settings.solver = solver;
+    reused.settings.cgTolerance = 1e-12;
+    // The reused integrator would start its geometric stiffness from the last
+    // step's impulses, the fresh one from zero; without it both take the same passes.
+    reused.settings.geometricStiffness = false;
+    for (std::size_t c = 0; c < changes.size(); ++c) {
+      a->step(reused, 0.05);
+      b->restore(a->snapshot());
+      changes[c](*a);
+      changes[c](*b);
+      ImplicitEulerIntegrator fresh;
+      fresh.settings = reused.settings;
+      a->step(reused, 0.05);
+      b->step(fresh, 0.05);
+      EXPECT_LT((a->positions() - b->positions()).cwiseAbs().maxCoeff(), 1e-10) << "change " << c;
+      EXPECT_LT((a->velocities() - b->velocities()).cwiseAbs().maxCoeff(), 1e-10) << "change " << c;
+    }
+  }
+}
