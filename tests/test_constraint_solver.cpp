@@ -25,15 +25,19 @@ using test_support::expectRejected;
 
 namespace {
 
-// Every combination of preconditioner and warm start the settings allow.
+// Every solve method, and every combination of preconditioner and warm start
+// for conjugate gradient.
 struct Variant {
+  SolveMethod method;
   Preconditioner preconditioner;
   bool warmStart;
 };
-const Variant kVariants[] = {{Preconditioner::Jacobi, true},
-                             {Preconditioner::Jacobi, false},
-                             {Preconditioner::None, true},
-                             {Preconditioner::None, false}};
+const Variant kVariants[] = {{SolveMethod::ConjugateGradient, Preconditioner::Jacobi, true},
+                             {SolveMethod::ConjugateGradient, Preconditioner::Jacobi, false},
+                             {SolveMethod::ConjugateGradient, Preconditioner::None, true},
+                             {SolveMethod::ConjugateGradient, Preconditioner::None, false},
+                             {SolveMethod::ConjugateGradient, Preconditioner::IncompleteCholesky, true},
+                             {SolveMethod::Direct, Preconditioner::None, false}};
 
 // A pinned particle with a chain of three rods (squared, root, squared) below
 // it, a bead on a circular wire, a bead on a line, a spring and gravity.
@@ -138,10 +142,12 @@ void expectSolveMatchesDenseSystem(ParticleSystem& system) {
 
 TEST(ConstraintSolver, ConjugateGradientMatchesDenseSolve) {
   for (const Variant& variant : kVariants) {
-    SCOPED_TRACE(testing::Message() << "jacobi " << (variant.preconditioner == Preconditioner::Jacobi)
+    SCOPED_TRACE(testing::Message() << "direct " << (variant.method == SolveMethod::Direct) << ", preconditioner "
+                                    << static_cast<int>(variant.preconditioner)
                                     << ", warm start " << variant.warmStart);
     std::mt19937 rng(7);
     ParticleSystem system = makeMixedSystem();
+    system.solver().settings.method = variant.method;
     system.solver().settings.preconditioner = variant.preconditioner;
     system.solver().settings.warmStart = variant.warmStart;
     system.solver().settings.tolerance = 1e-10;
@@ -167,6 +173,7 @@ TEST(ConstraintSolver, WarmStartAtTheSameStateNeedsNoFurtherIterations) {
   std::mt19937 rng(9);
   for (bool warm : {true, false}) {
     ParticleSystem system = makeMixedSystem();
+    system.solver().settings.method = SolveMethod::ConjugateGradient;  // the direct default has no iterations
     system.solver().settings.warmStart = warm;
     perturb(system, rng);
     VectorXd a;
@@ -214,6 +221,7 @@ TEST(ConstraintSolver, ConstraintOnPinnedParticlesOnlyGivesFiniteResult) {
     system.addConstraint(std::make_unique<RodConstraint>(1, 2, 0.3));
     system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
     system.velocities().segment<2>(4) = Vector2d(1.0, 0.0);
+    system.solver().settings.method = variant.method;
     system.solver().settings.preconditioner = variant.preconditioner;
     system.solver().settings.warmStart = variant.warmStart;
     VectorXd a;
@@ -268,10 +276,12 @@ ParticleSystem makeStraightChainBetweenWires(RodForm form) {
 
 TEST(ConstraintSolver, StraightChainBetweenTwoWiresGivesFiniteSolve) {
   for (const Variant& variant : kVariants) {
-    SCOPED_TRACE(testing::Message() << "jacobi " << (variant.preconditioner == Preconditioner::Jacobi)
+    SCOPED_TRACE(testing::Message() << "direct " << (variant.method == SolveMethod::Direct) << ", preconditioner "
+                                    << static_cast<int>(variant.preconditioner)
                                     << ", warm start " << variant.warmStart);
     for (RodForm form : {RodForm::Squared, RodForm::Root}) {
       ParticleSystem system = makeStraightChainBetweenWires(form);
+      system.solver().settings.method = variant.method;
       system.solver().settings.preconditioner = variant.preconditioner;
       system.solver().settings.warmStart = variant.warmStart;
       // Falling particles make b inconsistent: the wires ask the two ends for

@@ -64,10 +64,11 @@ Scene buildCloth(const ClothParams& p) {
   for (int col = 0; col < p.width; ++col)
     s.addConstraint(std::make_unique<particles::LineConstraint>(id(0, col), topLeft, 0.0));
 
-  // A big wall left of the cloth, from above its middle to below its hem, and
-  // a small nail to the right at a third of its height.
+  // A big wall left of the cloth, from just below the rail to below the hem
+  // of the cloth hanging stretched under its weight (about twice its rest
+  // height at the defaults), and a small nail to the right, near the top.
   particles::Wall wall;
-  wall.min = Eigen::Vector2d(topLeft.x() - 0.9 * L, topLeft.y() - 1.6 * L);
+  wall.min = Eigen::Vector2d(topLeft.x() - 0.9 * L, topLeft.y() - 2.6 * L);
   wall.max = Eigen::Vector2d(topLeft.x() - 0.3 * L, topLeft.y() - 0.3 * L);
   s.addWall(wall);
   particles::Wall nail;

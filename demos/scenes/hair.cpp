@@ -34,7 +34,6 @@ Scene buildHair(const HairParams& p) {
   Scene scene;
   scene.name = "hair";
   scene.dt = 0.002;  // at the defaults midpoint diverges by dt = 0.006 and RK4 by 0.008
-
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

@@ -108,7 +108,7 @@ TEST(DemoCommandLine, MessagesMatchParticleLabs) {
   EXPECT_NE(runDemo(dir, "--scene clot").err.find("particle-demo: unknown scene 'clot' (valid: cloth, hair"),
             std::string::npos);
   EXPECT_NE(runDemo(dir, "--integrator rk5").err.find(
-                "particle-demo: unknown integrator 'rk5' (valid: euler, symplectic-euler, midpoint, rk4)"),
+                "particle-demo: unknown integrator 'rk5' (valid: euler, symplectic-euler, midpoint, rk4, verlet, implicit-euler, adaptive-rk4)"),
             std::string::npos);
 }
 

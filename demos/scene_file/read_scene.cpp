@@ -1,3 +1,4 @@
+// Reading a scene from a JSON scene file (format: demos/scenes/FORMAT.md).
 #include "scene_file/scene_file.h"
 
 #include <algorithm>
@@ -34,13 +35,6 @@ const Codec& codecFor(const JsonNode& node, const std::vector<Codec>& table, con
     if (name == codec.type) return codec;
   type.expected(std::string("a ") + kind + " type (" +
                 joinNames(table, [](const Codec& codec) { return std::string(codec.type); }) + ")");
-}
-
-template <class Codec, class Object>
-Json writeWith(const std::vector<Codec>& table, const Object& object) {
-  for (const Codec& codec : table)
-    if (std::strcmp(codec.type, object.type()) == 0) return codec.write(object);
-  throw std::logic_error(std::string("no scene-file writer for type '") + object.type() + "'");
 }
 
 void readIntegrator(const JsonNode& node, Scene& scene) {
@@ -188,60 +182,6 @@ Scene loadSceneFile(const std::string& path) {
   std::ostringstream text;
   if (!(in && text << in.rdbuf())) throw SceneFileError(path + ": cannot read the file");
   return readScene(text.str(), path);
-}
-
-Json sceneToJson(const Scene& scene) {
-  const particles::ParticleSystem& s = *scene.system;
-  const particles::SolverSettings& solver = s.solver().settings;
-  Json doc;
-  doc["name"] = scene.name;
-  doc["integrator"] = scene.integrator;
-  doc["dt"] = scene.dt;
-  doc["view"] = {{"min", toJson(scene.viewMin)}, {"max", toJson(scene.viewMax)}};
-  doc["solver"] = {{"tolerance", solver.tolerance},
-                   {"maxIterations", solver.maxIterations},
-                   {"stiffness", solver.stiffness},
-                   {"damping", solver.damping},
-                   {"warmStart", solver.warmStart},
-                   {"preconditioner", solver.preconditioner == particles::Preconditioner::None ? "none" : "jacobi"}};
-  doc["particleRestitution"] = s.particleContacts().restitution;
-  doc["particles"] = Json::array();
-  for (int i = 0; i < s.size(); ++i) {
-    Json p = {{"position", toJson(s.position(i))}, {"velocity", toJson(s.velocity(i))}, {"mass", s.masses()[i]}};
-    if (s.pinned(i)) p["pinned"] = true;
-    if (s.collidable(i)) p["radius"] = s.radii()[i];
-    doc["particles"].push_back(std::move(p));
-  }
-  doc["forces"] = Json::array();
-  for (const auto& force : s.forceObjects()) doc["forces"].push_back(writeWith(forceCodecs(), *force));
-  doc["constraints"] = Json::array();
-  for (const auto& constraint : s.constraints()) doc["constraints"].push_back(writeWith(constraintCodecs(), *constraint));
-  doc["walls"] = Json::array();
-  for (const particles::Wall& wall : s.walls())
-    doc["walls"].push_back({{"min", toJson(wall.min)},
-                            {"max", toJson(wall.max)},
-                            {"restitution", wall.restitution},
-                            {"friction", wall.friction}});
-  return doc;
-}
-
-// One top-level field per line, and one line per particle, force, constraint
-// and wall, so that a file reads (and diffs) as a list of objects.
-std::string writeScene(const Scene& scene) {
-  const Json doc = sceneToJson(scene);
-  std::string out = "{";
-  for (auto field = doc.begin(); field != doc.end(); ++field) {
-    out += (field == doc.begin() ? "\n  \"" : ",\n  \"") + field.key() + "\": ";
-    const Json& value = field.value();
-    if (value.is_array() && !value.empty() && value.front().is_object()) {
-      out += "[";
-      for (std::size_t k = 0; k < value.size(); ++k) out += (k ? ",\n    " : "\n    ") + value[k].dump();
-      out += "\n  ]";
-    } else {
-      out += value.dump();
-    }
-  }
-  return out + "\n}\n";
 }
 
 }  // namespace scenes
