@@ -78,11 +78,11 @@ do for [p in problems] {
   set title 'Work-precision: '.p
   set xlabel 'CPU seconds per simulated second'
   set ylabel 'max position error at T'
-  plot for [n in names(data.'/timing_slopes.csv')] f using (strcol(1) eq p && strcol(2) eq n ? positive($5) : NaN):(positive($4)) title n
+  plot for [n in names(data.'/timing_slopes.csv')] f using (strcol(1) eq p && strcol(2) eq n ? positive($6) : NaN):(positive($5)) title n
   set output fig.'/accuracy_order_'.p.'.png'
   set title 'Error against dt: '.p
   set xlabel 'dt (s)'
-  plot for [n in names(data.'/timing_slopes.csv')] f using (strcol(1) eq p && strcol(2) eq n ? $3 : NaN):(positive($4)) title n
+  plot for [n in names(data.'/timing_slopes.csv')] f using (strcol(1) eq p && strcol(2) eq n && $4 == 0 ? $3 : NaN):(positive($5)) title n
 }
 
 # --- extremes --------------------------------------------------------------

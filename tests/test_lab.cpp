@@ -125,7 +125,7 @@ TEST(AccuracyQuick, OscillatorSlopesAreTheIntegratorsOrders) {
   EXPECT_NEAR(slope["euler"], 1.0, 0.3);
   EXPECT_NEAR(slope["midpoint"], 2.0, 0.3);
   EXPECT_NEAR(slope["rk4"], 4.0, 0.3);
-  readCsv(o.outDir + "/accuracy.csv", {"problem", "integrator", "dt", "error", "seconds_per_simulated_second"});
+  readCsv(o.outDir + "/accuracy.csv", {"problem", "integrator", "dt", "tolerance", "error", "seconds_per_simulated_second"});
 }
 
 TEST(TimingQuick, WritesPositiveStepTimesForEveryIntegrator) {
