@@ -119,13 +119,15 @@ unset colorbox
 set key outside right top
 
 f = data.'/extremes_cg_budget.csv'
-set output fig.'/extremes_cg_budget.png'
-set title 'A starved solver: max rod stretch against the CG iteration cap (0 = uncapped)'
 set logscale xy
-set xlabel 'CG iteration cap'
-set ylabel 'max |C|/r'
-tols = system(sprintf("tail -n +2 '%s' | cut -d, -f1 | awk '!seen[$0]++' | tr '\\n' ' '", f))
-plot for [t in tols] f using ($2 > 0 ? $2 : 100):(strcol(1) eq t ? positive($4) : NaN) title 'tol '.t
+set xlabel 'CG iteration cap (uncapped drawn at 100)'
+set ylabel 'max |C|/r over the run (exploded runs end at their explosion)'
+tols = system(sprintf("tail -n +2 '%s' | cut -d, -f2 | awk '!seen[$0]++' | tr '\\n' ' '", f))
+do for [warm in "0 1"] {
+  set output fig.'/extremes_cg_budget_'.(warm eq "1" ? 'warm' : 'cold').'.png'
+  set title 'A starved solver, plain CG, '.(warm eq "1" ? 'warm' : 'cold').' start: rod stretch against the iteration cap'
+  plot for [t in tols] f using ($3 > 0 ? $3 : 100):(strcol(1) eq warm && strcol(2) eq t ? positive($5) : NaN) title 'tol '.t
+}
 
 # --- claims ----------------------------------------------------------------
 f = data.'/claims_cg_iterations.csv'

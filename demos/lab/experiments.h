@@ -7,7 +7,7 @@
 namespace lab {
 
 struct StabilityOptions {
-  double duration = 20.0;  // T, simulated seconds a run must survive
+  double duration = 60.0;  // T, simulated seconds a run must survive
   Explosion explosion;
 };
 int runStability(const LabOptions& options, const StabilityOptions& stability);

@@ -120,26 +120,28 @@ int runExtremes(const LabOptions& options) {
     recordValue(options, "extremes.feedback.duration", general(duration));
   }
 
-  // 4. CG budget: tolerance × iteration cap (RK4, 80-particle chain), with
-  //    plain CG and no warm start so the cap really starves the solve.
+  // 4. CG budget: tolerance × iteration cap (RK4, 80-particle chain), plain
+  //    CG started cold (the cap really starves each solve) and warm.
   {
     const std::vector<double> tolerances = q ? std::vector<double>{1e-2, 1e-8} : logSpace(1e-10, 1e-2, 5);
     const std::vector<int> caps = q ? std::vector<int>{2, 0} : std::vector<int>{1, 2, 5, 10, 20, 50, 0};
     const double duration = q ? 1.0 : 20.0, dt = 0.01;
     Csv csv(options.outDir + "/extremes_cg_budget.csv",
-            {"tolerance", "max_iterations", "survived", "max_relative_stretch", "cg_iterations_per_step"});
+            {"warm_start", "tolerance", "max_iterations", "survived", "max_relative_stretch", "cg_iterations_per_step"});
+    for (bool warm : {false, true})
     for (double tol : tolerances)
       for (int cap : caps) {
         if (interrupted()) break;
         scenes::Scene chain = buildChain({q ? 12 : 80});
         auto& settings = chain.system->solver().settings;
         settings.tolerance = tol;
+        settings.method = particles::SolveMethod::ConjugateGradient;
         settings.maxIterations = cap;
-        settings.warmStart = false;
+        settings.warmStart = warm;
         settings.preconditioner = particles::Preconditioner::None;
         auto stepper = particles::makeIntegrator("rk4");
         const RunResult r = simulate(chain, *stepper, dt, duration, explosion);
-        csv << tol << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.maxRelativeStretch
+        csv << static_cast<long>(warm) << tol << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.maxRelativeStretch
             << static_cast<double>(r.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
         progress.tick();
@@ -182,7 +184,8 @@ int runExtremes(const LabOptions& options) {
   // 6. The taut chain (the seed report's explosion case) under each integrator
   //    and solver budget.
   {
-    const std::vector<int> caps = q ? std::vector<int>{0} : std::vector<int>{5, 20, 0};
+    // CG with an iteration cap (0: uncapped), and −1 for the direct solve.
+    const std::vector<int> caps = q ? std::vector<int>{0, -1} : std::vector<int>{5, 20, 0, -1};
     const double duration = q ? 1.0 : 20.0;
     Csv csv(options.outDir + "/extremes_taut_chain.csv",
             {"integrator", "max_iterations", "survived", "reason", "time", "max_relative_stretch",
@@ -193,7 +196,11 @@ int runExtremes(const LabOptions& options) {
       for (int cap : caps) {
         if (interrupted()) break;
         scenes::Scene taut = scenes::buildScene("taut-chain");
-        taut.system->solver().settings.maxIterations = cap;
+        auto& settings = taut.system->solver().settings;
+        if (cap >= 0) {
+          settings.method = particles::SolveMethod::ConjugateGradient;
+          settings.maxIterations = cap;
+        }
         auto stepper = particles::makeIntegrator(name);
         const RunResult r = simulate(taut, *stepper, taut.dt, duration, explosion);
         csv << name << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.reason << r.time
@@ -206,7 +213,8 @@ int runExtremes(const LabOptions& options) {
       table.push_back(row);
     }
     std::vector<std::string> header{"integrator"};
-    for (int cap : caps) header.push_back(cap ? "CG cap " + std::to_string(cap) : "CG uncapped");
+    for (int cap : caps)
+      header.push_back(cap > 0 ? "CG cap " + std::to_string(cap) : cap == 0 ? "CG uncapped" : "direct LDLT");
     writeTable(options, "extremes_taut_chain", "Taut chain between two wires, T = " + general(duration) + " s",
                header, table);
   }

@@ -85,6 +85,57 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
     }
   }
 
+  // Constraint solvers compared on the test chain under RK4: cost per step, CG
+  // iterations, and the rod stretch they leave after a short run.
+  {
+    struct SolverVariant {
+      const char* name;
+      particles::SolveMethod method;
+      particles::Preconditioner preconditioner;
+      bool warmStart;
+    };
+    using particles::Preconditioner;
+    using particles::SolveMethod;
+    const SolverVariant variants[] = {
+        {"plain CG, cold start", SolveMethod::ConjugateGradient, Preconditioner::None, false},
+        {"Jacobi CG, warm start", SolveMethod::ConjugateGradient, Preconditioner::Jacobi, true},
+        {"incomplete-Cholesky CG", SolveMethod::ConjugateGradient, Preconditioner::IncompleteCholesky, true},
+        {"direct LDLT", SolveMethod::Direct, Preconditioner::None, false},
+    };
+    const std::vector<int> lengths = options.quick ? std::vector<int>{20} : std::vector<int>{80, 500};
+    Csv solvers(options.outDir + "/timing_solvers.csv",
+                {"solver", "chain_length", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& variant : variants) {
+      std::vector<std::string> row{variant.name};
+      for (int cl : lengths) {
+        if (interrupted()) break;
+        auto configure = [&](scenes::Scene& scene) {
+          auto& settings = scene.system->solver().settings;
+          settings.method = variant.method;
+          settings.preconditioner = variant.preconditioner;
+          settings.warmStart = variant.warmStart;
+        };
+        scenes::Scene timed = buildChain({cl});
+        configure(timed);
+        const StepCost cost = measureStepCost(timed, "rk4", timed.dt, timing);
+        scenes::Scene run = buildChain({cl});
+        configure(run);
+        auto rk4 = particles::makeIntegrator("rk4");
+        const RunResult r = simulate(run, *rk4, run.dt, options.quick ? 0.5 : 5.0);
+        solvers << std::string(variant.name) << static_cast<long>(cl) << cost.seconds << cost.cgIterations
+                << r.maxRelativeStretch;
+        solvers.endRow();
+        row.push_back(general(cost.seconds * 1e6, 3) + " µs, " + general(cost.cgIterations / 4.0, 3) + " it, stretch " +
+                      general(r.maxRelativeStretch, 2));
+      }
+      rows.push_back(row);
+    }
+    std::vector<std::string> header{"solver"};
+    for (int cl : lengths) header.push_back("chain " + std::to_string(cl) + ": RK4 step, CG it/solve, max stretch");
+    writeTable(options, "timing_solvers", "Constraint solvers on the test chain (RK4, tolerance 1e-8)", header, rows);
+  }
+
   // Growth: fitted log–log slope of cost against size.
   std::vector<std::vector<std::string>> growth;
   Csv slopes(options.outDir + "/timing_slopes.csv", {"integrator", "chain_slope", "cloth_slope"});
