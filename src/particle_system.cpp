@@ -43,6 +43,13 @@ int ParticleSystem::addParticles(const std::vector<Eigen::Vector2d>& positions,
   return first;
 }
 
+void ParticleSystem::setMass(int i, double mass) {
+  requireIndex("setMass", i, size());
+  requirePositive("particle mass", mass);
+  mass_[i] = mass;
+  if (inverseMass_[i] != 0.0) inverseMass_[i] = 1.0 / mass;
+}
+
 void ParticleSystem::setPinned(int i, bool pin) {
   requireIndex("setPinned", i, size());
   inverseMass_[i] = pin ? 0.0 : 1.0 / mass_[i];
@@ -94,13 +101,17 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
   const Phase s = phase(x, v);
   f_.setZero(x.size());
   for (const auto& force : forces_) force->apply(s, f_);
-  if (!constraints_.empty()) solver_.addConstraintForces(s, constraints_, f_);
+  if (!constraints_.empty()) {
+    solver_.addConstraintForces(s, constraints_, f_);
+    iterationsThisStep_ += solver_.stats().iterations;
+  }
   a.resize(x.size());
   for (int i = 0; i < size(); ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
 }
 
 void ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
+  iterationsThisStep_ = 0;
   // Settings are public fields: check them before anything moves, so a bad
   // value never leaves a step half done.
   solver_.settings.validate();

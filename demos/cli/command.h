@@ -30,5 +30,12 @@ struct Command {
 Command addRunCommand(CLI::App& app);
 Command addListCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
+// The laboratory (cli/lab_commands.cpp).
+Command addStabilityCommand(CLI::App& app);
+Command addTimingCommand(CLI::App& app);
+Command addAccuracyCommand(CLI::App& app);
+Command addExtremesCommand(CLI::App& app);
+Command addClaimsCommand(CLI::App& app);
+Command addRenderReportCommand(CLI::App& app);
 
 }  // namespace cli

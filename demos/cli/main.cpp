@@ -14,6 +14,12 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addRunCommand,
     cli::addListCommand,
     cli::addExportCommand,
+    cli::addStabilityCommand,
+    cli::addTimingCommand,
+    cli::addAccuracyCommand,
+    cli::addExtremesCommand,
+    cli::addClaimsCommand,
+    cli::addRenderReportCommand,
 };
 
 int fail(const std::string& message) {
@@ -27,7 +33,7 @@ int fail(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"particle-lab: run particle-system scenes without a window, list them, export them as JSON"};
+  CLI::App app{"particle-lab: run particle-system scenes without a window, list and export them, and run the laboratory's experiments"};
   app.require_subcommand(1);
   std::vector<cli::Command> commands;
   for (auto add : kCommands) commands.push_back(add(app));

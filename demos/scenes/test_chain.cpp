@@ -15,6 +15,7 @@ void TestChainParams::validate() const {
   particles::requirePositive("mass", mass);
   particles::parseRodForm(rod);
   particles::requireFinite("gravity", gravity);
+  particles::requirePositive("tip-mass-ratio", tipMassRatio);
 }
 
 Scene buildTestChain(const TestChainParams& p) {
@@ -29,6 +30,7 @@ Scene buildTestChain(const TestChainParams& p) {
   const int pin = addRodChain(s, Eigen::Vector2d::Zero(), Eigen::Vector2d(span, 0.0), links, p.mass,
                               particles::parseRodForm(p.rod));
   s.setPinned(pin, true);
+  s.setMass(pin + links, p.tipMassRatio * p.mass);
   addGravity(s, p.gravity);
 
   // The pin at the centre; the chain swings through the lower half.

@@ -14,6 +14,7 @@ struct TestChainParams {
   double mass = 1.0;
   std::string rod = "squared";
   double gravity = 0.05;
+  double tipMassRatio = 1.0;
 
   template <class Visit>
   void visit(Visit&& field) {
@@ -22,6 +23,7 @@ struct TestChainParams {
     field("mass", mass, "mass of each particle");
     field("rod", rod, "rod constraint form: squared (|d|^2 - r^2) or root (|d| - r)");
     field("gravity", gravity, "downward acceleration, world units/s^2");
+    field("tip-mass-ratio", tipMassRatio, "mass of the last particle over the others' (heavy tip on a light chain)");
   }
   void validate() const;
 };

@@ -29,6 +29,8 @@ class ParticleSystem {
   // Adds many particles at rest with one reallocation (large cloths); returns
   // the index of the first.
   int addParticles(const std::vector<Eigen::Vector2d>& positions, const std::vector<double>& masses);
+  // Changes the mass (finite, > 0) of particle i; a pinned particle stays pinned.
+  void setMass(int i, double mass);
   // A pinned particle has inverse mass 0 and never moves; pinning zeroes its velocity.
   void setPinned(int i, bool pinned);
   bool pinned(int i) const { return inverseMass_[i] == 0.0; }
@@ -90,6 +92,8 @@ class ParticleSystem {
   double maxConstraintError() const;          // max violation, world units
   double maxRelativeConstraintError() const;  // max violation / length scale
   const SolveStats& lastSolve() const { return solver_.stats(); }
+  // CG iterations summed over every solve of the last step (an RK4 step solves four times).
+  int cgIterationsLastStep() const { return iterationsThisStep_; }
   bool finite() const;  // every position and velocity finite
   int contactsLastStep() const { return contactsLastStep_; }
 
@@ -104,6 +108,7 @@ class ParticleSystem {
   ConstraintSolver solver_;
   ParticleContacts contacts_;
   int contactsLastStep_ = 0;
+  int iterationsThisStep_ = 0;
 };
 
 }  // namespace particles

@@ -1,0 +1,36 @@
+#pragma once
+// The experiment subcommands of `particle-lab`.
+#include <string>
+
+#include "lab/lab.h"
+
+namespace lab {
+
+struct StabilityOptions {
+  double duration = 60.0;  // T, simulated seconds a run must survive
+  Explosion explosion;
+};
+int runStability(const LabOptions& options, const StabilityOptions& stability);
+
+struct TimingOptions {
+  int repeats = 5;  // timed repeats; the median is reported
+  int steps = 10;   // steps per repeat
+};
+int runTiming(const LabOptions& options, const TimingOptions& timing);
+
+int runAccuracy(const LabOptions& options);
+int runExtremes(const LabOptions& options);
+int runClaims(const LabOptions& options);
+
+// Median wall time of one step (seconds) and mean CG iterations per step of a
+// scene under an integrator: warm-up steps, then `repeats` × `steps` timed
+// steps. A step that leaves the state non-finite is not counted and the
+// scene is restored to its warmed-up state.
+struct StepCost {
+  double seconds = 0.0;
+  double cgIterations = 0.0;
+};
+StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, double dt,
+                         const TimingOptions& timing);
+
+}  // namespace lab

@@ -1,0 +1,176 @@
+// `particle-lab timing`: cost per step against chain length and cloth size for
+// each integrator, and the seed report's Table 3.
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+#include "lab/chain.h"
+#include "lab/experiments.h"
+
+namespace lab {
+
+StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, double dt,
+                         const TimingOptions& timing) {
+  particles::ParticleSystem& system = *scene.system;
+  auto stepper = particles::makeIntegrator(integrator);
+  for (int k = 0; k < 3; ++k) system.step(*stepper, dt);
+  if (!system.finite()) return {std::nan(""), std::nan("")};
+  const particles::Snapshot warm = system.snapshot();
+  std::vector<double> perRepeat;
+  double iterations = 0.0;
+  long counted = 0;
+  using Clock = std::chrono::steady_clock;
+  for (int r = 0; r < timing.repeats; ++r) {
+    double seconds = 0.0;
+    int done = 0;
+    for (int k = 0; k < timing.steps; ++k) {
+      const auto start = Clock::now();
+      system.step(*stepper, dt);
+      const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+      if (!system.finite()) {
+        system.restore(warm);
+        continue;
+      }
+      seconds += elapsed;
+      iterations += system.cgIterationsLastStep();
+      ++done, ++counted;
+    }
+    if (done > 0) perRepeat.push_back(seconds / done);
+  }
+  if (perRepeat.empty()) return {std::nan(""), std::nan("")};
+  return {median(perRepeat), iterations / std::max(1L, counted)};
+}
+
+int runTiming(const LabOptions& options, const TimingOptions& timing) {
+  prepareOutput(options);
+  const auto integrators = selectedIntegrators(options);
+  const std::vector<int> chains = options.quick ? std::vector<int>{10, 20, 40}
+                                                : std::vector<int>{10, 20, 40, 80, 160, 320, 640, 1000};
+  const std::vector<int> cloths = options.quick ? std::vector<int>{4, 8}
+                                                : std::vector<int>{8, 16, 32, 64, 128, 256};
+  Progress progress("timing", static_cast<long>(integrators.size() * (chains.size() + cloths.size() + 2)));
+
+  Csv csv(options.outDir + "/timing.csv",
+          {"scene", "integrator", "particles", "constraints", "springs", "dt", "step_seconds", "cg_iterations_per_step"});
+  std::map<std::string, std::vector<double>> chainN, chainT, clothN, clothT;
+  for (const auto& name : integrators) {
+    for (int cl : chains) {
+      if (interrupted()) break;
+      scenes::Scene chain = buildChain({cl});
+      const StepCost cost = measureStepCost(chain, name, chain.dt, timing);
+      csv << "test-chain" << name << static_cast<long>(cl)
+          << static_cast<long>(chain.system->constraints().size())
+          << static_cast<long>(chain.system->forceObjects().size()) << chain.dt << cost.seconds
+          << cost.cgIterations;
+      csv.endRow();
+      chainN[name].push_back(cl);
+      chainT[name].push_back(cost.seconds);
+      progress.tick();
+    }
+    for (int side : cloths) {
+      if (interrupted()) break;
+      scenes::Scene cloth = scenes::buildScene(
+          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", "8"}});
+      TimingOptions small = timing;
+      if (side >= 128) small.repeats = std::min(timing.repeats, 3), small.steps = std::min(timing.steps, 4);
+      const StepCost cost = measureStepCost(cloth, name, cloth.dt, small);
+      csv << "cloth-8" << name << static_cast<long>(cloth.system->size())
+          << static_cast<long>(cloth.system->constraints().size())
+          << static_cast<long>(cloth.system->forceObjects().size()) << cloth.dt << cost.seconds
+          << cost.cgIterations;
+      csv.endRow();
+      clothN[name].push_back(cloth.system->size());
+      clothT[name].push_back(cost.seconds);
+      progress.tick();
+    }
+  }
+
+  // Constraint solvers compared on the test chain under RK4: cost per step, CG
+  // iterations, and the rod stretch they leave after a short run.
+  {
+    struct SolverVariant {
+      const char* name;
+      particles::SolveMethod method;
+      particles::Preconditioner preconditioner;
+      bool warmStart;
+    };
+    using particles::Preconditioner;
+    using particles::SolveMethod;
+    const SolverVariant variants[] = {
+        {"plain CG, cold start", SolveMethod::ConjugateGradient, Preconditioner::None, false},
+        {"Jacobi CG, warm start", SolveMethod::ConjugateGradient, Preconditioner::Jacobi, true},
+        {"incomplete-Cholesky CG", SolveMethod::ConjugateGradient, Preconditioner::IncompleteCholesky, true},
+        {"direct LDLT", SolveMethod::Direct, Preconditioner::None, false},
+    };
+    const std::vector<int> lengths = options.quick ? std::vector<int>{20} : std::vector<int>{80, 500};
+    Csv solvers(options.outDir + "/timing_solvers.csv",
+                {"solver", "chain_length", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& variant : variants) {
+      std::vector<std::string> row{variant.name};
+      for (int cl : lengths) {
+        if (interrupted()) break;
+        auto configure = [&](scenes::Scene& scene) {
+          auto& settings = scene.system->solver().settings;
+          settings.method = variant.method;
+          settings.preconditioner = variant.preconditioner;
+          settings.warmStart = variant.warmStart;
+        };
+        scenes::Scene timed = buildChain({cl});
+        configure(timed);
+        const StepCost cost = measureStepCost(timed, "rk4", timed.dt, timing);
+        scenes::Scene run = buildChain({cl});
+        configure(run);
+        auto rk4 = particles::makeIntegrator("rk4");
+        const RunResult r = simulate(run, *rk4, run.dt, options.quick ? 0.5 : 5.0);
+        solvers << std::string(variant.name) << static_cast<long>(cl) << cost.seconds << cost.cgIterations
+                << r.maxRelativeStretch;
+        solvers.endRow();
+        row.push_back(general(cost.seconds * 1e6, 3) + " µs, " + general(cost.cgIterations / 4.0, 3) + " it, stretch " +
+                      general(r.maxRelativeStretch, 2));
+      }
+      rows.push_back(row);
+    }
+    std::vector<std::string> header{"solver"};
+    for (int cl : lengths) header.push_back("chain " + std::to_string(cl) + ": RK4 step, CG it/solve, max stretch");
+    writeTable(options, "timing_solvers", "Constraint solvers on the test chain (RK4, tolerance 1e-8)", header, rows);
+  }
+
+  // Growth: fitted log–log slope of cost against size.
+  std::vector<std::vector<std::string>> growth;
+  Csv slopes(options.outDir + "/timing_slopes.csv", {"integrator", "chain_slope", "cloth_slope"});
+  for (const auto& name : integrators) {
+    const double chainSlope = logLogSlope(chainN[name], chainT[name]);
+    const double clothSlope = logLogSlope(clothN[name], clothT[name]);
+    slopes << name << chainSlope << clothSlope;
+    slopes.endRow();
+    growth.push_back({name, fixed(chainSlope, 2), fixed(clothSlope, 2)});
+  }
+  writeTable(options, "timing_growth", "Cost growth: fitted log-log slope of step time against size",
+             {"integrator", "chain (particles)", "8-way cloth (particles)"}, growth);
+
+  // Table 3: ms per step of the 80-particle chain at dt 0.1 and 0.2.
+  const std::map<std::string, std::vector<std::string>> seedTable3 = {
+      {"symplectic-euler", {"2", "2"}}, {"midpoint", {"5", "5"}}, {"rk4", {"10", "9"}}};
+  std::vector<std::vector<std::string>> table3;
+  Csv table3Csv(options.outDir + "/table3_step_cost.csv", {"integrator", "dt", "step_ms", "cg_iterations_per_step"});
+  for (const auto& name : integrators) {
+    std::vector<std::string> row{name};
+    for (double dt : {0.1, 0.2}) {
+      scenes::Scene chain = buildChain({80});
+      const StepCost cost = measureStepCost(chain, name, dt, timing);
+      table3Csv << name << dt << cost.seconds * 1e3 << cost.cgIterations;
+      table3Csv.endRow();
+      row.push_back(std::isfinite(cost.seconds) ? general(cost.seconds * 1e3, 3) : "diverges");
+    }
+    const auto seed = seedTable3.find(name);
+    for (int k = 0; k < 2; ++k) row.push_back(seed != seedTable3.end() ? seed->second[k] : "–");
+    table3.push_back(row);
+    progress.tick(2);
+  }
+  writeTable(options, "table3", "Table 3: milliseconds per step, 80-particle chain",
+             {"integrator", "dt 0.1", "dt 0.2", "seed dt 0.1", "seed dt 0.2"}, table3);
+  return interrupted() ? 130 : 0;
+}
+
+}  // namespace lab

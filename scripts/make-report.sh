@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Regenerates every CSV, table and figure of report/ and renders report/README.md.
+#   bash scripts/make-report.sh          full experiments (about 15 minutes on 2 cores)
+#   bash scripts/make-report.sh --quick  the CI-sized versions, to check the pipeline
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mode=()
+if [ "${1:-}" = "--quick" ]; then mode=(--quick); fi
+bash scripts/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build -j"$(nproc)" --target particle-lab
+lab=./build/demos/particle-lab
+data=report/data
+mkdir -p "$data" report/figures
+rm -f "$data"/*.csv "$data"/*.md
+
+value() { printf '%s,%s\n' "$1" "$2" >> "$data/values.csv"; }
+printf 'key,value\n' > "$data/values.csv"
+value machine.cpu "$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+value machine.cores "$(nproc)"
+value machine.compiler "$(c++ --version | head -n 1)"
+value machine.date "$(date -u +%Y-%m-%d)"
+
+for experiment in stability timing accuracy extremes claims; do
+  echo "== particle-lab $experiment ${mode[*]}" >&2
+  "$lab" "$experiment" "${mode[@]}" --out "$data" > "$data/$experiment.log"
+done
+
+gnuplot -e "data='$data'; fig='report/figures'" report/plots.gp
+"$lab" render-report --template report/template.md --data "$data" --out report/README.md
+echo "report/README.md regenerated" >&2
