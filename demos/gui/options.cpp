@@ -56,10 +56,10 @@ DemoOptions parseOptions(int argc, char** argv) {
   cli.add_flag("--paused", o.startPaused, "start paused");
   cli.add_flag("--realtime", o.realtime, "with --script or --frames: keep to 60 frames per second instead of running flat out");
   cli.add_option("--window", window, "window size WIDTHxHEIGHT in pixels (default 1180x760)");
-  cli.add_option("--script", o.script, "timed input events to play (see docs/demo-script.md)");
+  cli.add_option("--script", o.script, "timed input events to play (see demos/gui/SCRIPTING.md)");
   auto* framesOption = cli.add_option("--frames", frames, "exit after this many frames");
   cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
-  cli.add_option("--log-state", o.logState, "write the state at exit to this file (see docs/demo-script.md)");
+  cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
