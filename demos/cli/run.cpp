@@ -19,6 +19,7 @@ namespace {
 struct RunOptions {
   SceneSource source;
   std::string integrator;  // empty: the scene's own
+  particles::IntegratorSettings integratorSettings;  // --tolerance
   double dt = 0.0;
   CLI::Option* dtOption = nullptr;  // not given: the scene's own dt
   long long steps = 0;
@@ -37,7 +38,7 @@ int run(const RunOptions& o) {
   // Check every input before the first output.
   scenes::Scene scene = o.source.load();
   const std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
-  const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName);
+  const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName, o.integratorSettings);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;
   particles::requirePositive("--dt", dt);
   if (o.steps < 0) throw UsageError("--steps must be >= 0, got " + std::to_string(o.steps));
@@ -81,6 +82,9 @@ Command addRunCommand(CLI::App& app) {
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
                   "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
+  sub->add_option("--tolerance", options->integratorSettings.tolerance,
+                  "local error tolerance of adaptive-rk4 (ignored by fixed-step integrators)")
+      ->capture_default_str();
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
   sub->add_option("--steps", options->steps, "number of steps, >= 0")->required();
   sub->add_option("--csv", options->csvPath,

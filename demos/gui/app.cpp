@@ -66,6 +66,9 @@ App::App(DemoOptions options)
   const double dt = options_.dt.value_or(scene.dt);
   scene_ = first;
   panes_.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
+  particles::IntegratorSettings integratorSettings;
+  integratorSettings.tolerance = options_.tolerance;
+  panes_.front()->setIntegratorSettings(integratorSettings);
   if (!options_.compare.empty()) {
     // Each entry is an integrator, optionally with its own dt: "rk4" or "rk4:0.02".
     std::vector<std::pair<int, double>> settings;
@@ -227,6 +230,7 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
                                                     : integratorIndexByName(scene.integrator);
     const double dt = scene.dt;
     fresh.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
+    fresh.back()->setIntegratorSettings(panes_[k]->integratorSettings());
   }
   panes_ = std::move(fresh);
   scene_ = choice;
@@ -237,7 +241,10 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
 void App::resetScene() {
   std::vector<std::unique_ptr<Simulation>> fresh;
   for (const auto& pane : panes_)
+  {
     fresh.push_back(std::make_unique<Simulation>(buildChoice(scene_), pane->integratorIndex(), pane->dt()));
+    fresh.back()->setIntegratorSettings(pane->integratorSettings());
+  }
   panes_ = std::move(fresh);
   tool_ = MouseTool::None;
   paused_ = false;
@@ -254,6 +261,7 @@ void App::setPaneCount(int count) {
     auto pane = std::make_unique<Simulation>(buildChoice(scene_), (first.integratorIndex() + k) % tableSize,
                                              first.dt());
     pane->copyStateFrom(first);
+    pane->setIntegratorSettings(first.integratorSettings());
     fresh.push_back(std::move(pane));
   }
   fresh.front()->release();

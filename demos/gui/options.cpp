@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "particles/check.h"
+#include "particles/integrator.h"
 
 namespace demo {
 
@@ -58,6 +59,7 @@ DemoOptions parseOptions(int argc, char** argv) {
   cli.add_option("--window", window, "window size WIDTHxHEIGHT in pixels (default 1180x760)");
   cli.add_option("--script", o.script, "timed input events to play (see demos/gui/SCRIPTING.md)");
   auto* framesOption = cli.add_option("--frames", frames, "exit after this many frames");
+  cli.add_option("--tolerance", o.tolerance, "local error tolerance of adaptive-rk4")->capture_default_str();
   cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
   cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
   try {
@@ -74,6 +76,13 @@ DemoOptions parseOptions(int argc, char** argv) {
     o.params[p.substr(0, eq)] = p.substr(eq + 1);
   }
   if (*integratorOption) o.integrator = integrator;
+  try {
+    particles::IntegratorSettings settings;
+    settings.tolerance = o.tolerance;
+    settings.validate();
+  } catch (const std::invalid_argument& e) {
+    badUsage(std::string("--tolerance: ") + e.what());
+  }
   if (*dtOption) {
     try {
       particles::requirePositive("--dt", dt);  // the same message as particle-lab's

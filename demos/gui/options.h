@@ -13,6 +13,7 @@ struct DemoOptions {
   std::map<std::string, std::string> params;    // --param key=value
   std::optional<std::string> integrator;        // default: the scene's
   std::optional<double> dt;                     // default: the scene's
+  double tolerance = 1e-6;                      // --tolerance: adaptive-rk4's local error tolerance
   std::vector<std::string> compare;             // --compare euler,rk4: start in compare mode
   bool lockstep = false;
   bool hidePanel = false;

@@ -146,6 +146,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
       const double best = it != maxDt[name].end() ? it->second
                                                    : prober.maxStep(name, cl, so.duration, dtLo, dtHi, rounds);
       row2.push_back(best <= 0.0 ? "< 0.001" : best >= dtHi ? "≥ 0.5" : general(best, 2));
+      recordValue(options, "stability.max_dt." + name + ".cl" + std::to_string(cl), row2.back());
     }
     const auto seed2 = seedTable2.find(name);
     for (int k = 0; k < 3; ++k) row2.push_back(seed2 != seedTable2.end() ? seed2->second[k] : "–");

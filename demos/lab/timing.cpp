@@ -74,13 +74,18 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
       TimingOptions small = timing;
       if (side >= 128) small.repeats = std::min(timing.repeats, 3), small.steps = std::min(timing.steps, 4);
       const StepCost cost = measureStepCost(cloth, name, cloth.dt, small);
+      recordValue(options, "timing.cloth" + std::to_string(side) + "." + name + "_ms", general(cost.seconds * 1e3, 3));
       csv << "cloth-8" << name << static_cast<long>(cloth.system->size())
           << static_cast<long>(cloth.system->constraints().size())
           << static_cast<long>(cloth.system->forceObjects().size()) << cloth.dt << cost.seconds
           << cost.cgIterations;
       csv.endRow();
-      clothN[name].push_back(cloth.system->size());
-      clothT[name].push_back(cost.seconds);
+      // The growth slope is fitted from 32×32 up, past the sizes where fixed
+      // per-step overheads dominate.
+      if (options.quick || side >= 32) {
+        clothN[name].push_back(cloth.system->size());
+        clothT[name].push_back(cost.seconds);
+      }
       progress.tick();
     }
   }
@@ -106,6 +111,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
     Csv solvers(options.outDir + "/timing_solvers.csv",
                 {"solver", "chain_length", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
     std::vector<std::vector<std::string>> rows;
+    std::map<std::string, std::map<int, double>> solverCost;
     for (const auto& variant : variants) {
       std::vector<std::string> row{variant.name};
       for (int cl : lengths) {
@@ -126,6 +132,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
         solvers << std::string(variant.name) << static_cast<long>(cl) << cost.seconds << cost.cgIterations
                 << r.maxRelativeStretch;
         solvers.endRow();
+        solverCost[variant.name][cl] = cost.seconds;
         row.push_back(general(cost.seconds * 1e6, 3) + " µs, " + general(cost.cgIterations / 4.0, 3) + " it, stretch " +
                       general(r.maxRelativeStretch, 2));
       }
@@ -133,6 +140,13 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
     }
     std::vector<std::string> header{"solver"};
     for (int cl : lengths) header.push_back("chain " + std::to_string(cl) + ": RK4 step, CG it/solve, max stretch");
+    for (int cl : lengths) {
+      const std::string key = "timing.solvers.chain" + std::to_string(cl);
+      recordValue(options, key + ".direct_us", general(solverCost["direct LDLT"][cl] * 1e6, 3));
+      recordValue(options, key + ".plain_cg_us", general(solverCost["plain CG, cold start"][cl] * 1e6, 3));
+      recordValue(options, key + ".plain_cg_over_direct",
+                  general(solverCost["plain CG, cold start"][cl] / solverCost["direct LDLT"][cl], 3));
+    }
     writeTable(options, "timing_solvers", "Constraint solvers on the test chain (RK4, tolerance 1e-8)", header, rows);
   }
 
@@ -145,8 +159,10 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
     slopes << name << chainSlope << clothSlope;
     slopes.endRow();
     growth.push_back({name, fixed(chainSlope, 2), fixed(clothSlope, 2)});
+    recordValue(options, "timing.slope.cloth." + name, fixed(clothSlope, 2));
   }
-  writeTable(options, "timing_growth", "Cost growth: fitted log-log slope of step time against size",
+  writeTable(options, "timing_growth", options.quick ? "Cost growth: fitted log-log slope of step time against size"
+                                         : "Cost growth: fitted log-log slope of step time against size (chain 10-1000, cloth 32x32-256x256)",
              {"integrator", "chain (particles)", "8-way cloth (particles)"}, growth);
 
   // Table 3: ms per step of the 80-particle chain at dt 0.1 and 0.2.

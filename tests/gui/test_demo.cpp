@@ -83,7 +83,7 @@ TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
   const std::string dir = outputDirectory("BadValues");
   std::ofstream(dir + "/bad-script.txt") << "0 key r\n5 jump world 0 0\n";
   const std::vector<std::string> cases = {
-      "--scene no-such-scene",     "--integrator no-such-integrator", "--dt -1",  "--dt 0", "--dt nan",
+      "--scene no-such-scene",     "--integrator no-such-integrator", "--dt -1",  "--dt 0", "--dt nan", "--tolerance -1", "--tolerance nan",
       "--dt abc",                  "--frames 0",                      "--frames x",
       "--param links=3",           "--param nosuch=1",                "--param links",
       "--compare euler",           "--compare euler,nosuch", "--compare rk4:0,rk4", "--compare rk4:x,euler",          "--window 10x10",
@@ -105,6 +105,7 @@ TEST(DemoCommandLine, MessagesMatchParticleLabs) {
   const std::string dir = outputDirectory("Messages");
   EXPECT_EQ(runDemo(dir, "--dt nan").err, "particle-demo: --dt must be > 0, got nan\n");
   EXPECT_EQ(runDemo(dir, "--dt 0").err, "particle-demo: --dt must be > 0, got 0\n");
+  EXPECT_EQ(runDemo(dir, "--tolerance 0").err, "particle-demo: --tolerance: integrator tolerance must be > 0, got 0\n");
   EXPECT_NE(runDemo(dir, "--scene clot").err.find("particle-demo: unknown scene 'clot' (valid: cloth, hair"),
             std::string::npos);
   std::string names;
