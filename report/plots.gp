@@ -106,6 +106,7 @@ unset logscale
 set logscale x
 set logscale y
 set logscale cb
+set format cb '10^{%L}'
 set xlabel 'feedback k_s'
 set ylabel 'feedback k_d'
 set colorbox
