@@ -50,6 +50,9 @@ class SolveCounter : public Force {
     ++solves;
     iterations += solver_.stats().iterations;
   }
+  // It adds no force, so its Jacobians are exactly zero (implicit schemes ask).
+  bool hasJacobians() const override { return true; }
+  void addJacobians(const Phase&, Triplets&, Triplets&) const override {}
   mutable long solves = 0, iterations = 0;
 
  private:
