@@ -54,6 +54,7 @@ int runExtremes(const LabOptions& options) {
                                               {"links", "8"}, {"stiffness", general(ks, 6)}});
         };
         const double dt = maxStableStep(build, name, duration, lo, hi, rounds, explosion, progress);
+        if (interrupted()) break;  // a bisection cut short is not a measurement
         csv << name << ks << dt;
         csv.endRow();
         row.push_back(stepText(dt, lo, hi));
@@ -163,6 +164,7 @@ int runExtremes(const LabOptions& options) {
         ChainSpec spec{q ? 6 : 24, form};
         const double dt = maxStableStep([&] { return buildChain(spec); }, name, duration, lo, hi, rounds,
                                         explosion, progress);
+        if (interrupted()) break;
         ChainSpec big{q ? 12 : 80, form};
         scenes::Scene chain = buildChain(big);
         const StepCost cost = measureStepCost(chain, name, chain.dt, {q ? 1 : 5, q ? 5 : 20});

@@ -43,7 +43,7 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
   const double bound = result.energyStart + explosion.energyGain * energyScale(system);
   const long steps = std::lround(duration / dt);
   using Clock = std::chrono::steady_clock;
-  for (long k = 0; k < steps; ++k) {
+  for (long k = 0; k < steps && !interrupted(); ++k) {
     const auto start = Clock::now();
     system.step(integrator, dt);
     result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
@@ -97,6 +97,7 @@ double bisectStep(const std::function<bool(double)>& survives, double lo, double
       hi = mid;
     }
   }
+  if (interrupted()) return 0.0;  // cut short: the caller discards it
   if (!found) return survives(bottom) ? bottom : 0.0;
   return lo;
 }

@@ -46,7 +46,8 @@ struct RunResult {
 };
 
 // Steps the scene with the integrator for `duration` simulated seconds,
-// stopping at the first explosion. `observe` (optional) runs after each step.
+// stopping at the first explosion (or at an interrupt: callers then discard
+// the result). `observe` (optional) runs after each step.
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const Explosion& explosion = {},
                    const std::function<void(const particles::ParticleSystem&)>& observe = {});

@@ -96,6 +96,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
     for (int cl : lengths) {
       if (interrupted()) break;
       const double best = prober.maxStep(name, cl, so.duration, dtLo, dtHi, rounds);
+      if (interrupted()) break;  // a bisection cut short is not a measurement
       maxDt[name][cl] = best;
       boundary << name << cl << so.duration << best << best * toDimensionless;
       boundary.endRow();
@@ -114,6 +115,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
     for (double duration : durations) {
       if (interrupted()) break;
       const double best = prober.maxStep(name, sweepLength, duration, dtLo, dtHi, rounds);
+      if (interrupted()) break;
       sweep << name << sweepLength << duration << best << best * toDimensionless;
       sweep.endRow();
     }
@@ -132,6 +134,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
     for (double dt : tableSteps) {
       if (interrupted()) break;
       const int longest = prober.maxLength(name, dt, so.duration, maxChain);
+      if (interrupted()) break;
       table1Csv << name << dt << static_cast<long>(longest);
       table1Csv.endRow();
       row.push_back(longest >= maxChain ? "≥ " + std::to_string(maxChain) : std::to_string(longest));
@@ -152,6 +155,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
     for (int k = 0; k < 3; ++k) row2.push_back(seed2 != seedTable2.end() ? seed2->second[k] : "–");
     table2.push_back(row2);
   }
+  if (interrupted()) return 130;  // the tables would mix measured and cut-short entries
   writeTable(options, "table1", "Table 1: longest chain that survives T = " + general(so.duration) + " s",
              {"integrator", "dt 0.2", "dt 0.1", "dt 0.05", "seed dt 0.2", "seed dt 0.1", "seed dt 0.05"},
              table1);
