@@ -161,6 +161,7 @@ void prepareOutput(const LabOptions& options) { std::filesystem::create_director
 void writeTable(const LabOptions& options, const std::string& name, const std::string& title,
                 const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
   std::ostringstream md;
+  md << "*" << title << "*\n\n";
   auto line = [&](const std::vector<std::string>& cells) {
     md << '|';
     for (const auto& c : cells) md << ' ' << c << " |";
@@ -172,7 +173,7 @@ void writeTable(const LabOptions& options, const std::string& name, const std::s
   md << '\n';
   for (const auto& row : rows) line(row);
   std::ofstream(options.outDir + "/" + name + ".md") << md.str();
-  std::cout << "\n" << title << "\n\n" << md.str() << std::flush;
+  std::cout << "\n" << md.str() << std::flush;
 }
 
 void recordValue(const LabOptions& options, const std::string& key, const std::string& value) {

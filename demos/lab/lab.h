@@ -94,7 +94,7 @@ class Csv {
   std::size_t columns_, cell_ = 0;
 };
 
-// Writes a Markdown table (also printed to stdout) to DIR/NAME.md.
+// Writes a Markdown table under its title in italics (also printed to stdout) to DIR/NAME.md.
 void writeTable(const LabOptions& options, const std::string& name, const std::string& title,
                 const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 
