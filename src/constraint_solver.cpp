@@ -116,7 +116,7 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
       incompleteCholeskyUsable_ = incompleteCholesky_->info() == Eigen::Success &&
                                   incompleteCholesky_->matrixL().diagonal().cwiseAbs2().minCoeff() > 1e-10;
     }
-    stats_.iterations = conjugateGradient(residual);
+    stats_.iterations = conjugateGradient(dead, residual);
   }
   stats_.residual = residual;
   if (!lambda_.allFinite()) lambda_.setZero();  // never hand NaN to the integrator
@@ -131,7 +131,7 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
 // are removed from the system with λ = 0. When A loses rank (a taut chain
 // between two wires) b may have a part outside A's range; CG then meets a
 // direction with pᵀAp ≈ 0, and stops there with the finite λ it has.
-int ConstraintSolver::conjugateGradient(double& relativeResidual) {
+int ConstraintSolver::conjugateGradient(double dead, double& relativeResidual) {
   const int m = static_cast<int>(b_.size());
   const Preconditioner preconditioner =
       settings.preconditioner == Preconditioner::IncompleteCholesky && !incompleteCholeskyUsable_
@@ -139,7 +139,6 @@ int ConstraintSolver::conjugateGradient(double& relativeResidual) {
           : settings.preconditioner;
   permuted_.resize(m);
   const double diagMax = diagonal_.size() ? diagonal_.maxCoeff() : 0.0;
-  const double dead = 1e-14 * diagMax;  // a diagonal this small is treated as zero
   auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
     if (preconditioner == Preconditioner::IncompleteCholesky) {
       // The factor is of the permuted matrix (see assemble()).
@@ -154,7 +153,6 @@ int ConstraintSolver::conjugateGradient(double& relativeResidual) {
       z[k] = diagonal_[k] <= dead ? 0.0
                                   : (preconditioner == Preconditioner::Jacobi ? r[k] / diagonal_[k] : r[k]);
   };
-  auto apply = [&](const Eigen::VectorXd& y, Eigen::VectorXd& out) { applyOperator(y, out); };
   for (int k = 0; k < m; ++k)
     if (diagonal_[k] <= dead) lambda_[k] = 0.0, b_[k] = 0.0;
 
@@ -164,7 +162,7 @@ int ConstraintSolver::conjugateGradient(double& relativeResidual) {
     relativeResidual = 0.0;
     return 0;
   }
-  apply(lambda_, Ap_);
+  applyOperator(lambda_, Ap_);
   r_ = b_ - Ap_;
   precondition(r_, z_);
   p_ = z_;
@@ -173,7 +171,7 @@ int ConstraintSolver::conjugateGradient(double& relativeResidual) {
   const double target = settings.tolerance * bNorm;
   int it = 0;
   while (it < cap && r_.norm() > target) {
-    apply(p_, Ap_);
+    applyOperator(p_, Ap_);
     const double pAp = p_.dot(Ap_);
     if (!(pAp > 1e-14 * diagMax * p_.squaredNorm())) break;  // no curvature left
     const double alpha = rz / pAp;

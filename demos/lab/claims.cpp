@@ -71,14 +71,8 @@ int runClaims(const LabOptions& options) {
     const int cl = q ? 6 : 24;
     const double duration = q ? 2.0 : 20.0;
     auto maxStep = [&](const std::string& name) {
-      return bisectStep(
-          [&](double dt) {
-            scenes::Scene chain = buildChain({cl});
-            auto stepper = particles::makeIntegrator(name);
-            progress.tick();
-            return !simulate(chain, *stepper, dt, duration, explosion).exploded;
-          },
-          1e-3, 0.5, q ? 4 : 8);
+      return maxStableStep([&] { return buildChain({cl}); }, name, duration, 1e-3, 0.5, q ? 4 : 8, explosion,
+                           progress);
     };
     const double dtRk4 = maxStep("rk4"), dtMid = maxStep("midpoint");
     recordValue(options, "claims.rk4_midpoint_cost_ratio", fixed(rk4 / mid, 2));

@@ -11,20 +11,6 @@ namespace lab {
 
 namespace {
 
-// Largest dt in [lo, hi] (log bisection) at which `build()` survives T.
-template <class Build>
-double maxStableStep(Build build, const std::string& integrator, double duration, double lo,
-                     double hi, int rounds, const Explosion& explosion, Progress& progress) {
-  return bisectStep(
-      [&](double dt) {
-        scenes::Scene scene = build();
-        auto stepper = particles::makeIntegrator(integrator);
-        progress.tick();
-        return !simulate(scene, *stepper, dt, duration, explosion).exploded;
-      },
-      lo, hi, rounds);
-}
-
 std::string stepText(double dt, double lo, double hi) {
   return dt <= 0.0 ? "< " + general(lo) : dt >= hi ? "≥ " + general(hi) : general(dt, 2);
 }

@@ -102,6 +102,19 @@ double bisectStep(const std::function<bool(double)>& survives, double lo, double
   return lo;
 }
 
+double maxStableStep(const std::function<scenes::Scene()>& build, const std::string& integrator,
+                     double duration, double lo, double hi, int rounds, const Explosion& explosion,
+                     Progress& progress) {
+  return bisectStep(
+      [&](double dt) {
+        scenes::Scene scene = build();
+        auto stepper = particles::makeIntegrator(integrator);
+        progress.tick();
+        return !simulate(scene, *stepper, dt, duration, explosion).exploded;
+      },
+      lo, hi, rounds);
+}
+
 std::vector<double> logSpace(double lo, double hi, int count) {
   std::vector<double> values(count);
   for (int k = 0; k < count; ++k)

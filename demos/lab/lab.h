@@ -117,6 +117,12 @@ class Progress {
   std::chrono::steady_clock::time_point start_, lastPrint_;
 };
 
+// Largest dt in [lo, hi] at which a freshly built scene survives `duration`
+// under the integrator (bisectStep over fresh runs); each run ticks `progress`.
+double maxStableStep(const std::function<scenes::Scene()>& build, const std::string& integrator,
+                     double duration, double lo, double hi, int rounds, const Explosion& explosion,
+                     Progress& progress);
+
 // Set by SIGINT/SIGTERM once installInterruptHandler() ran; loops stop early.
 void installInterruptHandler();
 bool interrupted();

@@ -75,7 +75,8 @@ class ConstraintSolver {
  private:
   using SparseMatrix = Eigen::SparseMatrix<double>;
   void gather(const Phase& s, const ConstraintList& constraints);
-  int conjugateGradient(double& relativeResidual);
+  // Rows whose diagonal is at most `dead` are removed with λ = 0.
+  int conjugateGradient(double dead, double& relativeResidual);
   // Upper triangle of P (J W Jᵀ) Pᵀ into assembled_ (P an AMD ordering), re-analysing the pattern only
   // when the constraint structure changed; dead rows get a unit diagonal.
   void assemble(double dead);
