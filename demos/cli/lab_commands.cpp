@@ -5,6 +5,7 @@
 #include "cli/command.h"
 #include "lab/experiments.h"
 #include "lab/render.h"
+#include "output_file.h"
 #include "particles/check.h"
 
 namespace cli {
@@ -26,6 +27,8 @@ int experiment(const std::function<int()>& run) {
   lab::installInterruptHandler();
   try {
     return run();
+  } catch (const scenes::WriteError&) {
+    throw;  // exit 4, not a bad option
   } catch (const std::runtime_error& e) {  // an output file that cannot be written
     throw UsageError(e.what());
   }

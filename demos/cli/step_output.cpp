@@ -13,12 +13,35 @@ bool diverged(const particles::ParticleSystem& s) {
   return !std::isfinite(s.positions().squaredNorm()) || !std::isfinite(s.velocities().squaredNorm());
 }
 
-void writeDiagnostics(std::ostream& out, long long step, const particles::ParticleSystem& s, double stepMicros) {
-  const double kinetic = s.kineticEnergy(), potential = s.potentialEnergy();
-  out << step << ',' << formatNumber(s.time()) << ',' << formatNumber(kinetic) << ',' << formatNumber(potential)
-      << ',' << formatNumber(kinetic + potential) << ',' << formatNumber(s.maxConstraintError()) << ','
-      << s.lastSolve().iterations << ',' << formatNumber(s.lastSolve().residual) << ','
-      << formatNumber(stepMicros) << '\n';
+Diagnostics measure(const particles::ParticleSystem& s) {
+  Diagnostics d;
+  d.time = s.time();
+  d.kinetic = s.kineticEnergy();
+  d.potential = s.potentialEnergy();
+  d.maxConstraintError = s.maxConstraintError();
+  d.cgIterations = s.lastSolve().iterations;
+  d.cgResidual = s.lastSolve().residual;
+  return d;
+}
+
+std::string nonFinite(const Diagnostics& d) {
+  const std::pair<const char*, double> values[] = {
+      {"the time", d.time},
+      {"the kinetic energy", d.kinetic},
+      {"the potential energy", d.potential},
+      {"the total energy", d.kinetic + d.potential},
+      {"the constraint error", d.maxConstraintError},
+      {"the constraint solve's residual (the solve for lambda failed)", d.cgResidual},
+  };
+  for (const auto& [name, value] : values)
+    if (!std::isfinite(value)) return std::string(name) + " is not finite";
+  return {};
+}
+
+void writeDiagnostics(std::ostream& out, long long step, const Diagnostics& d, double stepMicros) {
+  out << step << ',' << formatNumber(d.time) << ',' << formatNumber(d.kinetic) << ',' << formatNumber(d.potential)
+      << ',' << formatNumber(d.kinetic + d.potential) << ',' << formatNumber(d.maxConstraintError) << ','
+      << d.cgIterations << ',' << formatNumber(d.cgResidual) << ',' << formatNumber(stepMicros) << '\n';
 }
 
 void writeTrajectory(std::ostream& out, long long step, const particles::ParticleSystem& s) {
