@@ -5,7 +5,7 @@
 #                   (unless EXPECT_EXIT is 0)
 #   CSV             a --csv file that must be complete: a header of 9 columns and
 #                   rows of 9, the last ended by a newline; with a divergence on
-#                   stderr, the last row is the step before it.
+#                   stderr, the last row is the step before it; every number is finite.
 string(REPLACE "|" ";" ARGS "${ARGS}")
 execute_process(COMMAND ${PROGRAM} ${ARGS} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(context "particle-lab ${ARGS}\nexit ${code}\nstdout: ${out}\nstderr: ${err}")
@@ -43,6 +43,9 @@ if(DEFINED CSV)
       message(FATAL_ERROR "${CSV}: row '${row}' does not have 9 columns")
     endif()
   endforeach()
+  if(csv MATCHES "[nN][aA][nN]|[iI][nN][fF]")
+    message(FATAL_ERROR "${CSV} holds a non-finite number")
+  endif()
   list(LENGTH rows count)
   if(count LESS 2)
     message(FATAL_ERROR "${CSV} has no rows")
