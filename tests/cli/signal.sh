@@ -7,8 +7,8 @@ PROGRAM=$1 DATA=$2 WORK=$3
 source "$(dirname "$0")/common.sh"
 rm -rf "$WORK" && mkdir -p "$WORK"
 particles=1600  # the 40x40 cloth
-for signal in INT TERM INT TERM INT TERM; do
-  for delay in 0 0.05 0.13; do
+for signal in INT TERM; do
+  for delay in 0 0.02 0.05 0.13; do
     name="$signal-after-$delay"
     csv="$WORK/$name.csv" trajectory="$WORK/$name.trajectory.csv"
     "$PROGRAM" run --scene cloth --param width=40 --param height=40 --steps 100000000 \
