@@ -55,6 +55,8 @@ int run(const RunOptions& o) {
   lab::installInterruptHandler();
 
   particles::ParticleSystem& s = *scene.system;
+  const particles::DivergenceLimits limits = runnerDivergenceLimits();
+  const double initialEnergy = s.totalEnergy();
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };
@@ -64,32 +66,30 @@ int run(const RunOptions& o) {
     if (trajectory) trajectory->close();
     return code;
   };
-  const Diagnostics initial = measure(s);
-  if (const std::string reason = nonFinite(initial); !reason.empty()) {
+  if (const std::string reason = nonFiniteDiagnostics(s); !reason.empty()) {
     diverge(0, reason);
     return finish(kDiverged);
   }
-  if (csv) writeDiagnostics(csv->stream(), 0, initial, 0.0);
+  if (csv) writeDiagnostics(csv->stream(), 0, s, 0.0);
   if (trajectory) writeTrajectory(trajectory->stream(), 0, s);
   using Clock = std::chrono::steady_clock;
   Clock::duration simulated{};
   long long done = 0;
   for (long long step = 1; step <= o.steps && !lab::interrupted(); ++step) {
     const Clock::time_point start = Clock::now();
-    s.step(*integrator, dt);
+    const particles::StepStats stats = s.step(*integrator, dt);
     const Clock::duration elapsed = Clock::now() - start;
     simulated += elapsed;
-    if (diverged(s)) {
-      diverge(step, "the positions or velocities are no longer finite (|q|^2 or |v|^2 overflows)");
+    if (const particles::Divergence d = particles::checkDivergence(s, limits, initialEnergy, stats)) {
+      diverge(step, d.message());
       return finish(kDiverged);
     }
-    const Diagnostics d = measure(s);
-    if (const std::string reason = nonFinite(d); !reason.empty()) {
+    if (const std::string reason = nonFiniteDiagnostics(s); !reason.empty()) {
       diverge(step, reason);
       return finish(kDiverged);
     }
     if (csv) {
-      writeDiagnostics(csv->stream(), step, d, std::chrono::duration<double, std::micro>(elapsed).count());
+      writeDiagnostics(csv->stream(), step, s, std::chrono::duration<double, std::micro>(elapsed).count());
       csv->check();
     }
     if (trajectory && step % o.every == 0) {
@@ -129,8 +129,11 @@ Command addRunCommand(CLI::App& app) {
       ->check(decimalInteger(0, kMaxSteps));
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
-                  "max_constraint_error,cg_iterations,cg_residual,step_us (step_us: wall time of the step's "
-                  "simulation, output excluded)");
+                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
+                  "(cg_iterations: summed over every solve of the step; cg_residual: the largest relative "
+                  "residual of them; solves: linear solves; force_evaluations: evaluations of every force; "
+                  "internal_steps: accepted steps of an adaptive scheme, 1 otherwise; step_us: wall time of "
+                  "the step's simulation, output excluded)");
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
@@ -138,12 +141,13 @@ Command addRunCommand(CLI::App& app) {
       ->check(decimalInteger(1, kMaxSteps));
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
-      "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state or its\n"
-      "diagnostics became non-finite (|q|^2 or |v|^2 overflows, a failed constraint solve): the run stops,\n"
-      "stderr names the step, time and reason, and the CSV holds every step before it; 4 an output file\n"
-      "could not be written (disk full); 130 SIGINT or SIGTERM: the run stops at a step boundary and the\n"
-      "files hold complete rows. An output file is locked while it is written: a second run given the\n"
-      "same path is refused (exit 2).");
+      "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
+      "non-finite (|q|^2 or |v|^2 overflows), a step failed (a solve with non-finite multipliers, an\n"
+      "adaptive step below its floor or over its work cap) or a diagnostic is not finite: the run stops,\n"
+      "stderr names the step, time and reason, and the CSV holds every step before it (finite numbers\n"
+      "only); 4 an output file could not be written (disk full); 130 SIGINT or SIGTERM: the run stops at\n"
+      "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"
+      "a second run given the same path is refused (exit 2).");
   return {sub, [options] { return run(*options); }};
 }
 

@@ -21,10 +21,10 @@ expect() {
   pass "$name"
 }
 
-# complete_csv FILE COLUMNS: every row has COLUMNS fields and the file ends with a newline.
+# complete_csv FILE: every row has the header's number of fields and the file ends with a newline.
 complete_csv() {
   [ -s "$1" ] && [ "$(tail -c 1 "$1" | od -An -c | tr -d ' ')" = '\n' ] &&
-    awk -F, -v n="$2" 'NF != n { bad = 1 } END { exit bad }' "$1"
+    awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad }' "$1"
 }
 
 # wait_for PID SECONDS: waits for the process to end; kills it and returns 124 after SECONDS.

@@ -25,8 +25,8 @@ for signal in INT TERM; do
       fail "$name: stderr is not the one interrupt line: $(head -c 300 "$WORK/$name.err")"; continue
     fi
     last=$(sed -E 's/.*after step ([0-9]+) .*/\1/' "$WORK/$name.err")
-    complete_csv "$csv" 9 || { fail "$name: $csv has a cut or malformed row"; continue; }
-    complete_csv "$trajectory" 7 || { fail "$name: $trajectory has a cut or malformed row"; continue; }
+    complete_csv "$csv" || { fail "$name: $csv has a cut or malformed row"; continue; }
+    complete_csv "$trajectory" || { fail "$name: $trajectory has a cut or malformed row"; continue; }
     [ "$(tail -n 1 "$csv" | cut -d, -f1)" = "$last" ] || { fail "$name: $csv does not end at step $last"; continue; }
     [ "$(wc -l <"$csv")" = $((last + 2)) ] || { fail "$name: $csv does not hold steps 0..$last"; continue; }
     rows=$(awk -F, -v s="$last" '$1 == s' "$trajectory" | wc -l)
