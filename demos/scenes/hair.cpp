@@ -7,6 +7,7 @@
 #include "particles/constraints/line.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/spring.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -15,6 +16,7 @@ namespace scenes {
 void HairParams::validate() const {
   requireAtLeast("curls", curls, 1);
   requireAtLeast("particles", particles, 3);
+  requireWithinLimit("curls*particles particles", static_cast<long long>(curls) * particles, SceneLimits::particles);
   particles::requirePositive("rest", rest);
   particles::requirePositive("mass", mass);
   particles::requireNonNegative("stiffness", stiffness);
