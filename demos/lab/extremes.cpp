@@ -132,7 +132,7 @@ int runExtremes(const LabOptions& options) {
         auto stepper = particles::makeIntegrator("rk4");
         const RunResult r = simulate(chain, *stepper, dt, duration, explosion);
         csv << static_cast<long>(warm) << tol << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.maxRelativeStretch
-            << static_cast<double>(r.cgIterations) / std::max(1L, r.steps);
+            << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
         progress.tick();
       }
@@ -195,7 +195,7 @@ int runExtremes(const LabOptions& options) {
         auto stepper = particles::makeIntegrator(name);
         const RunResult r = simulate(taut, *stepper, taut.dt, duration, explosion);
         csv << name << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.reason << r.time
-            << r.maxRelativeStretch << static_cast<double>(r.cgIterations) / std::max(1L, r.steps);
+            << r.maxRelativeStretch << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
         row.push_back(r.exploded ? r.reason + " at t = " + general(r.time, 3)
                                  : "held (stretch " + general(r.maxRelativeStretch, 2) + ")");
