@@ -153,7 +153,8 @@ int runClaims(const LabOptions& options) {
     for (int k = 0; k < 2; ++k) {
       const std::string links = k == 0 ? "4" : "8";
       scenes::Scene cloth = scenes::buildScene(
-          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", links}});
+          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", links}},
+          scenes::kSeedPreset);
       // Pull the bottom-left corner sideways, as a user dragging it would.
       const int corner = (side - 1) * side;
       cloth.system->addForce(std::make_unique<particles::MouseSpringForce>(

@@ -37,7 +37,8 @@ int runExtremes(const LabOptions& options) {
         if (interrupted()) break;
         auto build = [&] {
           return scenes::buildScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
-                                              {"links", "8"}, {"stiffness", general(ks, 6)}});
+                                              {"links", "8"}, {"stiffness", general(ks, 6)}},
+                                    scenes::kSeedPreset);
         };
         const double dt = maxStableStep(build, name, duration, lo, hi, rounds, explosion, progress);
         if (interrupted()) break;  // a bisection cut short is not a measurement
@@ -185,7 +186,7 @@ int runExtremes(const LabOptions& options) {
       std::vector<std::string> row{name};
       for (int cap : caps) {
         if (interrupted()) break;
-        scenes::Scene taut = scenes::buildScene("taut-chain");
+        scenes::Scene taut = scenes::buildScene("taut-chain", {}, scenes::kSeedPreset);
         auto& settings = taut.system->solver().settings;
         if (cap >= 0) {
           settings.method = particles::SolveMethod::ConjugateGradient;
