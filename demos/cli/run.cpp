@@ -121,7 +121,8 @@ Command addRunCommand(CLI::App& app) {
   sub->add_option("--integrator", options->integrator,
                   "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
   sub->add_option("--tolerance", options->integratorSettings.tolerance,
-                  "local error tolerance of adaptive-rk4 (ignored by fixed-step integrators)")
+                  "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
+                  "fixed-step integrators")
       ->capture_default_str();
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")

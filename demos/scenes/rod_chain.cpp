@@ -28,7 +28,7 @@ RodChainParams RodChainParams::seed() {
   p.radius = 0.25;
   p.mass = 1.0;
   p.rod = "squared";
-  p.gravity = 0.05;
+  p.gravity = kSeedGravity;
   p.dt = 0.01;
   return p;
 }

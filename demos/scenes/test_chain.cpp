@@ -26,7 +26,7 @@ TestChainParams TestChainParams::seed() {
   p.length = 0.1;
   p.mass = 1.0;
   p.rod = "squared";
-  p.gravity = 0.05;
+  p.gravity = kSeedGravity;
   p.tipMassRatio = 1.0;
   p.dt = 0.01;
   return p;

@@ -28,7 +28,7 @@ WireParams WireParams::seed() {
   p.radius = 0.25;
   p.mass = 1.0;
   p.coupling = 0.2;
-  p.gravity = 0.05;
+  p.gravity = kSeedGravity;
   p.dt = 0.01;
   return p;
 }
