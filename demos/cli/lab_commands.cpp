@@ -95,7 +95,7 @@ Command addRenderReportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render-report", "fill a Markdown template with the tables and values the experiments wrote");
   auto render = std::make_shared<lab::RenderOptions>();
-  command->add_option("--template", render->templatePath, "template file")->required()->check(CLI::ExistingFile);
+  command->add_option("--template", render->templatePath, "template file")->required()->check(regularFile());
   command->add_option("--data", render->dataDir, "directory the experiments wrote")
       ->required()
       ->check(CLI::ExistingDirectory);
