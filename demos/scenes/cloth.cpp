@@ -8,6 +8,7 @@
 #include "particles/constraints/line.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/spring.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -16,6 +17,7 @@ namespace scenes {
 void ClothParams::validate() const {
   requireAtLeast("width", width, 2);
   requireAtLeast("height", height, 2);
+  requireWithinLimit("width*height particles", static_cast<long long>(width) * height, SceneLimits::particles);
   if (links != 4 && links != 8)
     throw std::invalid_argument("links must be 4 or 8, got " + std::to_string(links));
   particles::requirePositive("rest", rest);

@@ -10,6 +10,7 @@
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/spring.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 
 namespace scenes {
@@ -17,6 +18,7 @@ namespace scenes {
 void HairParams::validate() const {
   requireAtLeast("curls", curls, 1);
   requireAtLeast("particles", particles, 3);
+  requireWithinLimit("curls*particles particles", static_cast<long long>(curls) * particles, SceneLimits::particles);
   particles::requirePositive("rest", rest);
   particles::requirePositive("mass", mass);
   particles::requireNonNegative("stiffness", stiffness);
