@@ -6,7 +6,7 @@
 namespace demo {
 
 std::string writeStateFile(const std::string& path, const std::vector<PaneState>& panes,
-                           const std::vector<Overlay>& overlays, long long frames, bool paused) {
+                           const StateExtras& extras, long long frames, bool paused) {
   std::ofstream out(path);
   if (!out) return "cannot write state log '" + path + "'";
   out.precision(17);
@@ -19,7 +19,8 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
     for (const auto& f : s.forceObjects()) springs += std::strcmp(f->type(), "mouse-spring") == 0;
     out << "pane," << k << "," << panes[k].sceneLabel << "," << sim.integratorName() << "," << sim.dt() << ","
         << s.time() << "," << sim.steps() << "," << (sim.divergedAt() ? 1 : 0) << "," << springs << ","
-        << s.totalEnergy() << "," << s.maxConstraintError() << "\n";
+        << sim.sceneEnergy() << "," << s.maxConstraintError() << "," << sim.mouseSpringEnergy() << ","
+        << (sim.lastFrame().capped ? 1 : 0) << "," << sim.lastFrame().substeps << "," << sim.frames() << "\n";
     const ViewTransform& v = panes[k].view;
     out << "view," << k << "," << v.pane.x << "," << v.pane.y << "," << v.pane.width << "," << v.pane.height << ","
         << v.worldMin.x() << "," << v.worldMin.y() << "," << v.worldMax.x() << "," << v.worldMax.y() << "\n";
@@ -31,9 +32,17 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
     for (const particles::Wall& w : s.walls())
       out << "wall," << k << "," << w.min.x() << "," << w.min.y() << "," << w.max.x() << "," << w.max.y() << "\n";
   }
-  for (const Overlay& o : overlays)
+  for (const Overlay& o : extras.overlays) {
+    std::string text;
+    for (char c : o.text) text += c == '\n' ? std::string(" | ") : std::string(1, c);
     out << "overlay," << o.kind << "," << o.rect.x << "," << o.rect.y << "," << o.rect.width << "," << o.rect.height
+        << "," << text << "\n";
+  }
+  for (const Overlay& w : extras.widgets)
+    out << "widget," << w.kind << "," << w.rect.x << "," << w.rect.y << "," << w.rect.width << "," << w.rect.height
         << "\n";
+  out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
+  out.close();
   return out ? "" : "error writing state log '" + path + "'";
 }
 
