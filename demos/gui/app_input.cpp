@@ -111,7 +111,7 @@ void App::inputWheel(int direction, int x, int y) {
   const int k = paneAt(x, y);
   if (k < 0 || direction == 0) return;
   const Eigen::Vector2d at = paneViews()[k].toWorld(x, y);
-  camera_.zoom(direction > 0 ? Camera::wheelFactor : 1.0 / Camera::wheelFactor, at);
+  camera_.zoom(std::pow(Camera::wheelFactor, direction), at);  // a script may turn several clicks at once
 }
 
 // --- the demo's keys and mouse tools ---------------------------------------

@@ -179,9 +179,11 @@ void App::drawBottomBar() {
     const particles::ParticleSystem& s = sim.system();
     const FrameStats& f = sim.lastFrame();
     const ImU32 text = colour(palette::hudText);
+    const std::string state = paneStateLine(sim);
     lines.push_back({{format("%s   dt %g s   %s/frame%s", sim.integratorName(), sim.dt(), plural(f.substeps, "substep").c_str(),
-                             stepMode_ == StepMode::Lockstep ? " (lockstep)" : f.capped ? " (slow motion)" : ""),
-                      text}});
+                             stepMode_ == StepMode::Lockstep ? " (lockstep)" : ""),
+                      text},
+                     {state.empty() ? "" : "   " + state, sim.stopped() ? colour(palette::divergenceText) : titleColour}});
     // Fixed-width numbers, so that the line does not jitter from frame to frame.
     lines.push_back({{format("simulation %7.2f ms   draw %6.1f ms (scene %5.1f + text and panel %5.1f)   per frame",
                              f.simulationMs, sceneDrawMs_ + overlayDrawMs_, sceneDrawMs_, overlayDrawMs_),

@@ -85,6 +85,8 @@ void App::drawPanel() {
     recordWidget("scene");
     if (sceneListOpen) {
       if (closePopups_) ImGui::CloseCurrentPopup();
+      const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+      widgets_.push_back({"scene-list", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}, ""});
       for (const SceneKey& k : keys)
         if (ImGui::Selectable((std::string(1, static_cast<char>(k.key)) + "  " + k.choice.label).c_str(),
                               k.choice.label == scene_.label))

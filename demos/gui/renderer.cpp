@@ -156,7 +156,7 @@ void Renderer::collectSketches(const particles::ParticleSystem& system, const Dr
     // A bead on a circular wire is a pendulum: its rod to the centre, faintly.
     if (std::strcmp(constraint->type(), "circular-wire") == 0 && !sketch_.circles.empty())
       for (int i : constraint->particles())
-        constraints_.line(sketch_.circles.front().centre, system.position(i), palette::constraint, 150);
+        constraints_.line(sketch_.circles.front().centre, system.position(i), palette::constraint);
   }
 }
 

@@ -86,6 +86,7 @@ class Simulation {
   // Frames advanced since the start (the clock every pane shares; a stopped
   // pane's stays at the frame it stopped on).
   long long frames() const { return frames_; }
+  double owedTime() const { return owedTime_; }  // simulated time not yet stepped: t + owed is the shared clock
   const RewindBuffer& history() const { return history_; }
   // Restores the state recorded at `frame` (see history()), clears the
   // divergence and the plots. False when that frame is not recorded.

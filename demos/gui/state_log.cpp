@@ -20,7 +20,8 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
     out << "pane," << k << "," << panes[k].sceneLabel << "," << sim.integratorName() << "," << sim.dt() << ","
         << s.time() << "," << sim.steps() << "," << (sim.divergedAt() ? 1 : 0) << "," << springs << ","
         << sim.sceneEnergy() << "," << s.maxConstraintError() << "," << sim.mouseSpringEnergy() << ","
-        << (sim.lastFrame().capped ? 1 : 0) << "," << sim.lastFrame().substeps << "," << sim.frames() << "\n";
+        << (sim.lastFrame().capped ? 1 : 0) << "," << sim.lastFrame().substeps << "," << sim.frames() << "," << sim.owedTime() << ","
+        << sim.trace().energy().size() << "\n";
     const ViewTransform& v = panes[k].view;
     out << "view," << k << "," << v.pane.x << "," << v.pane.y << "," << v.pane.width << "," << v.pane.height << ","
         << v.worldMin.x() << "," << v.worldMin.y() << "," << v.worldMax.x() << "," << v.worldMax.y() << "\n";

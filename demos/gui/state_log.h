@@ -5,7 +5,7 @@
 //   frame,<frames drawn>
 //   paused,<0|1>
 //   pane,<pane>,<scene label>,<integrator>,<dt>,<t>,<steps>,<diverged 0|1>,<mouse springs>,<energy>,<max |C|>,
-//        <mouse spring energy>,<slow motion 0|1>,<substeps last frame>,<frames advanced>
+//        <mouse spring energy>,<slow motion 0|1>,<substeps last frame>,<frames advanced>,<owed time>,<plot points>
 //     (energy is the scene's, without the mouse spring's)
 //   view,<pane>,<pixel x>,<pixel y>,<pixel width>,<pixel height>,<world xmin>,<world ymin>,<world xmax>,<world ymax>
 //     (the pixel rectangle is where the pane draws the world: no overlay may cover it)

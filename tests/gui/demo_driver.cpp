@@ -99,7 +99,8 @@ StateLog readStateLog(const std::string& path) {
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '#') continue;
     const std::vector<std::string> f = split(line, ',');
-    auto number = [&](std::size_t k) { return std::stod(f.at(k)); };
+    // strtod, not stod: a denormal such as a dt of 5e-324 is a valid value.
+    auto number = [&](std::size_t k) { return std::strtod(f.at(k).c_str(), nullptr); };
     const std::string& record = f.at(0);
     if (record == "frame") {
       log.frames = std::stoll(f.at(1));
@@ -120,6 +121,8 @@ StateLog readStateLog(const std::string& path) {
       p.slowMotion = f.at(12) == "1";
       p.substeps = std::stoi(f.at(13));
       p.framesAdvanced = std::stoll(f.at(14));
+      p.owedTime = number(15);
+      p.plotPoints = std::stoi(f.at(16));
       log.panes.push_back(p);
     } else if (record == "view") {
       LoggedPane& p = log.panes.at(std::stoul(f.at(1)));

@@ -43,6 +43,8 @@ struct LoggedPane {
   std::string scene, integrator;
   double dt = 0.0, time = 0.0, energy = 0.0, maxConstraintError = 0.0;
   double mouseSpringEnergy = 0.0;  // apart from energy, the scene's own
+  double owedTime = 0.0;           // time + owedTime is the clock all panes share
+  int plotPoints = 0;
   long long steps = 0, framesAdvanced = 0;
   bool diverged = false, slowMotion = false;
   int mouseSprings = 0, substeps = 0;
