@@ -42,7 +42,7 @@ int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit)
   if (finite < 2) return pixels(byScale, minParticlePixels, 12);
   const Eigen::Vector2d extent = (hi - lo) * pixelsPerUnit;
   const double spacing = std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / finite);
-  return pixels(std::min(0.6 * spacing, byScale), minParticlePixels, 12);
+  return pixels(std::min(0.45 * spacing, byScale), minParticlePixels, 12);
 }
 
 void Renderer::clearWindow(int width, int height, Rgb colour) {

@@ -142,7 +142,7 @@ TEST(DemoCamera, ParticlesOutOfViewAreIndicatedAndFrameAllBringsThemBack) {
   const Eigen::Vector2d r = start.particles[root].x;
   std::ostringstream unpin;
   unpin << "2 down world " << r.x() << " " << r.y() << " right\n3 up world " << r.x() << " " << r.y() << " right\n";
-  ASSERT_EQ(runDemo(dir, std::string(noPanel) + " --scene test-chain --frames 1200 --log-state fallen.txt", unpin.str())
+  ASSERT_EQ(runDemo(dir, std::string(noPanel) + " --scene test-chain --frames 600 --log-state fallen.txt", unpin.str())
                 .exitCode, 0);
   const StateLog fallen = readStateLog(dir + "/fallen.txt");
   const LoggedPane& pane = fallen.panes.at(0);
@@ -155,8 +155,8 @@ TEST(DemoCamera, ParticlesOutOfViewAreIndicatedAndFrameAllBringsThemBack) {
   EXPECT_TRUE(contains(fallen.overlay("top-bar")->text, "out of view")) << fallen.overlay("top-bar")->text;
   EXPECT_TRUE(contains(fallen.overlay("top-bar")->text, "a frames all"));
 
-  ASSERT_EQ(runDemo(dir, std::string(noPanel) + " --scene test-chain --frames 1201 --log-state framed.txt",
-                    unpin.str() + "1200 key a\n").exitCode, 0);
+  ASSERT_EQ(runDemo(dir, std::string(noPanel) + " --scene test-chain --frames 601 --log-state framed.txt",
+                    unpin.str() + "600 key a\n").exitCode, 0);
   const StateLog framed = readStateLog(dir + "/framed.txt");
   const LoggedPane& again = framed.panes.at(0);
   for (const LoggedParticle& q : again.particles) EXPECT_TRUE(again.inWorldRect(again.toPixel(q.x)));
