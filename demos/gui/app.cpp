@@ -174,10 +174,17 @@ void App::display() {
     return;
   }
   frameDue_ = false;
+  const auto start = std::chrono::steady_clock::now();
   guarded([&] { playScript(); });
   guarded([&] { advance(); });
   guarded([&] { draw(); });
   finishFrame();
+  if (frameMs_.size() < 1000000) {
+    frameMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    double simulation = 0.0;
+    for (const auto& pane : panes_) simulation += pane->lastFrame().simulationMs;
+    frameSimulationMs_.push_back(simulation);
+  }
 }
 
 void App::playScript() {
@@ -293,6 +300,8 @@ bool App::writeStateLog() const {
   extras.sceneDrawMs = sceneDrawMs_;
   extras.overlayDrawMs = overlayDrawMs_;
   extras.panelShown = showPanel_;
+  extras.frameMs = frameMs_;
+  extras.frameSimulationMs = frameSimulationMs_;
   const std::string error = writeStateFile(options_.logState, states, extras, frame_, paused_);
   if (error.empty()) return true;
   reportBadUsage(error);

@@ -166,6 +166,9 @@ class App {
   double sceneDrawMs_ = 0.0, overlayDrawMs_ = 0.0;
   std::vector<Overlay> overlays_;  // the text and controls drawn in the last frame
   std::vector<Overlay> widgets_;   // the panel's buttons and combos, for scripted clicks
+  // Wall time of every frame (input, stepping, drawing, swap) and its
+  // stepping part, for the state log's frame-time summary.
+  std::vector<double> frameMs_, frameSimulationMs_;
   std::string status_;
   bool statusIsError_ = false;
   int statusFrames_ = 0;

@@ -1,5 +1,6 @@
 #include "state_log.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 
@@ -42,6 +43,19 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
   for (const Overlay& w : extras.widgets)
     out << "widget," << w.kind << "," << w.rect.x << "," << w.rect.y << "," << w.rect.width << "," << w.rect.height
         << "\n";
+  // Frame times after a warm-up of 10 frames: median and spread.
+  auto quantile = [](std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    auto k = v.begin() + static_cast<long>(q * (v.size() - 1));
+    std::nth_element(v.begin(), k, v.end());
+    return *k;
+  };
+  const std::size_t warmUp = std::min<std::size_t>(10, extras.frameMs.size());
+  const std::vector<double> ms(extras.frameMs.begin() + warmUp, extras.frameMs.end());
+  const std::vector<double> stepping(extras.frameSimulationMs.begin() + std::min(warmUp, extras.frameSimulationMs.size()),
+                                     extras.frameSimulationMs.end());
+  out << "frame-times," << ms.size() << "," << quantile(ms, 0.5) << "," << quantile(ms, 0.1) << "," << quantile(ms, 0.9)
+      << "," << quantile(stepping, 0.5) << "\n";
   out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
   out.close();
   return out ? "" : "error writing state log '" + path + "'";

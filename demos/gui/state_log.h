@@ -17,6 +17,8 @@
 //   widget,<name>,<pixel x>,<pixel y>,<pixel width>,<pixel height>
 //     (the panel's controls, for scripted clicks: scene, reset, pause, step, rewind)
 //   timing,<scene draw ms>,<text and panel draw ms>,<panel shown 0|1>
+//   frame-times,<frames>,<median ms>,<10th percentile>,<90th percentile>,<median stepping ms>
+//     (wall time per frame after the first 10: input, stepping, drawing and the buffer swap)
 // view maps the pane's pixel rectangle (window pixels, origin top-left, as in
 // the screenshot) onto the world rectangle it shows, at one scale on both axes.
 // Numbers are written with 17 significant digits.
@@ -39,6 +41,7 @@ struct StateExtras {
   std::vector<Overlay> overlays, widgets;
   double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
   bool panelShown = false;
+  std::vector<double> frameMs, frameSimulationMs;  // every frame's wall time and its stepping part
 };
 
 struct PaneState {

@@ -145,6 +145,9 @@ StateLog readStateLog(const std::string& path) {
       LoggedOverlay o{f.at(1), std::stoi(f.at(2)), std::stoi(f.at(3)), std::stoi(f.at(4)), std::stoi(f.at(5)), ""};
       for (std::size_t k = 6; k < f.size(); ++k) o.text += (k > 6 ? "," : "") + f[k];
       (record == "overlay" ? log.overlays : log.widgets).push_back(o);
+    } else if (record == "frame-times") {
+      log.measuredFrames = std::stoll(f.at(1));
+      log.medianFrameMs = number(2);
     } else if (record == "timing") {
       log.sceneDrawMs = number(1);
       log.overlayDrawMs = number(2);

@@ -75,6 +75,8 @@ struct StateLog {
   std::vector<LoggedOverlay> overlays, widgets;
   double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
   bool panelShown = false;
+  long long measuredFrames = 0;  // frame-times: frames after the warm-up, and their median wall time
+  double medianFrameMs = 0.0;
   const LoggedOverlay* widget(const std::string& name) const {
     for (const LoggedOverlay& w : widgets)
       if (w.kind == name) return &w;

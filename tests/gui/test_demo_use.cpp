@@ -483,6 +483,8 @@ TEST(DemoBugs, B12_TheDrawTimeIncludesTheTextAndThePanel) {
   const StateLog log = readStateLog(dir + "/state.txt");
   EXPECT_TRUE(log.panelShown);
   EXPECT_GT(log.overlayDrawMs, 0.0);
+  EXPECT_EQ(log.measuredFrames, 20);  // the frame-time summary covers the frames after a 10-frame warm-up
+  EXPECT_GT(log.medianFrameMs, 0.0);
   // "draw T ms (scene S + text and panel P)" with T = S + P.
   const std::smatch m = [&] {
     std::smatch match;
