@@ -119,7 +119,9 @@ void App::inputWheel(int direction, int x, int y) {
 void App::keyboard(unsigned char key) {
   for (const SceneKey& k : sceneKeys())
     if (k.key == key) {
-      loadScene(k.choice, panes_.size() > 1);
+      SceneChoice choice = k.choice;
+      choice.preset = scene_.preset;  // a new scene keeps the preset in use
+      loadScene(choice, panes_.size() > 1);
       return;
     }
   for (const KeyBinding& binding : keyBindings())

@@ -32,7 +32,7 @@ namespace {
 template <class Params>
 Params paramsOf(const SceneChoice& choice) {
   for (const scenes::SceneInfo& info : scenes::sceneTable())
-    if (choice.name == info.name) return scenes::readParams<Params>(scenes::SceneParams(info.params, choice.params));
+    if (choice.name == info.name) return scenes::readParams<Params>(scenes::SceneParams(info.params, choice.params, choice.preset));
   return Params{};
 }
 

@@ -159,7 +159,7 @@ void App::drawTopBar() {
     message = plural(outOfView, "particle") + " out of view (arrows at the edge): a frames all";
     messageColour = titleColour;
   } else if (frame_ < hintUntilFrame_ && !sceneHint_.empty()) {
-    message = "try this: " + sceneHint_;
+    message = sceneHint_;  // the table's line, "try this: ..."
   } else if (!grabbedOnce_) {
     message = "drag any particle with the left mouse button; h lists the keys";
   }
@@ -189,10 +189,13 @@ void App::drawBottomBar() {
                              f.simulationMs, sceneDrawMs_ + overlayDrawMs_, sceneDrawMs_, overlayDrawMs_),
                       text}});
     std::string numbers = plural(s.size(), "particle");
-    if (!s.constraints().empty())
-      numbers += s.solver().settings.method == particles::SolveMethod::Direct
-                     ? format("   direct solve, residual %.1e", s.lastSolve().residual)
-                     : format("   CG %d iterations, residual %.1e", s.lastSolve().iterations, s.lastSolve().residual);
+    // The last step's statistics: every solve of it, not only the last one.
+    const particles::StepStats& step = s.lastStepStats();
+    if (step.solves > 0)
+      numbers += step.cgIterations == 0
+                     ? format("   %s, residual %.1e", plural(step.solves, "solve").c_str(), step.maxResidual)
+                     : format("   %s, CG %d iterations, residual %.1e", plural(step.solves, "solve").c_str(),
+                              step.cgIterations, step.maxResidual);
     numbers += format("   max |C| %.2e   energy % .5e", s.maxConstraintError(), sim.sceneEnergy());
     if (sim.mouseSpring()) numbers += format("   (mouse spring % .3e apart)", sim.mouseSpringEnergy());
     lines.push_back({{numbers, text}});

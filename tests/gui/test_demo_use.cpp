@@ -216,8 +216,7 @@ TEST(DemoOnboarding, EachSceneOpensWithItsSummaryAndAHint) {
     ASSERT_EQ(runDemo(dir, std::string("--scene ") + info.name + " --frames 3 --log-state state.txt").exitCode, 0);
     const std::string top = readStateLog(dir + "/state.txt").overlay("top-bar")->text;
     EXPECT_TRUE(contains(top, info.summary)) << top;
-    // The scene's own hint where the table has one, else the first-run hint to drag.
-    EXPECT_TRUE(contains(top, "try this: ") || contains(top, "drag any particle")) << top;
+    EXPECT_TRUE(contains(top, info.hint)) << top;
   }
 }
 
