@@ -55,12 +55,13 @@ void Renderer::clearWindow(int width, int height, Rgb colour) {
 void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                         const DrawOptions& options, const GhostFrame* ghost) {
   const particles::ParticleSystem& system = simulation.system();
-  for (Batch* b : {&walls_, &springs_, &constraints_, &arrows_, &ghostLines_, &ghostPoints_}) b->clear();
+  for (Batch* b : {&walls_, &faces_, &springs_, &constraints_, &arrows_, &ghostLines_, &ghostPoints_}) b->clear();
   for (auto& entry : pointsBySize_) entry.second.clear();
   for (auto& entry : discsBySize_) entry.second.clear();
 
   collectWalls(system);
-  collectSketches(system, options, view.pixelsPerUnit);
+  collectFaces(simulation);
+  collectSketches(system, options, view.pixelsPerUnit, !simulation.scene().faces.empty());
   if (options.forces) collectForceArrows(system, view);
   collectParticles(simulation, view);
   if (ghost && options.ghost) collectGhost(*ghost, view, pointDiameter(system, view.pixelsPerUnit));
@@ -91,6 +92,7 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   glEnableClientState(GL_COLOR_ARRAY);
 
   draw(walls_, GL_TRIANGLES);
+  draw(faces_, GL_TRIANGLES);
   for (const auto& [diameter, batch] : discsBySize_) {
     glPointSize(static_cast<float>(diameter));
     draw(batch, GL_POINTS);
@@ -129,8 +131,28 @@ void Renderer::collectWalls(const particles::ParticleSystem& system) {
   }
 }
 
+// A surface drawn as shaded quads: its colour brightens where a face is
+// stretched beyond its rest area and darkens where it is compressed; a face
+// turned over (a fold, negative signed area) shows the back colour.
+void Renderer::collectFaces(const Simulation& simulation) {
+  const particles::ParticleSystem& system = simulation.system();
+  const auto& faces = simulation.scene().faces;
+  const auto& rest = simulation.restFaceAreas();
+  for (std::size_t k = 0; k < faces.size() && k < rest.size(); ++k) {
+    const auto& f = faces[k];
+    const double area = faceArea(system, f);
+    if (!std::isfinite(area) || !(std::abs(rest[k]) > 0.0)) continue;
+    const double ratio = area / rest[k];
+    const Rgb base = ratio >= 0.0 ? palette::clothFront : palette::clothBack;
+    const double shade = std::clamp(0.8 + 0.4 * (std::abs(ratio) - 1.0), 0.55, 1.3);
+    auto channel = [&](std::uint8_t c) { return static_cast<std::uint8_t>(std::min(255.0, c * shade)); };
+    const Rgb c{channel(base.r), channel(base.g), channel(base.b)};
+    for (int corner : {0, 1, 2, 0, 2, 3}) faces_.add(system.position(f[corner]), c);
+  }
+}
+
 void Renderer::collectSketches(const particles::ParticleSystem& system, const DrawOptions& options,
-                               double pixelsPerUnit) {
+                               double pixelsPerUnit, bool surface) {
   const particles::Phase phase = system.phase();
   int springs = 0;
   for (const auto& force : system.forceObjects()) springs += std::strcmp(force->type(), "spring") == 0;
@@ -143,7 +165,7 @@ void Renderer::collectSketches(const particles::ParticleSystem& system, const Dr
     const bool spring = std::strcmp(force->type(), "spring") == 0;
     const Rgb colour = mouse ? palette::mouseSpring : palette::spring;
     for (const auto& l : sketch_.lines)
-      addSpring(springs_, l.a, l.b, colour, mouse ? 255 : 220, spring && coils, pixelsPerUnit);
+      addSpring(springs_, l.a, l.b, colour, mouse ? 255 : surface ? 70 : 220, spring && coils, pixelsPerUnit);
     for (const auto& c : sketch_.circles) addCircle(springs_, c.centre, c.radius, colour);
   }
   if (!options.constraints) return;

@@ -51,7 +51,10 @@ class Renderer {
   };
 
   void collectWalls(const particles::ParticleSystem& system);
-  void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options, double pixelsPerUnit);
+  void collectFaces(const Simulation& simulation);
+  // surface: the springs are drawn faintly over the shaded faces.
+  void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options, double pixelsPerUnit,
+                       bool surface);
   void collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view);
   void collectParticles(const Simulation& simulation, const ViewTransform& view);
   void collectGhost(const GhostFrame& ghost, const ViewTransform& view, int diameter);
@@ -61,7 +64,7 @@ class Renderer {
   void addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour);
   static void draw(const Batch& batch, unsigned mode);
 
-  Batch walls_, springs_, constraints_, arrows_, ghostLines_;
+  Batch walls_, faces_, springs_, constraints_, arrows_, ghostLines_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
   Batch ghostPoints_;

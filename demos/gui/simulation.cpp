@@ -23,6 +23,17 @@ Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
   setIntegrator(integratorIndex);
   setDt(dt);
   history_.record(frames_, system(), owedTime_, steps_);
+  for (const auto& face : scene_.faces) restFaceAreas_.push_back(faceArea(system(), face));
+}
+
+double faceArea(const particles::ParticleSystem& s, const std::array<int, 4>& f) {
+  // The shoelace formula over the quad's corners, counter-clockwise positive.
+  double twice = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d a = s.position(f[k]), b = s.position(f[(k + 1) % 4]);
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * twice;
 }
 
 void Simulation::setIntegrator(int index) {

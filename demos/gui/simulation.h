@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "particles/divergence.h"
 #include "particles/forces/mouse_spring.h"
@@ -37,6 +38,9 @@ struct FrameStats {
   bool capped = false;        // the wall-time budget cut the frame's simulated time short (slow motion)
   double simulationMs = 0.0;  // wall time spent stepping this frame
 };
+
+// The signed area of a quad face, positive when its corners run counter-clockwise.
+double faceArea(const particles::ParticleSystem& system, const std::array<int, 4>& face);
 
 class Simulation {
  public:
@@ -98,6 +102,8 @@ class Simulation {
   particles::ParticleSystem& system() { return *scene_.system; }
   const particles::ParticleSystem& system() const { return *scene_.system; }
   const FrameStats& lastFrame() const { return lastFrame_; }
+  // The signed area of each of the scene's faces at t = 0, for shading.
+  const std::vector<double>& restFaceAreas() const { return restFaceAreas_; }
   // The mouse spring's potential ½ k |x − t|², which totalEnergy() includes,
   // and the scene's own energy without it.
   double mouseSpringEnergy() const;
@@ -119,6 +125,7 @@ class Simulation {
   long long frames_ = 0;
   particles::MouseSpringForce* spring_ = nullptr;  // owned by the system
   particles::DivergenceLimits limits_;
+  std::vector<double> restFaceAreas_;
   particles::Divergence divergence_;
   std::optional<double> divergedAt_;
   std::optional<std::string> refusal_;

@@ -512,3 +512,27 @@ TEST(DemoBugs, B13_ScriptedClicksReachThePanel) {
   ASSERT_EQ(runDemo(dir, "--scene pendulum --paused --frames 12 --log-state state.txt", clickAt(2, *layout.widget("step"))).exitCode, 0);
   EXPECT_EQ(readStateLog(dir + "/state.txt").panes.at(0).steps, 1);
 }
+
+TEST(DemoDrawing, ASurfacesFacesAreShaded) {
+  // Scenes that expose the faces of a surface (the cloth's grid cells) draw
+  // them as filled quads: the centre of a face shows the cloth's colour.
+  const scenes::Scene scene = scenes::buildScene("cloth");
+  if (scene.faces.empty()) GTEST_SKIP() << "the cloth scene exposes no faces";
+  const std::string dir = outputDirectory("Faces");
+  ASSERT_EQ(runDemo(dir, std::string(noPanel) + " --scene cloth --paused --frames 2 --screenshot shot.png --log-state state.txt")
+                .exitCode, 0);
+  const Image image = readPng(dir + "/shot.png");
+  const LoggedPane pane = readStateLog(dir + "/state.txt").panes.at(0);
+  int shaded = 0, checked = 0;
+  for (const auto& face : scene.faces) {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (int i : face) centre += 0.25 * pane.particles.at(i).x;
+    const Eigen::Vector2d px = pane.toPixel(centre);
+    if (!pane.inWorldRect(px)) continue;
+    ++checked;
+    const demo::Rgb c = image.at(int(px.x()), int(px.y()));
+    shaded += near(c, demo::palette::clothFront, 70) || near(c, demo::palette::clothBack, 70);
+  }
+  EXPECT_GT(checked, 0);
+  EXPECT_GE(shaded, checked * 9 / 10);
+}
