@@ -248,12 +248,16 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
   const Table rows = readCsv(o.outDir + "/stability_boundary.csv",
                              {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
                               "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
-                              "omega_chain", "governing"});
+                              "omega_chain", "omega_whip", "governing"});
   std::map<std::string, std::map<std::string, double>> safe;
   for (const auto& row : rows)
     if (row.at("duration") == "10" && row.at("feedback_ks") == "60")
       safe[row.at("integrator")][row.at("chain_length")] = std::stod(row.at("safe_dt"));
   ASSERT_FALSE(safe["rk4"].empty());
+  // A longer chain whips faster: the measured link rate grows with its length.
+  std::map<int, double> whip;
+  for (const auto& row : rows) whip[std::stoi(row.at("chain_length"))] = std::stod(row.at("omega_whip"));
+  EXPECT_GT(whip.rbegin()->second, whip.begin()->second);
   for (const auto& [cl, dt] : safe["euler"]) EXPECT_GT(safe["rk4"][cl], dt) << "chain " << cl;
   // The map is measured: every scanned dt has a row, and a dt at or below the
   // safe boundary survived on every member.
