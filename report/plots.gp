@@ -153,7 +153,7 @@ set colorbox
 set palette defined (0 '#0d0887', 0.5 '#cc4778', 1 '#f0f921')
 set cbrange [*:*]
 set key bottom right
-plot f using (positive($1)):(positive($2)):(positive($5)) with points pt 5 ps 3 palette title 'max stretch', \
+plot f using (positive($1)):(positive($2)):(positive($6)) with points pt 5 ps 3 palette title 'max stretch', \
      [1:20000] 2*sqrt(x) with lines lw 2 lc 'black' title 'k_d = 2√k_s'
 unset logscale cb
 unset colorbox

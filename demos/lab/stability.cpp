@@ -302,7 +302,8 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
         if (!a.belowGrid() && !a.aboveGrid() && !b.belowGrid() && !b.aboveGrid()) ratios.push_back(b.safeDt / a.safeDt);
       }
     shift.push_back(ratios.empty() ? std::nan("") : median(ratios));
-    recordValue(options, "stability.shift." + general(durations[k]) + "_" + general(durations[k + 1]),
+    const char* step[] = {"half_to_T", "T_to_2T", "2T_to_4T"};
+    recordValue(options, std::string("stability.shift.") + step[k],
                 ratios.empty() ? "–" : fixed(shift.back(), 2));
   }
 
@@ -330,7 +331,9 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
               "dt·√k_s at " + general(stiffFeedback)},
              feedback);
   recordValue(options, "stability.duration", general(T));
-  recordValue(options, "stability.durations", listText(durations));
+  std::string durationText;
+  for (double d : durations) durationText += (durationText.empty() ? "" : ", ") + general(d);
+  recordValue(options, "stability.durations", durationText);
   recordValue(options, "stability.members", std::to_string(scan.members));
   recordValue(options, "stability.perturbation", general(perturbation));
   recordValue(options, "stability.grid_lo", general(scan.grid.front(), 3));
