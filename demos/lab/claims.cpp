@@ -120,9 +120,9 @@ int runClaims(const LabOptions& options) {
       tuned.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
       const StepCost defaultCost = measureStepCost(tuned, "rk4", tuned.dt, {1, 5});
       const double constraints = static_cast<double>(chain.system->constraints().size());
-      csv << constraints << plainCost.cgIterations / 4.0 << defaultCost.cgIterations / 4.0;
+      csv << constraints << plainCost.cgIterationsPerSolve() << defaultCost.cgIterationsPerSolve();
       csv.endRow();
-      m.push_back(constraints), plain.push_back(plainCost.cgIterations / 4.0);
+      m.push_back(constraints), plain.push_back(plainCost.cgIterationsPerSolve());
       progress.tick();
     }
     if (interrupted()) return 130;

@@ -187,7 +187,7 @@ int runExtremes(const LabOptions& options) {
           const Budget& c = cells[k];
           csv << static_cast<long>(c.warm) << c.tolerance << static_cast<long>(c.cap) << (r.failed ? 0L : 1L)
               << failureName(r.failure) << r.maxRelativeStretch
-              << static_cast<double>(r.cgIterations) / std::max(1L, r.steps);
+              << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
           csv.endRow();
         });
     if (interrupted()) return 130;
@@ -279,7 +279,7 @@ int runExtremes(const LabOptions& options) {
         const RunResult r = simulate(taut, *stepper, taut.dt, duration, criterion);
         if (r.cutShort) break;
         csv << name << static_cast<long>(cap) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.time
-            << r.maxRelativeStretch << static_cast<double>(r.cgIterations) / std::max(1L, r.steps);
+            << r.maxRelativeStretch << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
         row.push_back(r.failed ? r.reason + " at t = " + general(r.time, 3)
                                  : "held (stretch " + general(r.maxRelativeStretch, 2) + ")");

@@ -13,19 +13,19 @@ namespace lab {
 
 using particles::ParticleSystem;
 
-const char* failureName(Failure failure) {
-  switch (failure) {
-    case Failure::None: return "none";
-    case Failure::NonFinite: return "non-finite";
-    case Failure::StepFailed: return "step-failed";
-    case Failure::ConstraintViolation: return "constraint";
-    case Failure::EnergyGrowth: return "energy";
-  }
-  return "?";
-}
+const char* failureName(Failure failure) { return particles::divergenceReasonName(failure); }
 
 bool isBlowUp(Failure failure) {
-  return failure == Failure::NonFinite || failure == Failure::StepFailed || failure == Failure::EnergyGrowth;
+  return failure == Failure::NonFinite || failure == Failure::StepFailed || failure == Failure::EnergyGrowth ||
+         failure == Failure::OutOfBounds;
+}
+
+particles::DivergenceLimits divergenceLimits(const FailureCriterion& criterion, double energyScale) {
+  particles::DivergenceLimits limits;
+  limits.maxRelativeConstraintError = criterion.maxRelativeConstraintError;
+  limits.energyRiseFraction = criterion.energyRiseFraction;
+  limits.energyScale = energyScale;
+  return limits;
 }
 
 double releasableEnergy(const ParticleSystem& system) {
@@ -89,15 +89,9 @@ std::string describe(const FailureCriterion& criterion) {
   return s.str();
 }
 
-Failure checkFailure(const ParticleSystem& system, const FailureCriterion& criterion, double energyStart,
-                     double energyScale) {
-  if (!system.finite()) return Failure::NonFinite;
-  if (system.maxRelativeConstraintError() > criterion.maxRelativeConstraintError)
-    return Failure::ConstraintViolation;
-  const double energy = system.totalEnergy();
-  if (!std::isfinite(energy)) return Failure::NonFinite;
-  if (energy - energyStart > criterion.energyRiseFraction * energyScale) return Failure::EnergyGrowth;
-  return Failure::None;
+Failure checkFailure(const ParticleSystem& system, const particles::DivergenceLimits& limits, double energyStart,
+                     const particles::StepStats& lastStep) {
+  return particles::checkDivergence(system, limits, energyStart, lastStep).reason;
 }
 
 }  // namespace lab

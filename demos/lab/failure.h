@@ -12,7 +12,9 @@
 // (a whip, a starved solver) and is reported apart from it.
 #include <string>
 
+#include "particles/divergence.h"
 #include "particles/particle_system.h"
+#include "particles/step_stats.h"
 
 namespace lab {
 
@@ -21,13 +23,17 @@ struct FailureCriterion {
   double energyRiseFraction = 0.1;          // of the releasable energy E_s, dimensionless
 };
 
-enum class Failure { None, NonFinite, StepFailed, ConstraintViolation, EnergyGrowth };
+// The engine's divergence reasons (particles/divergence.h), which do the checking.
+using Failure = particles::DivergenceReason;
 
-// "none", "non-finite", "step-failed", "constraint", "energy": the CSV spelling.
+// "none", "non-finite", "step-failed", "constraint", "energy", "out-of-bounds": the CSV spelling.
 const char* failureName(Failure failure);
 
 // Non-finite state, a failed step or energy growth: the integration went unstable.
 bool isBlowUp(Failure failure);
+
+// The engine's limits for this criterion and a scene of releasable energy E_s.
+particles::DivergenceLimits divergenceLimits(const FailureCriterion& criterion, double energyScale);
 
 // E_s, the energy the scene can release, from its initial state:
 //   E_s = K(0) + V_elastic(0) + Σ_i m_i |g| δ_i
@@ -46,8 +52,8 @@ double releasableEnergy(const particles::ParticleSystem& system);
 // The criterion as one line, printed by every experiment and quoted in the report.
 std::string describe(const FailureCriterion& criterion);
 
-// Checks the state after a step; energyStart = E(0), energyScale = E_s.
-Failure checkFailure(const particles::ParticleSystem& system, const FailureCriterion& criterion,
-                     double energyStart, double energyScale);
+// Checks the state after a step (particles::checkDivergence); energyStart = E(0).
+Failure checkFailure(const particles::ParticleSystem& system, const particles::DivergenceLimits& limits,
+                     double energyStart, const particles::StepStats& lastStep);
 
 }  // namespace lab

@@ -33,6 +33,8 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
   result.energyStart = system.totalEnergy();
   result.energyScale = releasableEnergy(system);
   const long steps = std::lround(duration / dt);
+  // An infinite threshold switches that test off (the engine's convention).
+  const particles::DivergenceLimits limits = divergenceLimits(criterion, result.energyScale);
   using Clock = std::chrono::steady_clock;
   auto fail = [&](Failure failure) {
     result.failed = true;
@@ -45,24 +47,26 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
       break;
     }
     const auto start = Clock::now();
+    particles::StepStats stats;
     try {
-      system.step(integrator, dt);
+      stats = system.step(integrator, dt);
     } catch (const std::exception&) {
       result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
       ++result.steps;
+      result.time = k * dt + dt;
       fail(Failure::StepFailed);
       break;
     }
     result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
     ++result.steps;
     result.time = system.time();
-    result.cgIterations += system.lastSolve().iterations;
-    const Failure failure = checkFailure(system, criterion, result.energyStart, result.energyScale);
-    if (failure != Failure::NonFinite) {
+    result.work += stats;
+    if (system.finite()) {
       result.maxRelativeStretch = std::max(result.maxRelativeStretch, system.maxRelativeConstraintError());
-      result.maxEnergyRise =
-          std::max(result.maxEnergyRise, (system.totalEnergy() - result.energyStart) / result.energyScale);
+      const double rise = (system.totalEnergy() - result.energyStart) / result.energyScale;
+      if (std::isfinite(rise)) result.maxEnergyRise = std::max(result.maxEnergyRise, rise);
     }
+    const Failure failure = checkFailure(system, limits, result.energyStart, stats);
     if (failure != Failure::None) {
       fail(failure);
       break;

@@ -40,7 +40,7 @@ struct RunResult {
   double seconds = 0.0;      // wall time of the simulation work
   double maxRelativeStretch = 0.0;  // max over steps of max |C|/r
   double maxEnergyRise = 0.0;       // max over steps of (E − E(0)) / E_s
-  long cgIterations = 0;     // summed over steps (last solve of each step)
+  particles::StepStats work{0, 0, 0.0, 0, 0, 0};  // summed over the steps taken
   double energyStart = 0.0, energyEnd = 0.0;
   double energyScale = 0.0;  // E_s, releasableEnergy() of the start
   bool blewUp() const { return failed && isBlowUp(failure); }

@@ -6,7 +6,7 @@
 namespace lab {
 
 scenes::Scene buildLabScene(const std::string& name, const std::map<std::string, std::string>& overrides) {
-  return scenes::buildScene(name, overrides);
+  return scenes::buildScene(name, overrides, scenes::kSeedPreset);
 }
 
 void perturbStart(scenes::Scene& scene, int member, double relativeSize) {

@@ -10,10 +10,9 @@
 
 namespace lab {
 
-// Builds a built-in scene with the seed's parameters and `overrides` on top;
-// throws std::invalid_argument like scenes::buildScene.
-// (The seed parameters are today's defaults of scenes::buildScene; once the
-// scene table carries named presets this selects the preset "seed".)
+// Builds a built-in scene from its preset "seed" (the seed report's
+// parameters and time step) with `overrides` on top; throws
+// std::invalid_argument like scenes::buildScene.
 scenes::Scene buildLabScene(const std::string& name, const std::map<std::string, std::string>& overrides = {});
 
 // Ensemble member `member` of a scene: member 0 is the scene as built; member
