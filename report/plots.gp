@@ -57,7 +57,7 @@ plot for [k=1:words(names(f))] for [l in lens] f using 4:(strcol(1) eq word(name
 # link rate, 2√((cl−1) g / r)).
 # Where one frequency governs, dt·ω is constant along a line of slope −1.
 set output fig.'/stability_frequency.png'
-set title sprintf("Safe dt against the stiffest frequency present, T = %g s\n● feedback √k_s, ■ the whip (fastest link rotation, measured), ▲ static chain mode 2√((cl−1)g/r)", T)
+set title sprintf("Safe dt against the stiffest frequency present, T = %g s; the stiffest is\n● the feedback √k_s, ■ the whip (fastest rod rotation, measured), ▲ the static chain mode 2√((cl−1)g/r)", T)
 set xlabel 'stiffest frequency ω (1/s)'
 set ylabel 'safe dt (s)'
 omega(x) = ($12 > $13 ? ($12 > $14 ? $12 : $14) : ($13 > $14 ? $13 : $14))

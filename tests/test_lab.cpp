@@ -248,7 +248,7 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
   const Table rows = readCsv(o.outDir + "/stability_boundary.csv",
                              {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
                               "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
-                              "omega_chain", "omega_whip", "governing"});
+                              "omega_chain", "omega_whip", "stiffest"});
   std::map<std::string, std::map<std::string, double>> safe;
   for (const auto& row : rows)
     if (row.at("duration") == "10" && row.at("feedback_ks") == "60")

@@ -131,7 +131,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   Csv boundaryCsv(options.outDir + "/stability_boundary.csv",
                   {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
                    "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
-                   "omega_chain", "omega_whip", "governing"});
+                   "omega_chain", "omega_whip", "stiffest"});
   Csv mapCsv(options.outDir + "/stability_map.csv",
              {"integrator", "chain_length", "feedback_ks", "duration", "dt", "members_run", "survivors", "survived",
               "failure", "max_relative_stretch", "max_energy_rise"});
@@ -161,18 +161,19 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
         // the chain's fastest transverse mode under its top tension
         // (cl − 1) m g is ω ≈ 2 √((cl − 1) g / r) (a beaded string, tension T,
         // bead mass m, spacing r: ω_max = 2 √(T / (m r))).
-        // The whip's rate is measured (fastestLinkRate). The stiffest governs.
+        // The whip's rate is measured (fastestLinkRate). Which one governs is
+        // read off the products dt·ω (constant along a regime), not assumed.
         const double omegaFeedback = std::sqrt(c.stiffness);
         const double omegaChain = 2.0 * std::sqrt((c.length - 1) * g / rod);
         const double omegaWhip = whipRate[c.length];
         const double stiffest = std::max({omegaFeedback, omegaChain, omegaWhip});
-        const std::string governing = stiffest == omegaFeedback ? "feedback" : stiffest == omegaWhip ? "whip" : "chain";
+        const std::string stiffestName = stiffest == omegaFeedback ? "feedback" : stiffest == omegaWhip ? "whip" : "chain";
         for (double duration : c.durations) {
           const auto survival = survivalAt(runs, duration, scan.members);
           const Boundary b = boundaryOf(survival);
           boundaryCsv << c.integrator << c.length << c.stiffness << duration << b.safeDt << b.firstFailureDt
                       << failureName(b.firstFailure) << listText(b.survivalAbove) << b.lowest << b.highest
-                      << static_cast<long>(scan.members) << omegaFeedback << omegaChain << omegaWhip << governing;
+                      << static_cast<long>(scan.members) << omegaFeedback << omegaChain << omegaWhip << stiffestName;
           boundaryCsv.endRow();
           for (const GridSurvival& gs : survival) {
             mapCsv << c.integrator << c.length << c.stiffness << duration << gs.dt << static_cast<long>(gs.membersRun)
@@ -237,7 +238,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   const std::vector<int> tableLengths = q ? std::vector<int>{2, 6} : std::vector<int>{6, 12, 24};
   Csv table1Csv(options.outDir + "/table1_max_chain_length.csv",
                 {"integrator", "dt", "max_chain_length", "first_failing_length", "survival_above"});
-  std::vector<std::vector<std::string>> table1, table2, details, vsDuration, feedback;
+  std::vector<std::vector<std::string>> table1, table2, details, vsDuration, feedback, frequency;
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
     for (double dt : tableSteps) {
@@ -281,6 +282,13 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
       std::vector<std::string> r{name, std::to_string(cl)};
       for (double d : durations) r.push_back(safeStepText(safe[d][name][cl]));
       vsDuration.push_back(r);
+    }
+    for (int cl : lengths) {
+      const Boundary& b = safe[T][name][cl];
+      if (b.belowGrid() || b.aboveGrid()) continue;
+      frequency.push_back({name, std::to_string(cl), general(b.safeDt, 2),
+                           general(b.safeDt * std::sqrt(defaultStiffness), 2), general(b.safeDt * whipRate[cl], 2),
+                           general(b.safeDt * 2.0 * std::sqrt((cl - 1) * g / rod), 2)});
     }
     for (int cl : feedbackLengths) {
       const Boundary& a = safe[T][name][cl];
@@ -330,6 +338,16 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
               "safe dt, k_s " + general(stiffFeedback), "dt·√k_s at " + general(defaultStiffness),
               "dt·√k_s at " + general(stiffFeedback)},
              feedback);
+  std::vector<std::vector<std::string>> whipRows;
+  for (int cl : lengths) whipRows.push_back({std::to_string(cl), general(whipRate[cl], 3)});
+  writeTable(options, "stability_whip",
+             "The whip: fastest rod rotation rate max |d × ḋ|/|d|² over the run (RK4, dt 0.005), 1/s",
+             {"chain length", "ω_whip"}, whipRows);
+  writeTable(options, "stability_frequency",
+             "Safe dt times each frequency present (" + at + "): √k_s = " + general(std::sqrt(defaultStiffness), 3) +
+                 " (feedback), ω_whip measured, 2√((cl−1)g/r) (static chain mode); constant down a column: that "
+                 "frequency governs",
+             {"integrator", "chain length", "safe dt", "dt·√k_s", "dt·ω_whip", "dt·ω_chain"}, frequency);
   recordValue(options, "stability.duration", general(T));
   std::string durationText;
   for (double d : durations) durationText += (durationText.empty() ? "" : ", ") + general(d);
