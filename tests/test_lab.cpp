@@ -353,9 +353,15 @@ TEST(ClaimsQuick, EveryClaimGetsAVerdict) {
     for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++verdicts;
   EXPECT_EQ(verdicts, 6);
   // The starved-CG verdict at each stretch threshold: looser thresholds never refute what a stricter one confirmed.
-  const Table thresholds = readCsv(o.outDir + "/claims_starved_cg_verdict.csv", {"max_stretch_threshold", "cold", "warm"});
+  const Table thresholds = readCsv(o.outDir + "/claims_starved_cg_verdict.csv",
+                                   {"max_stretch_threshold", "cold", "warm", "cold_non_finite_only",
+                                    "warm_non_finite_only"});
   ASSERT_EQ(thresholds.size(), 5u);
-  for (const char* start : {"cold", "warm"})
+  for (const char* start : {"cold", "warm", "cold_non_finite_only", "warm_non_finite_only"})
     for (std::size_t k = 1; k < thresholds.size(); ++k)
       if (thresholds[k - 1].at(start) == "confirmed") EXPECT_EQ(thresholds[k].at(start), "confirmed") << start;
+  // Counting energy growth as exploding can only refute more.
+  for (const auto& row : thresholds)
+    for (const char* start : {"cold", "warm"})
+      if (row.at(start) == "confirmed") EXPECT_EQ(row.at(std::string(start) + "_non_finite_only"), "confirmed");
 }
