@@ -3,8 +3,10 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "lab/experiments.h"
 #include "lab/render.h"
+#include "output_file.h"
 #include "particles/check.h"
 
 namespace cli {
@@ -19,7 +21,8 @@ std::shared_ptr<lab::LabOptions> addLabOptions(CLI::App* command) {
   command->add_option("--integrator", options->integrators,
                       "restrict to these integrators (repeatable; default: every one)");
   command->add_option("--jobs", options->jobs, "threads for independent runs (results identical for any N)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(decimalInteger(1, 256));
   command->add_option("--max-stretch", options->criterion.maxRelativeConstraintError,
                       "failure threshold on the relative constraint error max |C|/r")
       ->capture_default_str();
@@ -41,6 +44,8 @@ int experiment(const std::function<int()>& run) {
   lab::installInterruptHandler();
   try {
     return run();
+  } catch (const scenes::WriteError&) {
+    throw;  // exit 4, not a bad option
   } catch (const std::runtime_error& e) {  // an output file that cannot be written
     throw UsageError(e.what());
   }
@@ -68,15 +73,14 @@ Command addTimingCommand(CLI::App& app) {
   auto* command = app.add_subcommand("timing", "cost per step against chain length and cloth size; the seed's Table 3");
   auto options = addLabOptions(command);
   auto timing = std::make_shared<lab::TimingOptions>();
-  command->add_option("--repeats", timing->repeats, "timed repeats; the median is reported")->capture_default_str();
-  command->add_option("--steps", timing->steps, "steps per timed repeat")->capture_default_str();
+  command->add_option("--repeats", timing->repeats, "timed repeats; the median is reported")
+      ->capture_default_str()
+      ->check(decimalInteger(1, 1000000));
+  command->add_option("--steps", timing->steps, "steps per timed repeat")
+      ->capture_default_str()
+      ->check(decimalInteger(1, 1000000000));
   return {command, [=] {
             validate(*options);
-            if (timing->repeats < 1 || timing->steps < 1)
-              throw UsageError("--repeats and --steps must be >= 1, got " + std::to_string(timing->repeats) +
-                               " and " + std::to_string(timing->steps));
-            particles::requireInRange("--repeats", timing->repeats, 1, 1000);
-            particles::requireInRange("--steps", timing->steps, 1, 1000000);
             return experiment([&] { return lab::runTiming(*options, *timing); });
           }};
 }
