@@ -7,6 +7,7 @@
 
 #include "lab/chain.h"
 #include "lab/experiments.h"
+#include "lab/lab_scene.h"
 
 namespace lab {
 
@@ -33,14 +34,14 @@ Sample runProblem(const Problem& p, const std::string& integrator, double dt, do
                   double integratorTolerance = particles::IntegratorSettings{}.tolerance) {
   // Errors are compared at exactly T, so dt is adjusted to divide T.
   dt = p.duration / std::max(1.0, std::round(p.duration / dt));
-  scenes::Scene scene = scenes::buildScene(p.scene, p.params, scenes::kSeedPreset);
+  scenes::Scene scene = buildLabScene(p.scene, p.params);
   scene.system->solver().settings.tolerance = solverTolerance;
   particles::IntegratorSettings settings;
   settings.tolerance = integratorTolerance;
   auto stepper = particles::makeIntegrator(integrator, settings);
-  Explosion none;
-  none.maxRelativeStretch = std::numeric_limits<double>::infinity();
-  none.energyGain = std::numeric_limits<double>::infinity();
+  FailureCriterion none;
+  none.maxRelativeConstraintError = std::numeric_limits<double>::infinity();
+  none.energyRiseFraction = std::numeric_limits<double>::infinity();
   const RunResult r = simulate(scene, *stepper, dt, p.duration, none);
   return {scene.system->positions(), r.seconds, dt};
 }
