@@ -164,6 +164,7 @@ int runClaims(const LabOptions& options) {
       simulate(cloth, *stepper, cloth.dt, q ? 2.0 : 20.0, explosion, [&](const particles::ParticleSystem& s) {
         const auto [m, w] = cellShear(s, side, side);
         sum += m, worst = std::max(worst, w), ++samples;
+        return true;
       });
       mean[k] = samples ? sum / samples : 0.0;
       csv << links << mean[k] << worst;

@@ -36,7 +36,7 @@ double energyScale(const ParticleSystem& system) {
 
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const Explosion& explosion,
-                   const std::function<void(const ParticleSystem&)>& observe) {
+                   const std::function<bool(const ParticleSystem&)>& observe) {
   ParticleSystem& system = *scene.system;
   RunResult result;
   result.energyStart = system.totalEnergy();
@@ -67,7 +67,10 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
       result.reason = "energy";
       break;
     }
-    if (observe) observe(system);
+    if (observe && !observe(system)) {
+      result.stopped = true;
+      break;
+    }
   }
   result.energyEnd = system.totalEnergy();
   return result;

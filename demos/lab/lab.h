@@ -43,14 +43,16 @@ struct RunResult {
   double maxRelativeStretch = 0.0;
   long cgIterations = 0;     // summed over steps (last solve of each step)
   double energyStart = 0.0, energyEnd = 0.0;
+  bool stopped = false;      // the observer ended the run before T
 };
 
 // Steps the scene with the integrator for `duration` simulated seconds,
 // stopping at the first explosion (or at an interrupt: callers then discard
-// the result). `observe` (optional) runs after each step.
+// the result). `observe` (optional) runs after each step that did not explode;
+// returning false ends the run there (RunResult::stopped).
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const Explosion& explosion = {},
-                   const std::function<void(const particles::ParticleSystem&)>& observe = {});
+                   const std::function<bool(const particles::ParticleSystem&)>& observe = {});
 
 // Energy scale of the explosion criterion for a freshly built scene.
 double energyScale(const particles::ParticleSystem& system);
