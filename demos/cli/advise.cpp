@@ -23,6 +23,7 @@ struct AdviseOptions {
   std::vector<std::string> integrators;
   int repeats = 5;
   long maxSteps = 100000;
+  double referenceTolerance = lab::SurveySettings{}.referenceTolerance;
 };
 
 std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "–"; }
@@ -30,6 +31,7 @@ std::string cell(double value) { return std::isfinite(value) ? lab::general(valu
 int advise(const AdviseOptions& o) {
   if (!(std::isfinite(o.error) && o.error > 0.0)) throw UsageError("--error must be > 0, got " + cell(o.error));
   particles::requirePositive("--horizon", o.horizon);
+  particles::requirePositive("--reference-tolerance", o.referenceTolerance);
   if (!std::isfinite(o.horizon)) throw UsageError("--horizon must be finite, got " + cell(o.horizon));
   if (o.repeats < 1) throw UsageError("--repeats must be >= 1, got " + std::to_string(o.repeats));
   if (o.maxSteps < 1) throw UsageError("--max-steps must be >= 1, got " + std::to_string(o.maxSteps));
@@ -42,15 +44,18 @@ int advise(const AdviseOptions& o) {
   settings.integrators = o.integrators;
   settings.repeats = o.repeats;
   settings.maxSteps = o.maxSteps;
+  settings.referenceTolerance = o.referenceTolerance;
   lab::installInterruptHandler();
   double lastReport = -1.0;
   settings.progress = [&](double fraction) {
     if (fraction - lastReport < 0.05 && fraction < 1.0) return;
     lastReport = fraction;
-    std::fprintf(stderr, "advise: %3.0f%% scanned\n", 100.0 * fraction);
+    if (fraction == 0.0)
+      std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
+    else
+      std::fprintf(stderr, "advise: %3.0f%% scanned\n", 100.0 * fraction);
   };
   const auto build = [&] { return o.source.load(); };
-  std::fprintf(stderr, "advise: reference over %g s ...\n", o.horizon);
   const lab::Survey survey = lab::surveyScene(build, settings);
   std::fprintf(stderr, "advise: timing the picks (%d repeats each) ...\n", o.repeats);
   const std::vector<lab::Pick> picks = lab::pickPerIntegrator(build, survey, settings, o.error);
@@ -100,6 +105,9 @@ Command addAdviseCommand(CLI::App& app) {
   command->add_option("--repeats", options->repeats, "timed repeats of each pick; the median is reported")
       ->capture_default_str();
   command->add_option("--max-steps", options->maxSteps, "the smallest dt scanned is T / max-steps")
+      ->capture_default_str();
+  command->add_option("--reference-tolerance", options->referenceTolerance,
+                      "odeint's error tolerance per step for the reference (checked at 100x it)")
       ->capture_default_str();
   return {command, [=] { return advise(*options); }};
 }

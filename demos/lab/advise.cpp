@@ -34,8 +34,6 @@ void validate(const SurveySettings& s) {
   for (const auto& name : s.integrators) particles::makeIntegrator(name);  // rejects unknown names
 }
 
-// One run against the reference, sampled at every step (every call for an
-// adaptive scheme) by the reference's Hermite interpolant.
 struct Measurer {
   const std::function<scenes::Scene()>& build;
   const SurveySettings& settings;
@@ -43,35 +41,8 @@ struct Measurer {
   double energyScale;
 
   Candidate run(const std::string& name, double dt, double tolerance, bool abortOnError) const {
-    Candidate c;
-    c.integrator = name, c.dt = dt, c.tolerance = tolerance;
-    scenes::Scene scene = build();
-    particles::IntegratorSettings integratorSettings;
-    if (tolerance > 0.0) integratorSettings.tolerance = tolerance;
-    auto stepper = particles::makeIntegrator(name, integratorSettings);
-    double error = 0.0;
-    long k = 0;
-    const RunResult r = simulate(scene, *stepper, dt, settings.horizon, settings.failure,
-                                 [&](const particles::ParticleSystem& system) {
-                                   ++k;
-                                   error = maxParticleDistance(system.positions(), reference.positionsAt(k * dt));
-                                   c.maxError = std::max(c.maxError, error);
-                                   const double sample = k * dt / reference.interval;
-                                   const auto nearest = static_cast<std::size_t>(std::lround(sample));
-                                   if (std::abs(sample - nearest) < 1e-9 && nearest < reference.energy.size())
-                                     c.energyError = std::max(
-                                         c.energyError, std::abs(system.totalEnergy() - reference.energy[nearest]) /
-                                                            energyScale);
-                                   c.constraintDrift = std::max(c.constraintDrift, system.maxRelativeConstraintError());
-                                   if (abortOnError && c.maxError > settings.abortError) c.aborted = true;
-                                   return !c.aborted && !cancelled(settings);
-                                 });
-    c.failure = r.reason;
-    c.survived = !r.exploded && !r.stopped && !cancelled(settings);
-    if (r.exploded) c.maxError = std::numeric_limits<double>::infinity();
-    c.errorAtT = c.survived ? error : std::numeric_limits<double>::infinity();
-    c.seconds = r.seconds;
-    return c;
+    return measureRun(build, reference, name, dt, tolerance, settings.horizon, settings.failure, energyScale,
+                      abortOnError ? settings.abortError : std::numeric_limits<double>::infinity(), settings.cancel);
   }
 };
 
@@ -136,6 +107,66 @@ void scanTolerances(const Measurer& m, const SurveySettings& s, double interval,
 
 }  // namespace
 
+Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajectory& reference,
+                     const std::string& integrator, double dt, double tolerance, double horizon,
+                     const Explosion& failure, double energyScale, double abortError,
+                     const std::atomic<bool>* cancel) {
+  const auto stop = [&] { return interrupted() || (cancel && cancel->load()); };
+  Candidate c;
+  c.integrator = integrator, c.dt = dt, c.tolerance = tolerance;
+  scenes::Scene scene = build();
+  particles::IntegratorSettings integratorSettings;
+  if (tolerance > 0.0) integratorSettings.tolerance = tolerance;
+  auto stepper = particles::makeIntegrator(integrator, integratorSettings);
+  double error = 0.0;
+  long k = 0;
+  const RunResult r = simulate(scene, *stepper, dt, horizon, failure, [&](const particles::ParticleSystem& system) {
+    ++k;
+    error = maxParticleDistance(system.positions(), reference.positionsAt(k * dt));
+    c.maxError = std::max(c.maxError, error);
+    // Energy is compared where the reference has a sample.
+    const double sample = k * dt / reference.interval;
+    const auto nearest = static_cast<std::size_t>(std::lround(sample));
+    if (std::abs(sample - nearest) < 1e-9 && nearest < reference.energy.size())
+      c.energyError = std::max(c.energyError, std::abs(system.totalEnergy() - reference.energy[nearest]) / energyScale);
+    c.constraintDrift = std::max(c.constraintDrift, system.maxRelativeConstraintError());
+    if (c.maxError > abortError) c.aborted = true;
+    return !c.aborted && !stop();
+  });
+  c.failure = r.reason;
+  c.survived = !r.exploded && !r.stopped && !stop();
+  if (r.exploded) c.maxError = std::numeric_limits<double>::infinity();
+  c.errorAtT = c.survived ? error : std::numeric_limits<double>::infinity();
+  c.seconds = r.seconds;
+  return c;
+}
+
+Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
+                        double tolerance, const ClosedForm& closedForm) {
+  ReferenceSettings tight;
+  tight.tolerance = tolerance;
+  tight.interval = interval;
+  // The check integrates again at 100× the tolerance, observed only about once
+  // a second so that odeint chooses its own steps (observed every interval,
+  // both runs would be held to the same short steps and agree trivially).
+  ReferenceSettings check = tight;
+  check.tolerance = 100.0 * tight.tolerance;
+  const long stride = std::max(1L, std::lround(1.0 / interval));
+  check.interval = stride * interval;
+  Reference out;
+  scenes::Scene scene = build();
+  out.trajectory = closedForm ? closedForm(horizon, interval) : odeintReference(scene, horizon, tight);
+  scenes::Scene again = build();
+  const Trajectory checked = odeintReference(again, horizon, check);
+  for (std::size_t k = 0; k < checked.x.size() && k * stride < out.trajectory.x.size(); ++k)
+    out.agreement = std::max(out.agreement, maxParticleDistance(out.trajectory.x[k * stride], checked.x[k]));
+  out.description = closedForm ? "closed form (odeint RKF78 at tolerance " + general(check.tolerance) +
+                                     " agrees within " + general(out.agreement) + ")"
+                               : "odeint RKF78 at tolerance " + general(tight.tolerance) + " (at " +
+                                     general(check.tolerance) + " it differs by " + general(out.agreement) + ")";
+  return out;
+}
+
 Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
                    const ClosedForm& closedForm) {
   validate(settings);
@@ -150,35 +181,20 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   survey.scene = first.name;
   survey.horizon = s.horizon;
   survey.particles = first.system->size();
+  if (s.progress) s.progress(0.0);  // valid: the reference starts
   const double scale = energyScale(*first.system);
 
-  ReferenceSettings tight;
-  tight.tolerance = s.referenceTolerance;
-  tight.interval = interval;
-  Trajectory reference;
-  if (closedForm) {
-    reference = closedForm(s.horizon, interval);
-    scenes::Scene scene = build();
-    survey.referenceAgreement = maxTrajectoryDistance(reference, odeintReference(scene, s.horizon, tight));
-    survey.reference = "closed form (odeint RKF78 at tolerance " + general(tight.tolerance) + " agrees within " +
-                       general(survey.referenceAgreement) + ")";
-  } else {
-    reference = odeintReference(first, s.horizon, tight);
-    ReferenceSettings loose = tight;
-    loose.tolerance = 100.0 * tight.tolerance;
-    scenes::Scene scene = build();
-    survey.referenceAgreement = maxTrajectoryDistance(reference, odeintReference(scene, s.horizon, loose));
-    survey.reference = "odeint RKF78 at tolerance " + general(tight.tolerance) + " (at " +
-                       general(loose.tolerance) + " it differs by " + general(survey.referenceAgreement) + ")";
-  }
-  survey.size = reference.size();
-  survey.touchedWall = reference.touchedWall;
+  const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm);
+  survey.referenceAgreement = reference.agreement;
+  survey.reference = reference.description;
+  survey.size = reference.trajectory.size();
+  survey.touchedWall = reference.trajectory.touchedWall;
 
   std::vector<std::string> names;
   for (const auto& info : particles::integratorTable())
     if (s.integrators.empty() || std::count(s.integrators.begin(), s.integrators.end(), info.name))
       names.push_back(info.name);
-  const Measurer measurer{build, s, reference, scale};
+  const Measurer measurer{build, s, reference.trajectory, scale};
   for (std::size_t i = 0; i < names.size() && !cancelled(s); ++i) {
     IntegratorSurvey out;
     out.integrator = names[i];

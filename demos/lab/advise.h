@@ -7,6 +7,7 @@
 // Only measured points are reported; nothing is extrapolated.
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,15 @@ struct Candidate {
   double seconds = 0.0;       // wall time of the scan run's steps
 };
 
+// One run of a freshly built scene against the reference, sampled at every
+// step (every call of an adaptive scheme) through the reference's interpolant;
+// it stops early once the error exceeds abortError (Candidate::aborted).
+Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajectory& reference,
+                     const std::string& integrator, double dt, double tolerance, double horizon,
+                     const Explosion& failure, double energyScale,
+                     double abortError = std::numeric_limits<double>::infinity(),
+                     const std::atomic<bool>* cancel = nullptr);
+
 struct IntegratorSurvey {
   std::string integrator;
   bool adaptive = false;
@@ -71,6 +81,16 @@ struct Survey {
 
 // A closed-form reference: the trajectory over [0, duration] sampled every interval.
 using ClosedForm = std::function<Trajectory(double duration, double interval)>;
+
+// A reference with its check: `agreement` is the largest particle distance
+// between it and odeint at 100× the tolerance, at common samples about 1 s apart.
+struct Reference {
+  Trajectory trajectory;
+  double agreement = 0.0;
+  std::string description;
+};
+Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
+                        double tolerance, const ClosedForm& closedForm = {});
 
 // Runs the reference and scans every integrator. `build` makes a fresh scene
 // each call. The reference is the closed form when one is given (checked
