@@ -37,6 +37,7 @@ Command addAccuracyCommand(CLI::App& app);
 Command addExtremesCommand(CLI::App& app);
 Command addClaimsCommand(CLI::App& app);
 Command addAdviseCommand(CLI::App& app);
+Command addCostCommand(CLI::App& app);
 Command addRenderReportCommand(CLI::App& app);
 
 }  // namespace cli

@@ -83,6 +83,13 @@ Command addClaimsCommand(CLI::App& app) {
   return {command, [=] { return experiment([&] { return lab::runClaims(*options); }); }};
 }
 
+Command addCostCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "cost", "the cost of accuracy: cheapest safe integrator and dt per scene and error budget");
+  auto options = addLabOptions(command);
+  return {command, [=] { return experiment([&] { return lab::runCost(*options); }); }};
+}
+
 Command addRenderReportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render-report", "fill a Markdown template with the tables and values the experiments wrote");

@@ -189,6 +189,7 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   survey.reference = reference.description;
   survey.size = reference.trajectory.size();
   survey.touchedWall = reference.trajectory.touchedWall;
+  if (s.relativeToSize) s.abortError *= survey.size, s.targetError *= survey.size;
 
   std::vector<std::string> names;
   for (const auto& info : particles::integratorTable())

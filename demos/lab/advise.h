@@ -20,6 +20,7 @@ struct SurveySettings {
   double horizon = 10.0;            // T, simulated seconds
   double abortError = 1e-2;         // a run stops once its error exceeds this (world units)
   double targetError = 1e-4;        // the scan of an integrator ends at the first safe point within this
+  bool relativeToSize = false;      // abortError and targetError are fractions of the scene's size
   std::vector<std::string> integrators;  // empty: every integrator in the engine's table
   double dtMax = 0.0;               // largest dt scanned; 0: min(T/20, 0.5)
   long maxSteps = 100000;           // smallest dt scanned is T / maxSteps
