@@ -26,6 +26,7 @@ void validate(const SurveySettings& s) {
   particles::requirePositive("abort error", s.abortError);
   if (s.dtMax != 0.0) particles::requirePositive("dt max", s.dtMax);
   if (s.interval != 0.0) particles::requirePositive("interval", s.interval);
+  particles::requirePositive("adaptive interval", s.adaptiveInterval);
   particles::requirePositive("reference tolerance", s.referenceTolerance);
   particles::requireInRange("safe fraction", s.safeFraction, 1e-3, 1.0);
   if (!(s.gridRatio > 1.0)) throw std::invalid_argument("grid ratio must be > 1, got " + general(s.gridRatio));
@@ -204,7 +205,8 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
       if (s.progress) s.progress((i + f) / names.size());
     };
     if (out.adaptive)
-      scanTolerances(measurer, s, interval, out, progress);
+      scanTolerances(measurer, s, s.horizon / std::max(1L, std::lround(s.horizon / s.adaptiveInterval)), out,
+                     progress);
     else
       scanSteps(measurer, s, out, progress);
     survey.integrators.push_back(std::move(out));

@@ -28,7 +28,9 @@ struct SurveySettings {
   double safeFraction = 0.8;        // a pick's dt is at most this × the safe boundary
   int survivorsBelowFailure = 3;    // grid points that must survive below the lowest failure
   std::vector<double> tolerances;   // adaptive schemes; empty: 1e-2 … 1e-12, factor √10
-  double interval = 0.0;            // reference sample spacing and adaptive call interval; 0: scene dt
+  double interval = 0.0;            // reference sample spacing; 0: the scene's dt
+  double adaptiveInterval = 0.1;    // an adaptive scheme's call (output) interval, simulated seconds:
+                                    // long enough that its tolerance, not the call, limits its step
   int repeats = 5;                  // timed repeats of each pick; the median is reported
   Explosion failure;                // the failure criterion
   double referenceTolerance = 1e-11;  // odeint's; the check run uses 100× this
