@@ -90,6 +90,13 @@ Command addCostCommand(CLI::App& app) {
   return {command, [=] { return experiment([&] { return lab::runCost(*options); }); }};
 }
 
+Command addLongtimeCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "longtime", "energy over 500 s per integrator (pendulum, 6-chain); implicit Euler's loss per period");
+  auto options = addLabOptions(command);
+  return {command, [=] { return experiment([&] { return lab::runLongtime(*options); }); }};
+}
+
 Command addRenderReportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render-report", "fill a Markdown template with the tables and values the experiments wrote");

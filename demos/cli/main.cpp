@@ -20,6 +20,7 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addExtremesCommand,
     cli::addClaimsCommand,
     cli::addCostCommand,
+    cli::addLongtimeCommand,
     cli::addAdviseCommand,
     cli::addRenderReportCommand,
 };

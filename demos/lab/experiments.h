@@ -22,6 +22,7 @@ int runAccuracy(const LabOptions& options);
 int runExtremes(const LabOptions& options);
 int runClaims(const LabOptions& options);
 int runCost(const LabOptions& options);
+int runLongtime(const LabOptions& options);
 
 // Median wall time of one step (seconds) and mean CG iterations per step of a
 // scene under an integrator: warm-up steps, then `repeats` × `steps` timed
