@@ -48,7 +48,7 @@ int runAccuracy(const LabOptions& options) {
       {"pendulum", "pendulum", {}, q ? 20.0 : 100.0, q ? std::vector<double>{0.1, 0.05, 0.025} : logSpace(0.005, 0.3, 8)},
       {"6-chain", "test-chain", {{"cl", "6"}}, q ? 4.0 : 60.0, q ? std::vector<double>{0.04, 0.02} : logSpace(0.0025, 0.08, 7),
        false, q ? 1e-11 : 1e-13},
-      {"10x10 cloth", "cloth", {{"width", "10"}, {"height", "10"}}, q ? 1.0 : 10.0,
+      {"cloth-10x10", "cloth", {{"width", "10"}, {"height", "10"}}, q ? 1.0 : 10.0,
        q ? std::vector<double>{0.04, 0.02} : logSpace(0.0025, 0.16, 7)},
   };
   // Adaptive schemes: swept over their tolerance, called every output
