@@ -71,9 +71,9 @@ int runAccuracy(const LabOptions& options) {
   const Explosion failure;
   for (const auto& p : problems) {
     if (interrupted()) break;
-    const auto build = [&] { return scenes::buildScene(p.scene, p.params); };
+    const auto build = [&] { return scenes::buildScene(p.scene, p.params, scenes::kSeedPreset); };
     ClosedForm closedForm;
-    if (p.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(p.params, T, h); };
+    if (p.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(p.params, T, h, scenes::kSeedPreset); };
     scenes::Scene first = build();
     const int particles = first.system->size();
     const double scale = energyScale(*first.system);

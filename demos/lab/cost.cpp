@@ -63,7 +63,7 @@ int runCost(const LabOptions& options) {
   std::vector<std::vector<std::string>> table;
   for (const auto& cs : scenes) {
     if (interrupted()) break;
-    const auto build = [&] { return scenes::buildScene(cs.scene, cs.params); };
+    const auto build = [&] { return scenes::buildScene(cs.scene, cs.params, scenes::kSeedPreset); };
     SurveySettings settings;
     settings.horizon = cs.horizon;
     settings.maxSteps = cs.maxSteps;
@@ -75,7 +75,7 @@ int runCost(const LabOptions& options) {
     settings.abortError = budgets.front();
     settings.targetError = budgets.back();
     ClosedForm closedForm;
-    if (cs.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(cs.params, T, h); };
+    if (cs.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(cs.params, T, h, scenes::kSeedPreset); };
     const Survey survey = surveyScene(build, settings, closedForm);
     if (interrupted()) break;
     for (const auto& scan : survey.integrators) {

@@ -28,7 +28,7 @@ int runLongtime(const LabOptions& options) {
   const auto integrators = selectedIntegrators(options);
   const double horizon = q ? 20.0 : 500.0, every = q ? 0.5 : 1.0;  // energy sampled every `every` s
   const std::vector<LongRun> runs = {{"pendulum", "pendulum", {}, 0.05}, {"6-chain", "test-chain", {{"cl", "6"}}, 0.01}};
-  const scenes::PendulumParams pendulum;
+  const scenes::PendulumParams pendulum = scenes::PendulumParams::seed();
   const double period = scenes::pendulumPeriod(pendulum);
   const std::vector<double> implicitSteps = q ? std::vector<double>{0.05, 0.2} : logSpace(0.005, 0.5, 7);
   Progress progress("longtime", static_cast<long>(runs.size() * integrators.size() + implicitSteps.size()));
@@ -44,7 +44,7 @@ int runLongtime(const LabOptions& options) {
     std::vector<std::string> row{run.label + " (dt = " + general(run.dt) + " s)"};
     for (const auto& name : integrators) {
       if (interrupted()) break;
-      scenes::Scene scene = scenes::buildScene(run.scene, run.params);
+      scenes::Scene scene = scenes::buildScene(run.scene, run.params, scenes::kSeedPreset);
       const double scale = energyScale(*scene.system), e0 = scene.system->totalEnergy();
       auto stepper = particles::makeIntegrator(name);
       const long stride = std::max(1L, std::lround(every / run.dt));
@@ -78,7 +78,7 @@ int runLongtime(const LabOptions& options) {
   // periods P gives the fraction lost per period, 1 − (E_s(T)/E_s(0))^(P/T).
   const double T = q ? 2 * period : 5 * period;
   std::map<std::string, std::string> bottom{{"angle", "0"}};
-  const double eBottom = scenes::buildScene("pendulum", bottom).system->totalEnergy();
+  const double eBottom = scenes::buildScene("pendulum", bottom, scenes::kSeedPreset).system->totalEnergy();
   // The 6-chain beside it: energy lost over 60 s as a fraction of the potential
   // drop from the start to hanging straight, g·m·L·cl(cl−1)/2.
   const double chainT = q ? 5.0 : 60.0;
@@ -96,7 +96,7 @@ int runLongtime(const LabOptions& options) {
   for (double wanted : implicitSteps) {
     if (interrupted()) break;
     const double dt = T / std::round(T / wanted);
-    scenes::Scene scene = scenes::buildScene("pendulum");
+    scenes::Scene scene = scenes::buildScene("pendulum", {}, scenes::kSeedPreset);
     const double swing0 = scene.system->totalEnergy() - eBottom;
     auto stepper = particles::makeIntegrator("implicit-euler");
     simulate(scene, *stepper, dt, T, drift);

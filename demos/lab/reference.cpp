@@ -96,10 +96,11 @@ Trajectory odeintReference(scenes::Scene& scene, double duration, const Referenc
   return out;
 }
 
-Trajectory oscillatorReference(const std::map<std::string, std::string>& params, double duration, double interval) {
+Trajectory oscillatorReference(const std::map<std::string, std::string>& params, double duration, double interval,
+                               const std::string& preset) {
   const auto p = scenes::readParams<scenes::OscillatorParams>(
-      scenes::SceneParams(scenes::paramSpecs<scenes::OscillatorParams>(), params));
-  scenes::Scene scene = scenes::buildScene("oscillator", params);
+      scenes::SceneParams(scenes::paramSpecs<scenes::OscillatorParams>(), params, preset));
+  scenes::Scene scene = scenes::buildScene("oscillator", params, preset);
   particles::ParticleSystem& system = *scene.system;
   Trajectory out;
   out.interval = interval;

@@ -41,7 +41,8 @@ Trajectory odeintReference(scenes::Scene& scene, double duration, const Referenc
 
 // The oscillator scene's closed form (scenes::oscillatorDisplacement) on the
 // same grid; a and energy from the scene's own evaluation at the exact state.
-Trajectory oscillatorReference(const std::map<std::string, std::string>& params, double duration, double interval);
+Trajectory oscillatorReference(const std::map<std::string, std::string>& params, double duration, double interval,
+                               const std::string& preset = scenes::kDefaultPreset);
 
 // Largest distance between corresponding particles of two position vectors;
 // infinite if either is not finite.
