@@ -24,9 +24,11 @@ value machine.date "$(date -u +%Y-%m-%d)"
 
 for experiment in stability timing accuracy cost longtime extremes claims; do
   echo "== particle-lab $experiment ${mode[*]}" >&2
-  "$lab" "$experiment" "${mode[@]}" --out "$data" > "$data/$experiment.log"
+  "$lab" "$experiment" "${mode[@]}" --jobs "$(nproc)" --out "$data" > "$data/$experiment.log"
 done
 
+# Every figure plots.gp draws is redrawn from this run's data; none is left stale.
+find report/figures -name '*.png' ! -name 'demo-*' -delete
 gnuplot -e "data='$data'; fig='report/figures'" report/plots.gp
 "$lab" render-report --template report/template.md --data "$data" --out report/README.md
 echo "report/README.md regenerated" >&2

@@ -11,6 +11,7 @@
 
 #include "lab/advise.h"
 #include "lab/experiments.h"
+#include "lab/lab_scene.h"
 
 namespace lab {
 
@@ -68,15 +69,15 @@ int runAccuracy(const LabOptions& options) {
            "energy_error", "constraint_drift", "cpu_min", "cpu_max", "survived", "failure"});
   Csv slopes(options.outDir + "/accuracy_slopes.csv", {"problem", "integrator", "slope"});
   std::vector<std::vector<std::string>> table, references;
-  const Explosion failure;
+  const FailureCriterion& failure = options.criterion;
   for (const auto& p : problems) {
     if (interrupted()) break;
-    const auto build = [&] { return scenes::buildScene(p.scene, p.params, scenes::kSeedPreset); };
+    const auto build = [&] { return buildLabScene(p.scene, p.params); };
     ClosedForm closedForm;
     if (p.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(p.params, T, h, scenes::kSeedPreset); };
     scenes::Scene first = build();
     const int particles = first.system->size();
-    const double scale = energyScale(*first.system);
+    const double scale = releasableEnergy(*first.system);
     const Reference reference = makeReference(build, p.horizon, first.dt, p.referenceTolerance, closedForm);
     const double size = reference.trajectory.size();
     references.push_back({p.label, std::to_string(particles), general(p.horizon), general(size),

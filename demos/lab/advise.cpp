@@ -110,7 +110,7 @@ void scanTolerances(const Measurer& m, const SurveySettings& s, double interval,
 
 Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajectory& reference,
                      const std::string& integrator, double dt, double tolerance, double horizon,
-                     const Explosion& failure, double energyScale, double abortError,
+                     const FailureCriterion& failure, double energyScale, double abortError,
                      const std::atomic<bool>* cancel) {
   const auto stop = [&] { return interrupted() || (cancel && cancel->load()); };
   Candidate c;
@@ -135,8 +135,8 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
     return !c.aborted && !stop();
   });
   c.failure = r.reason;
-  c.survived = !r.exploded && !r.stopped && !stop();
-  if (r.exploded) c.maxError = std::numeric_limits<double>::infinity();
+  c.survived = !r.failed && !r.stopped && !r.cutShort && !stop();
+  if (r.failed) c.maxError = std::numeric_limits<double>::infinity();
   c.errorAtT = c.survived ? error : std::numeric_limits<double>::infinity();
   c.seconds = r.seconds;
   return c;
@@ -183,7 +183,7 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   survey.horizon = s.horizon;
   survey.particles = first.system->size();
   if (s.progress) s.progress(0.0);  // valid: the reference starts
-  const double scale = energyScale(*first.system);
+  const double scale = releasableEnergy(*first.system);
 
   const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm);
   survey.referenceAgreement = reference.agreement;

@@ -32,7 +32,7 @@ struct SurveySettings {
   double adaptiveInterval = 0.1;    // an adaptive scheme's call (output) interval, simulated seconds:
                                     // long enough that its tolerance, not the call, limits its step
   int repeats = 5;                  // timed repeats of each pick; the median is reported
-  Explosion failure;                // the failure criterion
+  FailureCriterion failure;         // the failure criterion (lab/failure.h)
   double referenceTolerance = 1e-11;  // odeint's; the check run uses 100× this
   std::function<void(double)> progress;        // fraction of the scan done, 0..1 (any thread)
   const std::atomic<bool>* cancel = nullptr;   // set to stop early
@@ -48,7 +48,7 @@ struct Candidate {
   std::string failure;        // which criterion fired, if any
   double maxError = 0.0;      // max over the run's steps of the largest particle error
   double errorAtT = 0.0;
-  double energyError = 0.0;   // max |E − E_ref| over the steps / energy scale
+  double energyError = 0.0;   // max |E − E_ref| over the steps / E_s (releasableEnergy)
   double constraintDrift = 0.0;  // max |C|/r over the run
   double seconds = 0.0;       // wall time of the scan run's steps
 };
@@ -58,7 +58,7 @@ struct Candidate {
 // it stops early once the error exceeds abortError (Candidate::aborted).
 Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajectory& reference,
                      const std::string& integrator, double dt, double tolerance, double horizon,
-                     const Explosion& failure, double energyScale,
+                     const FailureCriterion& failure, double energyScale,
                      double abortError = std::numeric_limits<double>::infinity(),
                      const std::atomic<bool>* cancel = nullptr);
 

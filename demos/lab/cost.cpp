@@ -8,6 +8,7 @@
 
 #include "lab/advise.h"
 #include "lab/experiments.h"
+#include "lab/lab_scene.h"
 
 namespace lab {
 
@@ -50,9 +51,7 @@ int runCost(const LabOptions& options) {
   recordValue(options, "cost.grid_ratio", fixed(defaults.gridRatio, 3));
   recordValue(options, "cost.reference_tolerance", general(defaults.referenceTolerance));
   recordValue(options, "cost.repeats", std::to_string(q ? 2 : defaults.repeats));
-  recordValue(options, "cost.failure",
-              "max |C|/r > " + general(defaults.failure.maxRelativeStretch) + ", energy gain > " +
-                  general(defaults.failure.energyGain) + " x scale, or non-finite");
+  recordValue(options, "cost.failure", describe(options.criterion));
   Progress progress("cost", static_cast<long>(scenes.size()));
 
   Csv picksCsv(options.outDir + "/cost_of_accuracy.csv",
@@ -63,12 +62,13 @@ int runCost(const LabOptions& options) {
   std::vector<std::vector<std::string>> table;
   for (const auto& cs : scenes) {
     if (interrupted()) break;
-    const auto build = [&] { return scenes::buildScene(cs.scene, cs.params, scenes::kSeedPreset); };
+    const auto build = [&] { return buildLabScene(cs.scene, cs.params); };
     SurveySettings settings;
     settings.horizon = cs.horizon;
     settings.maxSteps = cs.maxSteps;
     settings.integrators = selectedIntegrators(options);
     settings.repeats = q ? 2 : defaults.repeats;
+    settings.failure = options.criterion;
     // One survey: runs stop once beyond the loosest budget, and each
     // integrator's scan ends within the tightest.
     settings.relativeToSize = true;

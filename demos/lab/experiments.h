@@ -7,8 +7,8 @@
 namespace lab {
 
 struct StabilityOptions {
-  double duration = 60.0;  // T, simulated seconds a run must survive
-  Explosion explosion;
+  double duration = 60.0;  // T of Tables 1 and 2, simulated seconds a run must survive
+  static constexpr double minDuration = 1.0, maxDuration = 1e4;  // accepted range of --duration, s
 };
 int runStability(const LabOptions& options, const StabilityOptions& stability);
 
