@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "app.h"
+#include "particles/solver_names.h"
 
 namespace demo {
 
@@ -17,37 +18,19 @@ const scenes::SceneInfo* findScene(const std::string& name) {
   return nullptr;
 }
 
-// Names of the constraint solver's choices, as the panel offers them.
-struct MethodName {
-  particles::SolveMethod method;
-  const char* name;
-};
-constexpr MethodName solveMethods[] = {
-    {particles::SolveMethod::Direct, "direct (LDLT)"},
-    {particles::SolveMethod::ConjugateGradient, "conjugate gradient"},
-};
-struct PreconditionerName {
-  particles::Preconditioner preconditioner;
-  const char* name;
-};
-constexpr PreconditionerName preconditioners[] = {
-    {particles::Preconditioner::None, "none"},
-    {particles::Preconditioner::Jacobi, "Jacobi"},
-    {particles::Preconditioner::IncompleteCholesky, "incomplete Cholesky"},
-};
-
-// A combo over one of the tables above; true when the choice changed.
-template <class Entry, class Value, std::size_t N>
-bool choose(const char* label, const Entry (&table)[N], Value Entry::*field, Value& value) {
+// A combo over one of the engine's name tables (particles/solver_names.h),
+// showing each choice's label; true when the choice changed.
+template <class Value>
+bool choose(const char* label, const std::vector<particles::ChoiceName<Value>>& table, Value& value) {
   const char* current = "?";
-  for (const Entry& e : table)
-    if (e.*field == value) current = e.name;
+  for (const auto& e : table)
+    if (e.value == value) current = e.label;
   bool changed = false;
   if (ImGui::BeginCombo(label, current)) {
-    for (const Entry& e : table)
-      if (ImGui::Selectable(e.name, e.*field == value)) {
-        changed = e.*field != value;
-        value = e.*field;
+    for (const auto& e : table)
+      if (ImGui::Selectable(e.label, e.value == value)) {
+        changed = e.value != value;
+        value = e.value;
       }
     ImGui::EndCombo();
   }
@@ -208,9 +191,9 @@ void App::drawPanel() {
   // --- constraint solver and mouse spring ------------------------------------
   if (ImGui::CollapsingHeader("Solver and mouse spring")) {
     particles::SolverSettings settings = panes_.front()->system().solver().settings;
-    bool changed = choose("constraint solve", solveMethods, &MethodName::method, settings.method);
+    bool changed = choose("constraint solve", particles::solveMethodNames(), settings.method);
     if (settings.method == particles::SolveMethod::ConjugateGradient)
-      changed |= choose("preconditioner", preconditioners, &PreconditionerName::preconditioner, settings.preconditioner);
+      changed |= choose("preconditioner", particles::preconditionerNames(), settings.preconditioner);
     float logTolerance = static_cast<float>(std::log10(settings.tolerance));
     if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
       settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
