@@ -24,7 +24,7 @@ namespace {
 constexpr double framesPerSecond = 60.0;  // the frame time the fixed-time mode simulates
 constexpr long long rewindFrames = 60;    // how far 'b' goes back: about one second at 1x speed
 constexpr int statusFramesShown = 240;
-constexpr int hintFramesShown = 600;      // frames a scene's "try this" shows after it opens (as App::hintUntilFrame_)
+constexpr int hintFramesShown = 360;      // frames a scene's "try this" shows after it opens (as App::hintUntilFrame_)
 
 // What the panes added by v run, relative to pane 1: schemes and steps that
 // look different on every scene (one integrator at one dt in every pane would

@@ -174,7 +174,7 @@ class App {
   int statusFrames_ = 0;
   ExactMotion exact_;              // the scene's closed form, drawn as a ghost; empty if none
   std::string sceneHint_;          // the scene's "try this", shown when it opens
-  long long hintUntilFrame_ = 600;  // frames: the summary and hint show for 10 s after a scene opens
+  long long hintUntilFrame_ = 360;  // frames: the hint shows for 6 s after a scene opens
   bool quit_ = false;
   mutable bool outputFailed_ = false;
   bool frameDue_ = false;

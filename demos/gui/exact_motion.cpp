@@ -1,5 +1,6 @@
 #include "exact_motion.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scenes/oscillator.h"
@@ -60,7 +61,8 @@ ExactMotion pendulum(const SceneChoice& choice) {
     const double theta0 = p.angle * M_PI / 180.0, k = std::sin(0.5 * std::abs(theta0));
     const double omega0 = std::sqrt(p.gravity / p.length);
     const double s = k * jacobiSn(std::comp_ellint_1(k) - omega0 * t, k);
-    const double theta = std::copysign(2.0 * std::asin(std::clamp(s, -1.0, 1.0)), theta0);
+    // θ swings through zero to −θ₀: its sign is sn's, mirrored for a release at a negative angle.
+    const double theta = (theta0 < 0.0 ? -1.0 : 1.0) * 2.0 * std::asin(std::clamp(s, -1.0, 1.0));
     GhostFrame g;
     const Eigen::Vector2d centre(0.0, 0.0), bead = centre + p.length * Eigen::Vector2d(std::sin(theta), -std::cos(theta));
     g.points = {bead};

@@ -107,7 +107,9 @@ std::string plural(int n, const char* word) { return format("%d %s%s", n, word, 
 // Why a pane shows what it shows, beyond its numbers: stopped, slow motion,
 // or a dt longer than a frame.
 std::string App::paneStateLine(const Simulation& sim) const {
-  if (sim.divergedAt()) return format("diverged at t = %.3f s: r resets, b rewinds", *sim.divergedAt());
+  if (sim.divergedAt())
+    return format("diverged at t = %.3f s (%s): r resets, b rewinds", *sim.divergedAt(),
+                  sim.divergence().message().c_str());
   if (sim.refusal()) return *sim.refusal() + ": press i for another integrator";
   const FrameStats& f = sim.lastFrame();
   if (f.capped) return format("slow motion: %d steps/frame fill the %.0f ms budget (+ doubles dt)", f.substeps, stepBudgetMsPerFrame / panes_.size());
@@ -136,8 +138,8 @@ void App::drawTopBar() {
     title.push_back({"     [paused]", colour(palette::hudText)});
 
   // The message line: an error or status first, then what the single pane's
-  // state needs said, then particles out of view, then the scene's hint and
-  // the first-run hint. A long message takes the title's line too.
+  // state needs said, then the scene's hint (for its first seconds), then
+  // particles out of view, then the first-run hint. A long message takes the title's line too.
   std::string message;
   ImU32 messageColour = colour(palette::hudText);
   int outOfView = 0;
@@ -155,11 +157,11 @@ void App::drawTopBar() {
   } else if (!state.empty()) {
     message = state;
     if (first.stopped()) messageColour = colour(palette::divergenceText);
+  } else if (frame_ < hintUntilFrame_ && !sceneHint_.empty()) {
+    message = sceneHint_;  // the table's line, "try this: ..."
   } else if (outOfView > 0) {
     message = plural(outOfView, "particle") + " out of view (arrows at the edge): a frames all";
     messageColour = titleColour;
-  } else if (frame_ < hintUntilFrame_ && !sceneHint_.empty()) {
-    message = sceneHint_;  // the table's line, "try this: ..."
   } else if (!grabbedOnce_) {
     message = "drag any particle with the left mouse button; h lists the keys";
   }

@@ -91,8 +91,8 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
 
-  draw(walls_, GL_TRIANGLES);
   draw(faces_, GL_TRIANGLES);
+  draw(walls_, GL_TRIANGLES);
   for (const auto& [diameter, batch] : discsBySize_) {
     glPointSize(static_cast<float>(diameter));
     draw(batch, GL_POINTS);
