@@ -107,19 +107,58 @@ set title 'Cost per step of the 8-way cloth'
 plot for [n in names(data.'/timing_slopes.csv')] f using 3:(strcol(1) eq 'cloth-8' && strcol(2) eq n ? positive($7) : NaN) title n
 
 # --- accuracy: work–precision ----------------------------------------------
+# accuracy.csv: 1 problem, 2 integrator, 3 dt, 4 tolerance, 5 max error, 6 CPU median,
+# 7 error at T, 8 energy error, 9 constraint drift, 10 CPU min, 11 CPU max, 12 survived.
 f = data.'/accuracy.csv'
 problems = system(sprintf("tail -n +2 '%s' | cut -d, -f1 | awk '!seen[$0]++' | tr '\\n' ' '", f))
+schemes = system(sprintf("tail -n +2 '%s' | cut -d, -f2 | awk '!seen[$0]++' | tr '\\n' ' '", f))
+knob(dt, tol) = (tol > 0 ? sprintf('tol %.0e', tol) : sprintf('%.2g', dt))
 do for [p in problems] {
+  horizon = system(sprintf("awk -F, '$1==\"accuracy.horizon.%s\"{print $2}' '%s/values.csv'", p, data))
   set output fig.'/accuracy_'.p.'.png'
-  set title 'Work-precision: '.p
+  set title sprintf("Work-precision: %s, T = %s s; CPU median of repeats, bars min-max; labels dt or tolerance", p, horizon) font ',10'
   set xlabel 'CPU seconds per simulated second'
-  set ylabel 'max position error at T'
-  plot for [n in names(data.'/timing_slopes.csv')] f using (strcol(1) eq p && strcol(2) eq n ? positive($6) : NaN):(positive($5)) title n
+  set ylabel 'max particle position error over [0, T]'
+  plot for [n in schemes] f using (strcol(1) eq p && strcol(2) eq n ? positive($6) : NaN):(positive($5)):10:11 with xerrorbars title n, \
+       for [n in schemes] f using (strcol(1) eq p && strcol(2) eq n ? positive($6) : NaN):(positive($5)):(knob($3, $4)) with labels font ',7' offset 0.5,0.5 left notitle
   set output fig.'/accuracy_order_'.p.'.png'
-  set title 'Error against dt: '.p
+  set title sprintf("Max position error against dt: %s, T = %s s (fixed-step schemes)", p, horizon) font ',10'
   set xlabel 'dt (s)'
-  plot for [n in names(data.'/timing_slopes.csv')] f using (strcol(1) eq p && strcol(2) eq n && $4 == 0 ? $3 : NaN):(positive($5)) title n
+  plot for [n in schemes] f using (strcol(1) eq p && strcol(2) eq n && $4 == 0 ? $3 : NaN):(positive($5)) title n
+  set output fig.'/accuracy_energy_'.p.'.png'
+  set title sprintf("Energy error max |E - E_{ref}| / energy scale against dt: %s, T = %s s", p, horizon) font ',10'
+  set ylabel 'energy error / scale'
+  plot for [n in schemes] f using (strcol(1) eq p && strcol(2) eq n && $4 == 0 ? $3 : NaN):(positive($8)) title n
 }
+
+# --- long-time behaviour ----------------------------------------------------
+f = data.'/longtime_energy.csv'
+problems = system(sprintf("tail -n +2 '%s' | cut -d, -f1 | awk '!seen[$0]++' | tr '\\n' ' '", f))
+schemes = system(sprintf("tail -n +2 '%s' | cut -d, -f2 | awk '!seen[$0]++' | tr '\\n' ' '", f))
+unset logscale
+set format x '%g'
+set format y '%g'
+set style data lines
+do for [p in problems] {
+  set output fig.'/longtime_energy_'.p.'.png'
+  set title 'Energy change (E(t) - E(0)) / energy scale: '.p.' (values beyond ±0.05 run off the plot)' font ',10'
+  set xlabel 't (s)'
+  set ylabel '(E - E_0) / scale'
+  set yrange [-0.05:0.05]
+  plot for [n in schemes] f using (strcol(1) eq p && strcol(2) eq n ? $4 : NaN):5 title n
+}
+set yrange [*:*]
+set style data linespoints
+f = data.'/longtime_implicit_loss.csv'
+set output fig.'/longtime_implicit_loss.png'
+set title 'Implicit Euler: energy lost against dt' font ',10'
+set logscale x
+set format x '10^{%L}'
+set xlabel 'dt (s)'
+set ylabel 'fraction'
+plot f using 1:4 title 'pendulum: swing energy lost per period', f using 1:5 title '6-chain: lost over the run / potential drop'
+set logscale xy
+set format y '10^{%L}'
 
 # --- extremes --------------------------------------------------------------
 f = data.'/extremes_stiffness.csv'

@@ -12,6 +12,7 @@
 
 #include "lab/chain.h"
 #include "lab/experiments.h"
+#include "lab/lab_scene.h"
 #include "lab/parallel.h"
 #include "lab/scan.h"
 #include "particles/constraints/circular_wire.h"
@@ -312,7 +313,23 @@ TEST(AccuracyQuick, OscillatorSlopesAreTheIntegratorsOrders) {
   EXPECT_NEAR(slope["euler"], 1.0, 0.3);
   EXPECT_NEAR(slope["midpoint"], 2.0, 0.3);
   EXPECT_NEAR(slope["rk4"], 4.0, 0.3);
-  readCsv(o.outDir + "/accuracy.csv", {"problem", "integrator", "dt", "tolerance", "error", "seconds_per_simulated_second"});
+  const Table points = readCsv(o.outDir + "/accuracy.csv",
+                               {"problem", "integrator", "dt", "tolerance", "error", "seconds_per_simulated_second",
+                                "error_at_T", "energy_error", "constraint_drift", "cpu_min", "cpu_max", "survived",
+                                "failure"});
+  // Adaptive schemes are swept over their tolerance at a fixed output
+  // interval: a tighter tolerance must give a smaller error, not the same one.
+  std::map<std::string, std::map<double, double>> adaptiveErrors;
+  for (const auto& row : points) {
+    EXPECT_LE(std::stod(row.at("cpu_min")), std::stod(row.at("seconds_per_simulated_second")));
+    EXPECT_LE(std::stod(row.at("seconds_per_simulated_second")), std::stod(row.at("cpu_max")));
+    if (row.at("problem") == "oscillator" && std::stod(row.at("tolerance")) > 0)
+      adaptiveErrors[row.at("integrator")][std::stod(row.at("tolerance"))] = std::stod(row.at("error"));
+  }
+  for (const auto& [name, errors] : adaptiveErrors) {
+    ASSERT_GE(errors.size(), 2u) << name;
+    EXPECT_LT(errors.begin()->second, 0.5 * errors.rbegin()->second) << name;
+  }
 }
 
 TEST(TimingQuick, WritesPositiveStepTimesForEveryIntegrator) {

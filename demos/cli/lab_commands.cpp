@@ -113,11 +113,25 @@ Command addClaimsCommand(CLI::App& app) {
           }};
 }
 
+Command addCostCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "cost", "the cost of accuracy: cheapest safe integrator and dt per scene and error budget");
+  auto options = addLabOptions(command);
+  return {command, [=] { return experiment([&] { return lab::runCost(*options); }); }};
+}
+
+Command addLongtimeCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "longtime", "energy over 500 s per integrator (pendulum, 6-chain); implicit Euler's loss per period");
+  auto options = addLabOptions(command);
+  return {command, [=] { return experiment([&] { return lab::runLongtime(*options); }); }};
+}
+
 Command addRenderReportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render-report", "fill a Markdown template with the tables and values the experiments wrote");
   auto render = std::make_shared<lab::RenderOptions>();
-  command->add_option("--template", render->templatePath, "template file")->required()->check(CLI::ExistingFile);
+  command->add_option("--template", render->templatePath, "template file")->required()->check(regularFile());
   command->add_option("--data", render->dataDir, "directory the experiments wrote")
       ->required()
       ->check(CLI::ExistingDirectory);

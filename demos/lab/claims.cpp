@@ -249,6 +249,7 @@ int runClaims(const LabOptions& options) {
       const RunResult r = simulate(cloth, *stepper, cloth.dt, T, criterion, [&](const particles::ParticleSystem& s) {
         const auto [m, w] = cellShear(s, side, side);
         sum += m, worst = std::max(worst, w), ++samples;
+        return true;
       });
       if (r.cutShort) return 130;
       mean[k] = samples ? sum / samples : 0.0;

@@ -21,6 +21,8 @@ int runTiming(const LabOptions& options, const TimingOptions& timing);
 int runAccuracy(const LabOptions& options);
 int runExtremes(const LabOptions& options);
 int runClaims(const LabOptions& options);
+int runCost(const LabOptions& options);
+int runLongtime(const LabOptions& options);
 
 // Median wall time of one step (seconds), and mean CG iterations and solves
 // per step (StepStats) of a scene under an integrator: warm-up steps, then

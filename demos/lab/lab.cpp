@@ -28,7 +28,7 @@ int defaultJobs() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const FailureCriterion& criterion,
-                   const std::function<void(const ParticleSystem&)>& observe) {
+                   const std::function<bool(const ParticleSystem&)>& observe) {
   ParticleSystem& system = *scene.system;
   RunResult result;
   result.energyStart = system.totalEnergy();
@@ -72,7 +72,10 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
       fail(failure);
       break;
     }
-    if (observe) observe(system);
+    if (observe && !observe(system)) {
+      result.stopped = true;
+      break;
+    }
   }
   result.energyEnd = system.totalEnergy();
   return result;

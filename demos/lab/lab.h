@@ -43,16 +43,18 @@ struct RunResult {
   particles::StepStats work{0, 0, 0.0, 0, 0, 0};  // summed over the steps taken
   double energyStart = 0.0, energyEnd = 0.0;
   double energyScale = 0.0;  // E_s, releasableEnergy() of the start
+  bool stopped = false;      // the observer ended the run before T
   bool blewUp() const { return failed && isBlowUp(failure); }
 };
 
 // Steps the scene with the integrator for `duration` simulated seconds
 // (round(duration/dt) steps), stopping at the first failure by `criterion` or
 // at an interrupt (then cutShort is set and callers discard the result).
-// `observe` (optional) runs after each step.
+// `observe` (optional) runs after each step that did not fail; returning
+// false ends the run there (RunResult::stopped).
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const FailureCriterion& criterion = {},
-                   const std::function<void(const particles::ParticleSystem&)>& observe = {});
+                   const std::function<bool(const particles::ParticleSystem&)>& observe = {});
 
 // One scan run: ensemble member `member` (perturbStart) of a freshly built
 // scene under the integrator for `duration`; nullopt when an interrupt cut it short.

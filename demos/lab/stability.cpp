@@ -60,6 +60,7 @@ double fastestLinkRate(int length, double duration, const FailureCriterion& crit
       const Eigen::Vector2d v = s.velocities().segment<2>(2 * i) - s.velocities().segment<2>(2 * j);
       fastest = std::max(fastest, std::abs(d.x() * v.y() - d.y() * v.x()) / d.squaredNorm());
     }
+    return true;
   });
   return fastest;
 }

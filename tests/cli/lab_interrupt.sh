@@ -9,6 +9,7 @@
 set -u
 program=$1 experiment=$2 out=$3 after=$4 whole=${5:-}
 rm -rf "$out"
+mkdir -p "$(dirname "$out")"
 timeout --preserve-status -s INT "$after" "$program" "$experiment" --jobs 2 --out "$out" > /dev/null 2> "$out.stderr"
 code=$?
 fail() { echo "lab_interrupt: $*" >&2; exit 1; }
