@@ -66,7 +66,6 @@ class Renderer {
   // The scene's faces (a cloth's cells), two triangles each, shaded by area
   // against the mean face: stretched faces lighter, folded ones darker.
   void collectFaces(const scenes::Scene& scene);
-  Batch faces_;
 
   Batch walls_, faces_, springs_, constraints_, arrows_, ghostLines_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
