@@ -100,11 +100,20 @@ std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, cons
 std::optional<Boundary> scanSafeStep(const std::function<scenes::Scene()>& build, const std::string& integrator,
                                      double duration, ScanSettings settings, const FailureCriterion& criterion) {
   settings.durations = {duration};
-  const auto runs = scanSteps(
-      [&](double dt, int member, double T) { return runMember(build, integrator, dt, member, T, criterion); },
-      settings);
-  if (!runs) return std::nullopt;
-  return boundaryOf(survivalAt(*runs, duration, settings.members));
+  const double ratio = settings.grid.size() > 1 ? settings.grid[1] / settings.grid[0] : 1.05;
+  for (int extension = 0;; ++extension) {
+    const auto runs = scanSteps(
+        [&](double dt, int member, double T) { return runMember(build, integrator, dt, member, T, criterion); },
+        settings);
+    if (!runs) return std::nullopt;
+    const Boundary b = boundaryOf(survivalAt(*runs, duration, settings.members));
+    if (!b.belowGrid() || extension >= settings.extendDecades) return b;
+    // The same grid continued a decade further down.
+    std::vector<double> lower;
+    for (double dt = settings.grid.front() / ratio; dt >= 0.1 * settings.grid.front() * (1 - 1e-9); dt /= ratio)
+      lower.insert(lower.begin(), dt);
+    settings.grid.insert(settings.grid.begin(), lower.begin(), lower.end());
+  }
 }
 
 std::string safeStepText(const Boundary& b) {

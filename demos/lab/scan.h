@@ -39,6 +39,8 @@ struct ScanSettings {
   int members = 3;                   // ensemble: member 0 and members perturbed by perturbStart
   std::vector<double> durations;     // the T to evaluate; runs go to the largest
   double beyond = 2.0;               // keep scanning up to beyond × the first failure at the shortest T
+  int extendDecades = 0;             // scanSafeStep: when the smallest grid dt fails, rescan from a grid
+                                     // 10× lower, at most this many times
 };
 
 // Runs the scan: at each grid dt member 0, then the other members unless one
