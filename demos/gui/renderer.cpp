@@ -59,7 +59,6 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   for (auto& entry : pointsBySize_) entry.second.clear();
   for (auto& entry : discsBySize_) entry.second.clear();
 
-  collectFaces(simulation.scene());
   collectWalls(system);
   collectFaces(simulation);
   collectSketches(system, options, view.pixelsPerUnit, !simulation.scene().faces.empty());
@@ -92,7 +91,6 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
 
-  draw(faces_, GL_TRIANGLES);
   draw(walls_, GL_TRIANGLES);
   draw(faces_, GL_TRIANGLES);
   for (const auto& [diameter, batch] : discsBySize_) {
@@ -124,34 +122,6 @@ void Renderer::draw(const Batch& batch, unsigned mode) {
   glVertexPointer(2, GL_FLOAT, 0, batch.xy.data());
   glColorPointer(4, GL_UNSIGNED_BYTE, 0, batch.rgba.data());
   glDrawArrays(mode, 0, static_cast<GLsizei>(batch.xy.size() / 2));
-}
-
-void Renderer::collectFaces(const scenes::Scene& scene) {
-  faces_.clear();
-  if (scene.faces.empty()) return;
-  const particles::ParticleSystem& s = *scene.system;
-  // Twice the signed area of the quad a b c d (shoelace); a folded quad has
-  // less area, or negative.
-  auto twiceArea = [&](const std::array<int, 4>& f) {
-    double sum = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const Eigen::Vector2d a = s.position(f[k]), b = s.position(f[(k + 1) % 4]);
-      sum += a.x() * b.y() - b.x() * a.y();
-    }
-    return sum;
-  };
-  double mean = 0.0;
-  for (const auto& f : scene.faces) mean += std::abs(twiceArea(f));
-  mean /= static_cast<double>(scene.faces.size());
-  if (!(mean > 0.0) || !std::isfinite(mean)) return;  // collapsed or diverged: springs and particles still show
-  for (const auto& f : scene.faces) {
-    const double shade = std::clamp(0.55 + 0.45 * twiceArea(f) / mean, 0.35, 1.4);
-    const Rgb base = palette::clothFace;
-    const Rgb c{static_cast<std::uint8_t>(std::min(255.0, base.r * shade)),
-                static_cast<std::uint8_t>(std::min(255.0, base.g * shade)),
-                static_cast<std::uint8_t>(std::min(255.0, base.b * shade))};
-    for (int k : {0, 1, 2, 0, 2, 3}) faces_.add(s.position(f[k]), c, 230);
-  }
 }
 
 void Renderer::collectWalls(const particles::ParticleSystem& system) {

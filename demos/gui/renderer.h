@@ -63,10 +63,6 @@ class Renderer {
                  bool coil, double pixelsPerUnit);
   void addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour);
   static void draw(const Batch& batch, unsigned mode);
-  // The scene's faces (a cloth's cells), two triangles each, shaded by area
-  // against the mean face: stretched faces lighter, folded ones darker.
-  void collectFaces(const scenes::Scene& scene);
-  Batch faces_;
 
   Batch walls_, faces_, springs_, constraints_, arrows_, ghostLines_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
