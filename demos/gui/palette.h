@@ -26,7 +26,6 @@ constexpr Rgb constraintForceArrow{255, 214, 0};  // Jᵀλ, which is no force o
 constexpr Rgb otherForceArrow{200, 200, 200};
 constexpr Rgb divergenceText{255, 92, 150};
 constexpr Rgb hudText{235, 235, 240};
-constexpr Rgb clothFace{62, 98, 150};  // a face at its mean area; stretched faces lighter, folds darker
 }  // namespace palette
 
 // Arrow colour of each force type ("f"), by Force::type(); a type not listed

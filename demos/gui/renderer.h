@@ -63,7 +63,6 @@ class Renderer {
                  bool coil, double pixelsPerUnit);
   void addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour);
   static void draw(const Batch& batch, unsigned mode);
-
   Batch walls_, faces_, springs_, constraints_, arrows_, ghostLines_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
