@@ -10,6 +10,7 @@
 #include "particles/integrators/rk4.h"
 #include "particles/integrators/symplectic_euler.h"
 #include "particles/integrators/verlet.h"
+#include "particles/integrators/xpbd.h"
 
 namespace particles {
 
@@ -33,11 +34,18 @@ const std::vector<IntegratorInfo>& integratorTable() {
        make<ImplicitEulerIntegrator>},
       {"adaptive-rk4", "RK4 with step doubling: internal step chosen to meet --tolerance", 4,
        make<AdaptiveRk4Integrator>, true},
+      {"xpbd", "XPBD: --substeps substeps of --iterations constraint passes, springs as compliance", 1,
+       make<XpbdIntegrator>, false, true},
   };
   return table;
 }
 
-void IntegratorSettings::validate() const { requirePositive("integrator tolerance", tolerance); }
+void IntegratorSettings::validate() const {
+  requirePositive("integrator tolerance", tolerance);
+  // Upper bounds keep a typo from turning one step into hours of work.
+  requireInRange("integrator substeps", substeps, 1, 100000);
+  requireInRange("integrator iterations", iterations, 1, 10000);
+}
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
                                            const IntegratorSettings& settings) {

@@ -4,6 +4,8 @@
 
 #include "scene.h"
 #include "scene_file/scene_file.h"
+#include "scenes/cloth.h"
+#include "scenes/param_fields.h"
 
 namespace demo {
 
@@ -21,6 +23,15 @@ const std::vector<Variant>& variants() {
   };
   return table;
 }
+// A built-in scene with a parameter set and the integrator and dt it is meant for.
+std::vector<SceneChoice> presets() {
+  scenes::ClothParams stiff = scenes::stiffClothParams(64);
+  SceneChoice cloth{"stiff cloth 64x64 (xpbd, 60 Hz)", "cloth", {}, "", "xpbd", 1.0 / 60.0};
+  stiff.visit([&](const char* name, const auto& field, const char*) {
+    cloth.params[name] = scenes::formatParam(field);
+  });
+  return {cloth};
+}
 }  // namespace
 
 std::vector<SceneKey> sceneKeys() {
@@ -35,6 +46,7 @@ std::vector<SceneKey> sceneKeys() {
       }
     if (!varied) choices.push_back({info.name, info.name, {}, ""});
   }
+  for (const SceneChoice& preset : presets()) choices.push_back(preset);
   std::vector<SceneKey> result;
   for (std::size_t k = 0; k < choices.size() && k < sizeof(keys) - 1; ++k)
     result.push_back({static_cast<unsigned char>(keys[k]), choices[k]});
@@ -46,6 +58,9 @@ std::vector<SceneKey> sceneKeys() {
 namespace demo {
 scenes::Scene buildChoice(const SceneChoice& choice) {
   if (!choice.file.empty()) return scenes::loadSceneFile(choice.file);
-  return scenes::buildScene(choice.name, choice.params);
+  scenes::Scene scene = scenes::buildScene(choice.name, choice.params);
+  if (!choice.integrator.empty()) scene.integrator = choice.integrator;
+  if (choice.dt > 0.0) scene.dt = choice.dt;
+  return scene;
 }
 }  // namespace demo

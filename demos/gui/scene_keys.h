@@ -1,6 +1,7 @@
 #pragma once
 // Which scene each number key loads: every built-in scene, with the cloth
-// twice (4-way and 8-way springs), in the order of the scene table.
+// twice (4-way and 8-way springs), in the order of the scene table, then the
+// presets (the stiff 64×64 cloth with xpbd at 60 Hz).
 #include <map>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@ struct SceneChoice {
   std::string name;   // built-in scene name; empty for a file
   std::map<std::string, std::string> params;
   std::string file;   // JSON scene file
+  std::string integrator;  // non-empty: replaces the scene's integrator (a preset)
+  double dt = 0.0;         // > 0: replaces the scene's dt (a preset)
 };
 
 struct SceneKey {

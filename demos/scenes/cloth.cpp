@@ -81,4 +81,15 @@ Scene buildCloth(const ClothParams& p) {
   return scene;
 }
 
+ClothParams stiffClothParams(int size) {
+  ClothParams p;
+  p.width = p.height = size;
+  p.links = 8;
+  p.stiffness = 4e5;
+  p.damping = 0.5;
+  p.gravity = 9.8;
+  p.validate();
+  return p;
+}
+
 }  // namespace scenes
