@@ -1,6 +1,7 @@
 #pragma once
 // State (q, q̇, force accumulator, inverse masses), the force and constraint
 // objects acting on it, and the derivative evaluation that integrators drive.
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -68,6 +69,9 @@ class ParticleSystem {
   void restore(const Snapshot& s);
 
   const std::vector<std::unique_ptr<Force>>& forceObjects() const { return forces_; }
+  // Changes whenever particles, forces, constraints or pins change, and differs
+  // between systems: integrators that prepare per-structure data key it on this.
+  std::uint64_t structureStamp() const { return structureStamp_; }
   const ConstraintList& constraints() const { return constraints_; }
   const std::vector<Wall>& walls() const { return walls_; }
 
@@ -109,6 +113,8 @@ class ParticleSystem {
   ParticleContacts contacts_;
   int contactsLastStep_ = 0;
   int iterationsThisStep_ = 0;
+  std::uint64_t structureStamp_ = nextStructureStamp();
+  static std::uint64_t nextStructureStamp();
 };
 
 }  // namespace particles

@@ -16,8 +16,8 @@ void projectAngle(const CompliantAngle& c, const Eigen::VectorXd& w, const Eigen
     displacement += k.gradient[n].dot(x.segment<2>(2 * q) - xn.segment<2>(2 * q));
   }
   if (weight == 0.0) return;  // a collapsed arm, or all three pinned
-  const double dl =
-      multiplierStep(angleDifference(k.angle, c.restAngle), weight, displacement, c.compliance, lambda);
+  const double dl = multiplierStep(angleDifference(k.angle, c.restAngle), displacement, c.compliance, lambda,
+                                   inverseDenominator(weight, c.compliance));
   lambda += dl;
   for (int n = 0; n < 3; ++n) x.segment<2>(2 * c.p[n]) += (w[c.p[n]] * dl) * k.gradient[n];
 }

@@ -17,7 +17,7 @@ void projectConstraint(const Constraint& constraint, const Eigen::VectorXd& v,
   double weight = 0.0;
   for (std::size_t k = 0; k < n; ++k) weight += inverseMass[p[k]] * row.J[k].squaredNorm();
   if (weight == 0.0) return;  // pinned particles only, or no direction
-  const double dl = multiplierStep(row.C, weight, 0.0, Compliance{}, 0.0);
+  const double dl = multiplierStep(row.C, 0.0, Compliance{}, 0.0, 1.0 / weight);
   for (std::size_t k = 0; k < n; ++k) x.segment<2>(2 * p[k]) += (inverseMass[p[k]] * dl) * row.J[k];
 }
 

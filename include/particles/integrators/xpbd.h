@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,12 +45,15 @@ class XpbdIntegrator : public Integrator {
   static Forms positionForms(const ParticleSystem& system, double h);
 
  private:
+  void prepare(const ParticleSystem& system, double h);
   void applyForces(ParticleSystem& system);
   void predict(ParticleSystem& system, double h);
   void project(ParticleSystem& system);
   void updateVelocities(ParticleSystem& system, double h);
 
   Forms forms_;
+  std::uint64_t preparedStamp_ = 0;  // ParticleSystem::structureStamp() forms_ was built for
+  double preparedStep_ = 0.0;        // and the substep h
   std::vector<double> distanceLambda_, angleLambda_;
   std::vector<Eigen::Vector2d> blocks_;
   Eigen::VectorXd force_, xn_;

@@ -24,13 +24,17 @@ inline Compliance springCompliance(double stiffness, double damping, double h) {
   return {1.0 / (stiffness * h * h), damping / (stiffness * h)};
 }
 
-// Δλ from C, ∇C W ∇Cᵀ (gradientWeight), ∇C·(x − xⁿ) (displacement) and λ.
-// A constraint whose particles cannot move (gradientWeight = 0) returns 0.
-inline double multiplierStep(double C, double gradientWeight, double displacement,
-                             const Compliance& c, double lambda) {
+// 1/((1 + γ) ∇C W ∇Cᵀ + α̃), the factor of Δλ; 0 when nothing can move
+// (gradientWeight = ∇C W ∇Cᵀ = 0 and α̃ = 0).
+inline double inverseDenominator(double gradientWeight, const Compliance& c) {
   const double denominator = (1.0 + c.gamma) * gradientWeight + c.alphaTilde;
-  if (denominator <= 0.0) return 0.0;
-  return (-C - c.alphaTilde * lambda - c.gamma * displacement) / denominator;
+  return denominator > 0.0 ? 1.0 / denominator : 0.0;
+}
+
+// Δλ from C, ∇C·(x − xⁿ) (displacement), λ and the inverse denominator above.
+inline double multiplierStep(double C, double displacement, const Compliance& c, double lambda,
+                             double inverseDenominator) {
+  return (-C - c.alphaTilde * lambda - c.gamma * displacement) * inverseDenominator;
 }
 
 }  // namespace particles
