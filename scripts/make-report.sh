@@ -21,7 +21,7 @@ value machine.cores "$(nproc)"
 value machine.compiler "$(c++ --version | head -n 1)"
 value machine.date "$(date -u +%Y-%m-%d)"
 
-for experiment in stability timing accuracy extremes claims; do
+for experiment in stability timing accuracy extremes claims small-steps; do
   echo "== particle-lab $experiment ${mode[*]}" >&2
   "$lab" "$experiment" "${mode[@]}" --out "$data" > "$data/$experiment.log"
 done

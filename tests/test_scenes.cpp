@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "particles/forces/angular_spring.h"
@@ -68,6 +71,101 @@ TEST(Scenes, ExplicitEulerConstraintErrorIsReported) {
     scenes::Scene scene = scenes::buildScene(info.name);
     const StepResult r = stepScene(scene, "euler", 200);
     std::printf("[ euler    ] %-11s finite=%d max|C|/r=%.3g\n", info.name, r.finite, r.worstRelativeError);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// The seed report's parameter values, as the seed preset must give them, and
+// the time step each seed scene ran with.
+struct SeedScene {
+  const char* scene;
+  double dt;
+  std::map<std::string, std::string> values;
+};
+const std::vector<SeedScene>& seedScenes() {
+  static const std::vector<SeedScene> table = {
+      {"cloth", 0.01, {{"width", "10"}, {"height", "10"}, {"links", "4"}, {"rest", "0.05"}, {"stiffness", "0.9"},
+                       {"damping", "0.6"}, {"mass", "0.2"}, {"gravity", "0.05"}}},
+      {"hair", 0.002, {{"curls", "6"}, {"particles", "25"}, {"rest", "0.08"}, {"mass", "10"}, {"stiffness", "300"},
+                       {"damping", "1"}, {"bend-angle", "90"}, {"bend-stiffness", "1"}, {"bend-damping", "3"},
+                       {"radius", "0.025"}, {"gravity", "0.005"}}},
+      {"wire", 0.01, {{"beads", "3"}, {"radius", "0.25"}, {"mass", "1"}, {"coupling", "0.2"}, {"gravity", "0.05"}}},
+      {"rod-chain", 0.01, {{"links", "6"}, {"length", "0.12"}, {"radius", "0.25"}, {"mass", "1"}, {"rod", "squared"},
+                           {"gravity", "0.05"}}},
+      {"test-chain", 0.01, {{"cl", "12"}, {"length", "0.1"}, {"mass", "1"}, {"rod", "squared"}, {"gravity", "0.05"},
+                            {"tip-mass-ratio", "1"}}},
+      {"taut-chain", 0.01, {{"links", "8"}, {"separation", "1.2"}, {"radius", "0.2"}, {"mass", "1"}, {"rod", "squared"},
+                            {"gravity", "0.05"}}},
+      {"oscillator", 0.01, {{"mass", "1"}, {"stiffness", "1"}, {"damping", "0.1"}, {"rest", "0.5"}, {"stretch", "0.3"}}},
+      {"pendulum", 0.01, {{"length", "0.5"}, {"angle", "60"}, {"mass", "1"}, {"gravity", "0.05"}}},
+  };
+  return table;
+}
+
+const scenes::SceneInfo& sceneInfo(const std::string& name) {
+  for (const scenes::SceneInfo& info : scenes::sceneTable())
+    if (name == info.name) return info;
+  throw std::invalid_argument("no scene " + name);
+}
+
+// Two built scenes hold the same particles and the same kinds of forces and constraints.
+void expectSameSystem(const scenes::Scene& a, const scenes::Scene& b, const std::string& what) {
+  ASSERT_EQ(a.system->size(), b.system->size()) << what;
+  for (int i = 0; i < a.system->size(); ++i) {
+    EXPECT_EQ(a.system->position(i), b.system->position(i)) << what << " particle " << i;
+    EXPECT_EQ(a.system->masses()[i], b.system->masses()[i]) << what << " particle " << i;
+  }
+  EXPECT_EQ(a.system->forceObjects().size(), b.system->forceObjects().size()) << what;
+  EXPECT_EQ(a.system->constraints().size(), b.system->constraints().size()) << what;
+  EXPECT_EQ(a.system->walls().size(), b.system->walls().size()) << what;
+}
+
+TEST(ScenePresets, TheSeedPresetHoldsTheSeedReportsValuesForEveryScene) {
+  ASSERT_EQ(seedScenes().size(), scenes::sceneTable().size());
+  for (const SeedScene& seed : seedScenes()) {
+    const scenes::SceneInfo& info = sceneInfo(seed.scene);
+    ASSERT_EQ(info.params.size(), seed.values.size()) << seed.scene;
+    for (const scenes::ParamSpec& spec : info.params) {
+      ASSERT_TRUE(seed.values.count(spec.name)) << seed.scene << " " << spec.name;
+      EXPECT_EQ(spec.value(scenes::kSeedPreset), seed.values.at(spec.name))
+          << seed.scene << " " << spec.name;
+    }
+    const scenes::Scene built = scenes::buildScene(seed.scene, {}, scenes::kSeedPreset);
+    EXPECT_EQ(built.dt, seed.dt) << seed.scene;
+    // The preset only fills values: the same values given as overrides build the same scene.
+    expectSameSystem(built, scenes::buildScene(seed.scene, seed.values), seed.scene);
+  }
+}
+
+TEST(ScenePresets, EveryParameterHasAValueUnderEveryPresetAndTheDefaultIsTheFirst) {
+  ASSERT_GE(scenes::presetTable().size(), 2u);
+  EXPECT_STREQ(scenes::presetTable().front().name, scenes::kDefaultPreset);
+  for (const scenes::SceneInfo& info : scenes::sceneTable())
+    for (const scenes::ParamSpec& spec : info.params)
+      EXPECT_EQ(spec.values.size(), scenes::presetTable().size()) << info.name << " " << spec.name;
+}
+
+TEST(ScenePresets, OverridesBeatThePreset) {
+  const scenes::Scene seed = scenes::buildScene("pendulum", {}, scenes::kSeedPreset);
+  const scenes::Scene shorter = scenes::buildScene("pendulum", {{"length", "0.3"}}, scenes::kSeedPreset);
+  EXPECT_NEAR(seed.system->position(0).norm(), 0.5, 1e-15);
+  EXPECT_NEAR(shorter.system->position(0).norm(), 0.3, 1e-15);
+  // The parameters not overridden keep the preset's values: the release angle 60°.
+  EXPECT_NEAR(std::atan2(shorter.system->position(0).x(), -shorter.system->position(0).y()),
+              std::atan2(seed.system->position(0).x(), -seed.system->position(0).y()), 1e-15);
+  const scenes::Scene narrow = scenes::buildScene("cloth", {{"width", "5"}}, scenes::kSeedPreset);
+  EXPECT_EQ(narrow.system->size(), 5 * 10);
+}
+
+TEST(ScenePresets, AnUnknownPresetIsRejectedNamingTheValidOnes) {
+  try {
+    scenes::buildScene("cloth", {}, "slow");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "unknown preset 'slow' (valid: default, seed)");
   }
 }
 

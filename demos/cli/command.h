@@ -36,6 +36,7 @@ Command addTimingCommand(CLI::App& app);
 Command addAccuracyCommand(CLI::App& app);
 Command addExtremesCommand(CLI::App& app);
 Command addClaimsCommand(CLI::App& app);
+Command addSmallStepsCommand(CLI::App& app);
 Command addRenderReportCommand(CLI::App& app);
 
 }  // namespace cli

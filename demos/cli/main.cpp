@@ -19,6 +19,7 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addAccuracyCommand,
     cli::addExtremesCommand,
     cli::addClaimsCommand,
+    cli::addSmallStepsCommand,
     cli::addRenderReportCommand,
 };
 

@@ -57,18 +57,19 @@ int run(const RunOptions& o) {
   if (!o.trajectoryPath.empty()) trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
 
   particles::ParticleSystem& s = *scene.system;
+  const particles::DivergenceLimits limits = runnerDivergenceLimits();
+  const double initialEnergy = s.totalEnergy();
   if (csv.is_open()) writeDiagnostics(csv, 0, s, 0.0);
   if (trajectory.is_open()) writeTrajectory(trajectory, 0, s);
   using Clock = std::chrono::steady_clock;
   Clock::duration simulated{};
   for (long long step = 1; step <= o.steps; ++step) {
     const Clock::time_point start = Clock::now();
-    s.step(*integrator, dt);
+    const particles::StepStats stats = s.step(*integrator, dt);
     const Clock::duration elapsed = Clock::now() - start;
     simulated += elapsed;
-    if (diverged(s)) {
-      std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time()
-                << "): the positions or velocities are no longer finite (|q|^2 or |v|^2 overflows)\n";
+    if (const particles::Divergence d = particles::checkDivergence(s, limits, initialEnergy, stats)) {
+      std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << d.message() << '\n';
       return kDiverged;
     }
     if (csv.is_open()) writeDiagnostics(csv, step, s, std::chrono::duration<double, std::micro>(elapsed).count());
@@ -104,16 +105,20 @@ Command addRunCommand(CLI::App& app) {
   sub->add_option("--steps", options->steps, "number of steps, >= 0")->required();
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
-                  "max_constraint_error,cg_iterations,cg_residual,step_us (step_us: wall time of the step's "
-                  "simulation, output excluded)");
+                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
+                  "(cg_iterations: summed over every solve of the step; cg_residual: the largest relative "
+                  "residual of them; solves: linear solves; force_evaluations: evaluations of every force; "
+                  "internal_steps: accepted steps of an adaptive scheme, 1 otherwise; step_us: wall time of "
+                  "the step's simulation, output excluded)");
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
   sub->add_option("--every", options->every, "trajectory interval in steps, >= 1")->capture_default_str();
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
-      "non-finite (|q|^2 or |v|^2 overflows): the run stops, stderr names the step and time, and the\n"
-      "CSV holds every step before it.");
+      "non-finite (|q|^2 or |v|^2 overflows) or a step failed (a solve with non-finite multipliers, an\n"
+      "adaptive step below its floor or over its work cap): the run stops, stderr names the step, time\n"
+      "and reason, and the CSV holds every step before it.");
   return {sub, [options] { return run(*options); }};
 }
 

@@ -88,7 +88,7 @@ void App::drawPanel() {
       for (const scenes::ParamSpec& spec : info->params) {
         auto it = scene_.params.find(spec.name);
         char buffer[64];
-        std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.defaultValue.c_str());
+        std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.value(scene_.preset).c_str());
         if (ImGui::InputText(spec.name.c_str(), buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue)) {
           SceneChoice changed = scene_;
           changed.params[spec.name] = buffer;

@@ -1,10 +1,12 @@
 #pragma once
 // Which scene each number key loads: every built-in scene, with the cloth
 // twice (4-way and 8-way springs), in the order of the scene table, then the
-// presets (the stiff 64×64 cloth with xpbd at 60 Hz).
+// scenes paired with an integrator (the stiff 64×64 cloth with xpbd at 60 Hz).
 #include <map>
 #include <string>
 #include <vector>
+
+#include "scene.h"
 
 namespace demo {
 
@@ -14,8 +16,9 @@ struct SceneChoice {
   std::string name;   // built-in scene name; empty for a file
   std::map<std::string, std::string> params;
   std::string file;   // JSON scene file
-  std::string integrator;  // non-empty: replaces the scene's integrator (a preset)
-  double dt = 0.0;         // > 0: replaces the scene's dt (a preset)
+  std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
+  std::string integrator;  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
+  double dt = 0.0;         // > 0: replaces the scene's dt
 };
 
 struct SceneKey {
@@ -27,8 +30,6 @@ struct SceneKey {
 std::vector<SceneKey> sceneKeys();
 
 }  // namespace demo
-
-namespace scenes { struct Scene; }
 
 namespace demo {
 // Builds the chosen scene; throws std::invalid_argument for a bad name or

@@ -34,37 +34,35 @@ double energyScale(const ParticleSystem& system) {
   return movingMass * gravityMagnitude(system) * diagonal + std::abs(system.totalEnergy()) + 1.0;
 }
 
+particles::DivergenceLimits Explosion::limits(const ParticleSystem& system) const {
+  particles::DivergenceLimits limits;
+  limits.maxRelativeConstraintError = maxRelativeStretch;
+  limits.energyScale = energyScale(system);
+  limits.energyRiseFraction = energyGain;
+  return limits;
+}
+
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const Explosion& explosion,
                    const std::function<void(const ParticleSystem&)>& observe) {
   ParticleSystem& system = *scene.system;
   RunResult result;
   result.energyStart = system.totalEnergy();
-  const double bound = result.energyStart + explosion.energyGain * energyScale(system);
+  const particles::DivergenceLimits limits = explosion.limits(system);
   const long steps = std::lround(duration / dt);
   using Clock = std::chrono::steady_clock;
   for (long k = 0; k < steps && !interrupted(); ++k) {
     const auto start = Clock::now();
-    system.step(integrator, dt);
+    const particles::StepStats stats = system.step(integrator, dt);
     result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
     ++result.steps;
     result.time = system.time();
-    result.cgIterations += system.lastSolve().iterations;
-    if (!system.finite()) {
+    result.work += stats;
+    if (system.finite())
+      result.maxRelativeStretch = std::max(result.maxRelativeStretch, system.maxRelativeConstraintError());
+    if (const particles::Divergence d = particles::checkDivergence(system, limits, result.energyStart, stats)) {
       result.exploded = true;
-      result.reason = "non-finite";
-      break;
-    }
-    const double stretch = system.maxRelativeConstraintError();
-    result.maxRelativeStretch = std::max(result.maxRelativeStretch, stretch);
-    if (stretch > explosion.maxRelativeStretch) {
-      result.exploded = true;
-      result.reason = "stretch";
-      break;
-    }
-    if (system.totalEnergy() > bound) {
-      result.exploded = true;
-      result.reason = "energy";
+      result.reason = particles::divergenceReasonName(d.reason);
       break;
     }
     if (observe) observe(system);

@@ -24,10 +24,24 @@ void ClothParams::validate() const {
   particles::requireFinite("gravity", gravity);
 }
 
+ClothParams ClothParams::seed() {
+  ClothParams p;
+  p.width = 10;
+  p.height = 10;
+  p.links = 4;
+  p.rest = 0.05;
+  p.stiffness = 0.9;
+  p.damping = 0.6;
+  p.mass = 0.2;
+  p.gravity = 0.05;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildCloth(const ClothParams& p) {
   Scene scene;
   scene.name = "cloth";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

@@ -16,6 +16,8 @@ struct ClothParams {
   double mass = 0.2;
   double gravity = 0.05;
 
+  double dt = 0.01;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("width", width, "particles across");
@@ -28,6 +30,7 @@ struct ClothParams {
     field("gravity", gravity, "downward acceleration, world units/s^2");
   }
   void validate() const;
+  static ClothParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildCloth(const ClothParams& p);

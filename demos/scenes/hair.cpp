@@ -30,10 +30,27 @@ void HairParams::validate() const {
   particles::requireFinite("gravity", gravity);
 }
 
+HairParams HairParams::seed() {
+  HairParams p;
+  p.curls = 6;
+  p.particles = 25;
+  p.rest = 0.08;
+  p.mass = 10.0;
+  p.stiffness = 300.0;
+  p.damping = 1.0;
+  p.bendAngle = 90.0;
+  p.bendStiffness = 1.0;
+  p.bendDamping = 3.0;
+  p.radius = 0.025;
+  p.gravity = 0.005;
+  p.dt = 0.002;
+  return p;
+}
+
 Scene buildHair(const HairParams& p) {
   Scene scene;
   scene.name = "hair";
-  scene.dt = 0.002;  // at the defaults midpoint diverges by dt = 0.006 and RK4 by 0.008
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

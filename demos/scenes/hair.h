@@ -31,6 +31,8 @@ struct HairParams {
   double radius = 0.025;
   double gravity = 0.005;
 
+  double dt = 0.002;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("curls", curls, "number of curls");
@@ -46,6 +48,7 @@ struct HairParams {
     field("gravity", gravity, "downward acceleration, world units/s^2");
   }
   void validate() const;
+  static HairParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildHair(const HairParams& p);

@@ -14,6 +14,8 @@ struct OscillatorParams {
   double rest = 0.5;
   double stretch = 0.3;
 
+  double dt = 0.01;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("mass", mass, "mass of the moving particle");
@@ -23,6 +25,7 @@ struct OscillatorParams {
     field("stretch", stretch, "initial displacement from rest, world units (|stretch| < rest)");
   }
   void validate() const;
+  static OscillatorParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildOscillator(const OscillatorParams& p);

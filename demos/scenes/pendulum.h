@@ -11,6 +11,8 @@ struct PendulumParams {
   double mass = 1.0;
   double gravity = 0.05;
 
+  double dt = 0.01;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("length", length, "wire radius L, world units");
@@ -19,6 +21,7 @@ struct PendulumParams {
     field("gravity", gravity, "downward acceleration g, world units/s^2");
   }
   void validate() const;
+  static PendulumParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildPendulum(const PendulumParams& p);

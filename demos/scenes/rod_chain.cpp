@@ -19,10 +19,22 @@ void RodChainParams::validate() const {
   particles::requireFinite("gravity", gravity);
 }
 
+RodChainParams RodChainParams::seed() {
+  RodChainParams p;
+  p.links = 6;
+  p.length = 0.12;
+  p.radius = 0.25;
+  p.mass = 1.0;
+  p.rod = "squared";
+  p.gravity = 0.05;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildRodChain(const RodChainParams& p) {
   Scene scene;
   scene.name = "rod-chain";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

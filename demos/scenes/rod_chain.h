@@ -15,6 +15,8 @@ struct RodChainParams {
   std::string rod = "squared";
   double gravity = 0.05;
 
+  double dt = 0.01;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("links", links, "number of rods");
@@ -25,6 +27,7 @@ struct RodChainParams {
     field("gravity", gravity, "downward acceleration, world units/s^2");
   }
   void validate() const;
+  static RodChainParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildRodChain(const RodChainParams& p);

@@ -19,10 +19,22 @@ void TautChainParams::validate() const {
   particles::requireFinite("gravity", gravity);
 }
 
+TautChainParams TautChainParams::seed() {
+  TautChainParams p;
+  p.links = 8;
+  p.separation = 1.2;
+  p.radius = 0.2;
+  p.mass = 1.0;
+  p.rod = "squared";
+  p.gravity = 0.05;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildTautChain(const TautChainParams& p) {
   Scene scene;
   scene.name = "taut-chain";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

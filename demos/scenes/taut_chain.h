@@ -17,6 +17,8 @@ struct TautChainParams {
   std::string rod = "squared";
   double gravity = 0.05;
 
+  double dt = 0.01;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("links", links, "number of rods between the two beads");
@@ -27,6 +29,7 @@ struct TautChainParams {
     field("gravity", gravity, "downward acceleration, world units/s^2");
   }
   void validate() const;
+  static TautChainParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildTautChain(const TautChainParams& p);

@@ -18,10 +18,22 @@ void TestChainParams::validate() const {
   particles::requirePositive("tip-mass-ratio", tipMassRatio);
 }
 
+TestChainParams TestChainParams::seed() {
+  TestChainParams p;
+  p.cl = 12;
+  p.length = 0.1;
+  p.mass = 1.0;
+  p.rod = "squared";
+  p.gravity = 0.05;
+  p.tipMassRatio = 1.0;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildTestChain(const TestChainParams& p) {
   Scene scene;
   scene.name = "test-chain";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

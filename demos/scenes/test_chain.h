@@ -16,6 +16,8 @@ struct TestChainParams {
   double gravity = 0.05;
   double tipMassRatio = 1.0;
 
+  double dt = 0.01;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("cl", cl, "chain length: number of particles, the first pinned");
@@ -26,6 +28,7 @@ struct TestChainParams {
     field("tip-mass-ratio", tipMassRatio, "mass of the last particle over the others' (heavy tip on a light chain)");
   }
   void validate() const;
+  static TestChainParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildTestChain(const TestChainParams& p);

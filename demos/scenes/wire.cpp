@@ -20,10 +20,21 @@ void WireParams::validate() const {
   particles::requireFinite("gravity", gravity);
 }
 
+WireParams WireParams::seed() {
+  WireParams p;
+  p.beads = 3;
+  p.radius = 0.25;
+  p.mass = 1.0;
+  p.coupling = 0.2;
+  p.gravity = 0.05;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildWire(const WireParams& p) {
   Scene scene;
   scene.name = "wire";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

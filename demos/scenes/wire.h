@@ -13,6 +13,8 @@ struct WireParams {
   double coupling = 0.2;
   double gravity = 0.05;
 
+  double dt = 0.01;  // the step the scene runs with, s
+
   template <class Visit>
   void visit(Visit&& field) {
     field("beads", beads, "number of beads, one wire each");
@@ -22,6 +24,7 @@ struct WireParams {
     field("gravity", gravity, "downward acceleration, world units/s^2");
   }
   void validate() const;
+  static WireParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildWire(const WireParams& p);

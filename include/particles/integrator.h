@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "particles/step_stats.h"
+
 namespace particles {
 
 class ParticleSystem;
@@ -35,7 +37,10 @@ class Integrator {
   // accelerations through ParticleSystem::acceleration (forces plus constraint
   // forces). Collisions and the clock are the caller's (ParticleSystem::step).
   // An adaptive scheme may take several internal steps to cover dt.
-  virtual void step(ParticleSystem& system, double dt) = 0;
+  // Returns what the step did: the evaluations and solves made through
+  // ParticleSystem::acceleration (ParticleSystem::takeEvaluationStats) plus the
+  // scheme's own solves, internal and rejected steps, and any failure.
+  virtual StepStats step(ParticleSystem& system, double dt) = 0;
 
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }

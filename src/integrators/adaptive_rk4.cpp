@@ -12,7 +12,7 @@ void AdaptiveRk4Integrator::configure(const IntegratorSettings& settings) {
   tolerance_ = settings.tolerance;
 }
 
-void AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
+StepStats AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
   if (!(h_ > 0.0) || !std::isfinite(h_)) h_ = dt;
@@ -21,19 +21,26 @@ void AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
   history_.clear();
   lastStep_ = 0.0;  // becomes the largest step accepted in this call
   double t = 0.0;
+  StepStats stats;
+  stats.internalSteps = 0;
+  auto substep = [&](double h) {
+    StepStats part = rk4_.step(system, h);
+    part.internalSteps = 0;
+    stats += part;
+  };
   while (t < dt) {
     const bool last = h_ >= dt - t;
     const double h = last ? dt - t : h_;
     x0_ = x;
     v0_ = v;
 
-    rk4_.step(system, h);
+    substep(h);
     xBig_.swap(x);
     vBig_.swap(v);
     x = x0_;
     v = v0_;
-    rk4_.step(system, 0.5 * h);
-    rk4_.step(system, 0.5 * h);
+    substep(0.5 * h);
+    substep(0.5 * h);
 
     // err = max_i |y_small − y_big|_i / (15 tol (1 + |y_i|)) over x and v.
     double err = 0.0;
@@ -51,6 +58,7 @@ void AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
       t = last ? dt : t + h;
       history_.push_back(h);
       ++accepted_;
+      ++stats.internalSteps;
       lastStep_ = std::max(lastStep_, h);
       // A last step shortened to land on dt says nothing about how far h_ can go.
       if (h == h_) h_ = std::max(hMin, h * factor);
@@ -58,9 +66,11 @@ void AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
       x = x0_;
       v = v0_;
       ++rejected_;
+      ++stats.rejectedSteps;
       h_ = std::max(hMin, h * factor);
     }
   }
+  return stats;
 }
 
 }  // namespace particles

@@ -111,7 +111,7 @@ void XpbdIntegrator::configure(const IntegratorSettings& settings) {
   iterations = settings.iterations;
 }
 
-void XpbdIntegrator::step(ParticleSystem& system, double dt) {
+StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
   IntegratorSettings check;
   check.substeps = substeps;
   check.iterations = iterations;
@@ -129,6 +129,13 @@ void XpbdIntegrator::step(ParticleSystem& system, double dt) {
                           system.velocities());
   }
   lastStep_ = h;
+  // The constraint passes are Gauss–Seidel sweeps, not linear solves: solves
+  // and CG iterations stay 0; the forces without a position form are applied
+  // once per substep.
+  StepStats stats;
+  stats.internalSteps = substeps;
+  stats.forceEvaluations = substeps;
+  return stats;
 }
 
 // The position forms depend on the structure (forces, constraints, pins) and

@@ -20,7 +20,7 @@ class AdaptiveRk4Integrator : public Integrator {
  public:
   const char* name() const override { return "adaptive-rk4"; }
   void configure(const IntegratorSettings& settings) override;
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
   double tolerance() const { return tolerance_; }
   // The step the next attempt starts from (0: start from the first dt).

@@ -32,7 +32,7 @@ class XpbdIntegrator : public Integrator {
   int iterations = IntegratorSettings{}.iterations;
 
   const char* name() const override { return "xpbd"; }
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
   void configure(const IntegratorSettings& settings) override;
 
   // How every force of the system enters a substep of h, compliances set for
