@@ -17,7 +17,7 @@ struct SceneChoice {
   std::map<std::string, std::string> params;
   std::string file;   // JSON scene file
   std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
-  std::string integrator;  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
+  std::string integrator = "";  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
   double dt = 0.0;         // > 0: replaces the scene's dt
 };
 

@@ -102,6 +102,15 @@ std::vector<std::pair<std::string, std::pair<int, int>>> splits(int n) {
   return out;
 }
 
+// The report quotes each family's row: small_steps.<scene>.<family>.<measure>.
+void recordRow(const LabOptions& options, const std::string& scene, const std::string& family, const Outcome& o) {
+  const std::string key = "small_steps." + scene + "." + family + ".";
+  recordValue(options, key + "cpu", general(o.cpuPerSecond, 2));
+  recordValue(options, key + "constraint_error", general(o.constraintError, 2));
+  recordValue(options, key + "damping", general(o.energyLoss, 2));
+  recordValue(options, key + "position_error", general(o.positionError, 2));
+}
+
 std::vector<std::string> row(const std::string& a, const std::string& b, const Outcome& o) {
   return {a, b, general(o.cpuPerSecond, 3), general(o.constraintError, 3), general(o.energyLoss, 3),
           general(o.positionError, 3)};
@@ -189,6 +198,7 @@ int runSmallSteps(const LabOptions& options) {
     // smallest dt whose cost is at most xpbd's default (20 × 1), else the cheapest.
     familyRows.push_back(row(p.name, "reference: rk4 at dt " + general(p.referenceDt, 2), reference));
     familyRows.push_back(row(p.name, "xpbd 20x1 at 1/60", xpbdDefault));
+    recordRow(options, p.name, "xpbd", xpbdDefault);
     const double budget = xpbdDefault.cpuPerSecond;
     for (const auto& [family, stepsList] : {std::pair{std::string("implicit-euler"), p.implicitSteps},
                                            std::pair{std::string("rk4"), p.rk4Steps}}) {
@@ -210,6 +220,7 @@ int runSmallSteps(const LabOptions& options) {
       }
       familyRows.push_back(row(p.name, family + " at dt " + general(chosenDt, 3) + (chosen.exploded ? " (exploded)" : ""),
                                chosen));
+      recordRow(options, p.name, family, chosen);
       if (family == "implicit-euler")
         xpbdBeatsImplicitEverywhere &= xpbdDefault.constraintError <= chosen.constraintError &&
                                        std::abs(xpbdDefault.energyLoss) <= std::abs(chosen.energyLoss);
