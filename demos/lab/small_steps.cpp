@@ -199,6 +199,7 @@ int runSmallSteps(const LabOptions& options) {
     familyRows.push_back(row(p.name, "reference: rk4 at dt " + general(p.referenceDt, 2), reference));
     familyRows.push_back(row(p.name, "xpbd 20x1 at 1/60", xpbdDefault));
     recordRow(options, p.name, "xpbd", xpbdDefault);
+    recordRow(options, p.name, "reference", reference);
     const double budget = xpbdDefault.cpuPerSecond;
     for (const auto& [family, stepsList] : {std::pair{std::string("implicit-euler"), p.implicitSteps},
                                            std::pair{std::string("rk4"), p.rk4Steps}}) {
