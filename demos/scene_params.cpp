@@ -5,6 +5,7 @@
 
 #include "join_names.h"
 #include "scene.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 
 namespace scenes {
@@ -15,6 +16,11 @@ void requireAtLeast(const char* name, int value, int minimum) {
   if (value < minimum)
     throw std::invalid_argument(std::string(name) + " must be >= " + std::to_string(minimum) +
                                 ", got " + std::to_string(value));
+}
+
+void requireWithinLimit(const std::string& what, long long count, long long limit) {
+  if (count > limit)
+    throw std::invalid_argument(what + " = " + std::to_string(count) + " exceeds the limit of " + std::to_string(limit));
 }
 
 const std::vector<PresetInfo>& presetTable() {

@@ -2,6 +2,7 @@
 // What a run writes per step, shared by the subcommands that step scenes:
 // the runner's divergence limits and the CSV rows of --csv and --trajectory.
 #include <ostream>
+#include <string>
 
 #include "particles/divergence.h"
 #include "particles/particle_system.h"
@@ -22,6 +23,13 @@ particles::DivergenceLimits runnerDivergenceLimits();
 constexpr const char* kDiagnosticsHeader =
     "step,t,kinetic,potential,total_energy,max_constraint_error,cg_iterations,cg_residual,solves,"
     "force_evaluations,internal_steps,step_us";
+// The first CSV column of the state after a step that is not finite, as a
+// phrase for the divergence message ("the kinetic energy is not finite");
+// empty when all are. The CSV only ever holds finite numbers: the runner ends
+// a run whose diagnostics are not finite as a divergence, after
+// particles::checkDivergence (which judges the state and the step).
+std::string nonFiniteDiagnostics(const particles::ParticleSystem& s);
+
 // One diagnostics row for the state after `step` (its statistics from
 // s.lastStepStats(); row 0 has zeros); stepMicros is that step's wall time.
 void writeDiagnostics(std::ostream& out, long long step, const particles::ParticleSystem& s, double stepMicros);

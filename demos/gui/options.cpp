@@ -84,7 +84,7 @@ DemoOptions parseOptions(int argc, char** argv) {
   try {
     scenes::presetIndex(o.preset);
   } catch (const std::invalid_argument& e) {
-    badUsage(std::string("--preset: ") + e.what());
+    badUsage(e.what());  // the same message as particle-lab's
   }
   if (*integratorOption) o.integrator = integrator;
   try {

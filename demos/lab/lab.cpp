@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "output_file.h"
 #include "particles/forces/gravity.h"
 
 namespace lab {
@@ -143,6 +144,7 @@ Csv::Csv(const std::string& path, const std::vector<std::string>& columns)
   if (!out_) throw std::runtime_error("cannot write " + path);
   for (std::size_t k = 0; k < columns.size(); ++k) out_ << (k ? "," : "") << columns[k];
   out_ << '\n' << std::flush;
+  if (!out_) scenes::throwWriteError("the CSV", path_);
 }
 
 Csv& Csv::operator<<(const std::string& cell) {
@@ -164,6 +166,7 @@ void Csv::endRow() {
     throw std::logic_error(path_ + ": row has " + std::to_string(cell_) + " cells, expected " +
                            std::to_string(columns_));
   out_ << '\n' << std::flush;
+  if (!out_) scenes::throwWriteError("the CSV", path_);
   cell_ = 0;
 }
 
@@ -183,7 +186,11 @@ void writeTable(const LabOptions& options, const std::string& name, const std::s
   for (std::size_t k = 0; k < header.size(); ++k) md << (k ? " ---: |" : " --- |");
   md << '\n';
   for (const auto& row : rows) line(row);
-  std::ofstream(options.outDir + "/" + name + ".md") << md.str();
+  const std::string path = options.outDir + "/" + name + ".md";
+  std::ofstream out(path);
+  out << md.str();
+  out.close();
+  if (!out) scenes::throwWriteError("the table", path);
   std::cout << "\n" << md.str() << std::flush;
 }
 
@@ -203,6 +210,8 @@ void recordValue(const LabOptions& options, const std::string& key, const std::s
   std::ofstream out(path);
   out << "key,value\n";
   for (const auto& [k, v] : values) out << k << ',' << v << '\n';
+  out.close();
+  if (!out) scenes::throwWriteError("the values", path);
 }
 
 std::string fixed(double value, int digits) {

@@ -22,7 +22,7 @@ PendulumParams PendulumParams::seed() {
   p.length = 0.5;
   p.angle = 60.0;
   p.mass = 1.0;
-  p.gravity = 0.05;
+  p.gravity = kSeedGravity;
   p.dt = 0.01;
   return p;
 }

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "particles/check.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -11,6 +12,7 @@ namespace scenes {
 
 void TestChainParams::validate() const {
   requireAtLeast("cl", cl, 2);
+  requireWithinLimit("cl particles", cl, SceneLimits::particles);
   particles::requirePositive("length", length);
   particles::requirePositive("mass", mass);
   particles::parseRodForm(rod);
@@ -24,7 +26,7 @@ TestChainParams TestChainParams::seed() {
   p.length = 0.1;
   p.mass = 1.0;
   p.rod = "squared";
-  p.gravity = 0.05;
+  p.gravity = kSeedGravity;
   p.tipMassRatio = 1.0;
   p.dt = 0.01;
   return p;

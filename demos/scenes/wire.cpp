@@ -7,6 +7,7 @@
 #include "particles/check.h"
 #include "particles/constraints/circular_wire.h"
 #include "particles/forces/spring.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -14,6 +15,7 @@ namespace scenes {
 
 void WireParams::validate() const {
   requireAtLeast("beads", beads, 1);
+  requireWithinLimit("beads", beads, SceneLimits::particles);
   particles::requirePositive("radius", radius);
   particles::requirePositive("mass", mass);
   particles::requireNonNegative("coupling", coupling);
@@ -26,7 +28,7 @@ WireParams WireParams::seed() {
   p.radius = 0.25;
   p.mass = 1.0;
   p.coupling = 0.2;
-  p.gravity = 0.05;
+  p.gravity = kSeedGravity;
   p.dt = 0.01;
   return p;
 }

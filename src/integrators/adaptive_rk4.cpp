@@ -10,14 +10,17 @@ namespace particles {
 void AdaptiveRk4Integrator::configure(const IntegratorSettings& settings) {
   settings.validate();
   tolerance_ = settings.tolerance;
+  minStepFraction_ = settings.minStepFraction;
+  maxStepsPerCall_ = settings.maxStepsPerCall;
 }
 
 StepStats AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
   if (!(h_ > 0.0) || !std::isfinite(h_)) h_ = dt;
-  // Below this the estimate is rounding noise: accept rather than loop forever.
-  const double hMin = 1e-12 * dt;
+  // The floor: a step the controller would cut below it fails the call.
+  const double floor = minStepFraction_ * dt;
+  long attempts = 0;
   history_.clear();
   lastStep_ = 0.0;  // becomes the largest step accepted in this call
   double t = 0.0;
@@ -29,6 +32,10 @@ StepStats AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
     stats += part;
   };
   while (t < dt) {
+    if (++attempts > maxStepsPerCall_) {
+      stats.failure = StepFailure::WorkCapReached;
+      break;
+    }
     const bool last = h_ >= dt - t;
     const double h = last ? dt - t : h_;
     x0_ = x;
@@ -52,7 +59,7 @@ StepStats AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
     if (!std::isfinite(err)) err = 1e10;  // a blown-up trial is a rejection
     const double factor = std::clamp(0.9 * std::pow(std::max(err, 1e-10), -0.2), 0.2, 5.0);
 
-    if (err <= 1.0 || h <= hMin) {
+    if (err <= 1.0) {
       x += (x - xBig_) / 15.0;
       v += (v - vBig_) / 15.0;
       t = last ? dt : t + h;
@@ -61,13 +68,17 @@ StepStats AdaptiveRk4Integrator::step(ParticleSystem& system, double dt) {
       ++stats.internalSteps;
       lastStep_ = std::max(lastStep_, h);
       // A last step shortened to land on dt says nothing about how far h_ can go.
-      if (h == h_) h_ = std::max(hMin, h * factor);
+      if (h == h_) h_ = h * factor;
     } else {
       x = x0_;
       v = v0_;
       ++rejected_;
       ++stats.rejectedSteps;
-      h_ = std::max(hMin, h * factor);
+      h_ = h * factor;
+      if (h_ < floor) {
+        stats.failure = StepFailure::StepBelowFloor;
+        break;
+      }
     }
   }
   return stats;
