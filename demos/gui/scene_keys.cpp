@@ -27,7 +27,7 @@ const std::vector<Variant>& variants() {
 std::vector<SceneChoice> pairedChoices() {
   scenes::ClothParams stiff = scenes::stiffClothParams(64);
   SceneChoice cloth;
-  cloth.label = "stiff cloth 64x64 (xpbd, 60 Hz)";
+  cloth.label = "stiff cloth 64x64 (xpbd at 60 Hz)";
   cloth.name = "cloth";
   cloth.integrator = "xpbd";
   cloth.dt = 1.0 / 60.0;
