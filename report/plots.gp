@@ -223,3 +223,52 @@ set xlabel 'constraints m'
 set ylabel 'iterations per solve'
 plot f using 1:(positive($2)) title 'plain CG, cold start', f using 1:(positive($3)) title 'Jacobi-preconditioned CG, warm start', \
      [*:*] x with lines dt 2 lc 'gray' title 'iterations = m'
+
+# --- small steps (XPBD) -----------------------------------------------------
+# small_steps.csv: scene,family,split,budget,substeps,iterations,dt,cpu,constraint_error,energy_loss,position_error,exploded
+f = data.'/small_steps.csv'
+set logscale xy
+set xlabel 'budget n = substeps × iterations per 1/60 s step'
+set key outside right top
+do for [scene in "chain80 stiff-cloth hair"] {
+  set output fig.'/small_steps_'.scene.'.png'
+  set multiplot layout 1,2 title 'XPBD at a fixed budget on '.scene.': n substeps of 1 pass (nx1), √n×√n, 1 substep of n passes (1xn)'
+  set ylabel 'worst relative constraint violation over the run'
+  plot for [s in "nx1 sqrt 1xn"] f using 4:(strcol(1) eq scene && strcol(2) eq 'xpbd' && strcol(3) eq s ? positive($9) : NaN) title s
+  set ylabel 'position error at T / scene diagonal'
+  plot for [s in "nx1 sqrt 1xn"] f using 4:(strcol(1) eq scene && strcol(2) eq 'xpbd' && strcol(3) eq s ? positive($11) : NaN) title s
+  unset multiplot
+}
+
+# Every run of every family: position error against CPU time per simulated second.
+set output fig.'/small_steps_cost.png'
+set multiplot layout 1,3 title 'Position error at T against CPU time per simulated second (xpbd at 1/60 s over its budget; RK4 and implicit Euler over dt)'
+set xlabel 'CPU s per simulated s'
+set ylabel 'position error / diagonal'
+set key inside bottom left
+do for [scene in "chain80 stiff-cloth hair"] {
+  set title scene
+  plot for [fam in "xpbd implicit-euler rk4"] f using (strcol(1) eq scene && strcol(2) eq fam && $12 == 0 ? positive($8) : NaN):(positive($11)) with points pt 7 title fam
+}
+unset multiplot
+unset title
+
+# The stiff cloth at 60 Hz: frame time against substeps, beside RK4 and the 16 ms budget.
+f = data.'/small_steps_cloth.csv'
+set output fig.'/small_steps_cloth.png'
+unset logscale xy
+set format x '%g'
+set format y '%g'
+set key inside top left
+set xlabel 'xpbd substeps per 1/60 s frame (1 pass each)'
+set ylabel 'CPU ms per frame (median)'
+set y2label 'worst spring strain over the run (%)'
+set y2tics
+rk4 = real(system(sprintf("awk -F, '$1==\"rk4-step\" {print $3}' '%s'", f)))
+plot f using 2:(strcol(1) eq 'xpbd' ? $3 : NaN) title 'xpbd frame (ms)', \
+     f using 2:(strcol(1) eq 'xpbd' ? 100*$6 : NaN) axes x1y2 title 'worst strain (%)', \
+     16 with lines dt 2 lc 'black' title '16 ms frame budget', \
+     5*rk4 with lines dt 3 lc 'red' title 'five RK4 steps', \
+     3 axes x1y2 with lines dt 4 lc 'blue' title '3 % strain'
+unset y2tics
+unset y2label

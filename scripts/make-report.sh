@@ -22,7 +22,7 @@ value machine.load "$(cut -d' ' -f1-3 /proc/loadavg)"
 value machine.compiler "$(c++ --version | head -n 1)"
 value machine.date "$(date -u +%Y-%m-%d)"
 
-for experiment in stability timing accuracy cost longtime extremes claims; do
+for experiment in stability timing accuracy cost longtime extremes claims small-steps; do
   echo "== particle-lab $experiment ${mode[*]}" >&2
   "$lab" "$experiment" "${mode[@]}" --jobs "$(nproc)" --out "$data" > "$data/$experiment.log"
 done

@@ -11,6 +11,7 @@
 #include "particles/integrators/rk4.h"
 #include "particles/integrators/symplectic_euler.h"
 #include "particles/integrators/verlet.h"
+#include "particles/integrators/xpbd.h"
 
 namespace particles {
 
@@ -36,6 +37,8 @@ const std::vector<IntegratorInfo>& integratorTable() {
        make<AdaptiveRk4Integrator>, true},
       {"dopri5", "Dormand-Prince 5(4), FSAL, PI step control: internal step chosen to meet --tolerance", 5,
        make<Dopri5Integrator>, true},
+      {"xpbd", "XPBD: --substeps substeps of --iterations constraint passes, springs as compliance", 1,
+       make<XpbdIntegrator>, false, true},
   };
   return table;
 }
@@ -48,6 +51,9 @@ void IntegratorSettings::validate() const {
   requireInRange("integrator minStepFraction", minStepFraction, 1e-15, 1.0);
   if (maxStepsPerCall < 1)
     throw std::invalid_argument("integrator maxStepsPerCall must be >= 1, got " + std::to_string(maxStepsPerCall));
+  // Upper bounds keep a typo from turning one step into hours of work.
+  requireInRange("integrator substeps", substeps, 1, 100000);
+  requireInRange("integrator iterations", iterations, 1, 10000);
 }
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name,

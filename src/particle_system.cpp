@@ -1,11 +1,17 @@
 #include "particles/particle_system.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "particles/check.h"
 
 namespace particles {
+
+std::uint64_t ParticleSystem::nextStructureStamp() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
 
 int ParticleSystem::addParticle(const Eigen::Vector2d& position, double mass,
                                 const Eigen::Vector2d& velocity) {
@@ -25,6 +31,7 @@ int ParticleSystem::addParticles(const std::vector<Eigen::Vector2d>& positions,
     requireFinite("particle position.y", positions[k].y());
     requirePositive("particle mass", masses[k]);
   }
+  structureStamp_ = nextStructureStamp();
   const int first = size(), n = first + static_cast<int>(positions.size());
   x_.conservativeResize(2 * n);
   v_.conservativeResize(2 * n);
@@ -48,11 +55,13 @@ void ParticleSystem::setMass(int i, double mass) {
   requirePositive("particle mass", mass);
   mass_[i] = mass;
   if (inverseMass_[i] != 0.0) inverseMass_[i] = 1.0 / mass;
+  structureStamp_ = nextStructureStamp();
 }
 
 void ParticleSystem::setPinned(int i, bool pin) {
   requireIndex("setPinned", i, size());
   inverseMass_[i] = pin ? 0.0 : 1.0 / mass_[i];
+  structureStamp_ = nextStructureStamp();
   if (pin) v_.segment<2>(2 * i).setZero();
 }
 
@@ -66,12 +75,14 @@ void ParticleSystem::setCollidable(int i, double radius) {
 Force& ParticleSystem::addForce(std::unique_ptr<Force> force) {
   for (int i : force->particles()) requireIndex(force->type(), i, size());
   forces_.push_back(std::move(force));
+  structureStamp_ = nextStructureStamp();
   return *forces_.back();
 }
 
 Constraint& ParticleSystem::addConstraint(std::unique_ptr<Constraint> constraint) {
   for (int i : constraint->particles()) requireIndex(constraint->type(), i, size());
   constraints_.push_back(std::move(constraint));
+  structureStamp_ = nextStructureStamp();
   solver_.resetWarmStart();
   return *constraints_.back();
 }
@@ -85,6 +96,7 @@ void ParticleSystem::removeForce(const Force* force) {
   forces_.erase(std::remove_if(forces_.begin(), forces_.end(),
                                [&](const std::unique_ptr<Force>& f) { return f.get() == force; }),
                 forces_.end());
+  structureStamp_ = nextStructureStamp();
 }
 
 void ParticleSystem::restore(const Snapshot& s) {

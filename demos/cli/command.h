@@ -41,6 +41,7 @@ Command addClaimsCommand(CLI::App& app);
 Command addAdviseCommand(CLI::App& app);
 Command addCostCommand(CLI::App& app);
 Command addLongtimeCommand(CLI::App& app);
+Command addSmallStepsCommand(CLI::App& app);
 Command addRenderReportCommand(CLI::App& app);
 
 }  // namespace cli

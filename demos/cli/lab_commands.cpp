@@ -127,6 +127,13 @@ Command addLongtimeCommand(CLI::App& app) {
   return {command, [=] { return experiment([&] { return lab::runLongtime(*options); }); }};
 }
 
+Command addSmallStepsCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "small-steps", "XPBD substeps against iterations and against implicit Euler and RK4; the stiff cloth at 60 Hz");
+  auto options = addLabOptions(command);
+  return {command, [=] { return experiment([&] { return lab::runSmallSteps(*options); }); }};
+}
+
 Command addRenderReportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render-report", "fill a Markdown template with the tables and values the experiments wrote");

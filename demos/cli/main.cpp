@@ -25,6 +25,7 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addCostCommand,
     cli::addLongtimeCommand,
     cli::addAdviseCommand,
+    cli::addSmallStepsCommand,
     cli::addRenderReportCommand,
 };
 

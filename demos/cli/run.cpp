@@ -25,7 +25,11 @@ constexpr long long kMaxSteps = 1000000000000LL;
 struct RunOptions {
   SceneSource source;
   std::string integrator;  // empty: the scene's own
-  particles::IntegratorSettings integratorSettings;  // --tolerance
+  // --tolerance, --substeps, --iterations: each given one overrides the scene's.
+  particles::IntegratorSettings integratorSettings;
+  CLI::Option* toleranceOption = nullptr;
+  CLI::Option* substepsOption = nullptr;
+  CLI::Option* iterationsOption = nullptr;
   double dt = 0.0;
   CLI::Option* dtOption = nullptr;  // not given: the scene's own dt
   long long steps = 0;
@@ -45,7 +49,11 @@ int run(const RunOptions& o) {
   // Check every input before the first output.
   scenes::Scene scene = o.source.load();
   const std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
-  const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName, o.integratorSettings);
+  particles::IntegratorSettings settings = scene.integratorSettings;
+  if (o.toleranceOption->count()) settings.tolerance = o.integratorSettings.tolerance;
+  if (o.substepsOption->count()) settings.substeps = o.integratorSettings.substeps;
+  if (o.iterationsOption->count()) settings.iterations = o.integratorSettings.iterations;
+  const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName, settings);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;
   particles::requirePositive("--dt", dt);
   // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
@@ -120,10 +128,16 @@ Command addRunCommand(CLI::App& app) {
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
                   "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
-  sub->add_option("--tolerance", options->integratorSettings.tolerance,
-                  "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
-                  "fixed-step integrators")
-      ->capture_default_str();
+  options->toleranceOption =
+      sub->add_option("--tolerance", options->integratorSettings.tolerance,
+                      "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
+                      "fixed-step integrators (default: the scene's, 1e-6)");
+  options->substepsOption =
+      sub->add_option("--substeps", options->integratorSettings.substeps,
+                      "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)");
+  options->iterationsOption =
+      sub->add_option("--iterations", options->integratorSettings.iterations,
+                      "xpbd: constraint passes per substep, in [1, 10000] (default: the scene's, 1)");
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
       ->required()

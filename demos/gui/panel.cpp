@@ -163,6 +163,16 @@ void App::drawPanel() {
         for (auto& pane : panes_) pane->setIntegratorSettings(settings);
       }
     }
+    // xpbd's substeps per step and constraint passes per substep.
+    bool anySubsteps = false;
+    for (const auto& pane : panes_) anySubsteps |= table[pane->integratorIndex()].usesSubsteps;
+    if (anySubsteps) {
+      particles::IntegratorSettings settings = panes_.front()->integratorSettings();
+      const bool substeps = ImGui::SliderInt("substeps", &settings.substeps, 1, 200, "%d", ImGuiSliderFlags_Logarithmic);
+      const bool iterations = ImGui::SliderInt("iterations", &settings.iterations, 1, 64, "%d", ImGuiSliderFlags_Logarithmic);
+      if (substeps || iterations)
+        for (auto& pane : panes_) pane->setIntegratorSettings(settings);
+    }
     if (ImGui::Button("dt x2 (+)")) guarded([&] { scaleDt(2.0); });
     ImGui::SameLine();
     if (ImGui::Button("dt /2 (-)")) guarded([&] { scaleDt(0.5); });

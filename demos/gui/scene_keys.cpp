@@ -4,6 +4,8 @@
 
 #include "scene.h"
 #include "scene_file/scene_file.h"
+#include "scenes/cloth.h"
+#include "scenes/param_fields.h"
 
 namespace demo {
 
@@ -21,6 +23,19 @@ const std::vector<Variant>& variants() {
   };
   return table;
 }
+// Built-in scenes with a parameter set and the integrator and dt they are meant for.
+std::vector<SceneChoice> pairedChoices() {
+  scenes::ClothParams stiff = scenes::stiffClothParams(64);
+  SceneChoice cloth;
+  cloth.label = "stiff cloth 64x64 (xpbd at 60 Hz)";
+  cloth.name = "cloth";
+  cloth.integrator = "xpbd";
+  cloth.dt = 1.0 / 60.0;
+  stiff.visit([&](const char* name, const auto& field, const char*) {
+    cloth.params[name] = scenes::formatParam(field);
+  });
+  return {cloth};
+}
 }  // namespace
 
 std::vector<SceneKey> sceneKeys() {
@@ -35,6 +50,7 @@ std::vector<SceneKey> sceneKeys() {
       }
     if (!varied) choices.push_back({info.name, info.name, {}, ""});
   }
+  for (const SceneChoice& paired : pairedChoices()) choices.push_back(paired);
   std::vector<SceneKey> result;
   for (std::size_t k = 0; k < choices.size() && k < sizeof(keys) - 1; ++k)
     result.push_back({static_cast<unsigned char>(keys[k]), choices[k]});
@@ -46,6 +62,9 @@ std::vector<SceneKey> sceneKeys() {
 namespace demo {
 scenes::Scene buildChoice(const SceneChoice& choice) {
   if (!choice.file.empty()) return scenes::loadSceneFile(choice.file);
-  return scenes::buildScene(choice.name, choice.params, choice.preset);
+  scenes::Scene scene = scenes::buildScene(choice.name, choice.params, choice.preset);
+  if (!choice.integrator.empty()) scene.integrator = choice.integrator;
+  if (choice.dt > 0.0) scene.dt = choice.dt;
+  return scene;
 }
 }  // namespace demo

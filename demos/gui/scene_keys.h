@@ -1,6 +1,7 @@
 #pragma once
 // Which scene each number key loads: every built-in scene, with the cloth
-// twice (4-way and 8-way springs), in the order of the scene table.
+// twice (4-way and 8-way springs), in the order of the scene table, then the
+// scenes paired with an integrator (the stiff 64×64 cloth with xpbd at 60 Hz).
 #include <map>
 #include <string>
 #include <vector>
@@ -16,6 +17,8 @@ struct SceneChoice {
   std::map<std::string, std::string> params;
   std::string file;   // JSON scene file
   std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
+  std::string integrator = "";  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
+  double dt = 0.0;         // > 0: replaces the scene's dt
 };
 
 struct SceneKey {

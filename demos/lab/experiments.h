@@ -23,6 +23,7 @@ int runExtremes(const LabOptions& options);
 int runClaims(const LabOptions& options);
 int runCost(const LabOptions& options);
 int runLongtime(const LabOptions& options);
+int runSmallSteps(const LabOptions& options);
 
 // Median wall time of one step (seconds), and mean CG iterations and solves
 // per step (StepStats) of a scene under an integrator: warm-up steps, then

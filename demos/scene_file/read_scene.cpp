@@ -53,6 +53,14 @@ void readIntegrator(const JsonNode& node, Scene& scene) {
   node.expected("an integrator (" + joinNames(particles::integratorTable()) + ")");
 }
 
+void readIntegratorSettings(const JsonNode& node, particles::IntegratorSettings& s) {
+  if (!node.present()) return;
+  node.allowOnly({"tolerance", "substeps", "iterations"});
+  if (node["tolerance"].present()) s.tolerance = node["tolerance"].positive();
+  if (node["substeps"].present()) s.substeps = node["substeps"].integer(1, 100000);
+  if (node["iterations"].present()) s.iterations = node["iterations"].integer(1, 10000);
+}
+
 void readView(const JsonNode& node, Scene& scene) {
   if (!node.present()) return;
   node.allowOnly({"min", "max"});
@@ -111,11 +119,12 @@ void requireCount(const JsonNode& node, const char* what, long long limit) {
 }
 
 Scene readDocument(const JsonNode& root, const std::string& source) {
-  root.allowOnly({"name", "integrator", "dt", "view", "solver", "particleRestitution", "particles", "forces",
+  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution", "particles", "forces",
                   "constraints", "walls"});
   Scene scene;
   scene.name = root["name"].present() ? root["name"].text() : source;
   readIntegrator(root["integrator"], scene);
+  readIntegratorSettings(root["integratorSettings"], scene.integratorSettings);
   if (root["dt"].present()) scene.dt = root["dt"].positive();
   readView(root["view"], scene);
   scene.system = std::make_unique<particles::ParticleSystem>();

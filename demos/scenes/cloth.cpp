@@ -118,4 +118,18 @@ Scene buildCloth(const ClothParams& p) {
   return scene;
 }
 
+ClothParams stiffClothParams(int size) {
+  ClothParams p;
+  p.width = p.height = size;
+  p.links = 8;
+  p.stiffness = 4e5;
+  p.damping = 0.5;
+  p.gravity = 9.8;
+  p.swing = 0.0;  // released hanging straight, no air drag, no edge contacts
+  p.drag = 0.0;
+  p.edgeContacts = 0;
+  p.validate();
+  return p;
+}
+
 }  // namespace scenes

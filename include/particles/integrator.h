@@ -28,6 +28,12 @@ struct IntegratorSettings {
   // Work cap: internal steps (accepted and rejected) one call may attempt
   // before it fails with StepFailure::WorkCapReached.
   long maxStepsPerCall = 100000;
+  // xpbd: a step of dt is `substeps` substeps of h = dt/substeps, each with
+  // `iterations` Gauss–Seidel passes over the constraints (both ≥ 1). Macklin
+  // et al. 2019 favour many substeps of one pass; the defaults are measured by
+  // `particle-lab small-steps` (report, "Small steps").
+  int substeps = 20;
+  int iterations = 1;
 
   void validate() const;  // throws naming the bad field
 };
@@ -63,6 +69,7 @@ struct IntegratorInfo {
   int order;            // global order of accuracy on smooth problems
   std::unique_ptr<Integrator> (*make)();
   bool usesTolerance = false;  // reads IntegratorSettings (tolerance, step floor, work cap)
+  bool usesSubsteps = false;   // reads IntegratorSettings::substeps and ::iterations
 };
 
 // Every integrator, in the order the demo cycles through them.

@@ -1,6 +1,7 @@
 #pragma once
 // State (q, q̇, force accumulator, inverse masses), the force and constraint
 // objects acting on it, and the derivative evaluation that integrators drive.
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -69,6 +70,9 @@ class ParticleSystem {
   void restore(const Snapshot& s);
 
   const std::vector<std::unique_ptr<Force>>& forceObjects() const { return forces_; }
+  // Changes whenever particles, forces, constraints or pins change, and differs
+  // between systems: integrators that prepare per-structure data key it on this.
+  std::uint64_t structureStamp() const { return structureStamp_; }
   const ConstraintList& constraints() const { return constraints_; }
   const std::vector<Wall>& walls() const { return walls_; }
 
@@ -119,6 +123,8 @@ class ParticleSystem {
   int contactsLastStep_ = 0;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
+  std::uint64_t structureStamp_ = nextStructureStamp();
+  static std::uint64_t nextStructureStamp();
 };
 
 }  // namespace particles

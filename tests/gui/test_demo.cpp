@@ -157,7 +157,7 @@ TEST(DemoKeys, EveryScenePlusEveryIntegratorByKeyThenQuitExitsZero) {
     EXPECT_EQ(log.frames, 21);  // frames 0..20: q ends the run after drawing frame 20
     ASSERT_EQ(log.panes.size(), 1u);  // v four times: 2, 3, 4 panes, then 1
     EXPECT_EQ(log.panes[0].scene, key.choice.label);
-    EXPECT_EQ(log.panes[0].integrator, scenes::buildScene(key.choice.name, key.choice.params).integrator);
+    EXPECT_EQ(log.panes[0].integrator, demo::buildChoice(key.choice).integrator);
     EXPECT_GT(log.panes[0].steps, 0);
     EXPECT_NE(log.overlay("help"), nullptr);    // h shows the help overlay
     ASSERT_NE(log.overlay("hud"), nullptr);     // f adds the force legend to the bottom bar

@@ -1,0 +1,75 @@
+// The stiff cloth at 60 Hz: the 128×128 8-way cloth of scenes::stiffClothParams
+// (k_s = 4e5, g = 9.8, top row on a rail), advanced by one 1/60 s frame with
+// xpbd at several substep counts, beside one plain RK4 step of the same cloth
+// in the same run (the issue's yardstick: 16 ms ≈ five RK4 steps). Each xpbd
+// benchmark first runs one simulated second so the cloth hangs loaded, then
+// reports the worst spring strain | |d|/r − 1 | seen over the warm-up and the
+// timed frames (the issue asks for ≤ 3 %; test_integrators_xpbd checks it for
+// the 40-substep configuration).
+//
+//   build/tests/bench_stiff_cloth --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//
+// Results are in the report ("Stiff cloth at 60 Hz"), with the machine and load.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "particles/forces/spring.h"
+#include "particles/integrator.h"
+#include "particles/particle_system.h"
+#include "scenes/cloth.h"
+
+namespace {
+
+double worstSpringStrain(const particles::ParticleSystem& system) {
+  double worst = 0.0;
+  for (const auto& force : system.forceObjects())
+    if (const auto* spring = dynamic_cast<const particles::SpringForce*>(force.get())) {
+      const double length = (system.position(spring->first()) - system.position(spring->second())).norm();
+      worst = std::max(worst, std::abs(length / spring->restLength() - 1.0));
+    }
+  return worst;
+}
+
+void BM_StiffClothXpbdFrame(benchmark::State& state) {
+  scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(static_cast<int>(state.range(0))));
+  particles::IntegratorSettings settings;
+  settings.substeps = static_cast<int>(state.range(1));
+  settings.iterations = static_cast<int>(state.range(2));
+  auto xpbd = particles::makeIntegrator("xpbd", settings);
+  particles::ParticleSystem& system = *scene.system;
+  const double frame = 1.0 / 60.0;
+  for (int k = 0; k < 60; ++k) system.step(*xpbd, frame);
+  double worst = worstSpringStrain(system);
+  for (auto _ : state) {
+    system.step(*xpbd, frame);
+    state.PauseTiming();
+    worst = std::max(worst, worstSpringStrain(system));
+    state.ResumeTiming();
+  }
+  state.counters["max_strain"] = worst;
+  if (!system.finite()) state.SkipWithError("the cloth blew up");
+}
+
+void BM_StiffClothRk4Step(benchmark::State& state) {
+  scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(static_cast<int>(state.range(0))));
+  auto rk4 = particles::makeIntegrator("rk4");
+  // RK4's stable step on this cloth is below 1/1000 s; the time of a step
+  // does not depend on its size.
+  for (auto _ : state) scene.system->step(*rk4, 2e-4);
+  if (!scene.system->finite()) state.SkipWithError("the cloth blew up");
+}
+
+}  // namespace
+
+BENCHMARK(BM_StiffClothRk4Step)->ArgNames({"n"})->Arg(128)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StiffClothXpbdFrame)
+    ->ArgNames({"n", "substeps", "iterations"})
+    ->Args({128, 20, 1})
+    ->Args({128, 30, 1})
+    ->Args({128, 40, 1})
+    ->Args({128, 10, 2})
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
