@@ -37,7 +37,7 @@ TEST(SceneFile, ParametersSurviveExport) {
   // in each of the 4·3 cells, and gravity.
   EXPECT_EQ(loaded.system->forceObjects().size(), 16u + 15u + 24u + 1u);
   EXPECT_EQ(loaded.system->constraints().size(), 5u);
-  EXPECT_EQ(loaded.system->walls().size(), 2u);
+  EXPECT_EQ(loaded.system->colliders().size(), 2u);
 }
 
 TEST(SceneFile, EveryShippedExampleLoadsAndSteps) {

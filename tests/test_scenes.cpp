@@ -49,17 +49,17 @@ TEST(Scenes, EveryBuiltInSceneStepsWithMidpointAndRk4WithinOnePercentConstraintE
 TEST(Scenes, ModelOnlyWhatTheyNeed) {
   const scenes::Scene oscillator = scenes::buildScene("oscillator");
   EXPECT_TRUE(oscillator.system->constraints().empty());
-  EXPECT_TRUE(oscillator.system->walls().empty());
+  EXPECT_TRUE(oscillator.system->colliders().empty());
   EXPECT_EQ(oscillator.system->forceObjects().size(), 1u);  // the spring; no gravity
   const scenes::Scene pendulum = scenes::buildScene("pendulum");
   EXPECT_EQ(pendulum.system->constraints().size(), 1u);
-  EXPECT_TRUE(pendulum.system->walls().empty());
+  EXPECT_TRUE(pendulum.system->colliders().empty());
   const scenes::Scene cloth = scenes::buildScene("cloth");
-  EXPECT_EQ(cloth.system->walls().size(), 2u);  // the big wall and the nail
+  EXPECT_EQ(cloth.system->colliders().size(), 2u);  // the big wall and the nail
   for (int i = 0; i < cloth.system->size(); ++i) EXPECT_FALSE(cloth.system->collidable(i));
   const scenes::Scene hair = scenes::buildScene("hair");
   for (int i = 0; i < hair.system->size(); ++i) EXPECT_TRUE(hair.system->collidable(i));
-  EXPECT_TRUE(hair.system->walls().empty());
+  EXPECT_TRUE(hair.system->colliders().empty());
 }
 
 // Explicit Euler is reported, not required: it may fail the 1 % bound.

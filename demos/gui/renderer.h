@@ -41,7 +41,7 @@ class Renderer {
     }
   };
 
-  void collectWalls(const particles::ParticleSystem& system);
+  void collectWalls(const particles::ParticleSystem& system, const ViewTransform& view);  // colliders
   void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options);
   void collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view);
   void collectParticles(const Simulation& simulation, const ViewTransform& view);

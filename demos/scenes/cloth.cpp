@@ -47,6 +47,7 @@ Scene buildCloth(const ClothParams& p) {
 
   auto link = [&](int i, int j, double rest) {
     s.addForce(std::make_unique<particles::SpringForce>(i, j, rest, p.stiffness, p.damping));
+    s.addCollisionEdge(i, j);  // the springs, not only the particles, catch on the nail
   };
   const double diagonal = std::sqrt(2.0) * p.rest;
   for (int row = 0; row < p.height; ++row)
@@ -67,14 +68,10 @@ Scene buildCloth(const ClothParams& p) {
   // A big wall left of the cloth, from just below the rail to below the hem
   // of the cloth hanging stretched under its weight (about twice its rest
   // height at the defaults), and a small nail to the right, near the top.
-  particles::Wall wall;
-  wall.min = Eigen::Vector2d(topLeft.x() - 0.9 * L, topLeft.y() - 2.6 * L);
-  wall.max = Eigen::Vector2d(topLeft.x() - 0.3 * L, topLeft.y() - 0.3 * L);
-  s.addWall(wall);
-  particles::Wall nail;
-  nail.min = Eigen::Vector2d(-topLeft.x() + 0.3 * L, topLeft.y() - 0.4 * L);
-  nail.max = nail.min + Eigen::Vector2d::Constant(0.05 * L);
-  s.addWall(nail);
+  s.addCollider(particles::Collider::box(Eigen::Vector2d(topLeft.x() - 0.9 * L, topLeft.y() - 2.6 * L),
+                                        Eigen::Vector2d(topLeft.x() - 0.3 * L, topLeft.y() - 0.3 * L)));
+  const Eigen::Vector2d nail(-topLeft.x() + 0.3 * L, topLeft.y() - 0.4 * L);
+  s.addCollider(particles::Collider::box(nail, nail + Eigen::Vector2d::Constant(0.05 * L)));
 
   scene.viewMin = Eigen::Vector2d::Constant(-half);
   scene.viewMax = Eigen::Vector2d::Constant(half);
