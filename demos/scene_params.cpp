@@ -5,6 +5,7 @@
 
 #include "join_names.h"
 #include "scene.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 
 namespace scenes {
@@ -17,9 +18,30 @@ void requireAtLeast(const char* name, int value, int minimum) {
                                 ", got " + std::to_string(value));
 }
 
-SceneParams::SceneParams(const std::vector<ParamSpec>& specs,
-                         const std::map<std::string, std::string>& values) {
-  for (const ParamSpec& spec : specs) values_[spec.name] = spec.defaultValue;
+void requireWithinLimit(const std::string& what, long long count, long long limit) {
+  if (count > limit)
+    throw std::invalid_argument(what + " = " + std::to_string(count) + " exceeds the limit of " + std::to_string(limit));
+}
+
+const std::vector<PresetInfo>& presetTable() {
+  static const std::vector<PresetInfo> table = {
+      {kDefaultPreset, "real time in SI units: g = 9.81 m/s^2, metres, periods of 0.5-3 s"},
+      {kSeedPreset, "the seed report's values (g = 0.05 on scenes about 1 unit across), as the laboratory uses"},
+  };
+  return table;
+}
+
+std::size_t presetIndex(const std::string& preset) {
+  const std::vector<PresetInfo>& table = presetTable();
+  for (std::size_t k = 0; k < table.size(); ++k)
+    if (preset == table[k].name) return k;
+  throw std::invalid_argument("unknown preset '" + preset + "' (valid: " + joinNames(table) + ")");
+}
+
+SceneParams::SceneParams(const std::vector<ParamSpec>& specs, const std::map<std::string, std::string>& values,
+                         const std::string& preset)
+    : preset_(presetIndex(preset)) {
+  for (const ParamSpec& spec : specs) values_[spec.name] = spec.values.at(preset_);
   validNames_ = specs.empty() ? "none" : joinNames(specs);
   for (const auto& [name, value] : values) {
     if (!values_.count(name))

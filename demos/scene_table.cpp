@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <set>
 #include <stdexcept>
 
 #include "join_names.h"
@@ -23,35 +25,70 @@ Scene buildFromValues(const SceneParams& values) {
 }
 
 template <class Params, Scene (*Build)(const Params&)>
-SceneInfo entry(const char* name, const char* summary) {
-  return {name, summary, paramSpecs<Params>(), buildFromValues<Params, Build>};
+SceneInfo entry(const char* name, const char* summary, const char* hint) {
+  return {name, summary, hint, paramSpecs<Params>(), buildFromValues<Params, Build>};
 }
 }  // namespace
 
 const std::vector<SceneInfo>& sceneTable() {
   static const std::vector<SceneInfo> table = {
-      entry<ClothParams, buildCloth>("cloth", "spring cloth on a curtain rail, a big wall left and a nail right"),
-      entry<HairParams, buildHair>("hair", "curls of springs and angular springs, roots on a rail, colliding"),
-      entry<WireParams, buildWire>("wire", "beads on circular wires, coupled by soft springs"),
-      entry<RodChainParams, buildRodChain>("rod-chain", "a chain of rods hanging from a bead on a circular wire"),
-      entry<TestChainParams, buildTestChain>("test-chain", "the integrator test: a pinned chain of rods released horizontally"),
-      entry<TautChainParams, buildTautChain>("taut-chain", "a straight chain of rods between two wires (the solver's singular case)"),
-      entry<OscillatorParams, buildOscillator>("oscillator", "a mass on a damped spring, closed-form solution"),
-      entry<PendulumParams, buildPendulum>("pendulum", "a bead on a circular wire released at a large angle"),
+      entry<ClothParams, buildCloth>(
+          "cloth", "spring cloth on a curtain rail, a big wall left and a nail right",
+          "try this: drag the cloth's hem onto the nail, or slide the whole curtain along its rail"),
+      entry<HairParams, buildHair>(
+          "hair", "curls of springs and angular springs, roots on a rail, colliding",
+          "try this: pull a curl's tip down and let go: it springs back into its ringlet"),
+      entry<WireParams, buildWire>(
+          "wire", "beads on circular wires, coupled by soft springs",
+          "try this: watch the swing pass from bead to bead along the springs; stop one bead with the mouse"),
+      entry<RodChainParams, buildRodChain>(
+          "rod-chain", "a chain of rods hanging from a bead on a circular wire",
+          "try this: drag the chain's tip around the wire; compare rk4 with euler (v) to see the rods stretch"),
+      entry<TestChainParams, buildTestChain>(
+          "test-chain", "the integrator test: a pinned chain of rods released horizontally",
+          "try this: press v to compare integrators on the falling chain, then + to see which survives a larger dt"),
+      entry<TautChainParams, buildTautChain>(
+          "taut-chain", "a straight chain of rods between two wires (the solver's singular case)",
+          "try this: raise dt with + and watch the straight chain where the solve is singular"),
+      entry<OscillatorParams, buildOscillator>(
+          "oscillator", "a mass on a damped spring, closed-form solution",
+          "try this: compare euler with rk4 (v): euler's swing grows while the closed form decays"),
+      entry<PendulumParams, buildPendulum>(
+          "pendulum", "a bead on a circular wire released at a large angle",
+          "try this: drag the bead higher and let go: the period grows with the amplitude"),
   };
+  for (const SceneInfo& info : table)
+    for (const ParamSpec& spec : info.params)
+      if (spec.values.size() != presetTable().size())
+        throw std::logic_error(std::string("scene '") + info.name + "' parameter '" + spec.name +
+                               "' lacks a value for every preset");
   return table;
 }
 
-Scene buildScene(const std::string& name, const std::map<std::string, std::string>& overrides) {
+Scene buildScene(const std::string& name, const std::map<std::string, std::string>& overrides,
+                 const std::string& preset) {
+  presetIndex(preset);  // an unknown preset is reported before an unknown scene
   for (const SceneInfo& info : sceneTable()) {
     if (name != info.name) continue;
     try {
-      return info.build(SceneParams(info.params, overrides));
+      return info.build(SceneParams(info.params, overrides, preset));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("scene '" + name + "': " + e.what());
     }
   }
   throw std::invalid_argument("unknown scene '" + name + "' (valid: " + joinNames(sceneTable()) + ")");
+}
+
+std::vector<std::array<int, 2>> faceEdges(const Scene& scene) {
+  std::vector<std::array<int, 2>> edges;
+  std::set<std::array<int, 2>> seen;
+  for (const std::array<int, 4>& face : scene.faces)
+    for (int k = 0; k < 4; ++k) {
+      const int a = face[k], b = face[(k + 1) % 4];
+      const std::array<int, 2> edge{std::min(a, b), std::max(a, b)};
+      if (seen.insert(edge).second) edges.push_back(edge);
+    }
+  return edges;
 }
 
 }  // namespace scenes

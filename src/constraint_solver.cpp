@@ -113,13 +113,17 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
       assemble(dead);
       if (!incompleteCholesky_) incompleteCholesky_ = std::make_unique<IncompleteCholesky>();
       incompleteCholesky_->compute(assembled_);
+      ++stats_.factorizations;
       incompleteCholeskyUsable_ = incompleteCholesky_->info() == Eigen::Success &&
                                   incompleteCholesky_->matrixL().diagonal().cwiseAbs2().minCoeff() > 1e-10;
     }
     stats_.iterations = conjugateGradient(dead, residual);
   }
   stats_.residual = residual;
-  if (!lambda_.allFinite()) lambda_.setZero();  // never hand NaN to the integrator
+  if (!lambda_.allFinite() || !std::isfinite(residual)) {
+    stats_.failed = true;  // reported through StepStats; never hand NaN to the integrator
+    lambda_.setZero();
+  }
 
   for (int k = 0; k < m; ++k)
     for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e)
@@ -290,6 +294,7 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
     ldltAnalysed_ = true;
   }
   ldlt_->factorizeInPlace(assembled_);
+  ++stats_.factorizations;
   if (ldlt_->info() != Eigen::Success) return false;
   if (!(ldlt_->pivots().minCoeff() > 1e-10 * diagonal_.maxCoeff())) return false;
   permuted_.resize(m);

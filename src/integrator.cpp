@@ -4,6 +4,7 @@
 
 #include "particles/check.h"
 #include "particles/integrators/adaptive_rk4.h"
+#include "particles/integrators/dopri5.h"
 #include "particles/integrators/explicit_euler.h"
 #include "particles/integrators/implicit_euler.h"
 #include "particles/integrators/midpoint.h"
@@ -33,11 +34,21 @@ const std::vector<IntegratorInfo>& integratorTable() {
        make<ImplicitEulerIntegrator>},
       {"adaptive-rk4", "RK4 with step doubling: internal step chosen to meet --tolerance", 4,
        make<AdaptiveRk4Integrator>, true},
+      {"dopri5", "Dormand-Prince 5(4), FSAL, PI step control: internal step chosen to meet --tolerance", 5,
+       make<Dopri5Integrator>, true},
   };
   return table;
 }
 
-void IntegratorSettings::validate() const { requirePositive("integrator tolerance", tolerance); }
+void IntegratorSettings::validate() const {
+  requirePositive("integrator tolerance", tolerance);
+  if (tolerance < minTolerance)
+    throw std::invalid_argument("integrator tolerance must be >= " + formatValue(minTolerance) +
+                                " (below it double precision cannot meet it), got " + formatValue(tolerance));
+  requireInRange("integrator minStepFraction", minStepFraction, 1e-15, 1.0);
+  if (maxStepsPerCall < 1)
+    throw std::invalid_argument("integrator maxStepsPerCall must be >= 1, got " + std::to_string(maxStepsPerCall));
+}
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
                                            const IntegratorSettings& settings) {

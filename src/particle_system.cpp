@@ -108,17 +108,33 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
   const Phase s = phase(x, v);
   f_.setZero(x.size());
   for (const auto& force : forces_) force->apply(s, f_);
+  ++evaluations_.forceEvaluations;
   if (!constraints_.empty()) {
     solver_.addConstraintForces(s, constraints_, f_);
-    iterationsThisStep_ += solver_.stats().iterations;
+    const SolveStats& solve = solver_.stats();
+    StepStats one{};
+    one.solves = 1;
+    one.cgIterations = solve.iterations;
+    one.maxResidual = solve.residual;
+    one.factorizations = solve.factorizations;
+    one.internalSteps = 0;
+    if (solve.failed) one.failure = StepFailure::SolveFailed;
+    evaluations_ += one;
   }
   a.resize(x.size());
   for (int i = 0; i < size(); ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
 }
 
-void ParticleSystem::step(Integrator& integrator, double dt) {
+StepStats ParticleSystem::takeEvaluationStats() {
+  StepStats taken = evaluations_;
+  taken.internalSteps = 1;  // the tally counts evaluations, not steps
+  evaluations_ = StepStats{};
+  return taken;
+}
+
+StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
-  iterationsThisStep_ = 0;
+  evaluations_ = StepStats{};
   // Settings are public fields: check them before anything moves, so a bad
   // value never leaves a step half done.
   solver_.settings.validate();
@@ -130,9 +146,14 @@ void ParticleSystem::step(Integrator& integrator, double dt) {
     startX_ = x_;
     startV_ = v_;
   }
-  integrator.step(*this, dt);
+  StepStats stats = integrator.step(*this, dt);
+  StepStats untaken = takeEvaluationStats();  // evaluations the integrator left in the tally
+  untaken.internalSteps = 0;
+  stats += untaken;
   contactsLastStep_ = colliding ? collide(dt) : 0;
   time_ += dt;
+  lastStepStats_ = stats;
+  return stats;
 }
 
 int ParticleSystem::collide(double dt) {

@@ -75,7 +75,7 @@ TEST(Explosion, EachCriterionTriggersOnItsOwn) {
   scenes::Scene stretched = buildChain({6});
   stretched.system->positions()[stretched.system->positions().size() - 2] += 1.0;  // pull the tip off
   Explosion strict;
-  EXPECT_EQ(simulate(stretched, *rk4, 0.01, 0.1, strict).reason, "stretch");
+  EXPECT_EQ(simulate(stretched, *rk4, 0.01, 0.1, strict).reason, "constraint");
 
   // Explicit Euler pumps energy into an undamped oscillator: (1 + ω²h²) per step.
   scenes::Scene oscillator = scenes::buildScene("oscillator", {{"damping", "0"}});

@@ -6,6 +6,7 @@
 
 #include "particles/integrator.h"
 #include "scene.h"
+#include "scene_file/codecs.h"
 #include "scene_file/scene_file.h"
 
 namespace {
@@ -34,8 +35,8 @@ TEST(SceneFile, ParametersSurviveExport) {
   const scenes::Scene loaded = scenes::readScene(scenes::writeScene(cloth), "cloth");
   EXPECT_EQ(loaded.system->size(), 20);
   // Rows of 4 horizontal springs ×4, columns of 3 vertical ×5, 2 diagonals
-  // in each of the 4·3 cells, and gravity.
-  EXPECT_EQ(loaded.system->forceObjects().size(), 16u + 15u + 24u + 1u);
+  // in each of the 4·3 cells, gravity and air drag.
+  EXPECT_EQ(loaded.system->forceObjects().size(), 16u + 15u + 24u + 1u + 1u);
   EXPECT_EQ(loaded.system->constraints().size(), 5u);
   EXPECT_EQ(loaded.system->colliders().size(), 2u);
 }
@@ -62,6 +63,27 @@ TEST(SceneFile, ErrorsNameTheSourceThePathAndWhatWasExpected) {
   } catch (const scenes::SceneFileError& e) {
     EXPECT_STREQ(e.what(), "two.json: $.particles[1].mass: expected a number > 0, got 0");
   }
+}
+
+// The list of valid types in the message comes from the codec tables, so a
+// new force or constraint type is named there without editing any test.
+TEST(SceneFile, UnknownTypesAreRejectedListingEveryTypeOfTheTables) {
+  const std::string particles = R"("particles": [{"position": [0, 0], "mass": 1}, {"position": [1, 0], "mass": 1}])";
+  auto messageFor = [&](const std::string& list) {
+    try {
+      scenes::readScene("{" + particles + ", \"" + list + "\": [{\"type\": \"sprung\", \"particles\": [0, 1]}]}",
+                        "types.json");
+    } catch (const scenes::SceneFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string forces = messageFor("forces");
+  for (const scenes::ForceCodec& codec : scenes::forceCodecs()) EXPECT_NE(forces.find(codec.type), std::string::npos) << forces;
+  EXPECT_NE(forces.find("\"sprung\""), std::string::npos) << forces;
+  const std::string constraints = messageFor("constraints");
+  for (const scenes::ConstraintCodec& codec : scenes::constraintCodecs())
+    EXPECT_NE(constraints.find(codec.type), std::string::npos) << constraints;
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 // particle-lab export: writes a scene as a JSON scene file.
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "cli/command.h"
 #include "cli/scene_source.h"
+#include "output_file.h"
 #include "scene_file/scene_file.h"
 
 namespace cli {
@@ -18,11 +18,13 @@ struct ExportOptions {
 int exportScene(const ExportOptions& o) {
   const std::string json = scenes::writeScene(o.source.load());
   if (o.output.empty()) {
-    std::cout << json;
+    std::cout << json << std::flush;
+    if (!std::cout) scenes::throwWriteError("the standard output", "-");
     return kSuccess;
   }
-  std::ofstream out(o.output);
-  if (!(out << json)) throw UsageError("cannot write --output file '" + o.output + "'");
+  scenes::OutputFile out(o.output, "--output");
+  out.stream() << json;
+  out.close();
   return kSuccess;
 }
 }  // namespace

@@ -3,8 +3,10 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "lab/experiments.h"
 #include "lab/render.h"
+#include "output_file.h"
 #include "particles/check.h"
 
 namespace cli {
@@ -26,6 +28,8 @@ int experiment(const std::function<int()>& run) {
   lab::installInterruptHandler();
   try {
     return run();
+  } catch (const scenes::WriteError&) {
+    throw;  // exit 4, not a bad option
   } catch (const std::runtime_error& e) {  // an output file that cannot be written
     throw UsageError(e.what());
   }
@@ -54,8 +58,12 @@ Command addTimingCommand(CLI::App& app) {
   auto* command = app.add_subcommand("timing", "cost per step against chain length and cloth size; the seed's Table 3");
   auto options = addLabOptions(command);
   auto timing = std::make_shared<lab::TimingOptions>();
-  command->add_option("--repeats", timing->repeats, "timed repeats; the median is reported")->capture_default_str();
-  command->add_option("--steps", timing->steps, "steps per timed repeat")->capture_default_str();
+  command->add_option("--repeats", timing->repeats, "timed repeats; the median is reported")
+      ->capture_default_str()
+      ->check(decimalInteger(1, 1000000));
+  command->add_option("--steps", timing->steps, "steps per timed repeat")
+      ->capture_default_str()
+      ->check(decimalInteger(1, 1000000000));
   return {command, [=] {
             if (timing->repeats < 1 || timing->steps < 1)
               throw UsageError("--repeats and --steps must be >= 1, got " + std::to_string(timing->repeats) +

@@ -1,4 +1,5 @@
-// particle-lab list: the scenes with their parameters and defaults, and the integrators.
+// particle-lab list: the presets, the scenes with their parameters under every
+// preset, and the integrators.
 #include <iomanip>
 #include <iostream>
 
@@ -9,12 +10,30 @@
 namespace cli {
 
 namespace {
+constexpr int kNameWidth = 16, kValueWidth = 10;
+
 int list() {
-  std::cout << "scenes (particle-lab run --scene NAME --param key=value ...):\n";
+  const std::vector<scenes::PresetInfo>& presets = scenes::presetTable();
+  std::cout << "presets (--preset NAME; the first is the default):\n";
+  for (const scenes::PresetInfo& preset : presets)
+    std::cout << "  " << std::left << std::setw(kNameWidth - 2) << preset.name << preset.summary << '\n';
+  std::cout << "scenes (particle-lab run --scene NAME [--preset NAME] --param key=value ...):\n";
   for (const scenes::SceneInfo& info : scenes::sceneTable()) {
     std::cout << "  " << std::left << std::setw(12) << info.name << info.summary << '\n';
-    for (const scenes::ParamSpec& p : info.params)
-      std::cout << "      " << std::setw(22) << (p.name + "=" + p.defaultValue) << p.help << '\n';
+    std::cout << "      " << info.hint << '\n';
+    std::cout << "      " << std::setw(kNameWidth) << "parameter";
+    for (const scenes::PresetInfo& preset : presets) std::cout << std::setw(kValueWidth) << preset.name << ' ';
+    std::cout << '\n';
+    for (const scenes::ParamSpec& p : info.params) {
+      std::cout << "      " << std::setw(kNameWidth) << p.name;
+      for (const std::string& value : p.values) std::cout << std::setw(kValueWidth) << value << ' ';
+      std::cout << p.help << '\n';
+    }
+    // The step each preset runs the scene with (--dt overrides it).
+    std::cout << "      " << std::setw(kNameWidth) << "(dt)";
+    for (const scenes::PresetInfo& preset : presets)
+      std::cout << std::setw(kValueWidth) << scenes::buildScene(info.name, {}, preset.name).dt << ' ';
+    std::cout << "time step, s (set by --dt)\n";
   }
   std::cout << "integrators (--integrator NAME):\n";
   for (const particles::IntegratorInfo& info : particles::integratorTable())
@@ -24,7 +43,8 @@ int list() {
 }  // namespace
 
 Command addListCommand(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("list", "list the built-in scenes with their parameters and defaults, and the integrators");
+  CLI::App* sub = app.add_subcommand(
+      "list", "list the presets, the built-in scenes with their parameters under every preset, and the integrators");
   return {sub, list};
 }
 

@@ -1,10 +1,13 @@
 // particle-lab: the headless runner. Subcommands are listed in one table;
 // errors become one line on stderr and an exit code (cli::ExitCode).
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "cli/command.h"
+#include "output_file.h"
+#include "printable.h"
 #include "scene_file/json_node.h"
 
 namespace {
@@ -22,12 +25,10 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addRenderReportCommand,
 };
 
-int fail(const std::string& message) {
-  std::string line = message;
-  for (char& c : line)
-    if (c == '\n') c = ' ';
-  std::cerr << "particle-lab: " << line << '\n';
-  return cli::kBadInput;
+// One line on stderr (control characters escaped), and the exit code.
+int fail(const std::string& message, int code = cli::kBadInput) {
+  std::cerr << "particle-lab: " << scenes::printable(message) << '\n';
+  return code;
 }
 
 }  // namespace
@@ -51,6 +52,10 @@ int main(int argc, char** argv) {
       return fail(e.what());
     } catch (const std::invalid_argument& e) {
       return fail(e.what());
+    } catch (const scenes::WriteError& e) {
+      return fail(e.what(), cli::kWriteFailed);
+    } catch (const std::bad_alloc&) {
+      return fail("out of memory (the scene or the run is too large for this machine)", cli::kBadInput);
     }
   }
   return fail("no subcommand given");

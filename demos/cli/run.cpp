@@ -1,20 +1,26 @@
 // particle-lab run: steps a scene without a window, with per-step diagnostics.
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "cli/scene_source.h"
 #include "cli/step_output.h"
 #include "join_names.h"
+#include "lab/lab.h"
+#include "output_file.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
+#include "printable.h"
 
 namespace cli {
 
 namespace {
+
+// At most 10^12 steps: beyond any run that could end, and far from overflow.
+constexpr long long kMaxSteps = 1000000000000LL;
 
 struct RunOptions {
   SceneSource source;
@@ -27,11 +33,12 @@ struct RunOptions {
   long long every = 1;
 };
 
-std::ofstream openOutput(const std::string& path, const char* option, const char* header) {
-  std::ofstream out(path);
-  if (!out) throw UsageError(std::string("cannot write ") + option + " file '" + path + "'");
-  out << header << '\n';
-  return out;
+// An output file with its header written, or none when path is empty.
+std::unique_ptr<scenes::OutputFile> openOutput(const std::string& path, const char* option, const char* header) {
+  if (path.empty()) return nullptr;
+  auto file = std::make_unique<scenes::OutputFile>(path, option);
+  file->stream() << header << '\n';
+  return file;
 }
 
 int run(const RunOptions& o) {
@@ -41,33 +48,64 @@ int run(const RunOptions& o) {
   const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName, o.integratorSettings);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;
   particles::requirePositive("--dt", dt);
-  if (o.steps < 0) throw UsageError("--steps must be >= 0, got " + std::to_string(o.steps));
-  if (o.every < 1) throw UsageError("--every must be >= 1, got " + std::to_string(o.every));
-  std::ofstream csv, trajectory;
-  if (!o.csvPath.empty())
-    csv = openOutput(o.csvPath, "--csv", kDiagnosticsHeader);
-  if (!o.trajectoryPath.empty()) trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
+  const std::unique_ptr<scenes::OutputFile> csv = openOutput(o.csvPath, "--csv", kDiagnosticsHeader);
+  const std::unique_ptr<scenes::OutputFile> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
+  // SIGINT and SIGTERM only set a flag: the loop stops at the next step
+  // boundary and the files are closed with complete rows.
+  lab::installInterruptHandler();
 
   particles::ParticleSystem& s = *scene.system;
-  if (csv.is_open()) writeDiagnostics(csv, 0, s, 0.0);
-  if (trajectory.is_open()) writeTrajectory(trajectory, 0, s);
+  const particles::DivergenceLimits limits = runnerDivergenceLimits();
+  const double initialEnergy = s.totalEnergy();
+  const auto diverge = [&](long long step, const std::string& reason) {
+    std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
+  };
+  // Closes the outputs (a failed write or close throws WriteError) and returns code.
+  const auto finish = [&](int code) {
+    if (csv) csv->close();
+    if (trajectory) trajectory->close();
+    return code;
+  };
+  if (const std::string reason = nonFiniteDiagnostics(s); !reason.empty()) {
+    diverge(0, reason);
+    return finish(kDiverged);
+  }
+  if (csv) writeDiagnostics(csv->stream(), 0, s, 0.0);
+  if (trajectory) writeTrajectory(trajectory->stream(), 0, s);
   using Clock = std::chrono::steady_clock;
   Clock::duration simulated{};
-  for (long long step = 1; step <= o.steps; ++step) {
+  long long done = 0;
+  for (long long step = 1; step <= o.steps && !lab::interrupted(); ++step) {
     const Clock::time_point start = Clock::now();
-    s.step(*integrator, dt);
+    const particles::StepStats stats = s.step(*integrator, dt);
     const Clock::duration elapsed = Clock::now() - start;
     simulated += elapsed;
-    if (diverged(s)) {
-      std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time()
-                << "): the positions or velocities are no longer finite (|q|^2 or |v|^2 overflows)\n";
-      return kDiverged;
+    if (const particles::Divergence d = particles::checkDivergence(s, limits, initialEnergy, stats)) {
+      diverge(step, d.message());
+      return finish(kDiverged);
     }
-    if (csv.is_open()) writeDiagnostics(csv, step, s, std::chrono::duration<double, std::micro>(elapsed).count());
-    if (trajectory.is_open() && step % o.every == 0) writeTrajectory(trajectory, step, s);
+    if (const std::string reason = nonFiniteDiagnostics(s); !reason.empty()) {
+      diverge(step, reason);
+      return finish(kDiverged);
+    }
+    if (csv) {
+      writeDiagnostics(csv->stream(), step, s, std::chrono::duration<double, std::micro>(elapsed).count());
+      csv->check();
+    }
+    if (trajectory && step % o.every == 0) {
+      writeTrajectory(trajectory->stream(), step, s);
+      trajectory->check();
+    }
+    done = step;
   }
+  if (lab::interrupted()) {
+    std::cerr << "particle-lab: interrupted after step " << done << " (t = " << s.time()
+              << "): the output files hold every step up to it\n";
+    return finish(kInterrupted);
+  }
+  finish(kSuccess);
   const double seconds = std::chrono::duration<double>(simulated).count();
-  std::cout << scene.name << " with " << integrator->name() << " at dt " << dt << ": " << o.steps
+  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": " << o.steps
             << " steps to t = " << s.time() << " in " << seconds << " s of simulation ("
             << (seconds > 0.0 ? o.steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
             << ", max |C| " << s.maxConstraintError() << '\n';
@@ -83,22 +121,34 @@ Command addRunCommand(CLI::App& app) {
   sub->add_option("--integrator", options->integrator,
                   "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
   sub->add_option("--tolerance", options->integratorSettings.tolerance,
-                  "local error tolerance of adaptive-rk4 (ignored by fixed-step integrators)")
+                  "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
+                  "fixed-step integrators")
       ->capture_default_str();
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
-  sub->add_option("--steps", options->steps, "number of steps, >= 0")->required();
+  sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
+      ->required()
+      ->check(decimalInteger(0, kMaxSteps));
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
-                  "max_constraint_error,cg_iterations,cg_residual,step_us (step_us: wall time of the step's "
-                  "simulation, output excluded)");
+                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
+                  "(cg_iterations: summed over every solve of the step; cg_residual: the largest relative "
+                  "residual of them; solves: linear solves; force_evaluations: evaluations of every force; "
+                  "internal_steps: accepted steps of an adaptive scheme, 1 otherwise; step_us: wall time of "
+                  "the step's simulation, output excluded)");
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
-  sub->add_option("--every", options->every, "trajectory interval in steps, >= 1")->capture_default_str();
+  sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
+      ->capture_default_str()
+      ->check(decimalInteger(1, kMaxSteps));
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
-      "non-finite (|q|^2 or |v|^2 overflows): the run stops, stderr names the step and time, and the\n"
-      "CSV holds every step before it.");
+      "non-finite (|q|^2 or |v|^2 overflows), a step failed (a solve with non-finite multipliers, an\n"
+      "adaptive step below its floor or over its work cap) or a diagnostic is not finite: the run stops,\n"
+      "stderr names the step, time and reason, and the CSV holds every step before it (finite numbers\n"
+      "only); 4 an output file could not be written (disk full); 130 SIGINT or SIGTERM: the run stops at\n"
+      "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"
+      "a second run given the same path is refused (exit 2).");
   return {sub, [options] { return run(*options); }};
 }
 

@@ -14,6 +14,11 @@ void SceneSource::addOptions(CLI::App& app) {
   app.add_option("--param", params,
                  "set a parameter of the built-in scene, key=value; repeatable (particle-lab list shows them)")
       ->excludes(byFile);
+  app.add_option("--preset", preset,
+                 "parameter preset of the built-in scene: " + scenes::joinNames(scenes::presetTable()) +
+                     " (particle-lab list shows both)")
+      ->capture_default_str()
+      ->excludes(byFile);
 }
 
 scenes::Scene SceneSource::load() const {
@@ -26,7 +31,7 @@ scenes::Scene SceneSource::load() const {
       throw UsageError("--param expects key=value, got '" + param + "'");
     overrides[param.substr(0, eq)] = param.substr(eq + 1);
   }
-  return scenes::buildScene(scene, overrides);
+  return scenes::buildScene(scene, overrides, preset);
 }
 
 }  // namespace cli

@@ -1,20 +1,37 @@
 #pragma once
 // What a run writes per step, shared by the subcommands that step scenes:
-// the divergence test and the CSV rows of --csv and --trajectory.
+// the runner's divergence limits and the CSV rows of --csv and --trajectory.
 #include <ostream>
+#include <string>
 
+#include "particles/divergence.h"
 #include "particles/particle_system.h"
 
 namespace cli {
 
-// A position or velocity is non-finite, or so large that its square
-// overflows (the energies and constraint errors are then infinite): an
-// exploded state can grow for many steps before it turns into inf and NaN.
-bool diverged(const particles::ParticleSystem& s);
+// The runner stops at a non-finite state (a position, velocity or energy
+// that is not finite, or |q|², |v|² overflowing: an exploded state grows for
+// many steps before it turns into inf and NaN) and at a failed step (a solve
+// with non-finite multipliers, an adaptive step below its floor or over its
+// work cap). Constraint error and energy are recorded, not judged.
+particles::DivergenceLimits runnerDivergenceLimits();
 
+// The columns after max_constraint_error come from the step's StepStats:
+// cg_iterations summed over every solve of the step, cg_residual the largest
+// relative residual of any of them, solves, force_evaluations and
+// internal_steps (accepted steps of an adaptive scheme; 1 otherwise).
 constexpr const char* kDiagnosticsHeader =
-    "step,t,kinetic,potential,total_energy,max_constraint_error,cg_iterations,cg_residual,step_us";
-// One diagnostics row for the state after `step`; stepMicros is that step's wall time.
+    "step,t,kinetic,potential,total_energy,max_constraint_error,cg_iterations,cg_residual,solves,"
+    "force_evaluations,internal_steps,step_us";
+// The first CSV column of the state after a step that is not finite, as a
+// phrase for the divergence message ("the kinetic energy is not finite");
+// empty when all are. The CSV only ever holds finite numbers: the runner ends
+// a run whose diagnostics are not finite as a divergence, after
+// particles::checkDivergence (which judges the state and the step).
+std::string nonFiniteDiagnostics(const particles::ParticleSystem& s);
+
+// One diagnostics row for the state after `step` (its statistics from
+// s.lastStepStats(); row 0 has zeros); stepMicros is that step's wall time.
 void writeDiagnostics(std::ostream& out, long long step, const particles::ParticleSystem& s, double stepMicros);
 
 constexpr const char* kTrajectoryHeader = "step,t,particle,x,y,vx,vy";

@@ -49,6 +49,7 @@ App::App(DemoOptions options)
   } else {
     first.name = first.label = options_.scene;
     first.params = options_.params;
+    first.preset = options_.preset;
     // The first key's variant that agrees with the given parameters names it.
     for (const SceneKey& k : sceneKeys()) {
       if (k.choice.name != first.name) continue;

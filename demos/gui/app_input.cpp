@@ -32,7 +32,9 @@ const std::vector<App::KeyBinding>& App::keyBindings() {
 void App::keyboard(unsigned char key) {
   for (const SceneKey& k : sceneKeys())
     if (k.key == key) {
-      loadScene(k.choice, panes_.size() > 1);
+      SceneChoice choice = k.choice;
+      choice.preset = scene_.preset;  // a new scene keeps the preset in use
+      loadScene(choice, panes_.size() > 1);
       setStatus("scene: " + k.choice.label);
       return;
     }

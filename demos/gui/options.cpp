@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "particles/check.h"
+#include "join_names.h"
 #include "particles/integrator.h"
 
 namespace demo {
@@ -49,6 +50,11 @@ DemoOptions parseOptions(int argc, char** argv) {
   auto* byFile = cli.add_option("--scene-file", o.sceneFile, "JSON scene file to start with (format: demos/scenes/FORMAT.md)");
   byName->excludes(byFile);
   cli.add_option("--param", params, "scene parameter override key=value (repeatable)")->excludes(byFile);
+  cli.add_option("--preset", o.preset,
+                 "parameter preset of the built-in scenes: " +
+                     scenes::joinNames(scenes::presetTable()) + " (see particle-lab list)")
+      ->capture_default_str()
+      ->excludes(byFile);
   auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
   auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
   cli.add_option("--compare", compare, "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or rk4:0.02,rk4:0.005 (2 to 4)");
@@ -74,6 +80,11 @@ DemoOptions parseOptions(int argc, char** argv) {
     const auto eq = p.find('=');
     if (eq == std::string::npos || eq == 0) badUsage("--param expects key=value, got '" + p + "'");
     o.params[p.substr(0, eq)] = p.substr(eq + 1);
+  }
+  try {
+    scenes::presetIndex(o.preset);
+  } catch (const std::invalid_argument& e) {
+    badUsage(e.what());  // the same message as particle-lab's
   }
   if (*integratorOption) o.integrator = integrator;
   try {

@@ -5,12 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "scene.h"
+
 namespace demo {
 
 struct DemoOptions {
   std::string scene = "cloth";
   std::string sceneFile;                        // overrides scene when set
   std::map<std::string, std::string> params;    // --param key=value
+  std::string preset = scenes::kDefaultPreset;              // --preset NAME: parameter preset of the built-in scenes
   std::optional<std::string> integrator;        // default: the scene's
   std::optional<double> dt;                     // default: the scene's
   double tolerance = 1e-6;                      // --tolerance: adaptive-rk4's local error tolerance

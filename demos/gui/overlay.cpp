@@ -76,11 +76,14 @@ void App::drawHud() {
                 stepMode_ == StepMode::Lockstep ? " (lockstep)" : sim.lastFrame().capped ? " (capped: slow motion)" : "");
     // Fixed-width numbers, so the auto-sized box does not change size from frame to frame.
     ImGui::Text("simulation %7.2f ms   draw %6.1f ms   per frame", sim.lastFrame().simulationMs, drawMs_);
-    if (s.solver().settings.method == particles::SolveMethod::Direct)
-      ImGui::Text("%d particles   direct solve, residual %.1e", s.size(), s.lastSolve().residual);
+    // The last step's statistics: every solve of it, not only the last one.
+    const particles::StepStats& step = s.lastStepStats();
+    if (step.cgIterations == 0)
+      ImGui::Text("%d particles   %d solve%s, residual %.1e", s.size(), step.solves, step.solves == 1 ? "" : "s",
+                  step.maxResidual);
     else
-      ImGui::Text("%d particles   CG %d iterations, residual %.1e", s.size(), s.lastSolve().iterations,
-                  s.lastSolve().residual);
+      ImGui::Text("%d particles   %d solve%s, CG %d iterations, residual %.1e", s.size(), step.solves,
+                  step.solves == 1 ? "" : "s", step.cgIterations, step.maxResidual);
     ImGui::Text("max |C| %.2e   energy % .5e", s.maxConstraintError(), s.totalEnergy());
     ImGui::TextDisabled("h help   p panel   v compare");
     overlays_.push_back({"hud", windowRect()});

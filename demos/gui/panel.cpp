@@ -83,12 +83,29 @@ void App::drawPanel() {
           keyboard(k.key);
       ImGui::EndCombo();
     }
+    // The preset fills every parameter of a built-in scene; choosing one rebuilds it.
+    if (!scene_.name.empty() && ImGui::BeginCombo("preset", scene_.preset.c_str())) {
+      for (const scenes::PresetInfo& preset : scenes::presetTable()) {
+        if (ImGui::Selectable(preset.name, scene_.preset == preset.name) && scene_.preset != preset.name) {
+          SceneChoice changed = scene_;
+          changed.preset = preset.name;
+          try {
+            loadScene(changed, true);
+            setStatus(std::string("preset: ") + preset.name);
+          } catch (const std::exception& e) {
+            setStatus(e.what());
+          }
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", preset.summary);
+      }
+      ImGui::EndCombo();
+    }
     // Parameters: changing one rebuilds the scene (grid size, chain length, ...).
     if (const scenes::SceneInfo* info = findScene(scene_.name)) {
       for (const scenes::ParamSpec& spec : info->params) {
         auto it = scene_.params.find(spec.name);
         char buffer[64];
-        std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.defaultValue.c_str());
+        std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.value(scene_.preset).c_str());
         if (ImGui::InputText(spec.name.c_str(), buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue)) {
           SceneChoice changed = scene_;
           changed.params[spec.name] = buffer;

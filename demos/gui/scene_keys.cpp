@@ -46,6 +46,6 @@ std::vector<SceneKey> sceneKeys() {
 namespace demo {
 scenes::Scene buildChoice(const SceneChoice& choice) {
   if (!choice.file.empty()) return scenes::loadSceneFile(choice.file);
-  return scenes::buildScene(choice.name, choice.params);
+  return scenes::buildScene(choice.name, choice.params, choice.preset);
 }
 }  // namespace demo

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "scene.h"
+
 namespace demo {
 
 // A scene to build: a built-in by name with parameter overrides, or a file.
@@ -13,6 +15,7 @@ struct SceneChoice {
   std::string name;   // built-in scene name; empty for a file
   std::map<std::string, std::string> params;
   std::string file;   // JSON scene file
+  std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
 };
 
 struct SceneKey {
@@ -24,8 +27,6 @@ struct SceneKey {
 std::vector<SceneKey> sceneKeys();
 
 }  // namespace demo
-
-namespace scenes { struct Scene; }
 
 namespace demo {
 // Builds the chosen scene; throws std::invalid_argument for a bad name or

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "particles/divergence.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/integrator.h"
 #include "rewind_buffer.h"
@@ -20,14 +21,11 @@ enum class StepMode {
   Lockstep,   // exactly one dt step per frame (the seed report's loop)
 };
 
-// When a state counts as diverged: non-finite, or a constraint violated by
-// more than its own length scale (or, for one without, by more than the
-// view), or a particle flung far outside the view.
-struct DivergenceLimits {
-  double relativeConstraintError = 1.0;  // max |C| / length scale
-  double constraintErrorInViews = 1.0;   // max |C| in units of the view's diagonal
-  double distanceInViews = 1000.0;       // |x| in units of the view's diagonal
-};
+// The demo's divergence limits (particles::checkDivergence): besides a
+// non-finite state or a failed step, a constraint violated by more than its
+// own length scale (or, for one without, by more than the view's diagonal),
+// or a particle flung more than 1000 view diagonals away. No energy test.
+particles::DivergenceLimits demoDivergenceLimits(const scenes::Scene& scene);
 
 // At most this many steps per frame: with a tiny dt the simulation then runs
 // slower than the fixed simulated time per frame instead of freezing the window.
@@ -92,9 +90,10 @@ class Simulation {
   const FrameStats& lastFrame() const { return lastFrame_; }
   const Trace& trace() const { return trace_; }
   long long steps() const { return steps_; }
+  // Why the pane diverged (empty reason while it runs).
+  const particles::Divergence& divergence() const { return divergence_; }
 
  private:
-  bool checkDiverged();
   void stepAndWatch();
 
   scenes::Scene scene_;
@@ -104,7 +103,8 @@ class Simulation {
   double owedTime_ = 0.0;  // simulated time accumulated but not yet stepped
   long long steps_ = 0;
   particles::MouseSpringForce* spring_ = nullptr;  // owned by the system
-  DivergenceLimits limits_;
+  particles::DivergenceLimits limits_;
+  particles::Divergence divergence_;
   std::optional<double> divergedAt_;
   std::optional<std::string> refusal_;
   particles::IntegratorSettings integratorSettings_;

@@ -33,7 +33,7 @@ Sample runProblem(const Problem& p, const std::string& integrator, double dt, do
                   double integratorTolerance = particles::IntegratorSettings{}.tolerance) {
   // Errors are compared at exactly T, so dt is adjusted to divide T.
   dt = p.duration / std::max(1.0, std::round(p.duration / dt));
-  scenes::Scene scene = scenes::buildScene(p.scene, p.params);
+  scenes::Scene scene = scenes::buildScene(p.scene, p.params, scenes::kSeedPreset);
   scene.system->solver().settings.tolerance = solverTolerance;
   particles::IntegratorSettings settings;
   settings.tolerance = integratorTolerance;

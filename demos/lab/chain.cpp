@@ -8,7 +8,7 @@ scenes::Scene buildChain(const ChainSpec& spec) {
   std::map<std::string, std::string> params = spec.extra;
   params["cl"] = std::to_string(spec.length);
   params["rod"] = spec.rodForm;
-  return scenes::buildScene("test-chain", params);
+  return scenes::buildScene("test-chain", params, scenes::kSeedPreset);
 }
 
 double chainRodLength(const scenes::Scene& chain) {

@@ -22,13 +22,16 @@ int runAccuracy(const LabOptions& options);
 int runExtremes(const LabOptions& options);
 int runClaims(const LabOptions& options);
 
-// Median wall time of one step (seconds) and mean CG iterations per step of a
-// scene under an integrator: warm-up steps, then `repeats` × `steps` timed
-// steps. A step that leaves the state non-finite is not counted and the
-// scene is restored to its warmed-up state.
+// Median wall time of one step (seconds), and mean CG iterations and solves
+// per step (StepStats) of a scene under an integrator: warm-up steps, then
+// `repeats` × `steps` timed steps. A step that leaves the state non-finite is
+// not counted and the scene is restored to its warmed-up state.
 struct StepCost {
   double seconds = 0.0;
   double cgIterations = 0.0;
+  double solves = 0.0;
+  // CG iterations per solve (0 without solves).
+  double cgIterationsPerSolve() const { return solves > 0.0 ? cgIterations / solves : 0.0; }
 };
 StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, double dt,
                          const TimingOptions& timing);

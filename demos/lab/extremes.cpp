@@ -37,7 +37,8 @@ int runExtremes(const LabOptions& options) {
         if (interrupted()) break;
         auto build = [&] {
           return scenes::buildScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
-                                              {"links", "8"}, {"stiffness", general(ks, 6)}});
+                                              {"links", "8"}, {"stiffness", general(ks, 6)}},
+                                    scenes::kSeedPreset);
         };
         const double dt = maxStableStep(build, name, duration, lo, hi, rounds, explosion, progress);
         if (interrupted()) break;  // a bisection cut short is not a measurement
@@ -131,7 +132,7 @@ int runExtremes(const LabOptions& options) {
         auto stepper = particles::makeIntegrator("rk4");
         const RunResult r = simulate(chain, *stepper, dt, duration, explosion);
         csv << static_cast<long>(warm) << tol << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.maxRelativeStretch
-            << static_cast<double>(r.cgIterations) / std::max(1L, r.steps);
+            << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
         progress.tick();
       }
@@ -185,7 +186,7 @@ int runExtremes(const LabOptions& options) {
       std::vector<std::string> row{name};
       for (int cap : caps) {
         if (interrupted()) break;
-        scenes::Scene taut = scenes::buildScene("taut-chain");
+        scenes::Scene taut = scenes::buildScene("taut-chain", {}, scenes::kSeedPreset);
         auto& settings = taut.system->solver().settings;
         if (cap >= 0) {
           settings.method = particles::SolveMethod::ConjugateGradient;
@@ -194,7 +195,7 @@ int runExtremes(const LabOptions& options) {
         auto stepper = particles::makeIntegrator(name);
         const RunResult r = simulate(taut, *stepper, taut.dt, duration, explosion);
         csv << name << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.reason << r.time
-            << r.maxRelativeStretch << static_cast<double>(r.cgIterations) / std::max(1L, r.steps);
+            << r.maxRelativeStretch << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
         row.push_back(r.exploded ? r.reason + " at t = " + general(r.time, 3)
                                  : "held (stretch " + general(r.maxRelativeStretch, 2) + ")");

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "output_file.h"
 #include "particles/forces/gravity.h"
 
 namespace lab {
@@ -34,37 +35,35 @@ double energyScale(const ParticleSystem& system) {
   return movingMass * gravityMagnitude(system) * diagonal + std::abs(system.totalEnergy()) + 1.0;
 }
 
+particles::DivergenceLimits Explosion::limits(const ParticleSystem& system) const {
+  particles::DivergenceLimits limits;
+  limits.maxRelativeConstraintError = maxRelativeStretch;
+  limits.energyScale = energyScale(system);
+  limits.energyRiseFraction = energyGain;
+  return limits;
+}
+
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const Explosion& explosion,
                    const std::function<void(const ParticleSystem&)>& observe) {
   ParticleSystem& system = *scene.system;
   RunResult result;
   result.energyStart = system.totalEnergy();
-  const double bound = result.energyStart + explosion.energyGain * energyScale(system);
+  const particles::DivergenceLimits limits = explosion.limits(system);
   const long steps = std::lround(duration / dt);
   using Clock = std::chrono::steady_clock;
   for (long k = 0; k < steps && !interrupted(); ++k) {
     const auto start = Clock::now();
-    system.step(integrator, dt);
+    const particles::StepStats stats = system.step(integrator, dt);
     result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
     ++result.steps;
     result.time = system.time();
-    result.cgIterations += system.lastSolve().iterations;
-    if (!system.finite()) {
+    result.work += stats;
+    if (system.finite())
+      result.maxRelativeStretch = std::max(result.maxRelativeStretch, system.maxRelativeConstraintError());
+    if (const particles::Divergence d = particles::checkDivergence(system, limits, result.energyStart, stats)) {
       result.exploded = true;
-      result.reason = "non-finite";
-      break;
-    }
-    const double stretch = system.maxRelativeConstraintError();
-    result.maxRelativeStretch = std::max(result.maxRelativeStretch, stretch);
-    if (stretch > explosion.maxRelativeStretch) {
-      result.exploded = true;
-      result.reason = "stretch";
-      break;
-    }
-    if (system.totalEnergy() > bound) {
-      result.exploded = true;
-      result.reason = "energy";
+      result.reason = particles::divergenceReasonName(d.reason);
       break;
     }
     if (observe) observe(system);
@@ -145,6 +144,7 @@ Csv::Csv(const std::string& path, const std::vector<std::string>& columns)
   if (!out_) throw std::runtime_error("cannot write " + path);
   for (std::size_t k = 0; k < columns.size(); ++k) out_ << (k ? "," : "") << columns[k];
   out_ << '\n' << std::flush;
+  if (!out_) scenes::throwWriteError("the CSV", path_);
 }
 
 Csv& Csv::operator<<(const std::string& cell) {
@@ -166,6 +166,7 @@ void Csv::endRow() {
     throw std::logic_error(path_ + ": row has " + std::to_string(cell_) + " cells, expected " +
                            std::to_string(columns_));
   out_ << '\n' << std::flush;
+  if (!out_) scenes::throwWriteError("the CSV", path_);
   cell_ = 0;
 }
 
@@ -185,7 +186,11 @@ void writeTable(const LabOptions& options, const std::string& name, const std::s
   for (std::size_t k = 0; k < header.size(); ++k) md << (k ? " ---: |" : " --- |");
   md << '\n';
   for (const auto& row : rows) line(row);
-  std::ofstream(options.outDir + "/" + name + ".md") << md.str();
+  const std::string path = options.outDir + "/" + name + ".md";
+  std::ofstream out(path);
+  out << md.str();
+  out.close();
+  if (!out) scenes::throwWriteError("the table", path);
   std::cout << "\n" << md.str() << std::flush;
 }
 
@@ -205,6 +210,8 @@ void recordValue(const LabOptions& options, const std::string& key, const std::s
   std::ofstream out(path);
   out << "key,value\n";
   for (const auto& [k, v] : values) out << k << ',' << v << '\n';
+  out.close();
+  if (!out) scenes::throwWriteError("the values", path);
 }
 
 std::string fixed(double value, int digits) {

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "scene.h"
+#include "particles/divergence.h"
 #include "particles/integrator.h"
+#include "particles/step_stats.h"
 
 namespace lab {
 
@@ -21,27 +23,29 @@ struct LabOptions {
   std::vector<std::string> integrators;  // empty: every integrator in the table
 };
 
-// The one definition of "exploded", used by every experiment and the report.
-// A run explodes at the first step where any of these holds:
-//  - a position or velocity is not finite;
+// The laboratory's thresholds for particles::checkDivergence, the one
+// definition of "exploded" used by every experiment and the report. A run
+// explodes at the first step where the state is not finite, the step failed,
 //  - a constraint is violated by more than maxRelativeStretch of its length
-//    (max |C|/r, C in length units);
+//    (max |C|/r, C in length units), or
 //  - the total energy exceeds its initial value by more than energyGain times
-//    the energy scale: Σ m |g| D + |E(0)| + 1, with D the diagonal of the
-//    initial bounding box — more energy than falling the whole scene could give.
+//    the scene's energy scale (energyScale below).
 struct Explosion {
   double maxRelativeStretch = 0.1;
   double energyGain = 1.0;
+
+  // The limits for a freshly built scene (its energy scale taken now).
+  particles::DivergenceLimits limits(const particles::ParticleSystem& system) const;
 };
 
 struct RunResult {
   bool exploded = false;
-  std::string reason;        // "non-finite", "stretch", "energy" or ""
+  std::string reason;        // particles::divergenceReasonName of the explosion, or ""
   double time = 0.0;         // simulated time reached
   long steps = 0;
   double seconds = 0.0;      // wall time of the simulation work
   double maxRelativeStretch = 0.0;
-  long cgIterations = 0;     // summed over steps (last solve of each step)
+  particles::StepStats work{0, 0, 0.0, 0, 0, 0};  // summed over the steps taken
   double energyStart = 0.0, energyEnd = 0.0;
 };
 
@@ -52,7 +56,9 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
                    double duration, const Explosion& explosion = {},
                    const std::function<void(const particles::ParticleSystem&)>& observe = {});
 
-// Energy scale of the explosion criterion for a freshly built scene.
+// Energy scale of the explosion criterion for a freshly built scene:
+// Σ m |g| D + |E(0)| + 1, with D the diagonal of the initial bounding box —
+// more energy than falling the whole scene could give.
 double energyScale(const particles::ParticleSystem& system);
 
 // Magnitude of the scene's gravity (0 without a gravity force).

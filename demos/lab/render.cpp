@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "output_file.h"
+
 namespace lab {
 
 namespace {
@@ -64,6 +66,8 @@ int renderReport(const RenderOptions& options) {
   std::ofstream out(options.outPath);
   if (!out) throw std::runtime_error("cannot write " + options.outPath);
   out << rendered;
+  out.close();
+  if (!out) scenes::throwWriteError("the rendered report", options.outPath);
   return 0;
 }
 

@@ -14,10 +14,11 @@ StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, do
   particles::ParticleSystem& system = *scene.system;
   auto stepper = particles::makeIntegrator(integrator);
   for (int k = 0; k < 3; ++k) system.step(*stepper, dt);
-  if (!system.finite()) return {std::nan(""), std::nan("")};
+  const StepCost failed{std::nan(""), std::nan(""), std::nan("")};
+  if (!system.finite()) return failed;
   const particles::Snapshot warm = system.snapshot();
   std::vector<double> perRepeat;
-  double iterations = 0.0;
+  double iterations = 0.0, solves = 0.0;
   long counted = 0;
   using Clock = std::chrono::steady_clock;
   for (int r = 0; r < timing.repeats; ++r) {
@@ -25,20 +26,22 @@ StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, do
     int done = 0;
     for (int k = 0; k < timing.steps; ++k) {
       const auto start = Clock::now();
-      system.step(*stepper, dt);
+      const particles::StepStats stats = system.step(*stepper, dt);
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       if (!system.finite()) {
         system.restore(warm);
         continue;
       }
       seconds += elapsed;
-      iterations += system.cgIterationsLastStep();
+      iterations += stats.cgIterations;
+      solves += stats.solves;
       ++done, ++counted;
     }
     if (done > 0) perRepeat.push_back(seconds / done);
   }
-  if (perRepeat.empty()) return {std::nan(""), std::nan("")};
-  return {median(perRepeat), iterations / std::max(1L, counted)};
+  if (perRepeat.empty()) return failed;
+  const double steps = static_cast<double>(std::max(1L, counted));
+  return {median(perRepeat), iterations / steps, solves / steps};
 }
 
 int runTiming(const LabOptions& options, const TimingOptions& timing) {
@@ -70,7 +73,8 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
     for (int side : cloths) {
       if (interrupted()) break;
       scenes::Scene cloth = scenes::buildScene(
-          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", "8"}});
+          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", "8"}},
+          scenes::kSeedPreset);
       TimingOptions small = timing;
       if (side >= 128) small.repeats = std::min(timing.repeats, 3), small.steps = std::min(timing.steps, 4);
       const StepCost cost = measureStepCost(cloth, name, cloth.dt, small);
@@ -133,7 +137,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
                 << r.maxRelativeStretch;
         solvers.endRow();
         solverCost[variant.name][cl] = cost.seconds;
-        row.push_back(general(cost.seconds * 1e6, 3) + " µs, " + general(cost.cgIterations / 4.0, 3) + " it, stretch " +
+        row.push_back(general(cost.seconds * 1e6, 3) + " µs, " + general(cost.cgIterationsPerSolve(), 3) + " it, stretch " +
                       general(r.maxRelativeStretch, 2));
       }
       rows.push_back(row);

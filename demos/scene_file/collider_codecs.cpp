@@ -42,6 +42,7 @@ Collider readPolygon(const JsonNode& node) {
   node.allowOnly({"type", "vertices", "restitution", "friction"});
   const JsonNode list = node["vertices"];
   if (!list.present()) list.expected("an array of at least 3 vertices [x, y], counter-clockwise");
+  if (list.arraySize() > 1000) list.reject("a polygon has at most 1000 vertices");
   std::vector<Eigen::Vector2d> vertices;
   for (std::size_t k = 0; k < list.arraySize(); ++k) vertices.push_back(list[k].vec2());
   return withMaterial(Collider::polygon(vertices), node);

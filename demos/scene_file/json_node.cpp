@@ -8,21 +8,58 @@
 namespace scenes {
 
 
-namespace {
-// The offending value as it appears in the file, shortened to stay on one line.
-std::string describe(const Json* value) {
-  if (!value) return "nothing (the field is missing)";
-  std::string text = value->dump(-1, ' ', false, Json::error_handler_t::replace);
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
+std::string describeValue(const Json& value, std::size_t maxChars) {
+  // Depth-first over an explicit stack of open containers and the next
+  // element of each; scalars are dumped (they hold no further values).
+  struct Open {
+    const Json* container;
+    std::size_t next;
+  };
+  std::string text;
+  std::vector<Open> stack;
+  const auto emit = [&](const Json& v) {
+    if (v.is_object()) {
+      text += '{';
+      stack.push_back({&v, 0});
+    } else if (v.is_array()) {
+      text += '[';
+      stack.push_back({&v, 0});
+    } else {
+      text += v.dump(-1, ' ', false, Json::error_handler_t::replace);
+    }
+  };
+  emit(value);
+  while (!stack.empty() && text.size() <= maxChars) {
+    Open& top = stack.back();
+    const Json& c = *top.container;
+    if (top.next == c.size()) {
+      text += c.is_object() ? '}' : ']';
+      stack.pop_back();
+      continue;
+    }
+    if (top.next > 0) text += ',';
+    const std::size_t k = top.next++;
+    if (c.is_object()) {
+      const auto& member = static_cast<const Json::object_t::Container&>(c.get_ref<const Json::object_t&>())[k];
+      text += Json(member.first).dump(-1, ' ', false, Json::error_handler_t::replace) + ':';
+      emit(member.second);
+    } else {
+      emit(c[k]);
+    }
+  }
+  if (text.size() > maxChars) text = text.substr(0, maxChars - 3) + "...";
   return text;
 }
-// ".key" for a plain name, else ["key"] escaped as JSON, so that a path stays
-// on one line whatever a key holds.
-std::string member(const std::string& key) {
+
+std::string memberPath(const std::string& key) {
   bool plain = !key.empty();
   for (char c : key) plain = plain && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
   return plain ? "." + key : "[" + Json(key).dump(-1, ' ', false, Json::error_handler_t::replace) + "]";
 }
+
+namespace {
+// The offending value, shortened to stay on one line.
+std::string describe(const Json* value) { return value ? describeValue(*value) : "nothing (the field is missing)"; }
 }  // namespace
 
 void JsonNode::expected(const std::string& what) const {
@@ -39,7 +76,7 @@ const Json& JsonNode::require(bool ok, const char* what) const {
 JsonNode JsonNode::operator[](const char* key) const {
   const Json& object = require(value_ && value_->is_object(), "an object");
   const auto it = object.find(key);
-  return JsonNode(it == object.end() ? nullptr : &*it, path_ + member(key));
+  return JsonNode(it == object.end() ? nullptr : &*it, path_ + memberPath(key));
 }
 
 JsonNode JsonNode::operator[](std::size_t index) const {

@@ -21,6 +21,15 @@ class SceneFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The path step of an object member: ".key" for a plain name, else ["key"]
+// escaped as JSON, so that a path stays on one line whatever a key holds.
+std::string memberPath(const std::string& key);
+
+// A value as it appears in a file, cut to at most maxChars characters ("..."
+// at the end when cut). Iterative, so a deeply nested value cannot exhaust
+// the stack, and it reads only as much of the value as it shows.
+std::string describeValue(const Json& value, std::size_t maxChars = 40);
+
 class JsonNode {
  public:
   JsonNode(const Json* value, std::string path) : value_(value), path_(std::move(path)) {}

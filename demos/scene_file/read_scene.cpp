@@ -4,12 +4,17 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
-#include <fstream>
-#include <sstream>
+#include <cerrno>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "join_names.h"
 #include "particles/integrator.h"
 #include "scene_file/codecs.h"
+#include "scene_file/json_parse.h"
+#include "scene_limits.h"
 
 namespace scenes {
 
@@ -101,6 +106,13 @@ void readCollisionEdges(const JsonNode& list, particles::ParticleSystem& s) {
   }
 }
 
+// An array of at most limit elements (absent: none).
+void requireCount(const JsonNode& node, const char* what, long long limit) {
+  const std::size_t count = node.arraySize();
+  if (count > static_cast<std::size_t>(limit))
+    node.reject(std::to_string(count) + " " + what + " exceed the limit of " + std::to_string(limit));
+}
+
 Scene readDocument(const JsonNode& root, const std::string& source) {
   root.allowOnly({"name", "integrator", "dt", "view", "solver", "particleRestitution", "particles", "forces",
                   "constraints", "walls", "colliders", "collisionEdges"});
@@ -117,6 +129,12 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
 
   const JsonNode particleList = root["particles"];
   if (!particleList.present()) particleList.expected("an array of particles");
+  requireCount(particleList, "particles", SceneLimits::particles);
+  requireCount(root["forces"], "forces", SceneLimits::forces);
+  requireCount(root["constraints"], "constraints", SceneLimits::constraints);
+  requireCount(root["walls"], "walls", SceneLimits::walls);
+  requireCount(root["colliders"], "colliders", SceneLimits::walls);
+  requireCount(root["collisionEdges"], "collisionEdges", SceneLimits::forces);
   for (std::size_t k = 0; k < particleList.arraySize(); ++k) {
     const JsonNode node = particleList[k];
     guarded(node, [&] { readParticle(node, s); });
@@ -127,10 +145,16 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
     const ForceCodec& codec = codecFor(node, forceCodecs(), "force");
     guarded(node, [&] { s.addForce(codec.read(node, n)); });
   }
+  std::vector<long long> constraintsOn(n, 0);  // constraints per particle
   for (std::size_t k = 0, count = root["constraints"].arraySize(); k < count; ++k) {
     const JsonNode node = root["constraints"][k];
     const ConstraintCodec& codec = codecFor(node, constraintCodecs(), "constraint");
-    guarded(node, [&] { s.addConstraint(codec.read(node, n)); });
+    std::unique_ptr<particles::Constraint> constraint = guarded(node, [&] { return codec.read(node, n); });
+    for (int i : constraint->particles())
+      if (++constraintsOn[i] > SceneLimits::constraintsPerParticle)
+        node.reject("particle " + std::to_string(i) + " has more than the limit of " +
+                    std::to_string(SceneLimits::constraintsPerParticle) + " constraints");
+    guarded(node, [&] { s.addConstraint(std::move(constraint)); });
   }
   for (const char* list : {"walls", "colliders"})
     for (std::size_t k = 0, count = root[list].arraySize(); k < count; ++k) {
@@ -140,12 +164,6 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
     }
   readCollisionEdges(root["collisionEdges"], s);
   return scene;
-}
-
-// nlohmann's what() reads "[json.exception.parse_error.101] parse error at ...".
-std::string withoutExceptionId(const char* what) {
-  const char* detail = std::strstr(what, "] ");
-  return detail ? detail + 2 : what;
 }
 
 // The bare word (NaN, Infinity, -inf, ...) at which parsing stopped, with its
@@ -165,8 +183,8 @@ std::pair<std::size_t, std::size_t> nonNumberAt(const std::string& text, std::si
 Scene readText(const std::string& text, const std::string& source, bool locateNonNumbers) {
   Json document;
   try {
-    document = Json::parse(text);
-  } catch (const Json::parse_error& e) {
+    document = parseJson(text);
+  } catch (const JsonSyntaxError& e) {
     const auto [start, length] = nonNumberAt(text, e.byte);
     if (locateNonNumbers && length > 0) {
       // JSON cannot hold NaN or Infinity. Read the file again with the word as
@@ -175,9 +193,9 @@ Scene readText(const std::string& text, const std::string& source, bool locateNo
       quoted.replace(start, length, "\"" + text.substr(start, length) + " (not a JSON number)\"");
       readText(quoted, source, false);
     }
-    throw SceneFileError(source + ": $: expected valid JSON, got a " + withoutExceptionId(e.what()));
-  } catch (const Json::exception& e) {  // a number too large for a double
-    throw SceneFileError(source + ": $: expected valid JSON, got a " + withoutExceptionId(e.what()));
+    throw SceneFileError(source + ": $: expected valid JSON, got a " + e.what());
+  } catch (const SceneFileError& e) {  // nested too deep, a duplicate key
+    throw SceneFileError(source + ": " + e.what());
   }
   try {
     return readDocument(JsonNode(&document, "$"), source);
@@ -186,15 +204,51 @@ Scene readText(const std::string& text, const std::string& source, bool locateNo
   }
 }
 
+// Closes a file descriptor when it goes out of scope.
+struct FileDescriptor {
+  int fd;
+  ~FileDescriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+[[noreturn]] void cannotRead(const std::string& path, const std::string& why) {
+  throw SceneFileError(path + ": cannot read the file (" + why + ")");
+}
+
 }  // namespace
 
 Scene readScene(const std::string& text, const std::string& source) { return readText(text, source, true); }
 
 Scene loadSceneFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (!(in && text << in.rdbuf())) throw SceneFileError(path + ": cannot read the file");
-  return readScene(text.str(), path);
+  // Only a regular file, opened without blocking (a FIFO with no writer would
+  // block open) and read up to the size limit (a device such as /dev/zero
+  // never ends, and a file may grow while it is read).
+  const FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (file.fd < 0) cannotRead(path, std::strerror(errno));
+  struct stat info {};
+  if (::fstat(file.fd, &info) != 0) cannotRead(path, std::strerror(errno));
+  if (!S_ISREG(info.st_mode))
+    cannotRead(path, S_ISDIR(info.st_mode) ? "a directory, not a regular file" : "not a regular file");
+  const std::size_t limit = SceneLimits::fileBytes;
+  const auto tooLarge = [&] { cannotRead(path, "larger than the limit of " + std::to_string(limit) + " bytes"); };
+  if (static_cast<std::uintmax_t>(info.st_size) > limit) tooLarge();
+  std::string text(static_cast<std::size_t>(info.st_size) + 1, '\0');
+  std::size_t size = 0;
+  while (true) {
+    if (size == text.size()) {
+      if (size > limit) tooLarge();
+      text.resize(std::min(2 * size, limit + 1));
+    }
+    const ssize_t got = ::read(file.fd, &text[size], text.size() - size);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) cannotRead(path, std::strerror(errno));
+    if (got == 0) break;
+    size += static_cast<std::size_t>(got);
+  }
+  if (size > limit) tooLarge();
+  text.resize(size);
+  return readScene(text, path);
 }
 
 }  // namespace scenes

@@ -6,7 +6,9 @@
 
 #include "particles/check.h"
 #include "particles/constraints/line.h"
+#include "particles/forces/drag.h"
 #include "particles/forces/spring.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -15,6 +17,7 @@ namespace scenes {
 void ClothParams::validate() const {
   requireAtLeast("width", width, 2);
   requireAtLeast("height", height, 2);
+  requireWithinLimit("width*height particles", static_cast<long long>(width) * height, SceneLimits::particles);
   if (links != 4 && links != 8)
     throw std::invalid_argument("links must be 4 or 8, got " + std::to_string(links));
   particles::requirePositive("rest", rest);
@@ -22,12 +25,33 @@ void ClothParams::validate() const {
   particles::requireNonNegative("damping", damping);
   particles::requirePositive("mass", mass);
   particles::requireFinite("gravity", gravity);
+  particles::requireInRange("swing", swing, -80.0, 80.0);
+  particles::requireNonNegative("drag", drag);
+  if (edgeContacts != 0 && edgeContacts != 1)
+    throw std::invalid_argument("edge-contacts must be 0 or 1, got " + std::to_string(edgeContacts));
+}
+
+ClothParams ClothParams::seed() {
+  ClothParams p;
+  p.width = 10;
+  p.height = 10;
+  p.links = 4;
+  p.rest = 0.05;
+  p.stiffness = 0.9;
+  p.damping = 0.6;
+  p.mass = 0.2;
+  p.gravity = kSeedGravity;
+  p.swing = 0.0;
+  p.drag = 0.0;
+  p.edgeContacts = 0;
+  p.dt = 0.01;
+  return p;
 }
 
 Scene buildCloth(const ClothParams& p) {
   Scene scene;
   scene.name = "cloth";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 
@@ -38,16 +62,24 @@ Scene buildCloth(const ClothParams& p) {
   const double half = std::max(1.0, 2.2 * L);
   const Eigen::Vector2d topLeft(-0.5 * clothWidth, 0.6 * half);
 
+  // Row r hangs r rest lengths down its column, each column turned by the swing.
+  const double swing = radians(p.swing);
+  const Eigen::Vector2d down(std::sin(swing), -std::cos(swing));
   std::vector<Eigen::Vector2d> positions;
   for (int row = 0; row < p.height; ++row)
     for (int col = 0; col < p.width; ++col)
-      positions.push_back(topLeft + p.rest * Eigen::Vector2d(col, -row));
+      positions.push_back(topLeft + p.rest * (col * Eigen::Vector2d::UnitX() + row * down));
   s.addParticles(positions, std::vector<double>(positions.size(), p.mass));
   const auto id = [&](int row, int col) { return row * p.width + col; };
 
+  // Grid cells as faces, counter-clockwise: top-left, bottom-left, bottom-right, top-right.
+  for (int row = 0; row + 1 < p.height; ++row)
+    for (int col = 0; col + 1 < p.width; ++col)
+      scene.faces.push_back({id(row, col), id(row + 1, col), id(row + 1, col + 1), id(row, col + 1)});
+  scene.edgeContacts = p.edgeContacts == 1;
+
   auto link = [&](int i, int j, double rest) {
     s.addForce(std::make_unique<particles::SpringForce>(i, j, rest, p.stiffness, p.damping));
-    s.addCollisionEdge(i, j);  // the springs, not only the particles, catch on the nail
   };
   const double diagonal = std::sqrt(2.0) * p.rest;
   for (int row = 0; row < p.height; ++row)
@@ -60,6 +92,7 @@ Scene buildCloth(const ClothParams& p) {
       }
     }
   addGravity(s, p.gravity);
+  if (p.drag > 0.0) s.addForce(std::make_unique<particles::DragForce>(p.drag));
 
   // The curtain rail: the top row slides on the horizontal line through it.
   for (int col = 0; col < p.width; ++col)
@@ -67,11 +100,15 @@ Scene buildCloth(const ClothParams& p) {
 
   // A big wall left of the cloth, from just below the rail to below the hem
   // of the cloth hanging stretched under its weight (about twice its rest
-  // height at the defaults), and a small nail to the right, near the top.
+  // height under the seed preset), and a small nail to the right, near the
+  // top. With edgeContacts the cloth's face edges, not only its particles,
+  // meet them (faceEdges), so the nail can catch the cloth between two particles.
   s.addCollider(particles::Collider::box(Eigen::Vector2d(topLeft.x() - 0.9 * L, topLeft.y() - 2.6 * L),
                                         Eigen::Vector2d(topLeft.x() - 0.3 * L, topLeft.y() - 0.3 * L)));
   const Eigen::Vector2d nail(-topLeft.x() + 0.3 * L, topLeft.y() - 0.4 * L);
   s.addCollider(particles::Collider::box(nail, nail + Eigen::Vector2d::Constant(0.05 * L)));
+  if (scene.edgeContacts)
+    for (const std::array<int, 2>& edge : faceEdges(scene)) s.addCollisionEdge(edge[0], edge[1]);
 
   scene.viewMin = Eigen::Vector2d::Constant(-half);
   scene.viewMax = Eigen::Vector2d::Constant(half);

@@ -18,10 +18,21 @@ void OscillatorParams::validate() const {
   particles::requireInRange("stretch", stretch, -0.99 * rest, 10.0 * rest);
 }
 
+OscillatorParams OscillatorParams::seed() {
+  OscillatorParams p;
+  p.mass = 1.0;
+  p.stiffness = 1.0;
+  p.damping = 0.1;
+  p.rest = 0.5;
+  p.stretch = 0.3;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildOscillator(const OscillatorParams& p) {
   Scene scene;
   scene.name = "oscillator";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
   const int anchor = s.addParticle(Eigen::Vector2d::Zero(), p.mass);

@@ -1,8 +1,13 @@
 #pragma once
 // Scene parameters as plain structs with defaults. Each struct lists its fields
 // once, in visit(name, field, help); from that list the table takes the names,
-// defaults and help it shows, and buildScene fills the fields from --param
+// values and help it shows, and buildScene fills the fields from --param
 // overrides. Adding a parameter is one member and one visit line.
+//
+// The presets (presetTable()): the member initialisers are preset "default";
+// a static Params::seed() returns preset "seed", the seed report's values. A
+// struct also carries the time step dt its scene runs with under each preset
+// (not a --param: --dt and the demo's dt field set the step).
 #include <string>
 #include <vector>
 
@@ -19,20 +24,30 @@ inline void readParam(const SceneParams& values, const char* name, double& field
 inline void readParam(const SceneParams& values, const char* name, int& field) { field = values.integer(name); }
 inline void readParam(const SceneParams& values, const char* name, std::string& field) { field = values.text(name); }
 
+// A Params struct under every preset, in presetTable() order.
+template <class Params>
+std::vector<Params> presetParams() {
+  return {Params{}, Params::seed()};
+}
+
 template <class Params>
 std::vector<ParamSpec> paramSpecs() {
-  Params defaults;
   std::vector<ParamSpec> specs;
-  defaults.visit([&](const char* name, const auto& field, const char* help) {
-    specs.push_back({name, formatParam(field), help});
-  });
+  for (Params preset : presetParams<Params>()) {
+    std::size_t k = 0;
+    preset.visit([&](const char* name, const auto& field, const char* help) {
+      if (k == specs.size()) specs.push_back({name, {}, help});
+      specs[k++].values.push_back(formatParam(field));
+    });
+  }
   return specs;
 }
 
-// Every field from values (defaults where not overridden), then Params::validate().
+// The preset's struct with every field from values (the preset's value where
+// not overridden), then Params::validate().
 template <class Params>
 Params readParams(const SceneParams& values) {
-  Params p;
+  Params p = presetParams<Params>().at(values.preset());
   p.visit([&](const char* name, auto& field, const char*) { readParam(values, name, field); });
   p.validate();
   return p;

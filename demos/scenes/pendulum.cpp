@@ -17,10 +17,20 @@ void PendulumParams::validate() const {
   particles::requirePositive("gravity", gravity);
 }
 
+PendulumParams PendulumParams::seed() {
+  PendulumParams p;
+  p.length = 0.5;
+  p.angle = 60.0;
+  p.mass = 1.0;
+  p.gravity = kSeedGravity;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildPendulum(const PendulumParams& p) {
   Scene scene;
   scene.name = "pendulum";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
   const Eigen::Vector2d centre(0.0, 0.0);

@@ -1,24 +1,28 @@
 #pragma once
 #include "scene.h"
+#include "scenes/world.h"
 
 namespace scenes {
 
 // A bead on a circular wire of radius L under gravity, released at rest at a
 // large angle from the bottom: a pendulum without small-angle approximation.
+// Defaults: T = 1.53 s at 60° (1.42 s for small swings).
 struct PendulumParams {
-  double length = 0.5;
-  double angle = 60.0;
-  double mass = 1.0;
-  double gravity = 0.05;
+  double length = 0.5;             // m
+  double angle = 60.0;             // degrees
+  double mass = 1.0;               // kg
+  double gravity = kEarthGravity;  // m/s²
+  double dt = 0.005;               // the step the scene runs with, s
 
   template <class Visit>
   void visit(Visit&& field) {
-    field("length", length, "wire radius L, world units");
+    field("length", length, "wire radius L, m");
     field("angle", angle, "release angle theta_0 from the bottom, degrees");
-    field("mass", mass, "mass of the bead");
-    field("gravity", gravity, "downward acceleration g, world units/s^2");
+    field("mass", mass, "mass of the bead, kg");
+    field("gravity", gravity, "downward acceleration g, m/s^2");
   }
   void validate() const;
+  static PendulumParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildPendulum(const PendulumParams& p);

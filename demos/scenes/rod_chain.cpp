@@ -5,6 +5,7 @@
 
 #include "particles/check.h"
 #include "particles/constraints/circular_wire.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -12,6 +13,7 @@ namespace scenes {
 
 void RodChainParams::validate() const {
   requireAtLeast("links", links, 1);
+  requireWithinLimit("links+1 particles", links + 1LL, SceneLimits::particles);
   particles::requirePositive("length", length);
   particles::requirePositive("radius", radius);
   particles::requirePositive("mass", mass);
@@ -19,10 +21,22 @@ void RodChainParams::validate() const {
   particles::requireFinite("gravity", gravity);
 }
 
+RodChainParams RodChainParams::seed() {
+  RodChainParams p;
+  p.links = 6;
+  p.length = 0.12;
+  p.radius = 0.25;
+  p.mass = 1.0;
+  p.rod = "squared";
+  p.gravity = kSeedGravity;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildRodChain(const RodChainParams& p) {
   Scene scene;
   scene.name = "rod-chain";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

@@ -5,6 +5,7 @@
 
 #include "particles/check.h"
 #include "particles/constraints/circular_wire.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -12,6 +13,7 @@ namespace scenes {
 
 void TautChainParams::validate() const {
   requireAtLeast("links", links, 1);
+  requireWithinLimit("links+1 particles", links + 1LL, SceneLimits::particles);
   particles::requirePositive("separation", separation);
   particles::requirePositive("radius", radius);
   particles::requirePositive("mass", mass);
@@ -19,10 +21,22 @@ void TautChainParams::validate() const {
   particles::requireFinite("gravity", gravity);
 }
 
+TautChainParams TautChainParams::seed() {
+  TautChainParams p;
+  p.links = 8;
+  p.separation = 1.2;
+  p.radius = 0.2;
+  p.mass = 1.0;
+  p.rod = "squared";
+  p.gravity = kSeedGravity;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildTautChain(const TautChainParams& p) {
   Scene scene;
   scene.name = "taut-chain";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

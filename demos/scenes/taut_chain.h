@@ -2,6 +2,7 @@
 #include <string>
 
 #include "scene.h"
+#include "scenes/world.h"
 
 namespace scenes {
 
@@ -11,22 +12,24 @@ namespace scenes {
 // normals are parallel, so J W Jᵀ loses rank: a stress test for the solver.
 struct TautChainParams {
   int links = 8;
-  double separation = 1.2;
-  double radius = 0.2;
-  double mass = 1.0;
+  double separation = 1.2;         // m
+  double radius = 0.2;             // m
+  double mass = 0.1;               // kg
   std::string rod = "squared";
-  double gravity = 0.05;
+  double gravity = kEarthGravity;  // m/s²
+  double dt = 0.002;               // the step the scene runs with, s
 
   template <class Visit>
   void visit(Visit&& field) {
     field("links", links, "number of rods between the two beads");
-    field("separation", separation, "distance between the two wire centres, world units");
-    field("radius", radius, "radius of both wires, world units");
-    field("mass", mass, "mass of each particle");
+    field("separation", separation, "distance between the two wire centres, m");
+    field("radius", radius, "radius of both wires, m");
+    field("mass", mass, "mass of each particle, kg");
     field("rod", rod, "rod constraint form: squared (|d|^2 - r^2) or root (|d| - r)");
-    field("gravity", gravity, "downward acceleration, world units/s^2");
+    field("gravity", gravity, "downward acceleration, m/s^2");
   }
   void validate() const;
+  static TautChainParams seed();  // preset "seed": the seed report's values
 };
 
 Scene buildTautChain(const TautChainParams& p);

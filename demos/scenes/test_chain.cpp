@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "particles/check.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -11,6 +12,7 @@ namespace scenes {
 
 void TestChainParams::validate() const {
   requireAtLeast("cl", cl, 2);
+  requireWithinLimit("cl particles", cl, SceneLimits::particles);
   particles::requirePositive("length", length);
   particles::requirePositive("mass", mass);
   particles::parseRodForm(rod);
@@ -18,10 +20,22 @@ void TestChainParams::validate() const {
   particles::requirePositive("tip-mass-ratio", tipMassRatio);
 }
 
+TestChainParams TestChainParams::seed() {
+  TestChainParams p;
+  p.cl = 12;
+  p.length = 0.1;
+  p.mass = 1.0;
+  p.rod = "squared";
+  p.gravity = kSeedGravity;
+  p.tipMassRatio = 1.0;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildTestChain(const TestChainParams& p) {
   Scene scene;
   scene.name = "test-chain";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

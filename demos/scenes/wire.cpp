@@ -7,6 +7,7 @@
 #include "particles/check.h"
 #include "particles/constraints/circular_wire.h"
 #include "particles/forces/spring.h"
+#include "scene_limits.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -14,16 +15,28 @@ namespace scenes {
 
 void WireParams::validate() const {
   requireAtLeast("beads", beads, 1);
+  requireWithinLimit("beads", beads, SceneLimits::particles);
   particles::requirePositive("radius", radius);
   particles::requirePositive("mass", mass);
   particles::requireNonNegative("coupling", coupling);
   particles::requireFinite("gravity", gravity);
 }
 
+WireParams WireParams::seed() {
+  WireParams p;
+  p.beads = 3;
+  p.radius = 0.25;
+  p.mass = 1.0;
+  p.coupling = 0.2;
+  p.gravity = kSeedGravity;
+  p.dt = 0.01;
+  return p;
+}
+
 Scene buildWire(const WireParams& p) {
   Scene scene;
   scene.name = "wire";
-  scene.dt = 0.01;
+  scene.dt = p.dt;
   scene.system = std::make_unique<particles::ParticleSystem>();
   particles::ParticleSystem& s = *scene.system;
 

@@ -1,7 +1,8 @@
 #pragma once
-// The report's world and the pieces several scenes share. Unless a scene says
-// otherwise it uses the view [−1, 1]², gravity 0.05 downward and the solver's
-// feedback k_s = 60, k_d = 10 (particles::SolverSettings defaults).
+// The world and the pieces several scenes share. Units are SI: metres,
+// kilograms, seconds. Unless a scene says otherwise it uses the view [−1, 1]²
+// (2 m across), Earth's gravity downward and the solver's feedback k_s = 60,
+// k_d = 10 (particles::SolverSettings defaults).
 #include <Eigen/Core>
 
 #include "particles/constraints/rod.h"
@@ -9,9 +10,12 @@
 
 namespace scenes {
 
-// World units / s², downward. The report lowered Earth's 9.81 to 0.05 because
-// its particles fell "unrealistically fast" at one step per frame.
-constexpr double kWorldGravity = 0.05;
+// m/s², downward: the default preset's gravity.
+constexpr double kEarthGravity = 9.81;
+// The seed report's gravity (preset "seed"): it lowered 9.81 to 0.05 because
+// its particles fell "unrealistically fast" at one step per frame, which
+// slowed every motion by √(9.81/0.05) ≈ 14.
+constexpr double kSeedGravity = 0.05;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double radians(double degrees) { return degrees * kPi / 180.0; }

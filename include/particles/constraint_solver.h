@@ -50,6 +50,11 @@ struct SolveStats {
   int constraints = 0;     // m
   int iterations = 0;      // CG iterations of the last solve (0 for a direct solve)
   double residual = 0.0;   // relative residual |r|/|b| at exit (0 when b = 0)
+  int factorizations = 0;  // numeric factorisations made (LDLᵀ, incomplete Cholesky)
+  // λ or the residual came out non-finite (a blown-up state, or b overflowing):
+  // λ is set to 0 so that no NaN reaches the state, and the step reports
+  // StepFailure::SolveFailed, which the tools treat as a divergence.
+  bool failed = false;
 };
 
 using ConstraintList = std::vector<std::unique_ptr<Constraint>>;

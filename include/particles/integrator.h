@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "particles/step_stats.h"
+
 namespace particles {
 
 class ParticleSystem;
@@ -12,9 +14,20 @@ class ParticleSystem;
 // panel. Fixed-step schemes ignore them; one struct keeps makeIntegrator's
 // signature the same for every scheme.
 struct IntegratorSettings {
-  // adaptive-rk4: local error allowed per internal step, mixed absolute and
-  // relative: |error_i| ≤ tolerance·(1 + |y_i|) for every component of (x, v).
+  // Adaptive schemes (dopri5, adaptive-rk4): local error allowed per internal
+  // step, mixed absolute and relative — error_i against tolerance·(1 + |y_i|)
+  // for every component of y = (x, v); each scheme's header gives its norm.
   double tolerance = 1e-6;
+  // Below this the error estimate is dominated by rounding (the stages differ
+  // by a few ulps of y): a smaller tolerance is refused rather than chased.
+  static constexpr double minTolerance = 1e-13;
+  // Floor of the internal step, as a fraction of the interval dt of one call:
+  // a step the controller would shrink below it fails the call with
+  // StepFailure::StepBelowFloor instead of being accepted anyway.
+  double minStepFraction = 1e-9;
+  // Work cap: internal steps (accepted and rejected) one call may attempt
+  // before it fails with StepFailure::WorkCapReached.
+  long maxStepsPerCall = 100000;
 
   void validate() const;  // throws naming the bad field
 };
@@ -29,7 +42,10 @@ class Integrator {
   // accelerations through ParticleSystem::acceleration (forces plus constraint
   // forces). Collisions and the clock are the caller's (ParticleSystem::step).
   // An adaptive scheme may take several internal steps to cover dt.
-  virtual void step(ParticleSystem& system, double dt) = 0;
+  // Returns what the step did: the evaluations and solves made through
+  // ParticleSystem::acceleration (ParticleSystem::takeEvaluationStats) plus the
+  // scheme's own solves, internal and rejected steps, and any failure.
+  virtual StepStats step(ParticleSystem& system, double dt) = 0;
 
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }
@@ -46,7 +62,7 @@ struct IntegratorInfo {
   const char* summary;  // one line for `list` and the help overlay
   int order;            // global order of accuracy on smooth problems
   std::unique_ptr<Integrator> (*make)();
-  bool usesTolerance = false;  // reads IntegratorSettings::tolerance
+  bool usesTolerance = false;  // reads IntegratorSettings (tolerance, step floor, work cap)
 };
 
 // Every integrator, in the order the demo cycles through them.

@@ -11,6 +11,7 @@
 #include "particles/constraint_solver.h"
 #include "particles/force.h"
 #include "particles/integrator.h"
+#include "particles/step_stats.h"
 
 namespace particles {
 
@@ -84,13 +85,22 @@ class ParticleSystem {
 
   // --- dynamics -----------------------------------------------------------
   // q̈ at (x, v): clear forces → apply forces → solve λ → add Jᵀλ → a = W(Q + Q̂).
-  // The constraint solve is skipped when there are no constraints.
+  // The constraint solve is skipped when there are no constraints. Each call
+  // is tallied (one force evaluation, the solve's statistics) for takeEvaluationStats().
   void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a);
+
+  // The force evaluations and constraint solves made through acceleration()
+  // since the last call (or the start of the step), as the statistics of one
+  // fixed step (internalSteps = 1); resets the tally. Integrators return it
+  // from step(), adding their own counts.
+  StepStats takeEvaluationStats();
 
   // One step: keep the start state → integrate by dt → collide (continuous,
   // from the start state; skipped without colliders or collidable discs) →
   // advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
-  void step(Integrator& integrator, double dt);
+  // Returns the integrator's statistics of the step, also kept as lastStepStats().
+  StepStats step(Integrator& integrator, double dt);
+  const StepStats& lastStepStats() const { return lastStepStats_; }
 
   // --- diagnostics --------------------------------------------------------
   double kineticEnergy() const;
@@ -98,9 +108,8 @@ class ParticleSystem {
   double totalEnergy() const { return kineticEnergy() + potentialEnergy(); }
   double maxConstraintError() const;          // max violation, world units
   double maxRelativeConstraintError() const;  // max violation / length scale
+  // The last constraint solve alone; lastStepStats() sums a whole step.
   const SolveStats& lastSolve() const { return solver_.stats(); }
-  // CG iterations summed over every solve of the last step (an RK4 step solves four times).
-  int cgIterationsLastStep() const { return iterationsThisStep_; }
   bool finite() const;  // every position and velocity finite
   int contactsLastStep() const { return contactsLastStep_; }
 
@@ -124,7 +133,8 @@ class ParticleSystem {
   // edges → resting passes over discs and colliders. Returns the contacts.
   int collide(double dt);
   int contactsLastStep_ = 0;
-  int iterationsThisStep_ = 0;
+  StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
+  StepStats lastStepStats_;
 };
 
 }  // namespace particles

@@ -4,13 +4,14 @@
 
 namespace particles {
 
-void ExplicitEulerIntegrator::step(ParticleSystem& system, double dt) {
+StepStats ExplicitEulerIntegrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
   system.acceleration(x, v, a_);
   x += dt * v;
   v += dt * a_;
   lastStep_ = dt;
+  return system.takeEvaluationStats();
 }
 
 }  // namespace particles

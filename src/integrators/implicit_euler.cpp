@@ -303,6 +303,7 @@ void ImplicitEulerIntegrator::jacobiConjugateGradient(const Eigen::VectorXd& b) 
   }
   const double bNorm = b.norm();
   iterations_ = 0;
+  cgResidual_ = 0.0;
   if (bNorm == 0.0) {
     x.setZero(size);
     return;
@@ -324,9 +325,10 @@ void ImplicitEulerIntegrator::jacobiConjugateGradient(const Eigen::VectorXd& b) 
     rz = rzNext;
     ++iterations_;
   }
+  cgResidual_ = cgR_.norm() / bNorm;
 }
 
-void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
+StepStats ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   settings.validate();
   requireJacobians(system);
   Eigen::VectorXd& x = system.positions();
@@ -349,6 +351,10 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
     f0_.setZero(dofs);
     for (const auto& force : system.forceObjects()) force->apply(s, f0_);
   }
+  // The lagged scheme's explicit solve, or nothing, from the tally; then this
+  // scheme's own force evaluation and solves.
+  StepStats stats = system.takeEvaluationStats();
+  if (!(!coupled && !system.constraints().empty())) ++stats.forceEvaluations;
   dfdx_.clear();
   dfdv_.clear();
   for (const auto& force : system.forceObjects()) force->addDefiniteJacobians(s, dfdx_, dfdv_);
@@ -418,16 +424,26 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
         ldltAnalysed_ = true;
       }
       ldlt_.factorizeInPlace(matrix_);
+      ++stats.factorizations;
       // A failed factorisation (only a blown-up, non-finite state gets here:
-      // the matrix is quasi-definite) leaves NaN, which ParticleSystem::finite()
-      // reports as it does for every other integrator.
-      if (ldlt_.info() != Eigen::Success) solution_.setConstant(dofs + m, NAN);
-      else solution_ = ldlt_.solve(permutedRhs_);
+      // the matrix is quasi-definite) leaves NaN, reported as a failed solve.
+      if (ldlt_.info() != Eigen::Success) {
+        solution_.setConstant(dofs + m, NAN);
+      } else {
+        solution_ = ldlt_.solve(permutedRhs_);
+        const double bNorm = permutedRhs_.norm();
+        cgAp_.noalias() = matrix_.selfadjointView<Eigen::Upper>() * solution_;
+        stats.maxResidual = std::max(stats.maxResidual, bNorm > 0.0 ? (permutedRhs_ - cgAp_).norm() / bNorm : 0.0);
+      }
     } else {
       // Warm start from the last step's Δv (solution_ still holds it).
       if (solution_.size() != dofs || !solution_.allFinite()) solution_.setZero(dofs);
       jacobiConjugateGradient(permutedRhs_);
+      stats.cgIterations += iterations_;
+      stats.maxResidual = std::max(stats.maxResidual, cgResidual_);
     }
+    ++stats.solves;
+    if (!solution_.allFinite()) stats.failure = StepFailure::SolveFailed;
     z_.resize(dofs + m);
     for (int i = 0; i < dofs + m; ++i) z_[i] = solution_[order_[i]];
     vBar_ = v0_ + z_.head(dofs);
@@ -437,6 +453,7 @@ void ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   v = vBar_;
   x = x0_ + h * v;
   lastStep_ = h;
+  return stats;
 }
 
 }  // namespace particles

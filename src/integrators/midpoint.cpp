@@ -4,7 +4,7 @@
 
 namespace particles {
 
-void MidpointIntegrator::step(ParticleSystem& system, double dt) {
+StepStats MidpointIntegrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
   system.acceleration(x, v, a_);
@@ -14,6 +14,7 @@ void MidpointIntegrator::step(ParticleSystem& system, double dt) {
   x += dt * vMid_;
   v += dt * a_;
   lastStep_ = dt;
+  return system.takeEvaluationStats();
 }
 
 }  // namespace particles

@@ -6,7 +6,7 @@ namespace particles {
 
 // For y = (x, v) and y' = (v, a(x, v)), the four stages are evaluated at
 // y, y + (h/2) k1, y + (h/2) k2, y + h k3; dx_, dv_ accumulate the weighted sum.
-void Rk4Integrator::step(ParticleSystem& system, double dt) {
+StepStats Rk4Integrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
   x0_ = x;
@@ -37,6 +37,7 @@ void Rk4Integrator::step(ParticleSystem& system, double dt) {
   x = x0_ + (dt / 6.0) * dx_;
   v = v0_ + (dt / 6.0) * dv_;
   lastStep_ = dt;
+  return system.takeEvaluationStats();
 }
 
 }  // namespace particles

@@ -4,13 +4,14 @@
 
 namespace particles {
 
-void SymplecticEulerIntegrator::step(ParticleSystem& system, double dt) {
+StepStats SymplecticEulerIntegrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
   system.acceleration(x, v, a_);
   v += dt * a_;
   x += dt * v;
   lastStep_ = dt;
+  return system.takeEvaluationStats();
 }
 
 }  // namespace particles

@@ -4,7 +4,7 @@
 
 namespace particles {
 
-void VerletIntegrator::step(ParticleSystem& system, double dt) {
+StepStats VerletIntegrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
   // The cached acceleration is valid only for exactly the state it was left at.
@@ -21,6 +21,7 @@ void VerletIntegrator::step(ParticleSystem& system, double dt) {
   vCached_ = v;
   cached_ = true;
   lastStep_ = dt;
+  return system.takeEvaluationStats();
 }
 
 }  // namespace particles

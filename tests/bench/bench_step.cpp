@@ -14,7 +14,8 @@
 // all four stay on the constraint manifold (relative rod error < 1%), and the
 // cost of a step does not depend on dt. An episode that ends off the manifold
 // is reported as an error rather than timed.
-// Counters: CG iterations per constraint solve and solves per step.
+// Counters (from the StepStats each step returns): CG iterations per constraint
+// solve, solves and force evaluations per step.
 //
 //   ./build/tests/bench_step --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -37,27 +38,6 @@ constexpr double kDt = 0.001;          // s
 constexpr int kWarmupSteps = 5;
 constexpr int kEpisodeSteps = 300;     // 0.3 simulated seconds
 constexpr double kMaxRelativeRodError = 0.01;
-
-// Counts the CG iterations of every constraint solve. Forces are applied at
-// the start of each derivative evaluation, when the solver still holds the
-// statistics of the previous evaluation's solve; the force itself adds nothing.
-class SolveCounter : public Force {
- public:
-  explicit SolveCounter(const ConstraintSolver& solver) : solver_(solver) {}
-  const char* type() const override { return "solve-counter"; }
-  void apply(const Phase&, Eigen::VectorXd&) const override {
-    if (solver_.stats().constraints == 0) return;
-    ++solves;
-    iterations += solver_.stats().iterations;
-  }
-  // It adds no force, so its Jacobians are exactly zero (implicit schemes ask).
-  bool hasJacobians() const override { return true; }
-  void addJacobians(const Phase&, Triplets&, Triplets&) const override {}
-  mutable long solves = 0, iterations = 0;
-
- private:
-  const ConstraintSolver& solver_;
-};
 
 // count particles of mass 1 spaced `link` apart along +x from the origin,
 // joined by squared-form rods, the first pinned; gravity −9.81 along y.
@@ -101,25 +81,21 @@ ParticleSystem buildCloth(int width, int height, double spacing) {
 
 void runSteps(benchmark::State& state, ParticleSystem& system, const std::string& integratorName) {
   auto integrator = makeIntegrator(integratorName);
-  auto& counter = static_cast<SolveCounter&>(
-      system.addForce(std::make_unique<SolveCounter>(system.solver())));
   const Snapshot start = system.snapshot();
-  // Restarts an episode; its solves are not counted.
+  // Restarts an episode; its steps are not counted.
   auto warmUp = [&] {
-    const long solves = counter.solves, iterations = counter.iterations;
     system.restore(start);
     for (int k = 0; k < kWarmupSteps; ++k) system.step(*integrator, kDt);
-    counter.solves = solves;
-    counter.iterations = iterations;
   };
   auto episodeWentWrong = [&] {
     return !system.finite() || system.maxRelativeConstraintError() > kMaxRelativeRodError;
   };
   warmUp();
-  counter.solves = counter.iterations = 0;
+  StepStats work;
+  work.internalSteps = 0;
   long steps = 0;
   for (auto _ : state) {
-    system.step(*integrator, kDt);
+    work += system.step(*integrator, kDt);
     if (++steps % kEpisodeSteps == 0) {
       state.PauseTiming();
       if (episodeWentWrong()) {
@@ -132,9 +108,9 @@ void runSteps(benchmark::State& state, ParticleSystem& system, const std::string
     }
   }
   if (episodeWentWrong()) state.SkipWithError("the episode left the constraint manifold");
-  state.counters["cg_iters_per_solve"] =
-      counter.solves ? static_cast<double>(counter.iterations) / counter.solves : 0.0;
-  state.counters["solves_per_step"] = steps ? static_cast<double>(counter.solves) / steps : 0.0;
+  state.counters["cg_iters_per_solve"] = work.solves ? static_cast<double>(work.cgIterations) / work.solves : 0.0;
+  state.counters["solves_per_step"] = steps ? static_cast<double>(work.solves) / steps : 0.0;
+  state.counters["evaluations_per_step"] = steps ? static_cast<double>(work.forceEvaluations) / steps : 0.0;
   state.counters["particles"] = system.size();
 }
 

@@ -3,8 +3,9 @@
 #   STDERR_MATCH    a regex stderr must match (then stderr must be exactly one line)
 #   STDOUT_MATCH    a regex stdout must match; when not given, stdout must be empty
 #                   (unless EXPECT_EXIT is 0)
-#   CSV             a --csv file that must be complete: a header of 9 columns and
-#                   rows of 9, the last ended by a newline; with a divergence on
+#   CSV             a --csv file that must be complete: every row with as many
+#                   columns as the header, every field after the header a finite
+#                   number, the last row ended by a newline; with a divergence on
 #                   stderr, the last row is the step before it.
 string(REPLACE "|" ";" ARGS "${ARGS}")
 execute_process(COMMAND ${PROGRAM} ${ARGS} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -36,11 +37,17 @@ if(DEFINED CSV)
   endif()
   string(REGEX REPLACE "\n$" "" csv "${csv}")
   string(REPLACE "\n" ";" rows "${csv}")
+  list(GET rows 0 header)
+  string(REGEX MATCHALL "," headerCommas "${header}")
+  list(LENGTH headerCommas expectedCommas)
   foreach(row IN LISTS rows)
     string(REGEX MATCHALL "," commas "${row}")
     list(LENGTH commas columns)
-    if(NOT columns EQUAL 8)
-      message(FATAL_ERROR "${CSV}: row '${row}' does not have 9 columns")
+    if(NOT columns EQUAL expectedCommas)
+      message(FATAL_ERROR "${CSV}: row '${row}' does not have the header's ${expectedCommas} + 1 columns")
+    endif()
+    if(NOT row STREQUAL header AND row MATCHES "(nan|inf)")
+      message(FATAL_ERROR "${CSV}: row '${row}' holds a non-finite number")
     endif()
   endforeach()
   list(LENGTH rows count)

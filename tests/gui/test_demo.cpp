@@ -85,7 +85,7 @@ TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
   const std::vector<std::string> cases = {
       "--scene no-such-scene",     "--integrator no-such-integrator", "--dt -1",  "--dt 0", "--dt nan", "--tolerance -1", "--tolerance nan",
       "--dt abc",                  "--frames 0",                      "--frames x",
-      "--param links=3",           "--param nosuch=1",                "--param links",
+      "--param links=3",           "--param nosuch=1",                "--param links",  "--preset slow",
       "--compare euler",           "--compare euler,nosuch", "--compare rk4:0,rk4", "--compare rk4:x,euler",          "--window 10x10",
       "--script missing.txt",      "--script bad-script.txt",         "--no-such-option",
       "--scene-file missing.json",      "--scene-file " MALFORMED_DIR "/nan.json",
@@ -108,6 +108,7 @@ TEST(DemoCommandLine, MessagesMatchParticleLabs) {
   EXPECT_EQ(runDemo(dir, "--tolerance 0").err, "particle-demo: --tolerance: integrator tolerance must be > 0, got 0\n");
   EXPECT_NE(runDemo(dir, "--scene clot").err.find("particle-demo: unknown scene 'clot' (valid: cloth, hair"),
             std::string::npos);
+  EXPECT_EQ(runDemo(dir, "--preset slow").err, "particle-demo: unknown preset 'slow' (valid: default, seed)\n");
   std::string names;
   for (const particles::IntegratorInfo& info : particles::integratorTable())
     names += (names.empty() ? "" : ", ") + std::string(info.name);
@@ -212,7 +213,8 @@ TEST(DemoStepping, RealtimeFramesComeFromTheSixtyHertzClock) {
 
 TEST(DemoMouse, DragPullsTheClothParticleTowardTheCursorAndReleaseRemovesTheSpring) {
   const std::string dir = outputDirectory("Drag");
-  const std::string scene = "--scene cloth --param links=4 --log-state state.txt ";
+  // The seed preset's slow cloth: the mouse spring's pull, not gravity, dominates its motion.
+  const std::string scene = "--scene cloth --preset seed --param links=4 --log-state state.txt ";
   ASSERT_EQ(runDemo(dir, scene + "--frames 1 --paused").exitCode, 0);
   const LoggedPane start = readStateLog(dir + "/state.txt").panes.at(0);
   // The bottom-right corner of the cloth, pulled down and to the right.
@@ -344,7 +346,8 @@ TEST(DemoScreenshot, ForceKeyAddsArrowPixelsNextToParticles) {
 
 TEST(DemoCompare, EulerAndRk4PanesStartAlikeDivergeApartAndAreBothDrawn) {
   const std::string dir = outputDirectory("Compare");
-  const RunResult r = runDemo(dir, std::string(noPanel) + " --scene test-chain --compare euler,rk4 --frames 240 "
+  // The seed preset's slow chain, on which explicit Euler survives the 4 s run.
+  const RunResult r = runDemo(dir, std::string(noPanel) + " --scene test-chain --preset seed --compare euler,rk4 --frames 240 "
                               "--screenshot shot.png --log-state state.txt");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const StateLog log = readStateLog(dir + "/state.txt");
@@ -389,8 +392,8 @@ TEST(DemoCompare, SameStartAsTheSinglePane) {
 
 TEST(DemoDivergence, HugeDtDivergesShowsTheMessageRewindsAndKeepsRunning) {
   const std::string dir = outputDirectory("Divergence");
-  // The test chain with RK4 at dt = 0.5 blows up within a few seconds.
-  const std::string args = std::string(noPanel) + " --scene test-chain --integrator rk4 --dt 0.5 ";
+  // The seed preset's test chain with RK4 at dt = 0.5 blows up within a few seconds.
+  const std::string args = std::string(noPanel) + " --scene test-chain --preset seed --integrator rk4 --dt 0.5 ";
   ASSERT_EQ(runDemo(dir, args + "--frames 300 --screenshot diverged.png --log-state diverged.txt").exitCode, 0);
   const StateLog diverged = readStateLog(dir + "/diverged.txt");
   ASSERT_TRUE(diverged.panes[0].diverged);
@@ -469,12 +472,13 @@ TEST(DemoCompare, PanesCanDifferInDtAndKeepTheSameClock) {
 
 TEST(DemoCompare, MouseDragReachesEveryPane) {
   const std::string dir = outputDirectory("CompareDrag");
-  ASSERT_EQ(runDemo(dir, "--scene test-chain --frames 1 --paused --log-state state.txt").exitCode, 0);
+  // The seed preset's slow chain, whose tip the mouse spring holds against gravity.
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --preset seed --frames 1 --paused --log-state state.txt").exitCode, 0);
   const LoggedPane start = readStateLog(dir + "/state.txt").panes.at(0);
   const Eigen::Vector2d from = start.particles.back().x, to = from + Eigen::Vector2d(-0.2, 0.2);  // within reach
   std::ostringstream drag;
   drag << "2 down world " << from.x() << " " << from.y() << "\n3 move world " << to.x() << " " << to.y() << "\n";
-  ASSERT_EQ(runDemo(dir, "--scene test-chain --compare midpoint,rk4,symplectic-euler --frames 90 --log-state state.txt",
+  ASSERT_EQ(runDemo(dir, "--scene test-chain --preset seed --compare midpoint,rk4,symplectic-euler --frames 90 --log-state state.txt",
                     drag.str()).exitCode, 0);
   const StateLog log = readStateLog(dir + "/state.txt");
   ASSERT_EQ(log.panes.size(), 3u);
@@ -487,7 +491,8 @@ TEST(DemoCompare, MouseDragReachesEveryPane) {
 
 TEST(DemoDivergence, InCompareModeTheDivergedPaneStopsAloneAndRewindKeepsPanesTogether) {
   const std::string dir = outputDirectory("CompareDivergence");
-  const std::string args = std::string(noPanel) + " --scene test-chain --compare rk4:0.5,rk4:0.05 --log-state state.txt ";
+  // The seed preset's test chain: RK4 diverges at dt = 0.5 and holds at 0.05.
+  const std::string args = std::string(noPanel) + " --scene test-chain --preset seed --compare rk4:0.5,rk4:0.05 --log-state state.txt ";
   ASSERT_EQ(runDemo(dir, args + "--frames 300").exitCode, 0);
   const StateLog before = readStateLog(dir + "/state.txt");
   ASSERT_EQ(before.panes.size(), 2u);

@@ -15,12 +15,16 @@ namespace particles {
 // A rejected step restores the saved y and retries with the smaller h: nothing
 // of it is ever applied. step(system, dt) covers dt with as many internal steps
 // as needed (the last one shortened to land on dt without shrinking the
-// remembered h); the internal step persists across calls.
+// remembered h); the internal step persists across calls. A step the
+// controller would cut below IntegratorSettings::minStepFraction·dt, or more
+// than maxStepsPerCall attempts in one call, ends the call early with
+// StepFailure::StepBelowFloor or WorkCapReached (the state is then that of the
+// last accepted internal step).
 class AdaptiveRk4Integrator : public Integrator {
  public:
   const char* name() const override { return "adaptive-rk4"; }
   void configure(const IntegratorSettings& settings) override;
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
   double tolerance() const { return tolerance_; }
   // The step the next attempt starts from (0: start from the first dt).
@@ -33,6 +37,8 @@ class AdaptiveRk4Integrator : public Integrator {
 
  private:
   double tolerance_ = IntegratorSettings{}.tolerance;
+  double minStepFraction_ = IntegratorSettings{}.minStepFraction;
+  long maxStepsPerCall_ = IntegratorSettings{}.maxStepsPerCall;
   double h_ = 0.0;
   long accepted_ = 0, rejected_ = 0;
   std::vector<double> history_;

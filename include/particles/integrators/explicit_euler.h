@@ -9,7 +9,7 @@ namespace particles {
 class ExplicitEulerIntegrator : public Integrator {
  public:
   const char* name() const override { return "euler"; }
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
  private:
   Eigen::VectorXd a_;

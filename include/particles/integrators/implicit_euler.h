@@ -86,12 +86,11 @@ class ImplicitEulerIntegrator : public Integrator {
   ImplicitEulerSettings settings;
 
   const char* name() const override { return "implicit-euler"; }
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
   // Throws std::invalid_argument naming the first force without Jacobians.
   static void requireJacobians(const ParticleSystem& system);
 
-  int lastIterations() const { return iterations_; }  // CG only; 0 for Direct
   int lastPasses() const { return passes_; }           // solves in the last step
   bool lastUsedDirect() const { return usedDirect_; }
   const Eigen::VectorXd& lastImpulses() const { return nuOld_; }  // ν = −h λ per constraint
@@ -142,6 +141,7 @@ class ImplicitEulerIntegrator : public Integrator {
   Eigen::VectorXd solution_, xTrial_, rhsForces_, dvOld_, nuOld_, probe_;
   std::vector<Eigen::Vector2d> probeJ_, probeJdot_;
   int iterations_ = 0, passes_ = 0;
+  double cgResidual_ = 0.0;
   bool usedDirect_ = true;
 };
 

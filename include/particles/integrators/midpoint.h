@@ -9,7 +9,7 @@ namespace particles {
 class MidpointIntegrator : public Integrator {
  public:
   const char* name() const override { return "midpoint"; }
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
  private:
   Eigen::VectorXd a_, xMid_, vMid_;

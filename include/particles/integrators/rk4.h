@@ -9,7 +9,7 @@ namespace particles {
 class Rk4Integrator : public Integrator {
  public:
   const char* name() const override { return "rk4"; }
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
  private:
   Eigen::VectorXd x0_, v0_, xs_, vs_, a_, dx_, dv_;

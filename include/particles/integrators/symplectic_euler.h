@@ -12,7 +12,7 @@ namespace particles {
 class SymplecticEulerIntegrator : public Integrator {
  public:
   const char* name() const override { return "symplectic-euler"; }
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
  private:
   Eigen::VectorXd a_;

@@ -22,7 +22,7 @@ namespace particles {
 class VerletIntegrator : public Integrator {
  public:
   const char* name() const override { return "verlet"; }
-  void step(ParticleSystem& system, double dt) override;
+  StepStats step(ParticleSystem& system, double dt) override;
 
  private:
   Eigen::VectorXd a0_, a1_, vPredicted_;

@@ -1,0 +1,25 @@
+#include "cli/option_checks.h"
+
+#include <charconv>
+
+namespace cli {
+
+CLI::Validator decimalInteger(long long lo, long long hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        const char* first = text.data();
+        const char* last = first + text.size();
+        long long value = 0;
+        const auto result = std::from_chars(first, last, value);  // decimal only, no '+', no prefix
+        const bool digitsOnly = result.ptr == last && result.ec == std::errc() &&
+                                !(text.size() > 1 && text[0] == '0') && text.rfind("-0", 0) != 0;
+        if (result.ec == std::errc::result_out_of_range || (digitsOnly && (value < lo || value > hi)))
+          return "expected a decimal integer in " + range + ", got " + text;
+        if (!digitsOnly) return "expected a decimal integer in " + range + " (no leading zeros or 0x), got " + text;
+        return {};
+      },
+      "INT in " + range);
+}
+
+}  // namespace cli

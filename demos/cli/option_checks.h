@@ -1,0 +1,17 @@
+#pragma once
+// Validators for particle-lab's options, shared by every subcommand.
+//
+// CLI11 reads integers with strtoll(…, 0), so "010" is octal 8, "0x10" is 16
+// and a value beyond the type is clamped; these validators run on the text
+// first and accept only a plain decimal integer inside a range.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace cli {
+
+// "[-]digits" with a value in [lo, hi]; anything else is rejected with a
+// message naming the accepted range.
+CLI::Validator decimalInteger(long long lo, long long hi);
+
+}  // namespace cli

@@ -1,0 +1,112 @@
+#include "scene_file/json_parse.h"
+
+#include <cstring>
+#include <unordered_set>
+#include <vector>
+
+#include "scene_limits.h"
+
+namespace scenes {
+
+namespace {
+
+// Builds the document from nlohmann's SAX events. Each open array or object
+// is a frame; a member is appended at the end of its object's vector after a
+// hash-set lookup of its key, so n keys cost O(n), not O(n²). Pointers to
+// open containers stay valid: only the innermost container grows.
+class DocumentBuilder : public nlohmann::json_sax<Json> {
+ public:
+  explicit DocumentBuilder(Json& root) : root_(root) {}
+
+  bool null() override { return value(nullptr); }
+  bool boolean(bool b) override { return value(b); }
+  bool number_integer(number_integer_t x) override { return value(x); }
+  bool number_unsigned(number_unsigned_t x) override { return value(x); }
+  bool number_float(number_float_t x, const string_t&) override { return value(x); }
+  bool string(string_t& s) override { return value(std::move(s)); }
+  bool binary(binary_t& b) override { return value(Json::binary(std::move(b))); }
+
+  bool start_object(std::size_t) override { return open(Json::object()); }
+  bool key(string_t& k) override {
+    Frame& frame = frames_.back();
+    frame.key = k;
+    if (!frame.keys.insert(k).second)
+      throw SceneFileError(path() + ": duplicate key (each key may appear once in an object)");
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(Json::array()); }
+  bool end_array() override { return close(); }
+
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& e) override {
+    // nlohmann's what() reads "[json.exception.parse_error.101] parse error at ...".
+    const char* detail = std::strstr(e.what(), "] ");
+    throw JsonSyntaxError(detail ? detail + 2 : e.what(), position);
+  }
+
+ private:
+  struct Frame {
+    Json* container;
+    std::unordered_set<std::string> keys;  // objects: the keys so far
+    std::string key;                       // objects: the member being read
+    std::size_t index = 0;                 // arrays: the element being read
+  };
+
+  // Places v where the next value goes and returns it.
+  Json* place(Json&& v) {
+    if (frames_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Frame& frame = frames_.back();
+    if (frame.container->is_array()) {
+      auto& array = *frame.container->get_ptr<Json::array_t*>();
+      array.push_back(std::move(v));
+      frame.index = array.size() - 1;
+      return &array.back();
+    }
+    auto& members = static_cast<Json::object_t::Container&>(*frame.container->get_ptr<Json::object_t*>());
+    members.emplace_back(frame.key, std::move(v));
+    return &members.back().second;
+  }
+  bool value(Json&& v) {
+    place(std::move(v));
+    return true;
+  }
+  bool open(Json&& container) {
+    if (static_cast<int>(frames_.size()) >= SceneLimits::nestingDepth) {
+      // The path of the container being opened, then the limit.
+      place(Json());
+      throw SceneFileError(path() + ": expected at most " + std::to_string(SceneLimits::nestingDepth) +
+                           " levels of nested arrays and objects, got more");
+    }
+    frames_.push_back({place(std::move(container)), {}, {}, 0});
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    return true;
+  }
+
+  // The JSON path of the value being read: "$", then a member or index per open frame.
+  std::string path() const {
+    std::string p = "$";
+    for (const Frame& frame : frames_)
+      p += frame.container->is_array() ? "[" + std::to_string(frame.index) + "]" : memberPath(frame.key);
+    return p;
+  }
+
+  Json& root_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+Json parseJson(const std::string& text) {
+  Json document;
+  DocumentBuilder builder(document);
+  Json::sax_parse(text, &builder);
+  return document;
+}
+
+}  // namespace scenes

@@ -1,0 +1,60 @@
+#pragma once
+// When a simulation counts as diverged: one definition for the runner, the
+// laboratory and the demo, each passing its own thresholds.
+//
+// A state diverges at the first step where, in this order,
+//  - a position, a velocity or the total energy is not finite (NonFinite; also
+//    |q|² or |q̇|² overflowing, which an exploding state reaches many steps
+//    before inf appears in q itself);
+//  - the step failed (StepFailed: a solve gave non-finite multipliers, or an
+//    adaptive scheme hit its step floor or its work cap);
+//  - max |C|/r > maxRelativeConstraintError over the constraints with a length
+//    scale r, or max |C| > maxConstraintError in world units over all of them
+//    (ConstraintViolation);
+//  - E − E₀ > energyRiseFraction · energyScale (EnergyGrowth; off while
+//    energyScale is infinite);
+//  - some coordinate |q_i| > maxCoordinate, world units (OutOfBounds).
+// The thresholds default to the laboratory's except those that need a scale
+// of the scene (energyScale, maxConstraintError, maxCoordinate): the tool
+// supplies them, or leaves the test off.
+#include <limits>
+#include <string>
+
+#include "particles/step_stats.h"
+
+namespace particles {
+
+class ParticleSystem;
+
+enum class DivergenceReason { None, NonFinite, ConstraintViolation, EnergyGrowth, StepFailed, OutOfBounds };
+
+// "none", "non-finite", "constraint", "energy", "step-failed", "out-of-bounds".
+const char* divergenceReasonName(DivergenceReason reason);
+
+struct DivergenceLimits {
+  static constexpr double off = std::numeric_limits<double>::infinity();
+  double maxRelativeConstraintError = 0.1;  // max |C|/r, dimensionless
+  double maxConstraintError = off;          // max |C|, world units
+  double energyScale = off;                 // energy the scene can release, J; tool-supplied
+  double energyRiseFraction = 0.1;          // fail when E − E₀ > fraction · energyScale
+  double maxCoordinate = off;               // |q_i|, world units
+
+  void validate() const;  // throws naming the bad field (each must be > 0; NaN refused)
+};
+
+struct Divergence {
+  DivergenceReason reason = DivergenceReason::None;
+  double value = 0.0, limit = 0.0;  // the measured quantity and the threshold it crossed
+  StepFailure failure = StepFailure::None;  // for StepFailed: which
+
+  explicit operator bool() const { return reason != DivergenceReason::None; }
+  // One line, e.g. "max |C|/r = 0.31 exceeds 0.1" or "the step failed: work-cap".
+  std::string message() const;
+};
+
+// Checks the system after a step. initialEnergy is E₀, the total energy the
+// run started from; lastStep the statistics of the step just taken.
+Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits& limits,
+                           double initialEnergy, const StepStats& lastStep);
+
+}  // namespace particles

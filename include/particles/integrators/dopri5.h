@@ -1,0 +1,58 @@
+#pragma once
+#include <array>
+
+#include <Eigen/Core>
+
+#include "particles/integrator.h"
+
+namespace particles {
+
+// Dormand–Prince 5(4) (Hairer, Nørsett & Wanner, Solving ODEs I, II.4 and II.5):
+// seven stages k₁…k₇ of y = (x, v), y' = (v, a(x, v)); the fifth-order
+// solution y₁ = y₀ + h Σ bᵢ kᵢ is kept and the embedded fourth-order one gives
+// the error estimate  e = h Σ eᵢ kᵢ  (eᵢ = bᵢ − b̂ᵢ). k₇ = f(y₁) is the next
+// step's k₁ (FSAL): six evaluations per accepted step.
+//
+// Error norm (HNW II.4, eq. 4.11), mixed absolute and relative with one
+// tolerance: err = sqrt( (1/N) Σ_i (e_i / sc_i)² ),  sc_i = tol·(1 + max(|y₀_i|, |y₁_i|)).
+// A step is accepted when err ≤ 1. PI controller (HNW II.4, "Automatic step
+// size control", the stabilised controller of DOPRI5 with β = 0.04):
+//   h_new = h · clamp(0.9 · err^(−α) · err_prev^β, 0.2, 10),  α = 1/5 − 0.75 β,
+// with err_prev the error of the last accepted step; after a rejection the
+// step does not grow.
+//
+// step(system, dt) covers the output interval dt with as many internal steps
+// as the tolerance needs; the internal step is carried from call to call (the
+// last step of a call is shortened to land on dt without changing it). The
+// first call picks its step with HNW's starting-step estimate (II.4). A step
+// the controller would cut below settings.minStepFraction·dt, or more than
+// settings.maxStepsPerCall attempts in one call, ends the call early with
+// StepFailure::StepBelowFloor or WorkCapReached; the state is then that of
+// the last accepted internal step.
+//
+// With adaptive = false every call is one step of dt (for order tests).
+class Dopri5Integrator : public Integrator {
+ public:
+  const char* name() const override { return "dopri5"; }
+  void configure(const IntegratorSettings& settings) override;
+  StepStats step(ParticleSystem& system, double dt) override;
+
+  bool adaptive = true;
+  double internalStep() const { return h_; }  // the step the next attempt starts from (0: not chosen yet)
+
+ private:
+  // One trial step of h from (x0_, v0_) with k₁ in kx_[0], kv_[0]; leaves y₁ in
+  // (x1_, v1_) and k₇ in kx_[6], kv_[6], and returns err (the norm above).
+  double trial(ParticleSystem& system, double h);
+  double initialStep(ParticleSystem& system, double dt);
+
+  IntegratorSettings settings_;
+  double h_ = 0.0, errPrevious_ = 1e-4;
+  std::array<Eigen::VectorXd, 7> kx_, kv_;  // stage derivatives of x and v
+  Eigen::VectorXd x0_, v0_, x1_, v1_, xs_, vs_, a_;
+  // The state k₁ belongs to: reused (FSAL) only while the state is untouched.
+  Eigen::VectorXd xCached_, vCached_;
+  bool cached_ = false;
+};
+
+}  // namespace particles

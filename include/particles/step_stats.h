@@ -1,0 +1,35 @@
+#pragma once
+// What one step did, with one meaning for every integrator and every tool:
+// returned by Integrator::step and ParticleSystem::step, read by the runner's
+// CSV, the laboratory and the demo's HUD.
+namespace particles {
+
+// Why a step could not be completed as asked. The state after a failed step
+// is finite but not the one the step was meant to reach; the tools treat a
+// failure as a divergence (DivergenceReason::StepFailed).
+enum class StepFailure {
+  None,
+  StepBelowFloor,  // an adaptive scheme needed an internal step below its floor
+  WorkCapReached,  // an adaptive scheme ran out of its work budget for one call
+  SolveFailed,     // a linear solve gave non-finite multipliers or residual
+};
+
+// One-word name of a failure ("none", "step-below-floor", "work-cap", "solve-failed").
+const char* stepFailureName(StepFailure failure);
+
+struct StepStats {
+  int solves = 0;            // linear solves (constraint solves, implicit Newton passes)
+  int cgIterations = 0;      // CG iterations summed over every solve of the step
+  double maxResidual = 0.0;  // largest relative residual |r|/|b| of any solve in the step
+  int factorizations = 0;    // numeric factorisations (LDLᵀ, incomplete Cholesky)
+  int forceEvaluations = 0;  // evaluations of the force accumulator Q (every force applied once)
+  int internalSteps = 1;     // accepted internal steps (1 for fixed-step schemes)
+  int rejectedSteps = 0;     // internal steps rejected by an error controller
+  StepFailure failure = StepFailure::None;  // the first failure, if any
+
+  // Sums the counts, keeps the largest residual and the first failure: the
+  // statistics of two steps (or two parts of one) taken one after the other.
+  StepStats& operator+=(const StepStats& other);
+};
+
+}  // namespace particles

@@ -1,0 +1,158 @@
+// dopri5 (Dormand–Prince 5(4)): fifth order on fixed steps, a global error
+// that follows its tolerance, FSAL (six evaluations per accepted step), the
+// internal step carried between calls, and the floor, work cap and tolerance
+// limits every adaptive scheme shares.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "particles/constraints/circular_wire.h"
+#include "particles/forces/gravity.h"
+#include "particles/forces/mouse_spring.h"
+#include "particles/integrators/dopri5.h"
+#include "particles/particle_system.h"
+#include "test_support.h"
+
+using namespace particles;
+using Eigen::Vector2d;
+
+namespace {
+
+// Unit mass on a zero-length spring of stiffness ω² to the origin, from
+// x₀ = (1, 0), v₀ = (0, 0.5): x(t) = (cos ωt, (0.5/ω) sin ωt).
+ParticleSystem oscillator(double omega) {
+  ParticleSystem system;
+  system.addParticle(Vector2d(1.0, 0.0), 1.0, Vector2d(0.0, 0.5));
+  system.addForce(std::make_unique<MouseSpringForce>(0, Vector2d::Zero(), omega * omega, 0.0));
+  return system;
+}
+
+double oscillatorError(const ParticleSystem& system, double omega) {
+  const double t = system.time();
+  return (system.position(0) - Vector2d(std::cos(omega * t), 0.5 / omega * std::sin(omega * t))).norm();
+}
+
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double lx = std::log(x[k]), ly = std::log(y[k]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace
+
+TEST(Dopri5, GlobalErrorIsFifthOrderOnFixedSteps) {
+  const double T = 1.3, omega = 2.0;
+  std::vector<double> dts, errors;
+  for (int steps : {10, 20, 40, 80}) {
+    ParticleSystem system = oscillator(omega);
+    Dopri5Integrator dopri5;
+    dopri5.adaptive = false;
+    for (int k = 0; k < steps; ++k) system.step(dopri5, T / steps);
+    dts.push_back(T / steps);
+    errors.push_back(oscillatorError(system, omega));
+  }
+  EXPECT_NEAR(slope(dts, errors), 5.0, 0.3) << "errors from " << errors.front() << " to " << errors.back();
+}
+
+TEST(Dopri5, GlobalErrorFallsSteadilyWithTheTolerance) {
+  const double omega = 2.0;
+  std::vector<double> tolerances, errors;
+  for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
+    IntegratorSettings settings;
+    settings.tolerance = tol;
+    ParticleSystem system = oscillator(omega);
+    auto dopri5 = makeIntegrator("dopri5", settings);
+    double worst = 0.0;
+    // 10 s (~3 periods) in output intervals of 1 s, longer than the loosest
+    // tolerance's steps: the tolerance alone sets the internal step.
+    for (int k = 0; k < 10; ++k) {
+      const StepStats stats = system.step(*dopri5, 1.0);
+      ASSERT_EQ(stats.failure, StepFailure::None);
+      worst = std::max(worst, oscillatorError(system, omega));
+    }
+    tolerances.push_back(tol);
+    errors.push_back(worst);
+    RecordProperty("error_at_tolerance_" + std::to_string(tol), std::to_string(worst));
+  }
+  for (std::size_t k = 1; k < errors.size(); ++k)
+    EXPECT_LT(errors[k], errors[k - 1]) << "tolerance " << tolerances[k];
+  EXPECT_LT(errors.back(), 1e-3 * errors.front());  // six decades of tolerance, well over one of error
+  EXPECT_GT(slope(tolerances, errors), 0.6);  // error ∝ tol^(5/6) for a fifth-order pair in theory
+}
+
+TEST(Dopri5, SixEvaluationsPerStepAndTheInternalStepCarriesOverCalls) {
+  IntegratorSettings settings;
+  settings.tolerance = 1e-8;
+  ParticleSystem system = oscillator(2.0);
+  Dopri5Integrator dopri5;
+  dopri5.configure(settings);
+  system.step(dopri5, 1.0);  // the first call also evaluates k₁ and the starting-step probe
+  for (int k = 0; k < 5; ++k) {
+    const StepStats stats = system.step(dopri5, 1.0);
+    EXPECT_GT(stats.internalSteps, 5);  // dt is the output interval, not the step
+    EXPECT_EQ(stats.forceEvaluations, 6 * (stats.internalSteps + stats.rejectedSteps));  // FSAL
+  }
+  // A short output interval: one shortened step per call, the internal step kept.
+  const double h = dopri5.internalStep();
+  ASSERT_GT(h, 0.01);
+  for (int k = 0; k < 5; ++k) {
+    const StepStats stats = system.step(dopri5, 0.001);
+    EXPECT_EQ(stats.internalSteps, 1);
+    EXPECT_EQ(stats.forceEvaluations, 6);
+  }
+  EXPECT_EQ(dopri5.internalStep(), h);
+}
+
+TEST(AdaptiveSchemes, RefuseTolerancesDoublePrecisionCannotMeet) {
+  for (const IntegratorInfo& info : integratorTable()) {
+    if (!info.usesTolerance) continue;
+    IntegratorSettings settings;
+    settings.tolerance = 1e-25;
+    test_support::expectRejected([&] { makeIntegrator(info.name, settings); }, "integrator tolerance must be >=");
+  }
+}
+
+// A bead held on two circular wires that do not meet: no state satisfies both,
+// and the constraint forces fight at every step. An adaptive scheme must give
+// up within its floor and work cap and say so, not take forever.
+TEST(AdaptiveSchemes, ConflictingWiresEndACallWithAReportedFailure) {
+  for (const IntegratorInfo& info : integratorTable()) {
+    if (!info.usesTolerance) continue;
+    ParticleSystem system;
+    system.addParticle(Vector2d(0.5, 0.0), 1.0, Vector2d(0.0, 0.3));
+    system.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d(0.0, 0.0), 0.5));
+    system.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d(1.2, 0.0), 0.5));
+    system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
+    IntegratorSettings settings;
+    settings.tolerance = 1e-10;
+    settings.maxStepsPerCall = 2000;
+    auto integrator = makeIntegrator(info.name, settings);
+    StepFailure failure = StepFailure::None;
+    for (int k = 0; k < 200 && failure == StepFailure::None; ++k) {
+      const StepStats stats = system.step(*integrator, 0.01);
+      failure = stats.failure;
+      EXPECT_LE(stats.internalSteps + stats.rejectedSteps, settings.maxStepsPerCall) << info.name;
+    }
+    EXPECT_NE(failure, StepFailure::None) << info.name;
+    EXPECT_TRUE(system.finite()) << info.name;
+  }
+}
+
+TEST(AdaptiveSchemes, TheWorkCapEndsACallThatNeedsMoreSteps) {
+  for (const IntegratorInfo& info : integratorTable()) {
+    if (!info.usesTolerance) continue;
+    IntegratorSettings settings;
+    settings.tolerance = 1e-10;
+    settings.maxStepsPerCall = 10;
+    ParticleSystem system = oscillator(2.0);
+    auto integrator = makeIntegrator(info.name, settings);
+    const StepStats stats = system.step(*integrator, 100.0);  // ~30 periods in one call
+    EXPECT_EQ(stats.failure, StepFailure::WorkCapReached) << info.name;
+    EXPECT_LE(stats.internalSteps + stats.rejectedSteps, 10) << info.name;
+  }
+}
