@@ -127,7 +127,7 @@ void Collider::validate() const {
           throw std::invalid_argument("polygon vertex " + std::to_string((k + 1) % n) + " repeats vertex " +
                                       std::to_string(k));
         if (!(cross(e1, e2) > 0.0))
-          throw std::invalid_argument("polygon must be convex with vertices counter-clockwise; it turns right "
+          throw std::invalid_argument("polygon must be convex with vertices counter-clockwise, but it turns right "
                                       "or goes straight at vertex " + std::to_string((k + 1) % n));
         winding += std::atan2(cross(e1, e2), e1.dot(e2));
       }
