@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "contact_path.h"
 #include "particles/check.h"
@@ -25,13 +26,29 @@ struct Hit {
   double s = std::numeric_limits<double>::infinity();  // fraction of the swept segment
 };
 
+// Each collider's bounding box (a half-plane's is everything), for a cheap
+// rejection of paths that pass nowhere near it.
+struct Boxes {
+  std::vector<Eigen::Vector2d> lo, hi;
+  explicit Boxes(const std::vector<Collider>& colliders) : lo(colliders.size()), hi(colliders.size()) {
+    for (std::size_t k = 0; k < colliders.size(); ++k)
+      if (!colliders[k].bounds(lo[k], hi[k])) {
+        lo[k].setConstant(-std::numeric_limits<double>::infinity());
+        hi[k].setConstant(std::numeric_limits<double>::infinity());
+      }
+  }
+};
+
 // The first collider the straight path a → b enters (grown by the particle's radius r).
-Hit firstHit(const std::vector<Collider>& colliders, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double r,
-             double slop) {
+Hit firstHit(const std::vector<Collider>& colliders, const Boxes& boxes, const Eigen::Vector2d& a,
+             const Eigen::Vector2d& b, double r, double slop) {
+  const Eigen::Vector2d pathLo = a.cwiseMin(b).array() - (r + slop), pathHi = a.cwiseMax(b).array() + (r + slop);
   Hit hit;
-  for (int k = 0; k < static_cast<int>(colliders.size()); ++k)
+  for (int k = 0; k < static_cast<int>(colliders.size()); ++k) {
+    if ((pathLo.array() > boxes.hi[k].array()).any() || (pathHi.array() < boxes.lo[k].array()).any()) continue;
     if (const std::optional<double> s = colliders[k].sweep(a, b, r, slop))
       if (*s < hit.s) hit = {k, *s};
+  }
   return hit;
 }
 
@@ -66,6 +83,7 @@ int resolveColliderContacts(const std::vector<Collider>& colliders, const StepSt
                             ContactEvents& events, Eigen::VectorXd& lastFree) {
   const double dt = start.dt;
   const int n = static_cast<int>(inverseMass.size());
+  const Boxes boxes(colliders);
   lastFree = x;
   int contacts = 0;
   for (int i = 0; i < n; ++i) {
@@ -77,7 +95,7 @@ int resolveColliderContacts(const std::vector<Collider>& colliders, const StepSt
     double t = events.t[i];  // the time at `from`
     int impacts = 0;
     for (; impacts < settings.maxImpacts; ++impacts) {
-      const Hit hit = firstHit(colliders, from, x1, r, settings.slop);
+      const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
       if (hit.collider < 0) break;
       const Collider& c = colliders[hit.collider];
       const double chordTime = t + hit.s * (dt - t);
@@ -117,7 +135,7 @@ int resolveColliderContacts(const std::vector<Collider>& colliders, const StepSt
     }
     // Out of impacts (a particle wedged in a narrow corner): stop at the last
     // contact point, which is outside every collider.
-    if (impacts == settings.maxImpacts && firstHit(colliders, from, x1, r, settings.slop).collider >= 0) x1 = from;
+    if (impacts == settings.maxImpacts && firstHit(colliders, boxes, from, x1, r, settings.slop).collider >= 0) x1 = from;
     x.segment<2>(2 * i) = x1;
     v.segment<2>(2 * i) = v1;
     lastFree.segment<2>(2 * i) = x1;
@@ -129,6 +147,7 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::Vect
                        const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
                        Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
   const int n = static_cast<int>(inverseMass.size());
+  const Boxes boxes(colliders);
   int contacts = 0;
   for (int i = 0; i < n; ++i) {
     if (inverseMass[i] == 0.0) continue;
@@ -136,7 +155,7 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::Vect
     Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
     Eigen::Vector2d from = lastFree.segment<2>(2 * i);
     for (int pass = 0; pass < settings.maxImpacts; ++pass) {
-      const Hit hit = firstHit(colliders, from, x1, r, settings.slop);
+      const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
       if (hit.collider < 0) break;
       const Collider& c = colliders[hit.collider];
       // The face entered on the way from the last free position: back onto

@@ -1,6 +1,7 @@
 // Collision edges (segments between two particles) against collider corners.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "contact_path.h"
 #include "particles/collision.h"
@@ -17,13 +18,25 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
                         const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
                         Eigen::VectorXd& v) {
   int contacts = 0;
-  for (const Collider& c : colliders) {
-    if (c.shape == ColliderShape::HalfPlane) continue;  // no corner: its particles keep edges out
-    for (const Eigen::Vector2d& corner : c.points)
-      for (const CollisionEdge& edge : edges) {
-        const int i = edge.a, j = edge.b;
-        const double wi = inverseMass[i], wj = inverseMass[j];
-        if (wi + wj == 0.0) continue;
+  // Broad phase: a collider is tested against an edge only when their boxes
+  // overlap (the edge's box spans its start and end, the collider's its corners).
+  std::vector<Eigen::Vector2d> lo(colliders.size()), hi(colliders.size());
+  std::vector<bool> cornered(colliders.size());
+  for (std::size_t k = 0; k < colliders.size(); ++k)
+    cornered[k] = colliders[k].shape != ColliderShape::HalfPlane && colliders[k].bounds(lo[k], hi[k]);
+  for (const CollisionEdge& edge : edges) {
+    const int i = edge.a, j = edge.b;
+    const double wi = inverseMass[i], wj = inverseMass[j];
+    if (wi + wj == 0.0) continue;
+    const Eigen::Vector2d edgeLo = x.segment<2>(2 * i).cwiseMin(x.segment<2>(2 * j))
+                                       .cwiseMin(start.x.segment<2>(2 * i)).cwiseMin(start.x.segment<2>(2 * j));
+    const Eigen::Vector2d edgeHi = x.segment<2>(2 * i).cwiseMax(x.segment<2>(2 * j))
+                                       .cwiseMax(start.x.segment<2>(2 * i)).cwiseMax(start.x.segment<2>(2 * j));
+    for (std::size_t m = 0; m < colliders.size(); ++m) {
+      // A half-plane has no corner: its particles keep edges out.
+      if (!cornered[m] || (edgeLo.array() > hi[m].array()).any() || (edgeHi.array() < lo[m].array()).any()) continue;
+      const Collider& c = colliders[m];
+      for (const Eigen::Vector2d& corner : c.points) {
         const Eigen::Vector2d xi = x.segment<2>(2 * i), xj = x.segment<2>(2 * j), e = xj - xi;
         const double length2 = e.squaredNorm();
         if (length2 == 0.0) continue;
@@ -57,6 +70,7 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
         }
         ++contacts;
       }
+    }
   }
   return contacts;
 }
