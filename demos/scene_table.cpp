@@ -33,10 +33,10 @@ SceneInfo entry(const char* name, const char* summary, const char* hint) {
 const std::vector<SceneInfo>& sceneTable() {
   static const std::vector<SceneInfo> table = {
       entry<ClothParams, buildCloth>(
-          "cloth", "spring cloth on a curtain rail, a big wall left and a nail right",
+          "cloth", "spring cloth on a curtain rail, released swung aside; a big wall left and a nail right",
           "try this: drag the cloth's hem onto the nail, or slide the whole curtain along its rail"),
       entry<HairParams, buildHair>(
-          "hair", "curls of springs and angular springs, roots on a rail, colliding",
+          "hair", "ringlets: strands of springs and one-signed angular springs, hanging and colliding",
           "try this: pull a curl's tip down and let go: it springs back into its ringlet"),
       entry<WireParams, buildWire>(
           "wire", "beads on circular wires, coupled by soft springs",

@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
+  libeigen3-dev libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libboost-dev
   freeglut3-dev libglu1-mesa-dev libgl1-mesa-dev libimgui-dev libpng-dev
   xvfb xauth gnuplot-nox
 )

@@ -13,7 +13,7 @@ run() {  # runs the demo under Xvfb unless a display is available
 script=$(mktemp)
 trap 'rm -f "$script"' EXIT
 
-# Cloth, 8-way: let it fall past the wall for 4 s, then pull its lower right
+# Cloth, 8-way: let its swing settle for 4 s, then pull its lower right
 # corner (found in the state log at that frame) down and to the right.
 cloth=(--scene cloth --param links=8 --param width=16 --param height=14)
 log=$(mktemp)
@@ -27,18 +27,20 @@ awk -v x="$cx" -v y="$cy" 'BEGIN {
 }' > "$script"
 run "${cloth[@]}" --frames 400 --script "$script" --screenshot "$out/demo-cloth.png"
 
-# Hair: after the curls settle, the mouse pulls the tip of the third curl to
-# the right, against its neighbour (disc contacts between curls).
+# Hair: after the ringlets settle, the mouse pulls the tip of the third strand
+# (particle 2 * 30 + 29 at the default 30 particles a strand) 5 cm down and to
+# the right, into its neighbour (disc contacts between strands).
 log=$(mktemp)
 run --scene hair --frames 120 --log-state "$log"
-read -r tx ty < <(awk -F, '$1 == "particle" && $3 == 74 {print $4, $5}' "$log")
+read -r tx ty < <(awk -F, '$1 == "particle" && $3 == 89 {print $4, $5}' "$log")
 rm -f "$log"
 awk -v x="$tx" -v y="$ty" 'BEGIN {
   print 120, "down world", x, y
-  for (k = 1; k <= 90; ++k) print 120 + k, "move world", x + 0.3 * k / 90, y + 0.1 * k / 90
+  for (k = 1; k <= 90; ++k) print 120 + k, "move world", x + 0.04 * k / 90, y - 0.03 * k / 90
 }' > "$script"
 run --scene hair --frames 300 --script "$script" --screenshot "$out/demo-hair.png"
-# Compare mode: the test chain at dt = 0.1 under the four integrators, 7 s in.
-run --scene test-chain --compare euler,symplectic-euler,midpoint,rk4 --dt 0.1 --frames 420 \
+# Compare mode: the test chain at dt = 0.005 (2.5 times its default) under the
+# four integrators, 3 s in.
+run --scene test-chain --compare euler,symplectic-euler,midpoint,rk4 --dt 0.005 --frames 180 \
     --no-panel --window 1000x700 --screenshot "$out/demo-compare.png"
 echo "wrote $out/demo-cloth.png $out/demo-hair.png $out/demo-compare.png"

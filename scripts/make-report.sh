@@ -17,15 +17,18 @@ rm -f "$data"/*.csv "$data"/*.md
 value() { printf '%s,%s\n' "$1" "$2" >> "$data/values.csv"; }
 printf 'key,value\n' > "$data/values.csv"
 value machine.cpu "$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
-value machine.cores "$(nproc)"
+value machine.cores "$(lscpu | sed -n 's/^CPU(s): *//p' | head -n 1) ($(nproc) usable)"
+value machine.load "$(cut -d' ' -f1-3 /proc/loadavg)"
 value machine.compiler "$(c++ --version | head -n 1)"
 value machine.date "$(date -u +%Y-%m-%d)"
 
-for experiment in stability timing accuracy extremes claims; do
+for experiment in stability timing accuracy cost longtime extremes claims; do
   echo "== particle-lab $experiment ${mode[*]}" >&2
-  "$lab" "$experiment" "${mode[@]}" --out "$data" > "$data/$experiment.log"
+  "$lab" "$experiment" "${mode[@]}" --jobs "$(nproc)" --out "$data" > "$data/$experiment.log"
 done
 
+# Every figure plots.gp draws is redrawn from this run's data; none is left stale.
+find report/figures -name '*.png' ! -name 'demo-*' -delete
 gnuplot -e "data='$data'; fig='report/figures'" report/plots.gp
 "$lab" render-report --template report/template.md --data "$data" --out report/README.md
 echo "report/README.md regenerated" >&2

@@ -279,11 +279,20 @@ void ConstraintSolver::assemble(double dead) {
   for (int k = 0; k < m; ++k) value[diagonalSlot_[k]] = diagonal_[k] <= dead ? 1.0 : diagonal_[k];
 }
 
-// LDLᵀ of the assembled matrix. A pivot that is tiny next to the diagonal it
-// came from means J W Jᵀ has lost rank (a taut chain between two wires): the
-// factorisation would hand back an enormous λ, so the solve falls back to CG,
-// which stops with a finite one.
+// LDLᵀ of the assembled matrix. A pivot that is tiny next to the largest
+// diagonal (≤ kRankLossPivot·max diag) means J W Jᵀ has lost rank: a taut
+// chain between two wires, or a bead on a wire and its tangent line, where b
+// also has a part outside the range of J W Jᵀ (the constraints are
+// inconsistent at the velocity level, e.g. by |v|²/r). The exact solve would
+// hand back λ ~ b/pivot, unbounded as the pivot goes to zero. The matrix is
+// then refactorised with a shift, (J W Jᵀ + μ I) λ = b with
+// μ = kRankLossShift·max diag: damped least squares (Levenberg–Marquardt),
+// whose λ stays within |b|/μ and tends to the least-squares solution as μ → 0.
+// Its effect on accuracy: directions of J W Jᵀ with eigenvalue σ are solved
+// with relative error μ/(σ + μ), so only the (nearly) dependent directions
+// are changed noticeably; a well-posed system never takes this branch.
 bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
+  constexpr double kRankLossPivot = 1e-10, kRankLossShift = 1e-6;
   const int m = static_cast<int>(b_.size());
   for (int k = 0; k < m; ++k)
     if (diagonal_[k] <= dead) b_[k] = 0.0;
@@ -293,10 +302,17 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
     ldlt_->analyzePattern(assembled_);
     ldltAnalysed_ = true;
   }
+  const double diagMax = diagonal_.maxCoeff();
+  ldlt_->setShift(0.0);
   ldlt_->factorizeInPlace(assembled_);
   ++stats_.factorizations;
-  if (ldlt_->info() != Eigen::Success) return false;
-  if (!(ldlt_->pivots().minCoeff() > 1e-10 * diagonal_.maxCoeff())) return false;
+  if (ldlt_->info() != Eigen::Success || !(ldlt_->pivots().minCoeff() > kRankLossPivot * diagMax)) {
+    ldlt_->setShift(kRankLossShift * diagMax);
+    ldlt_->factorizeInPlace(assembled_);
+    ++stats_.factorizations;
+    stats_.regularized = true;
+    if (ldlt_->info() != Eigen::Success) return false;
+  }
   permuted_.resize(m);
   for (int k = 0; k < m; ++k) permuted_[order_[k]] = b_[k];
   permutedSolution_ = ldlt_->solve(permuted_);

@@ -286,6 +286,28 @@ TEST(MouseSpringForce, JacobiansMatchFiniteDifference) {
   expectJacobiansMatchFiniteDifference(system, mouse, rng);
 }
 
+TEST(MouseSpringGains, FrequencyAndDampingRatioScaleWithTheMass) {
+  // k = m (2 pi f)^2 and c = 2 m zeta (2 pi f): the grabbed particle is a
+  // damped oscillator of frequency f and ratio zeta whatever its mass.
+  MouseJointSettings joint;
+  joint.frequency = 5.0;
+  joint.dampingRatio = 0.7;
+  for (double mass : {1e-3, 0.2, 10.0}) {
+    const MouseSpringGains g = mouseSpringGains(mass, joint);
+    const double omega = std::sqrt(g.stiffness / mass);
+    EXPECT_NEAR(omega / (2.0 * M_PI), 5.0, 1e-12);
+    EXPECT_NEAR(g.damping / (2.0 * std::sqrt(g.stiffness * mass)), 0.7, 1e-12);
+  }
+}
+
+TEST(MouseSpringGains, OverflowingStiffnessIsRejectedWithTheMass) {
+  expectRejected([] { mouseSpringGains(7e306, MouseJointSettings{}); }, "overflows for mass 7e+306");
+  expectRejected([] { mouseSpringGains(0.0, MouseJointSettings{}); }, "grabbed mass");
+  MouseJointSettings bad;
+  bad.frequency = std::nan("");
+  expectRejected([&] { mouseSpringGains(1.0, bad); }, "mouse joint frequency");
+}
+
 TEST(DragForce, ZeroAtRestAndOpposesVelocityOfMovableParticles) {
   std::mt19937 rng(50);
   ParticleSystem system = makeSystem(2, rng);

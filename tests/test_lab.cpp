@@ -1,6 +1,8 @@
 // The laboratory: the explosion detector, the report renderer, and each
 // experiment's --quick mode producing CSVs with the expected columns and
 // sane values.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -10,6 +12,10 @@
 
 #include "lab/chain.h"
 #include "lab/experiments.h"
+#include "lab/lab_scene.h"
+#include "lab/parallel.h"
+#include "lab/scan.h"
+#include "particles/constraints/circular_wire.h"
 #include "lab/render.h"
 
 using namespace lab;
@@ -50,42 +56,180 @@ LabOptions quickOptions(const std::string& name) {
 
 }  // namespace
 
-TEST(Explosion, FlagsADivergingRunAndPassesAStableOne) {
+TEST(Failure, FlagsADivergingRunAndPassesAStableOne) {
   scenes::Scene unstable = buildChain({12});
   auto euler = particles::makeIntegrator("euler");
   const RunResult bad = simulate(unstable, *euler, 0.2, 20.0);
-  EXPECT_TRUE(bad.exploded);
+  EXPECT_TRUE(bad.failed);
   EXPECT_FALSE(bad.reason.empty());
   EXPECT_LT(bad.time, 20.0);
 
   scenes::Scene stable = buildChain({12});
   auto rk4 = particles::makeIntegrator("rk4");
   const RunResult good = simulate(stable, *rk4, 0.01, 2.0);
-  EXPECT_FALSE(good.exploded) << good.reason;
+  EXPECT_FALSE(good.failed) << good.reason;
   EXPECT_EQ(good.steps, 200);
   EXPECT_LT(good.maxRelativeStretch, 0.01);
 }
 
-TEST(Explosion, EachCriterionTriggersOnItsOwn) {
+TEST(Failure, EachCriterionTriggersOnItsOwn) {
   scenes::Scene chain = buildChain({6});
   chain.system->velocities()[chain.system->velocities().size() - 1] = std::nan("");
   auto rk4 = particles::makeIntegrator("rk4");
-  EXPECT_EQ(simulate(chain, *rk4, 0.01, 0.1).reason, "non-finite");
+  const RunResult nonFinite = simulate(chain, *rk4, 0.01, 0.1);
+  EXPECT_EQ(nonFinite.failure, Failure::NonFinite);
+  EXPECT_TRUE(nonFinite.blewUp());
 
   scenes::Scene stretched = buildChain({6});
   stretched.system->positions()[stretched.system->positions().size() - 2] += 1.0;  // pull the tip off
-  Explosion strict;
-  EXPECT_EQ(simulate(stretched, *rk4, 0.01, 0.1, strict).reason, "constraint");
+  const RunResult constraint = simulate(stretched, *rk4, 0.01, 0.1);
+  EXPECT_EQ(constraint.reason, "constraint");
+  EXPECT_FALSE(constraint.blewUp());  // a violated rod is reported apart from a blow-up
 
   // Explicit Euler pumps energy into an undamped oscillator: (1 + ω²h²) per step.
   scenes::Scene oscillator = scenes::buildScene("oscillator", {{"damping", "0"}});
-  Explosion energyOnly;
-  energyOnly.energyGain = 0.01;
+  FailureCriterion energyOnly;
+  energyOnly.energyRiseFraction = 0.01;
   auto euler = particles::makeIntegrator("euler");
-  EXPECT_EQ(simulate(oscillator, *euler, 0.05, 100.0, energyOnly).reason, "energy");
+  const RunResult energy = simulate(oscillator, *euler, 0.05, 100.0, energyOnly);
+  EXPECT_EQ(energy.failure, Failure::EnergyGrowth);
+  EXPECT_GT(energy.maxEnergyRise, 0.01);
   scenes::Scene calm = scenes::buildScene("oscillator", {{"damping", "0"}});
   auto rk4Again = particles::makeIntegrator("rk4");
-  EXPECT_FALSE(simulate(calm, *rk4Again, 0.01, 10.0, energyOnly).exploded);
+  EXPECT_FALSE(simulate(calm, *rk4Again, 0.01, 10.0, energyOnly).failed);
+}
+
+// E_s of the test chain is its potential drop from horizontal to hanging
+// straight: Σ_{i=1}^{cl−1} m g (i L) = g m L cl(cl−1)/2.
+TEST(Failure, ReleasableEnergyOfTheTestChainIsItsDropToHangingStraight) {
+  for (int cl : {2, 6, 24}) {
+    scenes::Scene chain = buildChain({cl});
+    const auto& s = *chain.system;
+    const double m = s.masses()[1], g = gravityMagnitude(s), L = chainRodLength(chain);
+    EXPECT_NEAR(releasableEnergy(s), g * m * L * cl * (cl - 1) / 2.0, 1e-12) << "cl " << cl;
+  }
+  // A bead on a circular wire can fall to the wire's lowest point: m g L (1 − cos θ₀).
+  for (const char* preset : {scenes::kSeedPreset, "default"}) {
+    scenes::Scene pendulum = scenes::buildScene("pendulum", {{"angle", "60"}}, preset);
+    const auto& p = *pendulum.system;
+    const auto* wire = dynamic_cast<const particles::CircularWireConstraint*>(p.constraints().at(0).get());
+    ASSERT_NE(wire, nullptr);
+    EXPECT_NEAR(releasableEnergy(p), p.masses()[0] * gravityMagnitude(p) * wire->radius() * (1 - std::cos(M_PI / 3)),
+                1e-9 * releasableEnergy(p))
+        << preset;
+  }
+}
+
+// A survival function of dt that is not monotone: it survives below 0.071,
+// fails in [0.072, 0.086), survives again in [0.087, 0.11] and fails above —
+// the RK4 24-chain of the review. Bisection between 0.001 and 0.5 lands in
+// the island; the scan finds the true safe boundary.
+TEST(Scan, FindsTheSafeBoundaryOfANonMonotoneSurvivalWhereBisectionDoesNot) {
+  auto survives = [](double dt) { return dt < 0.0715 || (dt >= 0.087 && dt <= 0.11); };
+  const std::vector<double> grid = stepGrid(0.001, 0.5);
+  ASSERT_GT(grid.size(), 100u);
+  for (std::size_t k = 1; k < grid.size(); ++k) EXPECT_LE(grid[k] / grid[k - 1], 1.05);
+  EXPECT_NE(std::find(grid.begin(), grid.end(), 0.05), grid.end());
+  EXPECT_NE(std::find(grid.begin(), grid.end(), 0.1), grid.end());
+  EXPECT_NE(std::find(grid.begin(), grid.end(), 0.2), grid.end());
+
+  // Log bisection as the lab used to do it: survives(mid) moves lo up.
+  double lo = 0.001, hi = 0.5;
+  for (int k = 0; k < 12; ++k) {
+    const double mid = std::sqrt(lo * hi);
+    (survives(mid) ? lo : hi) = mid;
+  }
+  EXPECT_GT(lo, 0.085) << "the synthetic case must defeat bisection";
+
+  ScanSettings settings;
+  settings.grid = grid;
+  settings.members = 3;
+  settings.durations = {60.0};
+  int calls = 0;
+  const auto runs = scanSteps(
+      [&](double dt, int member, double duration) -> std::optional<Probe> {
+        ++calls;
+        Probe p;
+        // Member 2 alone fails at one dt, well below the boundary.
+        const bool ok = survives(dt) && !(member == 2 && std::abs(dt - grid[60]) < 1e-15);
+        p.failed = !ok;
+        p.failure = ok ? Failure::None : Failure::EnergyGrowth;
+        p.time = ok ? duration : 0.5 * duration;
+        return p;
+      },
+      settings);
+  ASSERT_TRUE(runs);
+  const Boundary b = boundaryOf(survivalAt(*runs, 60.0, 3));
+  // grid[60] (≈ 0.017) fails on one member only, so the safe dt is the grid point below it.
+  EXPECT_EQ(b.safeDt, grid[59]);
+  EXPECT_EQ(b.firstFailureDt, grid[60]);
+
+  // Without the member failure: the largest grid dt below 0.0715, and the island seen above it.
+  const auto clean = scanSteps(
+      [&](double dt, int, double duration) -> std::optional<Probe> {
+        Probe p;
+        p.failed = !survives(dt);
+        p.time = p.failed ? 1.0 : duration;
+        return p;
+      },
+      settings);
+  ASSERT_TRUE(clean);
+  const Boundary c = boundaryOf(survivalAt(*clean, 60.0, 3));
+  double expected = 0.0;
+  for (double dt : grid)
+    if (dt < 0.0715) expected = dt;
+  EXPECT_EQ(c.safeDt, expected);
+  EXPECT_GE(c.firstFailureDt, 0.0715);
+  EXPECT_LT(c.firstFailureDt, 0.0715 * 1.05);
+  ASSERT_FALSE(c.survivalAbove.empty());
+  EXPECT_GE(c.survivalAbove.front(), 0.087);
+  EXPECT_LE(c.survivalAbove.back(), 0.11);
+  EXPECT_LT(c.safeDt, lo);
+  EXPECT_FALSE(survives(0.08));  // below bisection's answer: it is not safe
+}
+
+// A run that fails only at a later T: the same runs give each T its boundary.
+TEST(Scan, OneRunToTheLongestTGivesEveryShorterT) {
+  ScanSettings settings;
+  settings.grid = stepGrid(0.01, 0.2);
+  settings.members = 1;
+  settings.durations = {30.0, 60.0};
+  // Fails at t = 45 for dt ≥ 0.05, at t = 1 for dt ≥ 0.1.
+  const auto runs = scanSteps(
+      [](double dt, int, double duration) -> std::optional<Probe> {
+        Probe p;
+        p.failed = dt >= 0.05 - 1e-12;
+        p.time = !p.failed ? duration : dt >= 0.1 - 1e-12 ? 1.0 : 45.0;
+        return p;
+      },
+      settings);
+  ASSERT_TRUE(runs);
+  EXPECT_LT(boundaryOf(survivalAt(*runs, 30.0, 1)).firstFailureDt, 0.1 + 1e-12);
+  EXPECT_GE(boundaryOf(survivalAt(*runs, 30.0, 1)).firstFailureDt, 0.1 - 1e-12);
+  EXPECT_LT(boundaryOf(survivalAt(*runs, 60.0, 1)).safeDt, 0.05);
+  EXPECT_GE(boundaryOf(survivalAt(*runs, 60.0, 1)).firstFailureDt, 0.05 - 1e-12);
+}
+
+TEST(Parallel, DeliversEveryCellInOrderForAnyNumberOfJobs) {
+  for (int jobs : {1, 2, 5}) {
+    std::vector<std::size_t> order;
+    parallelMap<std::size_t>(
+        jobs, 40, [](std::size_t k) -> std::optional<std::size_t> { return k * k; },
+        [&](std::size_t k, std::size_t& v) {
+          EXPECT_EQ(v, k * k);
+          order.push_back(k);
+        });
+    ASSERT_EQ(order.size(), 40u) << jobs;
+    for (std::size_t k = 0; k < order.size(); ++k) EXPECT_EQ(order[k], k);
+  }
+  EXPECT_THROW(parallelMap<int>(
+                   2, 10,
+                   [](std::size_t k) -> std::optional<int> {
+                     if (k == 3) throw std::runtime_error("cell 3");
+                     return 1;
+                   },
+                   [](std::size_t, int&) {}),
+               std::runtime_error);
 }
 
 TEST(RenderTemplate, FillsTablesAndValuesAndRejectsMissingOnes) {
@@ -99,20 +243,64 @@ TEST(RenderTemplate, FillsTablesAndValuesAndRejectsMissingOnes) {
   EXPECT_THROW(renderTemplate("{{value:speed", dir), std::runtime_error);
 }
 
-TEST(StabilityQuick, WritesTheBoundaryAndRk4StableRegionContainsEulers) {
+std::string fileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
   LabOptions o = quickOptions("stability");
   StabilityOptions s;
   s.duration = 10.0;
   ASSERT_EQ(runStability(o, s), 0);
   const Table rows = readCsv(o.outDir + "/stability_boundary.csv",
-                             {"integrator", "chain_length", "duration", "max_dt", "max_dt_dimensionless"});
-  std::map<std::string, std::map<std::string, double>> maxDt;
-  for (const auto& row : rows) maxDt[row.at("integrator")][row.at("chain_length")] = std::stod(row.at("max_dt"));
-  ASSERT_FALSE(maxDt["rk4"].empty());
-  for (const auto& [cl, dt] : maxDt["euler"]) EXPECT_GE(maxDt["rk4"][cl], dt) << "chain " << cl;
-  readCsv(o.outDir + "/stability_map.csv", {"integrator", "chain_length", "dt", "dt_dimensionless", "survived"});
+                             {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
+                              "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
+                              "omega_chain", "omega_whip", "stiffest"});
+  std::map<std::string, std::map<std::string, double>> safe;
+  for (const auto& row : rows)
+    if (row.at("duration") == "10" && row.at("feedback_ks") == "60")
+      safe[row.at("integrator")][row.at("chain_length")] = std::stod(row.at("safe_dt"));
+  ASSERT_FALSE(safe["rk4"].empty());
+  // A longer chain whips faster: the measured link rate grows with its length.
+  std::map<int, double> whip;
+  for (const auto& row : rows) whip[std::stoi(row.at("chain_length"))] = std::stod(row.at("omega_whip"));
+  EXPECT_GT(whip.rbegin()->second, whip.begin()->second);
+  for (const auto& [cl, dt] : safe["euler"]) EXPECT_GT(safe["rk4"][cl], dt) << "chain " << cl;
+  // The map is measured: every scanned dt has a row, and a dt at or below the
+  // safe boundary survived on every member.
+  const Table map = readCsv(o.outDir + "/stability_map.csv",
+                            {"integrator", "chain_length", "feedback_ks", "duration", "dt", "members_run", "survivors",
+                             "survived", "failure", "max_relative_stretch", "max_energy_rise"});
+  int checked = 0;
+  for (const auto& row : map)
+    if (row.at("duration") == "10" && row.at("feedback_ks") == "60" &&
+        std::stod(row.at("dt")) <= safe[row.at("integrator")][row.at("chain_length")]) {
+      EXPECT_EQ(row.at("survived"), "1");
+      EXPECT_EQ(row.at("survivors"), row.at("members_run"));
+      ++checked;
+    }
+  EXPECT_GT(checked, 20);
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/table1.md"));
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/table2.md"));
+}
+
+TEST(StabilityQuick, OneJobAndTwoJobsWriteIdenticalData) {
+  LabOptions one = quickOptions("stability-jobs1"), two = quickOptions("stability-jobs2");
+  one.jobs = 1;
+  two.jobs = 2;
+  one.integrators = two.integrators = {"symplectic-euler", "rk4"};
+  StabilityOptions s;
+  s.duration = 5.0;
+  ASSERT_EQ(runStability(one, s), 0);
+  ASSERT_EQ(runStability(two, s), 0);
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(one.outDir)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(fileText(entry.path().string()), fileText(two.outDir + "/" + name)) << name;
+    ++files;
+  }
+  EXPECT_GE(files, 8);
 }
 
 TEST(AccuracyQuick, OscillatorSlopesAreTheIntegratorsOrders) {
@@ -125,7 +313,23 @@ TEST(AccuracyQuick, OscillatorSlopesAreTheIntegratorsOrders) {
   EXPECT_NEAR(slope["euler"], 1.0, 0.3);
   EXPECT_NEAR(slope["midpoint"], 2.0, 0.3);
   EXPECT_NEAR(slope["rk4"], 4.0, 0.3);
-  readCsv(o.outDir + "/accuracy.csv", {"problem", "integrator", "dt", "tolerance", "error", "seconds_per_simulated_second"});
+  const Table points = readCsv(o.outDir + "/accuracy.csv",
+                               {"problem", "integrator", "dt", "tolerance", "error", "seconds_per_simulated_second",
+                                "error_at_T", "energy_error", "constraint_drift", "cpu_min", "cpu_max", "survived",
+                                "failure"});
+  // Adaptive schemes are swept over their tolerance at a fixed output
+  // interval: a tighter tolerance must give a smaller error, not the same one.
+  std::map<std::string, std::map<double, double>> adaptiveErrors;
+  for (const auto& row : points) {
+    EXPECT_LE(std::stod(row.at("cpu_min")), std::stod(row.at("seconds_per_simulated_second")));
+    EXPECT_LE(std::stod(row.at("seconds_per_simulated_second")), std::stod(row.at("cpu_max")));
+    if (row.at("problem") == "oscillator" && std::stod(row.at("tolerance")) > 0)
+      adaptiveErrors[row.at("integrator")][std::stod(row.at("tolerance"))] = std::stod(row.at("error"));
+  }
+  for (const auto& [name, errors] : adaptiveErrors) {
+    ASSERT_GE(errors.size(), 2u) << name;
+    EXPECT_LT(errors.begin()->second, 0.5 * errors.rbegin()->second) << name;
+  }
 }
 
 TEST(TimingQuick, WritesPositiveStepTimesForEveryIntegrator) {
@@ -146,15 +350,17 @@ TEST(ExtremesQuick, WritesEverySweep) {
   LabOptions o = quickOptions("extremes");
   o.integrators = {"midpoint", "rk4"};
   ASSERT_EQ(runExtremes(o), 0);
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_stiffness.csv", {"integrator", "stiffness", "max_dt"}).empty());
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_mass_ratio.csv",
-                       {"integrator", "mass_ratio", "max_dt", "cg_iterations_per_step"}).empty());
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_feedback.csv", {"ks", "kd", "critical_kd", "survived",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_stiffness.csv", {"integrator", "stiffness", "safe_dt", "first_failure_dt",
+                                                              "first_failure", "grid_lo", "grid_hi"}).empty());
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_mass_ratio.csv", {"integrator", "mass_ratio", "safe_dt", "first_failure_dt",
+                                                               "first_failure", "cg_iterations_per_step"}).empty());
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_feedback.csv", {"ks", "kd", "critical_kd", "survived", "failure",
                                                               "max_relative_stretch", "final_relative_stretch"}).empty());
   const Table budget = readCsv(o.outDir + "/extremes_cg_budget.csv", {"warm_start", "tolerance", "max_iterations", "survived",
-                                                                      "max_relative_stretch", "cg_iterations_per_step"});
+                                                                      "failure", "max_relative_stretch",
+                                                                      "cg_iterations_per_step"});
   EXPECT_FALSE(budget.empty());
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_rod_form.csv", {"integrator", "rod", "max_dt", "step_seconds",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_rod_form.csv", {"integrator", "rod", "safe_dt", "step_seconds",
                                                               "cg_iterations_per_step", "max_relative_stretch"}).empty());
   EXPECT_FALSE(readCsv(o.outDir + "/extremes_taut_chain.csv", {"integrator", "max_iterations", "survived", "reason",
                                                                 "time", "max_relative_stretch",
@@ -167,7 +373,19 @@ TEST(ClaimsQuick, EveryClaimGetsAVerdict) {
   std::ifstream in(o.outDir + "/claims.md");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   int verdicts = 0;
-  for (const char* word : {"| confirmed", "| refuted |"})
+  for (const char* word : {"| confirmed", "| refuted |", "| undecided |"})
     for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++verdicts;
   EXPECT_EQ(verdicts, 6);
+  // The starved-CG verdict at each stretch threshold: looser thresholds never refute what a stricter one confirmed.
+  const Table thresholds = readCsv(o.outDir + "/claims_starved_cg_verdict.csv",
+                                   {"max_stretch_threshold", "cold", "warm", "cold_non_finite_only",
+                                    "warm_non_finite_only"});
+  ASSERT_EQ(thresholds.size(), 5u);
+  for (const char* start : {"cold", "warm", "cold_non_finite_only", "warm_non_finite_only"})
+    for (std::size_t k = 1; k < thresholds.size(); ++k)
+      if (thresholds[k - 1].at(start) == "confirmed") EXPECT_EQ(thresholds[k].at(start), "confirmed") << start;
+  // Counting energy growth as exploding can only refute more.
+  for (const auto& row : thresholds)
+    for (const char* start : {"cold", "warm"})
+      if (row.at(start) == "confirmed") EXPECT_EQ(row.at(std::string(start) + "_non_finite_only"), "confirmed");
 }

@@ -5,6 +5,8 @@
 #include <filesystem>
 
 #include "particles/integrator.h"
+#include "particles/particle_system.h"
+#include "particles/solver_names.h"
 #include "scene.h"
 #include "scene_file/codecs.h"
 #include "scene_file/scene_file.h"
@@ -27,6 +29,50 @@ TEST(SceneFile, EveryBuiltInSceneRoundTripsBitForBitOver100Steps) {
       ASSERT_TRUE(original.system->positions() == loaded.system->positions()) << info.name << " step " << k;
       ASSERT_TRUE(original.system->velocities() == loaded.system->velocities()) << info.name << " step " << k;
     }
+  }
+}
+
+// Every solver setting survives export → read, for every method and
+// preconditioner; a file that asks for CG is solved by CG.
+TEST(SceneFile, EverySolverSettingRoundTripsAndMethodCgSolvesByCg) {
+  for (const auto& method : particles::solveMethodNames())
+    for (const auto& preconditioner : particles::preconditionerNames()) {
+      scenes::Scene chain = scenes::buildScene("test-chain");
+      particles::SolverSettings& settings = chain.system->solver().settings;
+      settings.method = method.value;
+      settings.preconditioner = preconditioner.value;
+      settings.tolerance = 1e-9;
+      settings.maxIterations = 77;
+      settings.stiffness = 12.5;
+      settings.damping = 3.25;
+      settings.warmStart = false;
+      const std::string text = scenes::writeScene(chain);
+      const scenes::Scene loaded = scenes::readScene(text, "solver-settings");
+      const particles::SolverSettings& read = loaded.system->solver().settings;
+      EXPECT_EQ(read.method, settings.method) << method.name;
+      EXPECT_EQ(read.preconditioner, settings.preconditioner) << preconditioner.name;
+      EXPECT_EQ(read.tolerance, settings.tolerance);
+      EXPECT_EQ(read.maxIterations, settings.maxIterations);
+      EXPECT_EQ(read.stiffness, settings.stiffness);
+      EXPECT_EQ(read.damping, settings.damping);
+      EXPECT_EQ(read.warmStart, settings.warmStart);
+      EXPECT_EQ(scenes::writeScene(loaded), text);
+    }
+  scenes::Scene cg = scenes::readScene(R"({"solver": {"method": "cg", "preconditioner": "incomplete-cholesky"},
+      "particles": [{"position": [0, 0], "mass": 1, "pinned": true}, {"position": [0.5, 0], "mass": 1},
+                    {"position": [1, 0], "mass": 1}],
+      "forces": [{"type": "gravity", "acceleration": [0, -9.81]}],
+      "constraints": [{"type": "rod", "particles": [0, 1], "length": 0.5},
+                      {"type": "rod", "particles": [1, 2], "length": 0.5}]})",
+                                       "cg");
+  ASSERT_EQ(cg.system->solver().settings.method, particles::SolveMethod::ConjugateGradient);
+  auto rk4 = particles::makeIntegrator("rk4");
+  EXPECT_GT(cg.system->step(*rk4, 0.01).cgIterations, 0);
+  try {
+    scenes::readScene(R"({"solver": {"method": "lu"}})", "bad-method");
+    ADD_FAILURE() << "an unknown method was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("\"direct\" or \"cg\""), std::string::npos) << e.what();
   }
 }
 

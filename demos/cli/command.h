@@ -38,6 +38,9 @@ Command addTimingCommand(CLI::App& app);
 Command addAccuracyCommand(CLI::App& app);
 Command addExtremesCommand(CLI::App& app);
 Command addClaimsCommand(CLI::App& app);
+Command addAdviseCommand(CLI::App& app);
+Command addCostCommand(CLI::App& app);
+Command addLongtimeCommand(CLI::App& app);
 Command addRenderReportCommand(CLI::App& app);
 
 }  // namespace cli

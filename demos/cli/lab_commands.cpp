@@ -20,7 +20,23 @@ std::shared_ptr<lab::LabOptions> addLabOptions(CLI::App* command) {
   command->add_flag("--quick", options->quick, "small grids and short runs (what CI runs)");
   command->add_option("--integrator", options->integrators,
                       "restrict to these integrators (repeatable; default: every one)");
+  command->add_option("--jobs", options->jobs, "threads for independent runs (results identical for any N)")
+      ->capture_default_str()
+      ->check(decimalInteger(1, 256));
+  command->add_option("--max-stretch", options->criterion.maxRelativeConstraintError,
+                      "failure threshold on the relative constraint error max |C|/r")
+      ->capture_default_str();
+  command->add_option("--energy-rise", options->criterion.energyRiseFraction,
+                      "failure threshold on E(t) - E(0), as a fraction of the scene's releasable energy")
+      ->capture_default_str();
   return options;
+}
+
+// Ranges of the options every experiment takes (one line and exit 2 outside them).
+void validate(const lab::LabOptions& options) {
+  particles::requireInRange("--jobs", options.jobs, 1, 256);
+  particles::requireInRange("--max-stretch", options.criterion.maxRelativeConstraintError, 1e-6, 10.0);
+  particles::requireInRange("--energy-rise", options.criterion.energyRiseFraction, 1e-6, 1e3);
 }
 
 // Runs an experiment: Ctrl-C stops it early, keeping the rows already written.
@@ -42,14 +58,13 @@ Command addStabilityCommand(CLI::App& app) {
       "stability", "largest surviving dt per integrator and chain length (stability map); the seed's Tables 1 and 2");
   auto options = addLabOptions(command);
   auto stability = std::make_shared<lab::StabilityOptions>();
-  command->add_option("--duration", stability->duration, "T: simulated seconds a run must survive")
-      ->capture_default_str();
-  command->add_option("--max-stretch", stability->explosion.maxRelativeStretch,
-                      "explosion threshold on the relative constraint error max |C|/r")
+  command->add_option("--duration", stability->duration,
+                      "T of Tables 1 and 2: simulated seconds a run must survive")
       ->capture_default_str();
   return {command, [=] {
-            particles::requirePositive("--duration", stability->duration);
-            particles::requirePositive("--max-stretch", stability->explosion.maxRelativeStretch);
+            validate(*options);
+            particles::requireInRange("--duration", stability->duration, lab::StabilityOptions::minDuration,
+                                      lab::StabilityOptions::maxDuration);
             return experiment([&] { return lab::runStability(*options, *stability); });
           }};
 }
@@ -65,9 +80,7 @@ Command addTimingCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(decimalInteger(1, 1000000000));
   return {command, [=] {
-            if (timing->repeats < 1 || timing->steps < 1)
-              throw UsageError("--repeats and --steps must be >= 1, got " + std::to_string(timing->repeats) +
-                               " and " + std::to_string(timing->steps));
+            validate(*options);
             return experiment([&] { return lab::runTiming(*options, *timing); });
           }};
 }
@@ -75,27 +88,50 @@ Command addTimingCommand(CLI::App& app) {
 Command addAccuracyCommand(CLI::App& app) {
   auto* command = app.add_subcommand("accuracy", "work-precision: error at T against CPU time, per integrator and dt");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment([&] { return lab::runAccuracy(*options); }); }};
+  return {command, [=] {
+            validate(*options);
+            return experiment([&] { return lab::runAccuracy(*options); });
+          }};
 }
 
 Command addExtremesCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "extremes", "stiff springs, mass ratios, feedback gains, CG budget, rod forms, the taut chain");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment([&] { return lab::runExtremes(*options); }); }};
+  return {command, [=] {
+            validate(*options);
+            return experiment([&] { return lab::runExtremes(*options); });
+          }};
 }
 
 Command addClaimsCommand(CLI::App& app) {
   auto* command = app.add_subcommand("claims", "the seed report's claims, each confirmed or refuted by a measurement");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment([&] { return lab::runClaims(*options); }); }};
+  return {command, [=] {
+            validate(*options);
+            return experiment([&] { return lab::runClaims(*options); });
+          }};
+}
+
+Command addCostCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "cost", "the cost of accuracy: cheapest safe integrator and dt per scene and error budget");
+  auto options = addLabOptions(command);
+  return {command, [=] { return experiment([&] { return lab::runCost(*options); }); }};
+}
+
+Command addLongtimeCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "longtime", "energy over 500 s per integrator (pendulum, 6-chain); implicit Euler's loss per period");
+  auto options = addLabOptions(command);
+  return {command, [=] { return experiment([&] { return lab::runLongtime(*options); }); }};
 }
 
 Command addRenderReportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render-report", "fill a Markdown template with the tables and values the experiments wrote");
   auto render = std::make_shared<lab::RenderOptions>();
-  command->add_option("--template", render->templatePath, "template file")->required()->check(CLI::ExistingFile);
+  command->add_option("--template", render->templatePath, "template file")->required()->check(regularFile());
   command->add_option("--data", render->dataDir, "directory the experiments wrote")
       ->required()
       ->check(CLI::ExistingDirectory);

@@ -22,6 +22,9 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addAccuracyCommand,
     cli::addExtremesCommand,
     cli::addClaimsCommand,
+    cli::addCostCommand,
+    cli::addLongtimeCommand,
+    cli::addAdviseCommand,
     cli::addRenderReportCommand,
 };
 

@@ -2,6 +2,8 @@
 
 #include <charconv>
 
+#include <sys/stat.h>
+
 namespace cli {
 
 CLI::Validator decimalInteger(long long lo, long long hi) {
@@ -20,6 +22,17 @@ CLI::Validator decimalInteger(long long lo, long long hi) {
         return {};
       },
       "INT in " + range);
+}
+
+CLI::Validator regularFile() {
+  return CLI::Validator(
+      [](std::string& path) -> std::string {
+        struct stat info {};
+        if (::stat(path.c_str(), &info) != 0) return "File does not exist: " + path;
+        if (!S_ISREG(info.st_mode)) return "not a regular file: " + path;
+        return {};
+      },
+      "FILE");
 }
 
 }  // namespace cli

@@ -14,4 +14,8 @@ namespace cli {
 // message naming the accepted range.
 CLI::Validator decimalInteger(long long lo, long long hi);
 
+// An existing regular file: CLI::ExistingFile also passes devices and FIFOs
+// (/dev/zero would be read forever, a FIFO waited on).
+CLI::Validator regularFile();
+
 }  // namespace cli

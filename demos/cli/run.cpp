@@ -48,11 +48,11 @@ int run(const RunOptions& o) {
   const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName, o.integratorSettings);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;
   particles::requirePositive("--dt", dt);
+  // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
+  // step boundary and the files are closed with complete rows.
+  lab::installInterruptHandler();
   const std::unique_ptr<scenes::OutputFile> csv = openOutput(o.csvPath, "--csv", kDiagnosticsHeader);
   const std::unique_ptr<scenes::OutputFile> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
-  // SIGINT and SIGTERM only set a flag: the loop stops at the next step
-  // boundary and the files are closed with complete rows.
-  lab::installInterruptHandler();
 
   particles::ParticleSystem& s = *scene.system;
   const particles::DivergenceLimits limits = runnerDivergenceLimits();

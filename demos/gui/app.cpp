@@ -9,7 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "backends/imgui_impl_glut.h"
 #include "backends/imgui_impl_opengl2.h"
@@ -20,9 +22,23 @@ namespace demo {
 
 namespace {
 constexpr double framesPerSecond = 60.0;  // the frame time the fixed-time mode simulates
-constexpr int panelWidth = 340;           // pixels at the right edge, when shown
-constexpr double rewindSeconds = 1.0;     // how far 'b' goes back
-constexpr int statusFramesShown = 180;
+constexpr long long rewindFrames = 60;    // how far 'b' goes back: about one second at 1x speed
+constexpr int statusFramesShown = 240;
+constexpr int hintFramesShown = 600;      // frames a scene's "try this" shows after it opens (as App::hintUntilFrame_)
+
+// What the panes added by v run, relative to pane 1: schemes and steps that
+// look different on every scene (one integrator at one dt in every pane would
+// draw four identical pictures). A preset with pane 1's own integrator is skipped.
+struct ComparePreset {
+  const char* integrator;
+  double dtFactor;  // × pane 1's dt
+};
+constexpr ComparePreset comparePresets[] = {
+    {"euler", 4.0},             // first order, gains energy: at 4 dt it drifts away or blows up
+    {"implicit-euler", 8.0},    // stable at 8 dt, and visibly damped
+    {"symplectic-euler", 4.0},  // the seed's scheme at four times the step
+    {"midpoint", 4.0},
+};
 
 int integratorIndexByName(const std::string& name) {
   const auto& table = particles::integratorTable();
@@ -30,6 +46,32 @@ int integratorIndexByName(const std::string& name) {
     if (name == table[k].name) return static_cast<int>(k);
   particles::makeIntegrator(name);  // throws, listing the valid names
   return 0;
+}
+
+// The scene table's "try this" line, on a table that has one (SceneInfo::hint).
+template <class T, class = void>
+struct HasHint : std::false_type {};
+template <class T>
+struct HasHint<T, std::void_t<decltype(std::declval<const T&>().hint)>> : std::true_type {};
+inline std::string text(const char* s) { return s ? s : ""; }
+inline std::string text(const std::string& s) { return s; }
+template <class Info>
+std::string hintOf(const Info& info) {
+  if constexpr (HasHint<Info>::value) return text(info.hint);
+  else return "";
+}
+
+const scenes::SceneInfo* findSceneInfo(const std::string& name) {
+  for (const scenes::SceneInfo& info : scenes::sceneTable())
+    if (name == info.name) return &info;
+  return nullptr;
+}
+
+// A pixel coordinate from a double that may be huge or NaN (a script's
+// window coordinate ≥ 2³¹ or a world point far outside): clamped well inside int.
+int toPixel(double v) {
+  if (!std::isfinite(v)) return 0;
+  return static_cast<int>(std::lround(std::clamp(v, -1e6, 1e6)));
 }
 }  // namespace
 
@@ -66,6 +108,7 @@ App::App(DemoOptions options)
   const int integrator = integratorIndexByName(options_.integrator.value_or(scene.integrator));
   const double dt = options_.dt.value_or(scene.dt);
   scene_ = first;
+  camera_.reset(scene.viewMin, scene.viewMax);
   panes_.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
   particles::IntegratorSettings integratorSettings;
   integratorSettings.tolerance = options_.tolerance;
@@ -90,6 +133,8 @@ App::App(DemoOptions options)
       panes_[k]->setDt(settings[k].second);
     }
   }
+  if (const scenes::SceneInfo* info = findSceneInfo(scene_.name)) sceneHint_ = hintOf(*info);
+  exact_ = exactMotion(scene_, *buildChoice(scene_).system);  // a fresh build: the state at t = 0
 }
 
 App::~App() {
@@ -125,22 +170,37 @@ void App::initGraphics() {
 
 void App::display() {
   if (!frameDue_ && !quit_) {
-    draw();
+    guarded([&] { draw(); });
     glutSwapBuffers();
     return;
   }
   frameDue_ = false;
-  playScript();
-  advance();
-  draw();
+  const auto start = std::chrono::steady_clock::now();
+  guarded([&] { playScript(); });
+  guarded([&] { advance(); });
+  guarded([&] { draw(); });
   finishFrame();
+  if (frameMs_.size() < 1000000) {
+    frameMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    double simulation = 0.0;
+    for (const auto& pane : panes_) simulation += pane->lastFrame().simulationMs;
+    frameSimulationMs_.push_back(simulation);
+  }
 }
 
 void App::playScript() {
+  // Keys a script pressed last frame are released now, after ImGui saw them down.
+  for (unsigned char key : scriptKeysDown_) inputKeyUp(key);
+  scriptKeysDown_.clear();
   while (nextScriptEvent_ < script_.size() && script_[nextScriptEvent_].frame <= frame_) {
     const ScriptEvent& e = script_[nextScriptEvent_++];
-    if (e.action == ScriptAction::Key) {
-      keyboard(e.key);
+    if (e.action == ScriptAction::Key || e.action == ScriptAction::KeyDown) {
+      inputKey(e.key);
+      if (e.action == ScriptAction::Key) scriptKeysDown_.push_back(e.key);
+      continue;
+    }
+    if (e.action == ScriptAction::KeyUp) {
+      inputKeyUp(e.key);
       continue;
     }
     if (e.action == ScriptAction::Resize) {  // GLUT calls reshape() when the window has its new size
@@ -149,23 +209,30 @@ void App::playScript() {
     }
     Eigen::Vector2d pixel(e.x, e.y);
     if (e.space == ScriptSpace::World) pixel = paneViews().front().toPixel({e.x, e.y});
-    const int x = static_cast<int>(std::lround(pixel.x())), y = static_cast<int>(std::lround(pixel.y()));
-    const int button = e.button == ScriptButton::Right ? GLUT_RIGHT_BUTTON : GLUT_LEFT_BUTTON;
+    const int x = toPixel(pixel.x()), y = toPixel(pixel.y());
+    const int button = e.button == ScriptButton::Right    ? GLUT_RIGHT_BUTTON
+                       : e.button == ScriptButton::Middle ? GLUT_MIDDLE_BUTTON
+                                                          : GLUT_LEFT_BUTTON;
     const bool shift = e.button == ScriptButton::ShiftLeft;
     switch (e.action) {
-      case ScriptAction::MouseDown: mouse(button, GLUT_DOWN, x, y, shift); break;
-      case ScriptAction::MouseMove: motion(x, y); break;
-      case ScriptAction::MouseUp: mouse(button, GLUT_UP, x, y, shift); break;
-      case ScriptAction::Key: case ScriptAction::Resize: break;
+      case ScriptAction::MouseDown: inputMouse(button, GLUT_DOWN, x, y, shift); break;
+      case ScriptAction::MouseMove:
+        if (tool_ == MouseTool::None && !panning_) inputPassiveMotion(x, y);
+        else inputMotion(x, y);
+        break;
+      case ScriptAction::MouseUp: inputMouse(button, GLUT_UP, x, y, shift); break;
+      case ScriptAction::Wheel: inputWheel(e.clicks, x, y); break;
+      default: break;
     }
   }
 }
 
 void App::advance() {
   const bool run = !paused_ || stepRequested_;
+  const double budget = stepBudgetMsPerFrame / static_cast<double>(panes_.size());
   for (auto& pane : panes_) {
     if (stepRequested_) pane->stepOnce();
-    else if (run) pane->advanceFrame(speed_ / framesPerSecond, stepMode_);
+    else if (run) pane->advanceFrame(speed_ / framesPerSecond, stepMode_, budget);
   }
   stepRequested_ = false;
   // A single simulation that diverges pauses the demo; in compare mode the
@@ -177,23 +244,32 @@ void App::draw() {
   const auto start = std::chrono::steady_clock::now();
   renderer_.clearWindow(windowWidth_, windowHeight_, palette::paneBorder);
   const std::vector<ViewTransform> views = paneViews();
-  for (std::size_t k = 0; k < panes_.size(); ++k)
-    renderer_.drawPane(*panes_[k], views[k], windowHeight_, drawOptions_);
+  for (std::size_t k = 0; k < panes_.size(); ++k) {
+    GhostFrame ghost;
+    if (exact_) ghost = exact_(panes_[k]->system().time());
+    renderer_.drawPane(*panes_[k], views[k], windowHeight_, drawOptions_, exact_ ? &ghost : nullptr);
+  }
   glFinish();  // so that the time includes the GL work, not just its submission
-  drawMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const auto sceneDone = std::chrono::steady_clock::now();
+  sceneDrawMs_ = std::chrono::duration<double, std::milli>(sceneDone - start).count();
   glViewport(0, 0, windowWidth_, windowHeight_);
 
   if (!imguiReady_) return;
   ImGui_ImplOpenGL2_NewFrame();
   ImGui_ImplGLUT_NewFrame();  // also ImGui::NewFrame() in 1.86
   overlays_.clear();
-  drawHud();
-  drawDivergenceMessages();
-  if (drawOptions_.forces) drawForceLegend();
+  widgets_.clear();
+  drawTopBar();
+  drawBottomBar();
+  if (panes_.size() > 1) drawPaneHeaders();
+  drawOutOfViewIndicators();
   if (showHelp_) drawHelp();
   if (showPanel_) drawPanel();
+  closePopups_ = false;
   ImGui::Render();
   ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+  glFinish();
+  overlayDrawMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sceneDone).count();
 }
 
 void App::finishFrame() {
@@ -202,7 +278,10 @@ void App::finishFrame() {
   const bool last = quit_ || (options_.frames && frame_ >= *options_.frames);
   if (last && !options_.screenshot.empty()) {
     const std::string error = writeScreenshot(options_.screenshot, windowWidth_, windowHeight_);
-    if (!error.empty()) std::fprintf(stderr, "particle-demo: %s\n", error.c_str());
+    if (!error.empty()) {
+      reportBadUsage(error);
+      outputFailed_ = true;
+    }
   }
   glutSwapBuffers();
   if (last) {
@@ -211,13 +290,24 @@ void App::finishFrame() {
   }
 }
 
-void App::writeStateLog() const {
-  if (options_.logState.empty()) return;
+bool App::writeStateLog() const {
+  if (options_.logState.empty()) return true;
   std::vector<PaneState> states;
   const std::vector<ViewTransform> views = paneViews();
   for (std::size_t k = 0; k < panes_.size(); ++k) states.push_back({scene_.label, panes_[k].get(), views[k]});
-  const std::string error = writeStateFile(options_.logState, states, overlays_, frame_, paused_);
-  if (!error.empty()) std::fprintf(stderr, "particle-demo: %s\n", error.c_str());
+  StateExtras extras;
+  extras.overlays = overlays_;
+  extras.widgets = widgets_;
+  extras.sceneDrawMs = sceneDrawMs_;
+  extras.overlayDrawMs = overlayDrawMs_;
+  extras.panelShown = showPanel_;
+  extras.frameMs = frameMs_;
+  extras.frameSimulationMs = frameSimulationMs_;
+  const std::string error = writeStateFile(options_.logState, states, extras, frame_, paused_);
+  if (error.empty()) return true;
+  reportBadUsage(error);
+  outputFailed_ = true;
+  return false;
 }
 
 // ---------------------------------------------------------------------------
@@ -225,49 +315,75 @@ void App::writeStateLog() const {
 
 void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   std::vector<std::unique_ptr<Simulation>> fresh;
+  Eigen::Vector2d viewMin, viewMax;
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     scenes::Scene scene = buildChoice(choice);  // throws before anything changes
     const int integrator = keepIntegrators || k > 0 ? panes_[k]->integratorIndex()
                                                     : integratorIndexByName(scene.integrator);
+    viewMin = scene.viewMin;
+    viewMax = scene.viewMax;
     const double dt = scene.dt;
     fresh.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
     fresh.back()->setIntegratorSettings(panes_[k]->integratorSettings());
   }
   panes_ = std::move(fresh);
   scene_ = choice;
+  camera_.reset(viewMin, viewMax);
   tool_ = MouseTool::None;
+  panning_ = false;
   paused_ = options_.startPaused && frame_ == 0;
+  const scenes::SceneInfo* info = findSceneInfo(choice.name);
+  sceneHint_ = info ? hintOf(*info) : "";
+  exact_ = exactMotion(choice, *buildChoice(choice).system);
+  setStatus("scene: " + choice.label);
+  statusFrames_ = 0;  // the top bar shows the scene's summary and hint instead
+  hintUntilFrame_ = frame_ + hintFramesShown;
 }
 
 void App::resetScene() {
   std::vector<std::unique_ptr<Simulation>> fresh;
-  for (const auto& pane : panes_)
-  {
+  for (const auto& pane : panes_) {
     fresh.push_back(std::make_unique<Simulation>(buildChoice(scene_), pane->integratorIndex(), pane->dt()));
     fresh.back()->setIntegratorSettings(pane->integratorSettings());
   }
   panes_ = std::move(fresh);
+  camera_.reset(panes_.front()->scene().viewMin, panes_.front()->scene().viewMax);
   tool_ = MouseTool::None;
+  panning_ = false;
   paused_ = false;
   setStatus("reset");
 }
 
 void App::setPaneCount(int count) {
-  const int tableSize = static_cast<int>(particles::integratorTable().size());
   const Simulation& first = *panes_.front();
-  std::vector<std::unique_ptr<Simulation>> fresh;
-  fresh.push_back(std::move(panes_.front()));
+  const std::string firstName = first.integratorName();
+  std::vector<ComparePreset> presets;
+  for (const ComparePreset& p : comparePresets)
+    if (firstName != p.integrator) presets.push_back(p);
+  // Every new pane is built before any changes, so a scene file that became
+  // invalid since it was loaded leaves the panes as they were.
+  std::vector<std::unique_ptr<Simulation>> added;
   for (int k = 1; k < count; ++k) {
-    // Each new pane starts from the first pane's state with the next integrator.
-    auto pane = std::make_unique<Simulation>(buildChoice(scene_), (first.integratorIndex() + k) % tableSize,
-                                             first.dt());
-    pane->copyStateFrom(first);
+    const ComparePreset& preset = presets[(k - 1) % presets.size()];
+    auto pane = std::make_unique<Simulation>(buildChoice(scene_), integratorIndexByName(preset.integrator),
+                                             first.dt() * preset.dtFactor);
     pane->setIntegratorSettings(first.integratorSettings());
-    fresh.push_back(std::move(pane));
+    pane->copyStateFrom(first);  // the same state, clock and history: the panes start together
+    added.push_back(std::move(pane));
   }
-  fresh.front()->release();
-  panes_ = std::move(fresh);
+  panes_.resize(1);
+  panes_.front()->release();
+  for (auto& pane : added) panes_.push_back(std::move(pane));
   tool_ = MouseTool::None;
+  if (count > 1) {
+    std::string names;
+    for (const auto& pane : panes_) {
+      char entry[96];
+      std::snprintf(entry, sizeof entry, "%s%s dt %g", names.empty() ? "" : ", ", pane->integratorName(), pane->dt());
+      names += entry;
+    }
+    setStatus("compare: " + names);
+  }
 }
 
 void App::cycleIntegrators() {
@@ -277,6 +393,18 @@ void App::cycleIntegrators() {
 }
 
 void App::scaleDt(double factor) {
+  // Checked for every pane before any changes: halving to 0 (from 5e-324) or
+  // doubling to infinity is refused with the reason.
+  for (const auto& pane : panes_) {
+    const double dt = pane->dt() * factor;
+    if (!(dt >= std::numeric_limits<double>::min()) || !std::isfinite(dt)) {
+      char text[160];
+      std::snprintf(text, sizeof text, "dt = %g cannot be %s further (it would be %g)", pane->dt(),
+                    factor > 1.0 ? "doubled" : "halved", dt);
+      setError(text);
+      return;
+    }
+  }
   for (auto& pane : panes_) pane->setDt(pane->dt() * factor);
   char text[64];
   std::snprintf(text, sizeof text, "dt = %g", panes_.front()->dt());
@@ -284,38 +412,55 @@ void App::scaleDt(double factor) {
 }
 
 void App::rewind() {
-  // One target time for every pane, so compare panes stay side by side in
-  // time: a second before the earliest divergence (or before now).
-  double target = panes_.front()->timeReached();
-  for (const auto& pane : panes_) target = std::min(target, pane->timeReached());
-  target -= rewindSeconds;
-  std::optional<double> to;
-  for (auto& pane : panes_) to = pane->rewindTo(target);
-  if (!to) return;
+  // One frame for every pane, so compare panes come back to one time: about
+  // a second before the pane that stopped first (or before now), the newest
+  // frame every pane has recorded.
+  long long reached = panes_.front()->frames();
+  for (const auto& pane : panes_) reached = std::min(reached, pane->frames());
+  const long long target = std::max(0LL, reached - rewindFrames);
+  const auto& entries = panes_.front()->history().entries();
+  std::optional<long long> frame;
+  for (auto it = entries.rbegin(); it != entries.rend() && !frame; ++it) {
+    if (it->frame > target) continue;
+    bool everywhere = true;
+    for (const auto& pane : panes_) everywhere &= pane->history().has(it->frame);
+    if (everywhere) frame = it->frame;
+  }
+  if (!frame) {
+    setError("nothing recorded to rewind to");
+    return;
+  }
+  for (auto& pane : panes_) pane->rewindTo(*frame);
   paused_ = true;
   char text[128];
-  std::snprintf(text, sizeof text, "rewound to t = %.2f s (paused: space runs, - halves dt)", *to);
+  std::snprintf(text, sizeof text, "rewound to t = %.2f s (paused: space runs, - halves dt)",
+                panes_.front()->system().time());
   setStatus(text);
 }
 
 void App::setStatus(const std::string& text) {
   status_ = text;
+  statusIsError_ = false;
   statusFrames_ = statusFramesShown;
+}
+
+void App::setError(const std::string& text) {
+  status_ = text;
+  statusIsError_ = true;
+  statusFrames_ = 2 * statusFramesShown;
 }
 
 // ---------------------------------------------------------------------------
 // Layout
 
-PixelRect App::worldArea() const {
-  const int panel = showPanel_ ? std::min(panelWidth, windowWidth_ / 2) : 0;
-  return {0, 0, windowWidth_ - panel, windowHeight_};
+Layout App::layout() const {
+  return computeLayout(windowWidth_, windowHeight_, showPanel_, static_cast<int>(panes_.size()));
 }
 
 std::vector<ViewTransform> App::paneViews() const {
   std::vector<ViewTransform> views;
-  const std::vector<PixelRect> rects = splitPanes(worldArea(), static_cast<int>(panes_.size()));
-  for (std::size_t k = 0; k < panes_.size(); ++k)
-    views.push_back(fitView(rects[k], panes_[k]->scene().viewMin, panes_[k]->scene().viewMax));
+  const Layout l = layout();
+  for (std::size_t k = 0; k < panes_.size(); ++k) views.push_back(fitView(l.worlds[k], camera_.min(), camera_.max()));
   return views;
 }
 

@@ -1,10 +1,14 @@
 #pragma once
 // The application object that every GLUT callback reaches: the panes being
 // simulated, the user's input, and one frame = input → step → draw → output.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "camera.h"
+#include "exact_motion.h"
+#include "layout.h"
 #include "options.h"
 #include "state_log.h"
 #include "renderer.h"
@@ -22,15 +26,11 @@ enum class MouseTool {
   Pin,   // the particle is pinned and follows the cursor; a click on a pinned one unpins it
 };
 
-// Mouse-spring settings from the panel. The stiffness is set per unit of the
-// grabbed mass, k_s = ω² m, so a drag feels the same on a 0.2 cloth particle and
-// a 10-unit hair bead; damping defaults to critical, k_d = 2√(k_s m).
-struct MouseSpringSettings {
-  double stiffnessPerMass = 25.0;  // ω², 1/s²: k_s = ω² m
-  double stiffness(double mass) const { return stiffnessPerMass * mass; }
-  bool criticalDamping = true;
-  double damping = 0.0;     // k_d when not critical, force / speed
-  double pickPixels = 16;   // a press farther than this from every particle grabs nothing
+// Mouse settings from the panel: the joint (frequency and damping ratio,
+// scaled by the grabbed mass, particles/forces/mouse_spring.h) and the reach.
+struct MouseSettings {
+  particles::MouseJointSettings joint;
+  double pickPixels = 16;  // a press farther than this from every particle grabs nothing
 };
 
 class App {
@@ -43,11 +43,19 @@ class App {
   // Needs a current GL context: sets up ImGui.
   void initGraphics();
 
-  // --- the GLUT-facing handlers (scripted events call the same ones) --------
-  void keyboard(unsigned char key);
-  void mouse(int button, int state, int x, int y, bool shift);
-  void motion(int x, int y);
+  // --- input: GLUT's callbacks and the script both call these -------------
+  // Each goes to ImGui first, then to the demo unless ImGui takes it (a text
+  // field being edited, a press on the panel). No exception leaves them: a
+  // failed action shows its message and the demo runs on.
+  void inputKey(unsigned char key);
+  void inputKeyUp(unsigned char key);
+  void inputMouse(int button, int state, int x, int y, bool shift);
+  void inputMotion(int x, int y);         // with a button held
+  void inputPassiveMotion(int x, int y);  // with no button held
+  void inputWheel(int direction, int x, int y);
   void reshape(int width, int height);
+  // Shows an error that escaped an action (GLUT's callbacks catch them too).
+  void showError(const std::string& message);
   // Called by the frame clock (a 60 Hz timer, or idle in scripted runs): the
   // next display() is a new frame.
   void requestFrame() { frameDue_ = true; }
@@ -57,21 +65,30 @@ class App {
   void display();
 
   bool quitRequested() const { return quit_; }
-  // Written at exit (also after q/Esc): --log-state.
-  void writeStateLog() const;
+  // Written at exit (also after q/Esc): --log-state. False (with the message
+  // on stderr) when an output could not be written.
+  bool writeStateLog() const;
+  bool outputsFailed() const { return outputFailed_; }
 
  private:
   // --- frame phases -------------------------------------------------------
   void playScript();
   void advance();
   void draw();
-  void drawHud();
-  void drawPaneLines();
-  void drawForceLegend();
+  void drawTopBar();
+  void drawBottomBar();
+  void drawPaneHeaders();
+  void drawOutOfViewIndicators();
   void drawHelp();
-  void drawDivergenceMessages();
   void drawPanel();
+  void recordWidget(const char* name);  // the last ImGui item, for scripted clicks
   void finishFrame();
+
+  // --- the demo's own handling of input ----------------------------------
+  void keyboard(unsigned char key);
+  void mouse(int button, int state, int x, int y, bool shift);
+  void motion(int x, int y);
+  void guarded(const std::function<void()>& action);
 
   // --- actions ------------------------------------------------------------
   void loadScene(const SceneChoice& choice, bool keepIntegrators);
@@ -81,6 +98,9 @@ class App {
   void scaleDt(double factor);
   void rewind();
   void setStatus(const std::string& text);
+  void setError(const std::string& text);
+  void frameAll();
+  std::string paneStateLine(const Simulation& sim) const;
   // The rest of the keys' actions, one each.
   void doubleDt() { scaleDt(2.0); }
   void halveDt() { scaleDt(0.5); }
@@ -88,6 +108,7 @@ class App {
   void stepOnce() { paused_ = true; stepRequested_ = true; }
   void toggleForces() { drawOptions_.forces = !drawOptions_.forces; }
   void toggleConstraints() { drawOptions_.constraints = !drawOptions_.constraints; }
+  void toggleGhost() { drawOptions_.ghost = !drawOptions_.ghost; }
   void toggleHelp() { showHelp_ = !showHelp_; }
   void togglePanel() { showPanel_ = !showPanel_; }
   void toggleLockstep();
@@ -105,9 +126,9 @@ class App {
   static const std::vector<KeyBinding>& keyBindings();
 
   // --- layout -------------------------------------------------------------
-  PixelRect worldArea() const;
+  Layout layout() const;
   std::vector<ViewTransform> paneViews() const;
-  int paneAt(int x, int y) const;  // −1 outside every pane
+  int paneAt(int x, int y) const;  // −1 outside every pane's world
 
   DemoOptions options_;
   SceneChoice scene_;
@@ -123,21 +144,39 @@ class App {
   DrawOptions drawOptions_;
   bool showHelp_ = false;
   bool showPanel_ = true;
-  MouseSpringSettings springSettings_;
+  MouseSettings mouseSettings_;
+  Camera camera_;
 
   MouseTool tool_ = MouseTool::None;
   int toolParticle_ = -1;
   int toolPane_ = -1;
   bool pinWasPinned_ = false, pinMoved_ = false;
   int pressX_ = 0, pressY_ = 0;  // where the tool started, pixels
+  bool panning_ = false;         // a middle-button or space + left drag moves the camera
+  int panX_ = 0, panY_ = 0;      // the pointer at the last pan motion
+  bool spaceHeld_ = false, spaceDragged_ = false;
+  bool grabbedOnce_ = false;     // the first-run hint shows until a particle is dragged
+  bool closePopups_ = false;     // Esc closes an open combo instead of quitting
+  std::vector<unsigned char> scriptKeysDown_;  // scripted keys, released the next frame
 
   int windowWidth_, windowHeight_;
   long long frame_ = 0;
-  double drawMs_ = 0.0;
-  std::vector<Overlay> overlays_;  // the text drawn over the panes in the last frame  // wall time of the last frame's scene drawing, GL work included
+  // Wall times of the last frame's drawing, GL work included: the scene, and
+  // the text and panel (ImGui) on top.
+  double sceneDrawMs_ = 0.0, overlayDrawMs_ = 0.0;
+  std::vector<Overlay> overlays_;  // the text and controls drawn in the last frame
+  std::vector<Overlay> widgets_;   // the panel's buttons and combos, for scripted clicks
+  // Wall time of every frame (input, stepping, drawing, swap) and its
+  // stepping part, for the state log's frame-time summary.
+  std::vector<double> frameMs_, frameSimulationMs_;
   std::string status_;
+  bool statusIsError_ = false;
   int statusFrames_ = 0;
+  ExactMotion exact_;              // the scene's closed form, drawn as a ghost; empty if none
+  std::string sceneHint_;          // the scene's "try this", shown when it opens
+  long long hintUntilFrame_ = 600;  // frames: the summary and hint show for 10 s after a scene opens
   bool quit_ = false;
+  mutable bool outputFailed_ = false;
   bool frameDue_ = false;
   bool imguiReady_ = false;
 };

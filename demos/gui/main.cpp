@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <cstdio>
+#include <new>
 #include <stdexcept>
 
 #include "app.h"
@@ -13,29 +14,41 @@ namespace {
 
 demo::App& app() { return *static_cast<demo::App*>(glutGetWindowData()); }
 
-// ImGui sees every event first; the App gets keys unless a text field is
-// being edited, and presses unless they land on an ImGui window. Releases
-// always reach the App so a drag never sticks.
-void onKeyboard(unsigned char key, int x, int y) {
-  ImGui_ImplGLUT_KeyboardFunc(key, x, y);
-  if (!ImGui::GetIO().WantTextInput) app().keyboard(key);
+// No exception may leave a GLUT callback (it would end the program through
+// std::terminate): the App catches its actions' errors, and anything left
+// is shown here and the demo runs on.
+template <class Callback>
+void guarded(Callback&& callback) {
+  try {
+    callback();
+  } catch (const std::bad_alloc&) {
+    app().showError("out of memory");
+  } catch (const std::exception& e) {
+    app().showError(e.what());
+  } catch (...) {
+    app().showError("unknown error");
+  }
 }
-void onKeyboardUp(unsigned char key, int x, int y) { ImGui_ImplGLUT_KeyboardUpFunc(key, x, y); }
+
+bool shiftHeld() { return (glutGetModifiers() & GLUT_ACTIVE_SHIFT) != 0; }
+
+void onKeyboard(unsigned char key, int, int) { guarded([&] { app().inputKey(key); }); }
+void onKeyboardUp(unsigned char key, int x, int y) {
+  ImGui_ImplGLUT_KeyboardUpFunc(key, x, y);
+  guarded([&] { app().inputKeyUp(key); });
+}
 void onSpecial(int key, int x, int y) { ImGui_ImplGLUT_SpecialFunc(key, x, y); }
 void onSpecialUp(int key, int x, int y) { ImGui_ImplGLUT_SpecialUpFunc(key, x, y); }
 void onMouse(int button, int state, int x, int y) {
-  ImGui_ImplGLUT_MouseFunc(button, state, x, y);
-  if (state == GLUT_UP || !ImGui::GetIO().WantCaptureMouse)
-    app().mouse(button, state, x, y, (glutGetModifiers() & GLUT_ACTIVE_SHIFT) != 0);
+  // freeglut reports the wheel as buttons 3 and 4 when no wheel callback takes it.
+  const bool shift = shiftHeld();
+  guarded([&] { app().inputMouse(button, state, x, y, shift); });
 }
-void onMotion(int x, int y) {
-  ImGui_ImplGLUT_MotionFunc(x, y);
-  app().motion(x, y);
-}
-void onPassiveMotion(int x, int y) { ImGui_ImplGLUT_MotionFunc(x, y); }
-void onWheel(int button, int direction, int x, int y) { ImGui_ImplGLUT_MouseWheelFunc(button, direction, x, y); }
-void onReshape(int width, int height) { app().reshape(width, height); }
-void onDisplay() { app().display(); }
+void onMotion(int x, int y) { guarded([&] { app().inputMotion(x, y); }); }
+void onPassiveMotion(int x, int y) { guarded([&] { app().inputPassiveMotion(x, y); }); }
+void onWheel(int, int direction, int x, int y) { guarded([&] { app().inputWheel(direction, x, y); }); }
+void onReshape(int width, int height) { guarded([&] { app().reshape(width, height); }); }
+void onDisplay() { guarded([&] { app().display(); }); }
 
 // The frame clock. Interactive: about 60 frames per second. Scripted runs
 // (--frames, --script): as fast as possible.
@@ -63,6 +76,9 @@ int main(int argc, char** argv) {
   std::unique_ptr<demo::App> application;
   try {
     application = std::make_unique<demo::App>(options);
+  } catch (const std::bad_alloc&) {
+    demo::reportBadUsage("out of memory building the scene");
+    return demo::exitBadUsage;
   } catch (const std::exception& e) {
     demo::reportBadUsage(e.what());
     return demo::exitBadUsage;
@@ -74,6 +90,7 @@ int main(int argc, char** argv) {
   glutSetOption(GLUT_ACTION_ON_WINDOW_CLOSE, GLUT_ACTION_GLUTMAINLOOP_RETURNS);
   glutCreateWindow("particle-lab demo");
   glutSetWindowData(application.get());
+  glutIgnoreKeyRepeat(1);  // a held space is one press (space + drag pans)
   application->initGraphics();
 
   glutDisplayFunc(onDisplay);
@@ -90,6 +107,6 @@ int main(int argc, char** argv) {
   else glutTimerFunc(16, onTimer, 0);
 
   glutMainLoop();
-  application->writeStateLog();
-  return 0;
+  const bool written = application->writeStateLog() && !application->outputsFailed();
+  return written ? 0 : demo::exitOutputFailed;
 }

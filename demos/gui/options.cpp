@@ -1,8 +1,11 @@
 #include "options.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -12,9 +15,6 @@
 #include "particles/integrator.h"
 
 namespace demo {
-
-namespace {
-}  // namespace
 
 void reportBadUsage(const std::string& message) {
   std::string line = message;
@@ -27,6 +27,24 @@ namespace {
 [[noreturn]] void badUsage(const std::string& message) {
   reportBadUsage(message);
   std::exit(exitBadUsage);
+}
+
+// Whether an output file can be written, before the run rather than after
+// it: opens it for appending (a file that did not exist is removed again).
+void requireWritable(const char* option, const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) badUsage(std::string(option) + ": '" + path + "' is a directory");
+  const bool existed = std::filesystem::exists(path, error);
+  {
+    std::ofstream probe(path, std::ios::app);
+    if (!probe) badUsage(std::string(option) + ": cannot write '" + path + "'");
+  }
+  if (!existed) std::filesystem::remove(path, error);
+}
+
+bool endsWith(std::string text, const std::string& suffix) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -57,7 +75,7 @@ DemoOptions parseOptions(int argc, char** argv) {
       ->excludes(byFile);
   auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
   auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
-  cli.add_option("--compare", compare, "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or rk4:0.02,rk4:0.005 (2 to 4)");
+  auto* compareOption = cli.add_option("--compare", compare, "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or rk4:0.02,rk4:0.005 (2 to 4)");
   cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
   cli.add_flag("--no-panel", o.hidePanel, "start with the control panel hidden (key p shows it)");
   cli.add_flag("--paused", o.startPaused, "start paused");
@@ -106,11 +124,18 @@ DemoOptions parseOptions(int argc, char** argv) {
     if (frames < 1) badUsage("--frames must be at least 1, got " + std::to_string(frames));
     o.frames = frames;
   }
-  if (!compare.empty()) {
+  if (*compareOption) {
     o.compare = splitList(compare);
     if (o.compare.size() < 2 || o.compare.size() > 4)
       badUsage("--compare needs 2 to 4 comma-separated integrators, got '" + compare + "'");
   }
+  if (!o.screenshot.empty()) {
+    // The screenshot is written as PNG, so the name must say PNG.
+    if (!endsWith(o.screenshot, ".png"))
+      badUsage("--screenshot writes PNG images: expected a name ending in .png, got '" + o.screenshot + "'");
+    requireWritable("--screenshot", o.screenshot);
+  }
+  if (!o.logState.empty()) requireWritable("--log-state", o.logState);
   if (!window.empty()) {
     int w = 0, h = 0;
     char x = 0, extra = 0;

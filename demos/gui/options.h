@@ -25,19 +25,22 @@ struct DemoOptions {
   int windowWidth = 1180, windowHeight = 760;
   std::string script;                           // --script FILE
   std::optional<long long> frames;              // --frames N: exit after N frames
-  std::string screenshot;                       // --screenshot FILE.png: the last frame
+  std::string screenshot;                       // --screenshot FILE.png: the last frame (PNG only)
   std::string logState;                         // --log-state FILE: the state at exit
 };
 
-// Exit codes: 0 success, 2 a bad command line (one line on stderr).
+// Exit codes: 0 success, 2 a bad command line (one line on stderr), 1 an
+// output (--screenshot, --log-state) that could not be written at the end.
 constexpr int exitBadUsage = 2;
+constexpr int exitOutputFailed = 1;
 
 // Writes "particle-demo: <message>" as one line on stderr, as particle-lab does.
 void reportBadUsage(const std::string& message);
 
 // Parses argv; on --help prints the help and exits 0; on a bad value prints
 // one line "particle-demo: …" and exits 2. Checks values that need no
-// window (scene and integrator names, dt, files) so errors come before GLUT.
+// window (scene and integrator names, dt, files; that --screenshot and
+// --log-state can be written) so errors come before GLUT and the run.
 DemoOptions parseOptions(int argc, char** argv);
 
 }  // namespace demo

@@ -1,8 +1,12 @@
-// Text over the panes: the HUD, the per-pane lines of compare mode, the
-// divergence message and the help overlay (key h).
+// Text around the panes, in the margins the layout reserves for it (layout.h):
+// the top bar (scene, hint, messages), the bottom bar (HUD, keys, force
+// legend), the per-pane headers of compare mode, the out-of-view indicators
+// in each pane's gutter, and the help overlay (key h), the one text drawn
+// over the scene, on request.
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <string>
@@ -18,8 +22,10 @@ struct MouseHelp {
   const char* action;
 };
 constexpr MouseHelp mouseHelp[] = {
-    {"left drag", "pull a particle with a mouse spring"},
+    {"left drag", "pull a particle with the mouse joint (5 Hz, damping ratio 0.7)"},
     {"right drag, shift+left", "pin a particle and move it; click a pinned one to unpin"},
+    {"wheel", "zoom about the cursor"},
+    {"middle drag, space+drag", "pan"},
 };
 
 constexpr ImGuiWindowFlags overlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
@@ -28,7 +34,7 @@ constexpr ImGuiWindowFlags overlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiW
 
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char* fmt, ...) {
-  char buffer[512];
+  char buffer[1024];
   va_list args;
   va_start(args, fmt);
   std::vsnprintf(buffer, sizeof buffer, fmt, args);
@@ -36,131 +42,256 @@ std::string format(const char* fmt, ...) {
   return buffer;
 }
 
-ImU32 hudColour() {
-  const Rgb c = palette::hudText;
-  return IM_COL32(c.r, c.g, c.b, 255);
-}
+ImU32 colour(Rgb c, int alpha = 255) { return IM_COL32(c.r, c.g, c.b, alpha); }
+const ImU32 titleColour = IM_COL32(255, 217, 115, 255);
+const ImU32 dimColour = IM_COL32(150, 155, 165, 255);
+const ImU32 barColour = IM_COL32(14, 16, 20, 255);
 
-// Text on a dark box, drawn over everything; returns the box.
-PixelRect boxedText(const ImVec2& at, const std::string& text, ImU32 colour) {
+// A line of text in a bar: pieces of text in their colours, one after another.
+struct Piece {
+  std::string text;
+  ImU32 colour;
+};
+using Line = std::vector<Piece>;
+
+// Fills the bar and writes its lines (clipped to it): the bar is the
+// overlay's rectangle, its text the overlay's text.
+Overlay drawBar(const char* kind, const PixelRect& r, const std::vector<Line>& lines, int lineHeight, int padding) {
   ImDrawList* draw = ImGui::GetForegroundDrawList();
-  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
-  draw->AddRectFilled(at, ImVec2(at.x + size.x + 12, at.y + size.y + 8), IM_COL32(10, 12, 16, 200), 4.0f);
-  draw->AddText(ImVec2(at.x + 6, at.y + 4), colour, text.c_str());
-  return {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x) + 13, static_cast<int>(size.y) + 9};
+  const ImVec2 a(r.x, r.y), b(r.x + r.width, r.y + r.height);
+  draw->AddRectFilled(a, b, barColour);
+  draw->PushClipRect(a, b, true);
+  Overlay overlay{kind, r, ""};
+  float y = r.y + padding;
+  for (const Line& line : lines) {
+    float x = r.x + 8.0f;
+    for (const Piece& piece : line) {
+      draw->AddText(ImVec2(x, y), piece.colour, piece.text.c_str());
+      x += ImGui::CalcTextSize(piece.text.c_str()).x;
+      overlay.text += piece.text;
+    }
+    overlay.text += "\n";
+    y += lineHeight;
+  }
+  draw->PopClipRect();
+  return overlay;
 }
 
-// The rectangle of the current ImGui window.
-PixelRect windowRect() {
-  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-  return {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x) + 1, static_cast<int>(size.y) + 1};
+// Breaks a long message into lines that fit `width` pixels, at spaces; the
+// last line allowed ends in "..." when the message goes on.
+std::vector<std::string> wrap(const std::string& text, float width, std::size_t maxLines) {
+  std::vector<std::string> lines(1);
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    const std::string candidate = lines.back().empty() ? word : lines.back() + " " + word;
+    if (!lines.back().empty() && ImGui::CalcTextSize(candidate.c_str()).x > width) {
+      if (lines.size() == maxLines) {
+        lines.back() += " ...";
+        return lines;
+      }
+      lines.push_back(word);
+    } else {
+      lines.back() = candidate;
+    }
+    start = end + 1;
+  }
+  return lines;
 }
+
+std::string plural(int n, const char* word) { return format("%d %s%s", n, word, n == 1 ? "" : "s"); }
 }  // namespace
 
-void App::drawHud() {
-  if (panes_.size() > 1) {
-    drawPaneLines();
-  } else {
+// Why a pane shows what it shows, beyond its numbers: stopped, slow motion,
+// or a dt longer than a frame.
+std::string App::paneStateLine(const Simulation& sim) const {
+  if (sim.divergedAt()) return format("diverged at t = %.3f s: r resets, b rewinds", *sim.divergedAt());
+  if (sim.refusal()) return *sim.refusal() + ": press i for another integrator";
+  const FrameStats& f = sim.lastFrame();
+  if (f.capped) return format("slow motion: %d steps/frame fill the %.0f ms budget (+ doubles dt)", f.substeps, stepBudgetMsPerFrame / panes_.size());
+  const double frameTime = speed_ / 60.0;
+  if (stepMode_ == StepMode::FixedTime && sim.dt() > frameTime)
+    return format("dt %g s > one frame (%.3g s): a step every %.0f frames (- halves dt)", sim.dt(), frameTime,
+                  std::ceil(sim.dt() / frameTime));
+  return "";
+}
+
+void App::drawTopBar() {
+  const LayoutMetrics m;
+  const Layout l = layout();
+  const Simulation& first = *panes_.front();
+  std::string summary = "scene file";
+  if (const scenes::SceneInfo* info = [&]() -> const scenes::SceneInfo* {
+        for (const scenes::SceneInfo& i : scenes::sceneTable())
+          if (scene_.name == i.name) return &i;
+        return nullptr;
+      }())
+    summary = info->summary;
+  Line title{{scene_.label, titleColour}, {"  " + summary, dimColour}};
+  if (panes_.size() == 1)
+    title.push_back({format("     t = %.2f s%s", first.timeReached(), paused_ ? "   [paused]" : ""), colour(palette::hudText)});
+  else if (paused_)
+    title.push_back({"     [paused]", colour(palette::hudText)});
+
+  // The message line: an error or status first, then what the single pane's
+  // state needs said, then particles out of view, then the scene's hint and
+  // the first-run hint. A long message takes the title's line too.
+  std::string message;
+  ImU32 messageColour = colour(palette::hudText);
+  int outOfView = 0;
+  const std::vector<ViewTransform> views = paneViews();
+  for (int i = 0; i < first.system().size(); ++i) {
+    const Eigen::Vector2d x = first.system().position(i);
+    if (!x.allFinite()) continue;
+    outOfView += x.x() < views[0].worldMin.x() || x.x() > views[0].worldMax.x() || x.y() < views[0].worldMin.y() ||
+                 x.y() > views[0].worldMax.y();
+  }
+  const std::string state = panes_.size() == 1 ? paneStateLine(first) : "";
+  if (statusFrames_ > 0) {
+    message = status_;
+    if (statusIsError_) messageColour = colour(palette::divergenceText);
+  } else if (!state.empty()) {
+    message = state;
+    if (first.stopped()) messageColour = colour(palette::divergenceText);
+  } else if (outOfView > 0) {
+    message = plural(outOfView, "particle") + " out of view (arrows at the edge): a frames all";
+    messageColour = titleColour;
+  } else if (frame_ < hintUntilFrame_ && !sceneHint_.empty()) {
+    message = sceneHint_;  // the table's line, "try this: ..."
+  } else if (!grabbedOnce_) {
+    message = "drag any particle with the left mouse button; h lists the keys";
+  }
+  std::vector<Line> lines;
+  const std::vector<std::string> wrapped = wrap(message, l.topBar.width - 16.0f, 2);
+  if (wrapped.size() < 2) lines.push_back(title);
+  for (const std::string& w : wrapped) lines.push_back({{w, messageColour}});
+  overlays_.push_back(drawBar("top-bar", l.topBar, lines, m.lineHeight, m.padding));
+}
+
+void App::drawBottomBar() {
+  const LayoutMetrics m;
+  const Layout l = layout();
+  std::vector<Line> lines;
+  if (panes_.size() == 1) {
     const Simulation& sim = *panes_.front();
     const particles::ParticleSystem& s = sim.system();
-    const PixelRect area = worldArea();
-    // Bottom left: the scenes hang from rails at the top of the view.
-    ImGui::SetNextWindowPos(ImVec2(area.x + 8.0f, area.y + area.height - 8.0f), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
-    ImGui::SetNextWindowBgAlpha(0.65f);
-    ImGui::Begin("##hud", nullptr, overlayFlags);
-    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", scene_.label.c_str());
-    ImGui::SameLine();
-    ImGui::Text("  t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "");
-    ImGui::Text("%s   dt %g   %d substep%s/frame%s", sim.integratorName(), sim.dt(), sim.lastFrame().substeps,
-                sim.lastFrame().substeps == 1 ? "" : "s",
-                stepMode_ == StepMode::Lockstep ? " (lockstep)" : sim.lastFrame().capped ? " (capped: slow motion)" : "");
-    // Fixed-width numbers, so the auto-sized box does not change size from frame to frame.
-    ImGui::Text("simulation %7.2f ms   draw %6.1f ms   per frame", sim.lastFrame().simulationMs, drawMs_);
+    const FrameStats& f = sim.lastFrame();
+    const ImU32 text = colour(palette::hudText);
+    const std::string state = paneStateLine(sim);
+    lines.push_back({{format("%s   dt %g s   %s/frame%s", sim.integratorName(), sim.dt(), plural(f.substeps, "substep").c_str(),
+                             stepMode_ == StepMode::Lockstep ? " (lockstep)" : ""),
+                      text},
+                     {state.empty() ? "" : "   " + state, sim.stopped() ? colour(palette::divergenceText) : titleColour}});
+    // Fixed-width numbers, so that the line does not jitter from frame to frame.
+    lines.push_back({{format("simulation %7.2f ms   draw %6.1f ms (scene %5.1f + text and panel %5.1f)   per frame",
+                             f.simulationMs, sceneDrawMs_ + overlayDrawMs_, sceneDrawMs_, overlayDrawMs_),
+                      text}});
+    std::string numbers = plural(s.size(), "particle");
     // The last step's statistics: every solve of it, not only the last one.
     const particles::StepStats& step = s.lastStepStats();
-    if (step.cgIterations == 0)
-      ImGui::Text("%d particles   %d solve%s, residual %.1e", s.size(), step.solves, step.solves == 1 ? "" : "s",
-                  step.maxResidual);
-    else
-      ImGui::Text("%d particles   %d solve%s, CG %d iterations, residual %.1e", s.size(), step.solves,
-                  step.solves == 1 ? "" : "s", step.cgIterations, step.maxResidual);
-    ImGui::Text("max |C| %.2e   energy % .5e", s.maxConstraintError(), s.totalEnergy());
-    ImGui::TextDisabled("h help   p panel   v compare");
-    overlays_.push_back({"hud", windowRect()});
-    ImGui::End();
+    if (step.solves > 0)
+      numbers += step.cgIterations == 0
+                     ? format("   %s, residual %.1e", plural(step.solves, "solve").c_str(), step.maxResidual)
+                     : format("   %s, CG %d iterations, residual %.1e", plural(step.solves, "solve").c_str(),
+                              step.cgIterations, step.maxResidual);
+    numbers += format("   max |C| %.2e   energy % .5e", s.maxConstraintError(), sim.sceneEnergy());
+    if (sim.mouseSpring()) numbers += format("   (mouse spring % .3e apart)", sim.mouseSpringEnergy());
+    lines.push_back({{numbers, text}});
   }
-  if (statusFrames_ > 0) {
-    const PixelRect area = worldArea();
-    const float width = ImGui::CalcTextSize(status_.c_str()).x + 12.0f;
-    overlays_.push_back(
-        {"status", boxedText(ImVec2(area.x + 0.5f * (area.width - width), area.y + 8.0f), status_, hudColour())});
+  Line keys{{"h help   p panel   v compare   a frame all   wheel zoom   middle-drag pan", dimColour}};
+  if (drawOptions_.forces) {
+    // Which colour is which force type, for the types in the first pane.
+    const particles::ParticleSystem& s = panes_.front()->system();
+    std::vector<std::string> types;
+    for (const auto& force : s.forceObjects())
+      if (std::find(types.begin(), types.end(), force->type()) == types.end()) types.push_back(force->type());
+    keys.push_back({"      arrows:", dimColour});
+    for (const std::string& type : types) keys.push_back({" --> " + type, colour(forceArrowColour(type.c_str()))});
+    if (!s.constraints().empty()) keys.push_back({" --> J^T lambda", colour(palette::constraintForceArrow)});
   }
+  lines.push_back(keys);
+  overlays_.push_back(drawBar("hud", l.bottomBar, lines, m.lineHeight, m.padding));
 }
 
-// Which colour is which force type, for the types present in the first pane.
-void App::drawForceLegend() {
-  const particles::ParticleSystem& s = panes_.front()->system();
-  std::vector<std::string> types;
-  for (const auto& force : s.forceObjects())
-    if (std::find(types.begin(), types.end(), force->type()) == types.end()) types.push_back(force->type());
-  const PixelRect area = worldArea();
-  ImGui::SetNextWindowPos(ImVec2(area.x + area.width - 8.0f, area.y + area.height - 8.0f), ImGuiCond_Always,
-                          ImVec2(1.0f, 1.0f));
-  ImGui::SetNextWindowBgAlpha(0.65f);
-  ImGui::Begin("##legend", nullptr, overlayFlags);
-  ImGui::TextDisabled("force arrows (f)");
-  auto entry = [](const char* name, Rgb c) {
-    ImGui::TextColored(ImVec4(c.r / 255.f, c.g / 255.f, c.b / 255.f, 1.f), "-->");
-    ImGui::SameLine();
-    ImGui::TextUnformatted(name);
-  };
-  for (const std::string& type : types) entry(type.c_str(), forceArrowColour(type.c_str()));
-  if (!s.constraints().empty()) entry("constraint force J^T lambda", palette::constraintForceArrow);
-  overlays_.push_back({"legend", windowRect()});
-  ImGui::End();
-}
-
-void App::drawPaneLines() {
-  const std::vector<ViewTransform> views = paneViews();
+void App::drawPaneHeaders() {
+  const LayoutMetrics m;
+  const Layout l = layout();
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     const Simulation& sim = *panes_[k];
     const particles::ParticleSystem& s = sim.system();
-    std::string text = format("%s   dt %g   %.2f ms/frame\nE % .5e   max |C| %.1e", sim.integratorName(), sim.dt(),
-                              sim.lastFrame().simulationMs, s.totalEnergy(), s.maxConstraintError());
-    if (k == 0) text = scene_.label + format("   t = %.2f s%s", s.time(), paused_ ? "   [paused]" : "") + "\n" + text;
-    const PixelRect& p = views[k].pane;
-    ImGui::GetForegroundDrawList()->PushClipRect(ImVec2(p.x, p.y), ImVec2(p.x + p.width, p.y + p.height), true);
-    overlays_.push_back({"pane-hud", boxedText(ImVec2(p.x + 6.0f, p.y + 6.0f), text, hudColour())});
-    ImGui::GetForegroundDrawList()->PopClipRect();
+    const ImU32 text = colour(palette::hudText);
+    std::vector<Line> lines;
+    lines.push_back({{format("%zu  %s", k + 1, sim.integratorName()), titleColour},
+                     {format("   dt %g s   t = %.2f s   %lld steps", sim.dt(), sim.timeReached(), sim.steps()), text}});
+    lines.push_back({{format("E % .5e   max |C| %.1e   %.2f ms/frame", sim.sceneEnergy(), s.maxConstraintError(),
+                             sim.lastFrame().simulationMs),
+                      text}});
+    lines.push_back({{paneStateLine(sim), sim.stopped() ? colour(palette::divergenceText) : titleColour}});
+    overlays_.push_back(drawBar("pane-hud", l.headers[k], lines, m.lineHeight, m.padding));
   }
 }
 
-void App::drawDivergenceMessages() {
+// Where particles have left the view: a triangle in the gutter on each side
+// they are beyond, pointing at them, and a frame around a stopped pane.
+void App::drawOutOfViewIndicators() {
   const std::vector<ViewTransform> views = paneViews();
+  const LayoutMetrics m;
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
   for (std::size_t k = 0; k < panes_.size(); ++k) {
-    if (!panes_[k]->stopped()) continue;
-    const std::string text =
-        panes_[k]->divergedAt()
-            ? format("diverged at t = %.3f s: press r to reset or b to rewind", *panes_[k]->divergedAt())
-            : *panes_[k]->refusal() + "\npress i for another integrator";
-    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
-    const PixelRect& p = views[k].pane;
-    const ImVec2 at(p.x + 0.5f * (p.width - size.x) - 6, p.y + 0.5f * p.height - 14);
-    const Rgb c = palette::divergenceText;
-    overlays_.push_back({"divergence", boxedText(at, text, IM_COL32(c.r, c.g, c.b, 255))});
-    ImGui::GetForegroundDrawList()->AddRect(at, ImVec2(at.x + size.x + 12, at.y + size.y + 8),
-                                            IM_COL32(c.r, c.g, c.b, 255), 4.0f, 0, 1.5f);
+    const ViewTransform& v = views[k];
+    const PixelRect& p = v.pane;
+    if (panes_[k]->stopped())
+      draw->AddRect(ImVec2(p.x - 3, p.y - 3), ImVec2(p.x + p.width + 3, p.y + p.height + 3), colour(palette::divergenceText),
+                    0.0f, 0, 2.0f);
+    // Per side: how many are beyond it, and the mean of their clamped pixel positions along it.
+    int count[4] = {0, 0, 0, 0};
+    double along[4] = {0, 0, 0, 0};
+    const particles::ParticleSystem& s = panes_[k]->system();
+    for (int i = 0; i < s.size(); ++i) {
+      const Eigen::Vector2d x = s.position(i);
+      if (!x.allFinite()) continue;
+      const Eigen::Vector2d px = v.toPixel(x);
+      const double cx = std::clamp(px.x(), double(p.x), double(p.x + p.width));
+      const double cy = std::clamp(px.y(), double(p.y), double(p.y + p.height));
+      const int side = px.x() < p.x ? 0 : px.x() > p.x + p.width ? 1 : px.y() < p.y ? 2 : px.y() > p.y + p.height ? 3 : -1;
+      if (side < 0) continue;
+      ++count[side];
+      along[side] += side < 2 ? cy : cx;
+    }
+    const float g = static_cast<float>(m.gutter), h = 0.5f * g;
+    for (int side = 0; side < 4; ++side) {
+      if (count[side] == 0) continue;
+      const float t = static_cast<float>(along[side] / count[side]);
+      ImVec2 tip, b, c;
+      switch (side) {
+        case 0: tip = {p.x - g + 1, t}; b = {p.x - 1.0f, t - h}; c = {p.x - 1.0f, t + h}; break;
+        case 1: tip = {p.x + p.width + g - 1, t}; b = {p.x + p.width + 1.0f, t - h}; c = {p.x + p.width + 1.0f, t + h}; break;
+        case 2: tip = {t, p.y - g + 1}; b = {t - h, p.y - 1.0f}; c = {t + h, p.y - 1.0f}; break;
+        default: tip = {t, p.y + p.height + g - 1}; b = {t - h, p.y + p.height + 1.0f}; c = {t + h, p.y + p.height + 1.0f};
+      }
+      draw->AddTriangleFilled(tip, b, c, titleColour);
+      const float x0 = std::min({tip.x, b.x, c.x}), y0 = std::min({tip.y, b.y, c.y});
+      const float x1 = std::max({tip.x, b.x, c.x}), y1 = std::max({tip.y, b.y, c.y});
+      overlays_.push_back({"indicator",
+                           {static_cast<int>(x0), static_cast<int>(y0), static_cast<int>(x1 - x0) + 1, static_cast<int>(y1 - y0) + 1},
+                           plural(count[side], "particle") + " out of view"});
+    }
   }
 }
 
 void App::drawHelp() {
-  const PixelRect area = worldArea();
+  const Layout l = layout();
+  const PixelRect area{0, 0, l.topBar.width, windowHeight_};
   ImGui::SetNextWindowPos(ImVec2(area.x + 0.5f * area.width, area.y + 0.5f * area.height), ImGuiCond_Always,
                           ImVec2(0.5f, 0.5f));
-  ImGui::SetNextWindowBgAlpha(0.88f);
+  ImGui::SetNextWindowBgAlpha(0.92f);
   ImGui::Begin("Keys", nullptr, overlayFlags & ~ImGuiWindowFlags_NoTitleBar);
+  std::string listed;  // the overlay's text in the state log
   if (ImGui::BeginTable("keys", 2)) {
-    auto row = [](const char* keys, const char* action) {
+    auto row = [&](const char* keys, const char* action) {
+      listed += std::string(keys) + ": " + action + "\n";
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
       ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", keys);
@@ -170,14 +301,13 @@ void App::drawHelp() {
     row("1, 2, ...", "load a scene (listed below)");
     for (const KeyBinding& k : keyBindings())
       if (k.label) row(k.label, k.help);
-    for (const MouseHelp& m : mouseHelp) row(m.buttons, m.action);
+    for (const MouseHelp& mh : mouseHelp) row(mh.buttons, mh.action);
     ImGui::EndTable();
   }
   ImGui::Separator();
-  for (const SceneKey& k : sceneKeys()) {
-    ImGui::Text("%c  %s", k.key, k.choice.label.c_str());
-  }
-  overlays_.push_back({"help", windowRect()});
+  for (const SceneKey& k : sceneKeys()) ImGui::Text("%c  %s", k.key, k.choice.label.c_str());
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  overlays_.push_back({"help", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x) + 1, static_cast<int>(size.y) + 1}, listed});
   ImGui::End();
 }
 

@@ -18,12 +18,15 @@ constexpr Rgb particle{236, 239, 244};
 constexpr Rgb pinnedParticle{255, 96, 84};
 constexpr Rgb grabbedParticle{120, 235, 140};
 constexpr Rgb spring{86, 132, 190};
+constexpr Rgb clothFront{62, 104, 160};  // a surface's faces (the cloth), at their rest area
+constexpr Rgb clothBack{150, 84, 96};    // a face turned over (negative signed area): a fold
 constexpr Rgb mouseSpring{120, 235, 140};
 constexpr Rgb constraint{232, 178, 62};
 constexpr Rgb constraintForceArrow{255, 214, 0};  // Jᵀλ, which is no force object's
 constexpr Rgb otherForceArrow{200, 200, 200};
 constexpr Rgb divergenceText{255, 92, 150};
 constexpr Rgb hudText{235, 235, 240};
+constexpr Rgb clothFace{62, 98, 150};  // a face at its mean area; stretched faces lighter, folds darker
 }  // namespace palette
 
 // Arrow colour of each force type ("f"), by Force::type(); a type not listed

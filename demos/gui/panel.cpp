@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "app.h"
+#include "particles/solver_names.h"
 
 namespace demo {
 
@@ -17,37 +18,19 @@ const scenes::SceneInfo* findScene(const std::string& name) {
   return nullptr;
 }
 
-// Names of the constraint solver's choices, as the panel offers them.
-struct MethodName {
-  particles::SolveMethod method;
-  const char* name;
-};
-constexpr MethodName solveMethods[] = {
-    {particles::SolveMethod::Direct, "direct (LDLT)"},
-    {particles::SolveMethod::ConjugateGradient, "conjugate gradient"},
-};
-struct PreconditionerName {
-  particles::Preconditioner preconditioner;
-  const char* name;
-};
-constexpr PreconditionerName preconditioners[] = {
-    {particles::Preconditioner::None, "none"},
-    {particles::Preconditioner::Jacobi, "Jacobi"},
-    {particles::Preconditioner::IncompleteCholesky, "incomplete Cholesky"},
-};
-
-// A combo over one of the tables above; true when the choice changed.
-template <class Entry, class Value, std::size_t N>
-bool choose(const char* label, const Entry (&table)[N], Value Entry::*field, Value& value) {
+// A combo over one of the engine's name tables (particles/solver_names.h),
+// showing each choice's label; true when the choice changed.
+template <class Value>
+bool choose(const char* label, const std::vector<particles::ChoiceName<Value>>& table, Value& value) {
   const char* current = "?";
-  for (const Entry& e : table)
-    if (e.*field == value) current = e.name;
+  for (const auto& e : table)
+    if (e.value == value) current = e.label;
   bool changed = false;
   if (ImGui::BeginCombo(label, current)) {
-    for (const Entry& e : table)
-      if (ImGui::Selectable(e.name, e.*field == value)) {
-        changed = e.*field != value;
-        value = e.*field;
+    for (const auto& e : table)
+      if (ImGui::Selectable(e.label, e.value == value)) {
+        changed = e.value != value;
+        value = e.value;
       }
     ImGui::EndCombo();
   }
@@ -64,10 +47,15 @@ void plot(const char* label, const std::vector<float>& values, float height) {
 }
 }  // namespace
 
+void App::recordWidget(const char* name) {
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  widgets_.push_back({name, {static_cast<int>(a.x), static_cast<int>(a.y), static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y)}, ""});
+}
+
 void App::drawPanel() {
-  const PixelRect area = worldArea();
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(area.width), 0.0f));
-  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(windowWidth_ - area.width), static_cast<float>(windowHeight_)));
+  const PixelRect area = layout().panel;
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(area.x), 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(area.width), static_cast<float>(area.height)));
   ImGui::Begin("Control panel", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);
@@ -76,11 +64,16 @@ void App::drawPanel() {
   // --- scene ----------------------------------------------------------------
   if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
     const std::vector<SceneKey> keys = sceneKeys();
-    if (ImGui::BeginCombo("scene", scene_.label.c_str())) {
+    const bool sceneListOpen = ImGui::BeginCombo("scene", scene_.label.c_str());
+    recordWidget("scene");
+    if (sceneListOpen) {
+      if (closePopups_) ImGui::CloseCurrentPopup();
+      const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+      widgets_.push_back({"scene-list", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}, ""});
       for (const SceneKey& k : keys)
         if (ImGui::Selectable((std::string(1, static_cast<char>(k.key)) + "  " + k.choice.label).c_str(),
                               k.choice.label == scene_.label))
-          keyboard(k.key);
+          guarded([&] { keyboard(k.key); });
       ImGui::EndCombo();
     }
     // The preset fills every parameter of a built-in scene; choosing one rebuilds it.
@@ -120,13 +113,17 @@ void App::drawPanel() {
           ImGui::SetTooltip("%s\n(Enter rebuilds the scene)", spec.help.c_str());
       }
     }
-    if (ImGui::Button("Reset (r)")) resetScene();
+    if (ImGui::Button("Reset (r)")) guarded([&] { resetScene(); });
+    recordWidget("reset");
     ImGui::SameLine();
     if (ImGui::Button(paused_ ? "Run (space)" : "Pause (space)")) paused_ = !paused_;
+    recordWidget("pause");
     ImGui::SameLine();
     if (ImGui::Button("Step (.)")) keyboard('.');
+    recordWidget("step");
     ImGui::SameLine();
     if (ImGui::Button("Rewind (b)")) rewind();
+    recordWidget("rewind");
   }
 
   // --- time stepping --------------------------------------------------------
@@ -136,6 +133,7 @@ void App::drawPanel() {
       ImGui::PushID(static_cast<int>(k));
       const std::string label = panes_.size() > 1 ? "pane " + std::to_string(k + 1) : "integrator";
       if (ImGui::BeginCombo(label.c_str(), panes_[k]->integratorName())) {
+        if (closePopups_) ImGui::CloseCurrentPopup();
         for (std::size_t t = 0; t < table.size(); ++t) {
           if (ImGui::Selectable(table[t].name, static_cast<int>(t) == panes_[k]->integratorIndex()))
             panes_[k]->setIntegrator(static_cast<int>(t));
@@ -165,9 +163,9 @@ void App::drawPanel() {
         for (auto& pane : panes_) pane->setIntegratorSettings(settings);
       }
     }
-    if (ImGui::Button("dt x2 (+)")) scaleDt(2.0);
+    if (ImGui::Button("dt x2 (+)")) guarded([&] { scaleDt(2.0); });
     ImGui::SameLine();
-    if (ImGui::Button("dt /2 (-)")) scaleDt(0.5);
+    if (ImGui::Button("dt /2 (-)")) guarded([&] { scaleDt(0.5); });
     float speed = static_cast<float>(speed_);
     if (ImGui::SliderFloat("speed", &speed, 0.125f, 8.0f, "%.3gx", ImGuiSliderFlags_Logarithmic)) speed_ = speed;
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("simulated seconds per second of frames (60 frames)");
@@ -175,7 +173,7 @@ void App::drawPanel() {
     if (ImGui::Checkbox("lockstep: one step per frame (l)", &lockstep))
       stepMode_ = lockstep ? StepMode::Lockstep : StepMode::FixedTime;
     int paneCount = static_cast<int>(panes_.size());
-    if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) setPaneCount(paneCount);
+    if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) guarded([&] { setPaneCount(paneCount); });
   }
 
   // --- live plots -------------------------------------------------------------
@@ -193,9 +191,9 @@ void App::drawPanel() {
   // --- constraint solver and mouse spring ------------------------------------
   if (ImGui::CollapsingHeader("Solver and mouse spring")) {
     particles::SolverSettings settings = panes_.front()->system().solver().settings;
-    bool changed = choose("constraint solve", solveMethods, &MethodName::method, settings.method);
+    bool changed = choose("constraint solve", particles::solveMethodNames(), settings.method);
     if (settings.method == particles::SolveMethod::ConjugateGradient)
-      changed |= choose("preconditioner", preconditioners, &PreconditionerName::preconditioner, settings.preconditioner);
+      changed |= choose("preconditioner", particles::preconditionerNames(), settings.preconditioner);
     float logTolerance = static_cast<float>(std::log10(settings.tolerance));
     if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
       settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
@@ -214,15 +212,13 @@ void App::drawPanel() {
       }
     }
     ImGui::Separator();
-    float omega2 = static_cast<float>(springSettings_.stiffnessPerMass);
-    if (ImGui::SliderFloat("mouse k_s / m", &omega2, 0.25f, 400.0f, "%.3g /s^2", ImGuiSliderFlags_Logarithmic))
-      springSettings_.stiffnessPerMass = omega2;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the mouse spring's k_s is this times the grabbed particle's mass");
-    ImGui::Checkbox("critical damping 2 sqrt(k_s m)", &springSettings_.criticalDamping);
-    if (!springSettings_.criticalDamping) {
-      float kd = static_cast<float>(springSettings_.damping);
-      if (ImGui::SliderFloat("mouse k_d", &kd, 0.0f, 20.0f, "%.3g")) springSettings_.damping = kd;
-    }
+    float frequency = static_cast<float>(mouseSettings_.joint.frequency);
+    if (ImGui::SliderFloat("mouse joint f", &frequency, 0.5f, 20.0f, "%.2g Hz", ImGuiSliderFlags_Logarithmic))
+      mouseSettings_.joint.frequency = frequency;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_s = m (2 pi f)^2 for the grabbed mass m (at most w dt = 0.5)");
+    float ratio = static_cast<float>(mouseSettings_.joint.dampingRatio);
+    if (ImGui::SliderFloat("damping ratio", &ratio, 0.0f, 2.0f, "%.2f")) mouseSettings_.joint.dampingRatio = ratio;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_d = 2 m zeta (2 pi f); 1 is critical");
   }
 
   // --- display --------------------------------------------------------------
@@ -232,11 +228,14 @@ void App::drawPanel() {
     ImGui::Checkbox("constraints (c)", &drawOptions_.constraints);
     ImGui::SameLine();
     ImGui::Checkbox("help (h)", &showHelp_);
+    ImGui::Checkbox("closed-form ghost (g)", &drawOptions_.ghost);
+    ImGui::SameLine();
+    if (ImGui::Button("frame all (a)")) frameAll();
   }
 
   ImGui::PopItemWidth();
   const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-  overlays_.push_back({"panel", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}});
+  overlays_.push_back({"panel", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}, ""});
   ImGui::End();
 }
 

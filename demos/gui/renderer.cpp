@@ -14,22 +14,36 @@ constexpr double arrowMaxPixels = 90.0;
 constexpr double arrowMinPixels = 2.0;
 constexpr int circleSegments = 96;
 constexpr std::size_t smoothLineLimit = 8000;  // lines drawn antialiased up to this many
+constexpr int coilSpringLimit = 16;            // scenes with at most this many springs draw them as coils
+constexpr int coilTurns = 8;
+constexpr double coilWidthPixels = 7.0;
+const Rgb ghostColour{150, 220, 255};
 
-// Diameter in pixels of a point particle: large enough to grab in a small
-// scene, and at most half the typical spacing so a dense cloth shows its mesh.
-int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
-  const double byScale = std::clamp(0.022 * pixelsPerUnit, 5.0, 10.0);
-  if (system.size() < 2) return static_cast<int>(byScale);
-  Eigen::Vector2d lo = system.position(0), hi = lo;
-  for (int i = 1; i < system.size(); ++i) {
-    lo = lo.cwiseMin(system.position(i));
-    hi = hi.cwiseMax(system.position(i));
-  }
-  const Eigen::Vector2d extent = (hi - lo) * pixelsPerUnit;
-  const double spacing = std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / system.size());
-  return static_cast<int>(std::clamp(0.5 * spacing, 1.0, byScale));
+// A pixel size from a double that may be NaN or huge (a diverged state): an
+// int in [lo, hi] without undefined behaviour.
+int pixels(double value, int lo, int hi) {
+  if (!(value >= lo)) return lo;
+  if (!(value <= hi)) return hi;
+  return static_cast<int>(std::lround(value));
 }
 }  // namespace
+
+int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
+  const double byScale = std::clamp(0.022 * pixelsPerUnit, 8.0, 12.0);
+  Eigen::Vector2d lo, hi;
+  int finite = 0;
+  for (int i = 0; i < system.size(); ++i) {
+    const Eigen::Vector2d x = system.position(i);
+    if (!x.allFinite()) continue;
+    lo = finite ? lo.cwiseMin(x) : x;
+    hi = finite ? hi.cwiseMax(x) : x;
+    ++finite;
+  }
+  if (finite < 2) return pixels(byScale, minParticlePixels, 12);
+  const Eigen::Vector2d extent = (hi - lo) * pixelsPerUnit;
+  const double spacing = std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / finite);
+  return pixels(std::min(0.45 * spacing, byScale), minParticlePixels, 12);
+}
 
 void Renderer::clearWindow(int width, int height, Rgb colour) {
   glViewport(0, 0, width, height);
@@ -39,16 +53,19 @@ void Renderer::clearWindow(int width, int height, Rgb colour) {
 }
 
 void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
-                        const DrawOptions& options) {
+                        const DrawOptions& options, const GhostFrame* ghost) {
   const particles::ParticleSystem& system = simulation.system();
-  for (Batch* b : {&walls_, &springs_, &constraints_, &arrows_}) b->clear();
+  for (Batch* b : {&walls_, &faces_, &springs_, &constraints_, &arrows_, &ghostLines_, &ghostPoints_}) b->clear();
   for (auto& entry : pointsBySize_) entry.second.clear();
   for (auto& entry : discsBySize_) entry.second.clear();
 
+  collectFaces(simulation.scene());
   collectWalls(system, view);
-  collectSketches(system, options);
+  collectFaces(simulation);
+  collectSketches(system, options, view.pixelsPerUnit, !simulation.scene().faces.empty());
   if (options.forces) collectForceArrows(system, view);
   collectParticles(simulation, view);
+  if (ghost && options.ghost) collectGhost(*ghost, view, pointDiameter(system, view.pixelsPerUnit));
 
   // GL's window origin is bottom-left, the pane's top-left.
   const PixelRect& p = view.pane;
@@ -75,11 +92,17 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
 
+  draw(faces_, GL_TRIANGLES);
   draw(walls_, GL_TRIANGLES);
+  draw(faces_, GL_TRIANGLES);
   for (const auto& [diameter, batch] : discsBySize_) {
     glPointSize(static_cast<float>(diameter));
     draw(batch, GL_POINTS);
   }
+  glLineWidth(1.5f);
+  draw(ghostLines_, GL_LINES);
+  glPointSize(static_cast<float>(ghostDiameter_));
+  draw(ghostPoints_, GL_POINTS);
   glLineWidth(smooth ? 1.4f : 1.0f);
   draw(springs_, GL_LINES);
   glLineWidth(2.0f);
@@ -101,6 +124,34 @@ void Renderer::draw(const Batch& batch, unsigned mode) {
   glVertexPointer(2, GL_FLOAT, 0, batch.xy.data());
   glColorPointer(4, GL_UNSIGNED_BYTE, 0, batch.rgba.data());
   glDrawArrays(mode, 0, static_cast<GLsizei>(batch.xy.size() / 2));
+}
+
+void Renderer::collectFaces(const scenes::Scene& scene) {
+  faces_.clear();
+  if (scene.faces.empty()) return;
+  const particles::ParticleSystem& s = *scene.system;
+  // Twice the signed area of the quad a b c d (shoelace); a folded quad has
+  // less area, or negative.
+  auto twiceArea = [&](const std::array<int, 4>& f) {
+    double sum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector2d a = s.position(f[k]), b = s.position(f[(k + 1) % 4]);
+      sum += a.x() * b.y() - b.x() * a.y();
+    }
+    return sum;
+  };
+  double mean = 0.0;
+  for (const auto& f : scene.faces) mean += std::abs(twiceArea(f));
+  mean /= static_cast<double>(scene.faces.size());
+  if (!(mean > 0.0) || !std::isfinite(mean)) return;  // collapsed or diverged: springs and particles still show
+  for (const auto& f : scene.faces) {
+    const double shade = std::clamp(0.55 + 0.45 * twiceArea(f) / mean, 0.35, 1.4);
+    const Rgb base = palette::clothFace;
+    const Rgb c{static_cast<std::uint8_t>(std::min(255.0, base.r * shade)),
+                static_cast<std::uint8_t>(std::min(255.0, base.g * shade)),
+                static_cast<std::uint8_t>(std::min(255.0, base.b * shade))};
+    for (int k : {0, 1, 2, 0, 2, 3}) faces_.add(s.position(f[k]), c, 230);
+  }
 }
 
 // The outline of a collider grown by its radius, counter-clockwise: the
@@ -141,15 +192,41 @@ void Renderer::collectWalls(const particles::ParticleSystem& system, const ViewT
   }
 }
 
-void Renderer::collectSketches(const particles::ParticleSystem& system, const DrawOptions& options) {
+// A surface drawn as shaded quads: its colour brightens where a face is
+// stretched beyond its rest area and darkens where it is compressed; a face
+// turned over (a fold, negative signed area) shows the back colour.
+void Renderer::collectFaces(const Simulation& simulation) {
+  const particles::ParticleSystem& system = simulation.system();
+  const auto& faces = simulation.scene().faces;
+  const auto& rest = simulation.restFaceAreas();
+  for (std::size_t k = 0; k < faces.size() && k < rest.size(); ++k) {
+    const auto& f = faces[k];
+    const double area = faceArea(system, f);
+    if (!std::isfinite(area) || !(std::abs(rest[k]) > 0.0)) continue;
+    const double ratio = area / rest[k];
+    const Rgb base = ratio >= 0.0 ? palette::clothFront : palette::clothBack;
+    const double shade = std::clamp(0.8 + 0.4 * (std::abs(ratio) - 1.0), 0.55, 1.3);
+    auto channel = [&](std::uint8_t c) { return static_cast<std::uint8_t>(std::min(255.0, c * shade)); };
+    const Rgb c{channel(base.r), channel(base.g), channel(base.b)};
+    for (int corner : {0, 1, 2, 0, 2, 3}) faces_.add(system.position(f[corner]), c);
+  }
+}
+
+void Renderer::collectSketches(const particles::ParticleSystem& system, const DrawOptions& options,
+                               double pixelsPerUnit, bool surface) {
   const particles::Phase phase = system.phase();
+  int springs = 0;
+  for (const auto& force : system.forceObjects()) springs += std::strcmp(force->type(), "spring") == 0;
+  const bool coils = springs <= coilSpringLimit;
   for (const auto& force : system.forceObjects()) {
     sketch_.lines.clear();
     sketch_.circles.clear();
     force->sketch(phase, sketch_);
     const bool mouse = std::strcmp(force->type(), "mouse-spring") == 0;
+    const bool spring = std::strcmp(force->type(), "spring") == 0;
     const Rgb colour = mouse ? palette::mouseSpring : palette::spring;
-    for (const auto& l : sketch_.lines) springs_.line(l.a, l.b, colour, mouse ? 255 : 200);
+    for (const auto& l : sketch_.lines)
+      addSpring(springs_, l.a, l.b, colour, mouse ? 255 : surface ? 70 : 220, spring && coils, pixelsPerUnit);
     for (const auto& c : sketch_.circles) addCircle(springs_, c.centre, c.radius, colour);
   }
   if (!options.constraints) return;
@@ -159,7 +236,42 @@ void Renderer::collectSketches(const particles::ParticleSystem& system, const Dr
     constraint->sketch(phase, sketch_);
     for (const auto& l : sketch_.lines) constraints_.line(l.a, l.b, palette::constraint);
     for (const auto& c : sketch_.circles) addCircle(constraints_, c.centre, c.radius, palette::constraint);
+    // A bead on a circular wire is a pendulum: its rod to the centre, faintly.
+    if (std::strcmp(constraint->type(), "circular-wire") == 0 && !sketch_.circles.empty())
+      for (int i : constraint->particles())
+        constraints_.line(sketch_.circles.front().centre, system.position(i), palette::constraint);
   }
+}
+
+void Renderer::addSpring(Batch& batch, const Eigen::Vector2d& a, const Eigen::Vector2d& b, Rgb colour,
+                         unsigned char alpha, bool coil, double pixelsPerUnit) {
+  const Eigen::Vector2d d = b - a;
+  const double length = d.norm();
+  if (!coil || !(length * pixelsPerUnit > 4.0 * coilTurns) || !std::isfinite(length)) {
+    batch.line(a, b, colour, alpha);
+    return;
+  }
+  // Straight leads of 10% at each end, then zigzags across the axis.
+  const Eigen::Vector2d axis = d / length, side(-axis.y(), axis.x());
+  const double width = coilWidthPixels / pixelsPerUnit;
+  const int corners = 2 * coilTurns;
+  Eigen::Vector2d previous = a + 0.1 * d;
+  batch.line(a, previous, colour, alpha);
+  for (int k = 1; k <= corners; ++k) {
+    const double s = 0.1 + 0.8 * (k - 0.5) / corners;
+    const Eigen::Vector2d corner = a + s * d + (k % 2 ? width : -width) * side;
+    batch.line(previous, corner, colour, alpha);
+    previous = corner;
+  }
+  batch.line(previous, a + 0.9 * d, colour, alpha);
+  batch.line(a + 0.9 * d, b, colour, alpha);
+}
+
+void Renderer::collectGhost(const GhostFrame& ghost, const ViewTransform& view, int diameter) {
+  for (const auto& [a, b] : ghost.springs) addSpring(ghostLines_, a, b, ghostColour, 150, true, view.pixelsPerUnit);
+  for (const auto& [a, b] : ghost.rods) ghostLines_.line(a, b, ghostColour, 150);
+  for (const Eigen::Vector2d& p : ghost.points) ghostPoints_.add(p, ghostColour, 170);
+  ghostDiameter_ = diameter + 2;
 }
 
 void Renderer::addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour) {
@@ -237,7 +349,7 @@ void Renderer::collectParticles(const Simulation& simulation, const ViewTransfor
                                                : palette::particle;
     // A collidable particle also shows its collision disc, faintly, under the mesh.
     if (system.collidable(i)) {
-      const int disc = static_cast<int>(std::lround(2.0 * system.radii()[i] * view.pixelsPerUnit));
+      const int disc = pixels(2.0 * system.radii()[i] * view.pixelsPerUnit, 0, 4096);
       if (disc > diameter) discsBySize_[disc].add(system.position(i), colour, 56);
     }
     pointsBySize_[i == grabbed || system.pinned(i) ? diameter + 2 : diameter].add(system.position(i), colour);

@@ -5,6 +5,7 @@
 #include <map>
 #include <vector>
 
+#include "exact_motion.h"
 #include "palette.h"
 #include "particles/constraint_solver.h"
 #include "simulation.h"
@@ -14,15 +15,23 @@ namespace demo {
 
 struct DrawOptions {
   bool forces = false;      // arrows per force type ('f')
-  bool constraints = true;  // wires, rods, lines ('c')
+  bool constraints = true;  // wires, rods, lines ('c'): drawing only, they always act
+  bool ghost = true;        // the exact motion beside the simulation, where a scene has one ('g')
 };
+
+// Diameter in pixels of a point particle: at least minParticlePixels so that
+// every particle can be seen and grabbed, larger in a small scene, and no more
+// than the typical spacing so that a dense cloth still shows its mesh.
+constexpr int minParticlePixels = 6;
+int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit);
 
 class Renderer {
  public:
   // Clears the whole window (the colour shows between panes).
   void clearWindow(int width, int height, Rgb colour);
+  // ghost: the exact solution at the pane's time, or null.
   void drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
-                const DrawOptions& options);
+                const DrawOptions& options, const GhostFrame* ghost = nullptr);
 
  private:
   // Vertices of one primitive kind: 2 floats and 4 bytes of colour each.
@@ -42,15 +51,27 @@ class Renderer {
   };
 
   void collectWalls(const particles::ParticleSystem& system, const ViewTransform& view);  // colliders
-  void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options);
+  void collectFaces(const Simulation& simulation);
+  // surface: the springs are drawn faintly over the shaded faces.
+  void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options, double pixelsPerUnit,
+                       bool surface);
   void collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view);
   void collectParticles(const Simulation& simulation, const ViewTransform& view);
+  void collectGhost(const GhostFrame& ghost, const ViewTransform& view, int diameter);
+  // A spring as a coil of zigzags (a few springs) or a straight line (a mesh).
+  void addSpring(Batch& batch, const Eigen::Vector2d& a, const Eigen::Vector2d& b, Rgb colour, unsigned char alpha,
+                 bool coil, double pixelsPerUnit);
   void addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour);
   static void draw(const Batch& batch, unsigned mode);
+  // The scene's faces (a cloth's cells), two triangles each, shaded by area
+  // against the mean face: stretched faces lighter, folded ones darker.
+  void collectFaces(const scenes::Scene& scene);
 
-  Batch walls_, springs_, constraints_, arrows_;
+  Batch walls_, faces_, springs_, constraints_, arrows_, ghostLines_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
+  Batch ghostPoints_;
+  int ghostDiameter_ = minParticlePixels;
   particles::Sketch sketch_;
   std::vector<Eigen::VectorXd> forceByType_;
   Eigen::VectorXd totalForce_;

@@ -1,19 +1,30 @@
 #include "rewind_buffer.h"
 
+#include <algorithm>
+
 namespace demo {
 
-void RewindBuffer::record(const particles::ParticleSystem& system) {
-  if (!system.finite()) return;
-  if (!snapshots_.empty() && system.time() < snapshots_.back().time + interval * (1.0 - 1e-9)) return;
-  snapshots_.push_back(system.snapshot());
-  while (snapshots_.size() > 1 && snapshots_.back().time - snapshots_.front().time > span)
-    snapshots_.pop_front();
+void RewindBuffer::record(long long frame, const particles::ParticleSystem& system, double owedTime,
+                          long long steps) {
+  if (frame % stride_ != 0 || !system.finite() || has(frame)) return;
+  entries_.push_back({frame, system.snapshot(), owedTime, steps});
+  if (static_cast<int>(entries_.size()) < capacity) return;
+  stride_ *= 2;
+  std::deque<RewindEntry> kept;
+  for (RewindEntry& e : entries_)
+    if (e.frame % stride_ == 0) kept.push_back(std::move(e));
+  entries_ = std::move(kept);
 }
 
-const particles::Snapshot* RewindBuffer::rewindTo(double time) {
-  if (snapshots_.empty()) return nullptr;
-  while (snapshots_.size() > 1 && snapshots_.back().time > time) snapshots_.pop_back();
-  return &snapshots_.back();
+bool RewindBuffer::has(long long frame) const {
+  return std::any_of(entries_.begin(), entries_.end(), [&](const RewindEntry& e) { return e.frame == frame; });
+}
+
+const RewindEntry* RewindBuffer::rewindTo(long long frame) {
+  while (!entries_.empty() && entries_.back().frame > frame) entries_.pop_back();
+  if (entries_.empty() || entries_.back().frame != frame) return nullptr;
+  // Later records continue on the current stride from here.
+  return &entries_.back();
 }
 
 }  // namespace demo

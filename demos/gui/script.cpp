@@ -1,6 +1,8 @@
 #include "script.h"
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -23,6 +25,11 @@ unsigned char parseKey(const std::string& word) {
 }  // namespace
 
 std::vector<ScriptEvent> readScript(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw std::invalid_argument(std::filesystem::exists(path, error)
+                                    ? "script '" + path + "' is not a regular file"
+                                    : "cannot read script file '" + path + "'");
   std::ifstream file(path);
   if (!file) throw std::invalid_argument("cannot read script file '" + path + "'");
   std::vector<ScriptEvent> events;
@@ -39,10 +46,10 @@ std::vector<ScriptEvent> readScript(const std::string& path) {
     try {
       if (in.fail() || e.frame < 0) throw std::invalid_argument("expected a frame number >= 0 first");
       if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up or resize after the frame");
-      if (action == "key") {
+      if (action == "key" || action == "keydown" || action == "keyup") {
         std::string key;
-        if (!(in >> key)) throw std::invalid_argument("expected a key after 'key'");
-        e.action = ScriptAction::Key;
+        if (!(in >> key)) throw std::invalid_argument("expected a key after '" + action + "'");
+        e.action = action == "key" ? ScriptAction::Key : action == "keydown" ? ScriptAction::KeyDown : ScriptAction::KeyUp;
         e.key = parseKey(key);
       } else if (action == "resize") {
         e.action = ScriptAction::Resize;
@@ -52,17 +59,23 @@ std::vector<ScriptEvent> readScript(const std::string& path) {
         if (action == "down") e.action = ScriptAction::MouseDown;
         else if (action == "move") e.action = ScriptAction::MouseMove;
         else if (action == "up") e.action = ScriptAction::MouseUp;
-        else throw std::invalid_argument("expected key, down, move, up or resize, got '" + action + "'");
+        else if (action == "wheel") e.action = ScriptAction::Wheel;
+        else throw std::invalid_argument("expected key, keydown, keyup, down, move, up, wheel or resize, got '" + action + "'");
         std::string space, button;
         if (!(in >> space >> e.x >> e.y)) throw std::invalid_argument("expected world|window x y after '" + action + "'");
+        if (!std::isfinite(e.x) || !std::isfinite(e.y)) throw std::invalid_argument("expected finite coordinates");
         if (space == "world") e.space = ScriptSpace::World;
         else if (space == "window") e.space = ScriptSpace::Window;
         else throw std::invalid_argument("expected world or window, got '" + space + "'");
-        if (in >> button) {
+        if (e.action == ScriptAction::Wheel) {
+          if (!(in >> e.clicks) || e.clicks == 0 || std::abs(e.clicks) > 100)
+            throw std::invalid_argument("expected wheel clicks, a nonzero integer within +-100");
+        } else if (in >> button) {
           if (button == "left") e.button = ScriptButton::Left;
           else if (button == "right") e.button = ScriptButton::Right;
+          else if (button == "middle") e.button = ScriptButton::Middle;
           else if (button == "shift-left") e.button = ScriptButton::ShiftLeft;
-          else throw std::invalid_argument("expected left, right or shift-left, got '" + button + "'");
+          else throw std::invalid_argument("expected left, right, middle or shift-left, got '" + button + "'");
         }
       }
       std::string extra;

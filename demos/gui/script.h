@@ -4,7 +4,9 @@
 //
 // One event per line; '#' starts a comment:
 //   <frame> key <k>                          k: one character, or space, esc, enter, tab
-//   <frame> down|move|up world|window <x> <y> [left|right|shift-left]
+//   <frame> keydown|keyup <k>                a key held over frames (space + drag pans)
+//   <frame> down|move|up world|window <x> <y> [left|right|middle|shift-left]
+//   <frame> wheel world|window <x> <y> <clicks>   clicks > 0 zoom in, < 0 out
 //   <frame> resize <width> <height>          asks the window system for a new size
 // <frame> counts frames from 0; events of frame k are handled before frame k
 // steps and draws. world coordinates are mapped to pixels through the first
@@ -14,9 +16,9 @@
 
 namespace demo {
 
-enum class ScriptAction { Key, MouseDown, MouseMove, MouseUp, Resize };
+enum class ScriptAction { Key, KeyDown, KeyUp, MouseDown, MouseMove, MouseUp, Wheel, Resize };
 enum class ScriptSpace { World, Window };
-enum class ScriptButton { Left, Right, ShiftLeft };
+enum class ScriptButton { Left, Right, Middle, ShiftLeft };
 
 struct ScriptEvent {
   long long frame = 0;
@@ -25,10 +27,11 @@ struct ScriptEvent {
   ScriptSpace space = ScriptSpace::Window;
   double x = 0.0, y = 0.0;
   ScriptButton button = ScriptButton::Left;
+  int clicks = 0;  // wheel
 };
 
 // Reads a script; throws std::invalid_argument naming the file, line and what
-// was expected.
+// was expected, or for a path that is not a regular file (a directory, a FIFO).
 std::vector<ScriptEvent> readScript(const std::string& path);
 
 }  // namespace demo

@@ -1,5 +1,6 @@
 #include "simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -21,7 +22,18 @@ Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
     : scene_(std::move(scene)), integratorIndex_(-1), dt_(0.0), limits_(demoDivergenceLimits(scene_)) {
   setIntegrator(integratorIndex);
   setDt(dt);
-  history_.record(system());
+  history_.record(frames_, system(), owedTime_, steps_);
+  for (const auto& face : scene_.faces) restFaceAreas_.push_back(faceArea(system(), face));
+}
+
+double faceArea(const particles::ParticleSystem& s, const std::array<int, 4>& f) {
+  // The shoelace formula over the quad's corners, counter-clockwise positive.
+  double twice = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d a = s.position(f[k]), b = s.position(f[(k + 1) % 4]);
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * twice;
 }
 
 void Simulation::setIntegrator(int index) {
@@ -49,35 +61,45 @@ void Simulation::setDt(double dt) {
   dt_ = dt;
 }
 
-void Simulation::advanceFrame(double frameTime, StepMode mode) {
+void Simulation::advanceFrame(double frameTime, StepMode mode, double budgetMs) {
   lastFrame_ = {};
   if (stopped()) return;
   const auto start = std::chrono::steady_clock::now();
+  auto elapsedMs = [&] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  };
   if (mode == StepMode::Lockstep) {
     stepAndWatch();
   } else {
     // Fixed simulated time per frame: the frame rate changes how often this
     // runs, never what it computes. Time short of a whole dt carries over.
     owedTime_ += frameTime;
-    if (owedTime_ > maxSubstepsPerFrame * dt_) {
-      owedTime_ = maxSubstepsPerFrame * dt_;
-      lastFrame_.capped = true;
-    }
     while (owedTime_ >= dt_ * (1.0 - 1e-9) && !stopped()) {
       stepAndWatch();
       owedTime_ -= dt_;
+      if (owedTime_ >= dt_ * (1.0 - 1e-9) && elapsedMs() > budgetMs) {
+        owedTime_ = 0.0;
+        lastFrame_.capped = true;
+        break;
+      }
     }
   }
-  lastFrame_.simulationMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (!stopped()) trace_.add(system().totalEnergy(), system().maxConstraintError());
+  lastFrame_.simulationMs = elapsedMs();
+  if (stopped()) return;
+  ++frames_;
+  history_.record(frames_, system(), owedTime_, steps_);
+  trace_.add(sceneEnergy(), system().maxConstraintError());
 }
 
 void Simulation::stepOnce() {
   if (stopped()) return;
   lastFrame_ = {};
   stepAndWatch();
-  if (!stopped()) trace_.add(system().totalEnergy(), system().maxConstraintError());
+  if (!stopped()) trace_.add(sceneEnergy(), system().maxConstraintError());
+}
+
+double Simulation::mouseSpringEnergy() const {
+  return spring_ ? spring_->potential(system().phase()) : 0.0;
 }
 
 void Simulation::stepAndWatch() {
@@ -98,19 +120,21 @@ void Simulation::stepAndWatch() {
   if (divergence_) {
     divergedAt_ = system().time();
     owedTime_ = 0.0;
-    return;
   }
-  history_.record(system());
 }
 
-std::optional<double> Simulation::rewindTo(double time) {
-  const particles::Snapshot* snapshot = history_.rewindTo(time);
-  if (!snapshot) return std::nullopt;
-  system().restore(*snapshot);
+bool Simulation::rewindTo(long long frame) {
+  const RewindEntry* entry = history_.rewindTo(frame);
+  if (!entry) return false;
+  system().restore(entry->state);
+  owedTime_ = entry->owedTime;
+  steps_ = entry->steps;
+  frames_ = entry->frame;
   divergedAt_.reset();
   divergence_ = {};
-  owedTime_ = 0.0;
-  return snapshot->time;
+  trace_.clear();  // the plotted past belongs to the future just dropped
+  lastFrame_ = {};
+  return true;
 }
 
 void Simulation::copyStateFrom(const Simulation& other) {
@@ -118,9 +142,11 @@ void Simulation::copyStateFrom(const Simulation& other) {
   for (int i = 0; i < system().size(); ++i)
     if (system().pinned(i) != other.system().pinned(i)) system().setPinned(i, other.system().pinned(i));
   system().restore(other.system().snapshot());  // pinning zeroes velocities; take them back
-  history_.clear();
-  history_.record(system());
-  trace_.clear();
+  owedTime_ = other.owedTime_;
+  steps_ = other.steps_;
+  frames_ = other.frames_;
+  history_ = other.history_;
+  trace_ = other.trace_;
 }
 
 std::optional<int> Simulation::particleNear(const Eigen::Vector2d& world, double radius,
@@ -138,10 +164,14 @@ std::optional<int> Simulation::particleNear(const Eigen::Vector2d& world, double
   return best;
 }
 
-void Simulation::grab(int particle, const Eigen::Vector2d& target, double stiffness,
-                      double damping) {
+void Simulation::grab(int particle, const Eigen::Vector2d& target, const particles::MouseJointSettings& joint) {
+  // An explicit step follows the joint's oscillation stably only while ω dt is
+  // small (explicit Euler's |1 + λ dt| < 1 at ζ = 0.7 needs ω dt < 1): keep ω dt ≤ 0.5.
+  particles::MouseJointSettings stable = joint;
+  stable.frequency = std::min(joint.frequency, 0.5 / (2.0 * M_PI * dt_));
+  const particles::MouseSpringGains gains = particles::mouseSpringGains(system().masses()[particle], stable);
   release();
-  auto spring = std::make_unique<particles::MouseSpringForce>(particle, target, stiffness, damping);
+  auto spring = std::make_unique<particles::MouseSpringForce>(particle, target, gains.stiffness, gains.damping);
   spring_ = spring.get();
   system().addForce(std::move(spring));
 }

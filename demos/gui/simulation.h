@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "particles/divergence.h"
 #include "particles/forces/mouse_spring.h"
@@ -27,16 +28,19 @@ enum class StepMode {
 // or a particle flung more than 1000 view diagonals away. No energy test.
 particles::DivergenceLimits demoDivergenceLimits(const scenes::Scene& scene);
 
-// At most this many steps per frame: with a tiny dt the simulation then runs
-// slower than the fixed simulated time per frame instead of freezing the window.
-constexpr int maxSubstepsPerFrame = 2000;
+// Wall time for stepping per frame, shared by the panes: beyond it a frame
+// drops the rest of its simulated time (slow motion) so the window stays live.
+constexpr double stepBudgetMsPerFrame = 40.0;
 
 // Measurements of the last frame, for the HUD.
 struct FrameStats {
   int substeps = 0;
-  bool capped = false;        // maxSubstepsPerFrame cut the frame's simulated time short
+  bool capped = false;        // the wall-time budget cut the frame's simulated time short (slow motion)
   double simulationMs = 0.0;  // wall time spent stepping this frame
 };
+
+// The signed area of a quad face, positive when its corners run counter-clockwise.
+double faceArea(const particles::ParticleSystem& system, const std::array<int, 4>& face);
 
 class Simulation {
  public:
@@ -44,8 +48,11 @@ class Simulation {
 
   // --- stepping: called once per frame ------------------------------------
   // Advances by frameTime (or one step in lockstep), stopping at once when the
-  // state diverges; records history and the trace.
-  void advanceFrame(double frameTime, StepMode mode);
+  // state diverges; records history and the trace. Stepping stops when it has
+  // taken budgetMs of wall time: the simulated time left over is dropped, so
+  // a tiny dt on a big scene runs in slow motion instead of freezing the
+  // window (a single step that never ends is the integrator's work cap's to stop).
+  void advanceFrame(double frameTime, StepMode mode, double budgetMs);
   void stepOnce();  // one dt step (the '.' key)
 
   // --- settings -----------------------------------------------------------
@@ -56,13 +63,14 @@ class Simulation {
   // integrator changes. Throws naming a bad field.
   void setIntegratorSettings(const particles::IntegratorSettings& settings);
   const particles::IntegratorSettings& integratorSettings() const { return integratorSettings_; }
-  void setDt(double dt);  // throws for dt ≤ 0 or NaN
+  void setDt(double dt);  // throws for dt ≤ 0, NaN or infinite
   double dt() const { return dt_; }
 
   // --- the user's hand ----------------------------------------------------
   // Nearest particle to `world` within `radius` (world units), movable only or any.
   std::optional<int> particleNear(const Eigen::Vector2d& world, double radius, bool movableOnly) const;
-  void grab(int particle, const Eigen::Vector2d& target, double stiffness, double damping);
+  // Attaches a mouse joint; throws (changing nothing) when its gains overflow.
+  void grab(int particle, const Eigen::Vector2d& target, const particles::MouseJointSettings& joint);
   void moveGrab(const Eigen::Vector2d& target);
   void release();
   const particles::MouseSpringForce* mouseSpring() const { return spring_; }
@@ -77,10 +85,16 @@ class Simulation {
   bool stopped() const { return divergedAt_ || refusal_; }
   // The simulated time it stopped at if diverged, else its clock.
   double timeReached() const { return divergedAt_ ? *divergedAt_ : system().time(); }
-  // Restores the newest recorded state at or before `time` (the oldest kept
-  // if none is that old) and clears the divergence. Returns the time restored to.
-  std::optional<double> rewindTo(double time);
-  // Copies the dynamic state and pins of another simulation of the same scene.
+  // Frames advanced since the start (the clock every pane shares; a stopped
+  // pane's stays at the frame it stopped on).
+  long long frames() const { return frames_; }
+  double owedTime() const { return owedTime_; }  // simulated time not yet stepped: t + owed is the shared clock
+  const RewindBuffer& history() const { return history_; }
+  // Restores the state recorded at `frame` (see history()), clears the
+  // divergence and the plots. False when that frame is not recorded.
+  bool rewindTo(long long frame);
+  // Copies the dynamic state, pins, clock and history of another simulation
+  // of the same scene, so a new compare pane starts exactly where it is.
   void copyStateFrom(const Simulation& other);
 
   // --- reading ------------------------------------------------------------
@@ -88,6 +102,12 @@ class Simulation {
   particles::ParticleSystem& system() { return *scene_.system; }
   const particles::ParticleSystem& system() const { return *scene_.system; }
   const FrameStats& lastFrame() const { return lastFrame_; }
+  // The signed area of each of the scene's faces at t = 0, for shading.
+  const std::vector<double>& restFaceAreas() const { return restFaceAreas_; }
+  // The mouse spring's potential ½ k |x − t|², which totalEnergy() includes,
+  // and the scene's own energy without it.
+  double mouseSpringEnergy() const;
+  double sceneEnergy() const { return system().totalEnergy() - mouseSpringEnergy(); }
   const Trace& trace() const { return trace_; }
   long long steps() const { return steps_; }
   // Why the pane diverged (empty reason while it runs).
@@ -102,8 +122,10 @@ class Simulation {
   double dt_;
   double owedTime_ = 0.0;  // simulated time accumulated but not yet stepped
   long long steps_ = 0;
+  long long frames_ = 0;
   particles::MouseSpringForce* spring_ = nullptr;  // owned by the system
   particles::DivergenceLimits limits_;
+  std::vector<double> restFaceAreas_;
   particles::Divergence divergence_;
   std::optional<double> divergedAt_;
   std::optional<std::string> refusal_;

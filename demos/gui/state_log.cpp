@@ -1,12 +1,13 @@
 #include "state_log.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 
 namespace demo {
 
 std::string writeStateFile(const std::string& path, const std::vector<PaneState>& panes,
-                           const std::vector<Overlay>& overlays, long long frames, bool paused) {
+                           const StateExtras& extras, long long frames, bool paused) {
   std::ofstream out(path);
   if (!out) return "cannot write state log '" + path + "'";
   out.precision(17);
@@ -19,7 +20,9 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
     for (const auto& f : s.forceObjects()) springs += std::strcmp(f->type(), "mouse-spring") == 0;
     out << "pane," << k << "," << panes[k].sceneLabel << "," << sim.integratorName() << "," << sim.dt() << ","
         << s.time() << "," << sim.steps() << "," << (sim.divergedAt() ? 1 : 0) << "," << springs << ","
-        << s.totalEnergy() << "," << s.maxConstraintError() << "\n";
+        << sim.sceneEnergy() << "," << s.maxConstraintError() << "," << sim.mouseSpringEnergy() << ","
+        << (sim.lastFrame().capped ? 1 : 0) << "," << sim.lastFrame().substeps << "," << sim.frames() << "," << sim.owedTime() << ","
+        << sim.trace().energy().size() << "\n";
     const ViewTransform& v = panes[k].view;
     out << "view," << k << "," << v.pane.x << "," << v.pane.y << "," << v.pane.width << "," << v.pane.height << ","
         << v.worldMin.x() << "," << v.worldMin.y() << "," << v.worldMax.x() << "," << v.worldMax.y() << "\n";
@@ -33,9 +36,30 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
       if (c.bounds(lo, hi)) out << "wall," << k << "," << lo.x() << "," << lo.y() << "," << hi.x() << "," << hi.y() << "\n";
     }
   }
-  for (const Overlay& o : overlays)
+  for (const Overlay& o : extras.overlays) {
+    std::string text;
+    for (char c : o.text) text += c == '\n' ? std::string(" | ") : std::string(1, c);
     out << "overlay," << o.kind << "," << o.rect.x << "," << o.rect.y << "," << o.rect.width << "," << o.rect.height
+        << "," << text << "\n";
+  }
+  for (const Overlay& w : extras.widgets)
+    out << "widget," << w.kind << "," << w.rect.x << "," << w.rect.y << "," << w.rect.width << "," << w.rect.height
         << "\n";
+  // Frame times after a warm-up of 10 frames: median and spread.
+  auto quantile = [](std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    auto k = v.begin() + static_cast<long>(q * (v.size() - 1));
+    std::nth_element(v.begin(), k, v.end());
+    return *k;
+  };
+  const std::size_t warmUp = std::min<std::size_t>(10, extras.frameMs.size());
+  const std::vector<double> ms(extras.frameMs.begin() + warmUp, extras.frameMs.end());
+  const std::vector<double> stepping(extras.frameSimulationMs.begin() + std::min(warmUp, extras.frameSimulationMs.size()),
+                                     extras.frameSimulationMs.end());
+  out << "frame-times," << ms.size() << "," << quantile(ms, 0.5) << "," << quantile(ms, 0.1) << "," << quantile(ms, 0.9)
+      << "," << quantile(stepping, 0.5) << "\n";
+  out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
+  out.close();
   return out ? "" : "error writing state log '" + path + "'";
 }
 

@@ -1,5 +1,6 @@
 #include "lab/chain.h"
 
+#include "lab/lab_scene.h"
 #include "particles/constraints/rod.h"
 
 namespace lab {
@@ -8,7 +9,7 @@ scenes::Scene buildChain(const ChainSpec& spec) {
   std::map<std::string, std::string> params = spec.extra;
   params["cl"] = std::to_string(spec.length);
   params["rod"] = spec.rodForm;
-  return scenes::buildScene("test-chain", params, scenes::kSeedPreset);
+  return buildLabScene("test-chain", params);
 }
 
 double chainRodLength(const scenes::Scene& chain) {

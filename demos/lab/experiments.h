@@ -7,8 +7,8 @@
 namespace lab {
 
 struct StabilityOptions {
-  double duration = 60.0;  // T, simulated seconds a run must survive
-  Explosion explosion;
+  double duration = 60.0;  // T of Tables 1 and 2, simulated seconds a run must survive
+  static constexpr double minDuration = 1.0, maxDuration = 1e4;  // accepted range of --duration, s
 };
 int runStability(const LabOptions& options, const StabilityOptions& stability);
 
@@ -21,6 +21,8 @@ int runTiming(const LabOptions& options, const TimingOptions& timing);
 int runAccuracy(const LabOptions& options);
 int runExtremes(const LabOptions& options);
 int runClaims(const LabOptions& options);
+int runCost(const LabOptions& options);
+int runLongtime(const LabOptions& options);
 
 // Median wall time of one step (seconds), and mean CG iterations and solves
 // per step (StepStats) of a scene under an integrator: warm-up steps, then

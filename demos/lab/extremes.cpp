@@ -2,87 +2,132 @@
 // tips on light chains, the constraint feedback gains, a starved CG, the two
 // rod forms, and the taut chain between two wires.
 #include <cmath>
+#include <iostream>
 #include <limits>
+#include <map>
 
 #include "lab/chain.h"
 #include "lab/experiments.h"
+#include "lab/lab_scene.h"
+#include "lab/parallel.h"
 
 namespace lab {
-
-namespace {
-
-std::string stepText(double dt, double lo, double hi) {
-  return dt <= 0.0 ? "< " + general(lo) : dt >= hi ? "≥ " + general(hi) : general(dt, 2);
-}
-
-}  // namespace
 
 int runExtremes(const LabOptions& options) {
   prepareOutput(options);
   const auto integrators = selectedIntegrators(options);
+  // Scanned sections leave out adaptive schemes: their dt is only a call interval.
+  std::vector<std::string> scanned;
+  for (const auto& name : integrators) {
+    bool adaptive = false;
+    for (const auto& info : particles::integratorTable()) adaptive = adaptive || (name == info.name && info.usesTolerance);
+    if (!adaptive) scanned.push_back(name);
+  }
   const bool q = options.quick;
-  const int rounds = q ? 3 : 7;
-  const Explosion explosion;
-  Progress progress("extremes", static_cast<long>(integrators.size()) * (q ? 40 : 200) + (q ? 30 : 150));
+  const FailureCriterion& criterion = options.criterion;
+  std::cout << describe(criterion) << "\n";
+  // Safe steps by scanning a 5% log grid (scan.h) over `members` starts.
+  // One start per scan here: the ensemble's check that a boundary does not
+  // hinge on the exact start is made in `stability`.
+  ScanSettings scan;
+  scan.members = 1;
+  Progress progress("extremes", static_cast<long>(integrators.size()) * (q ? 8 : 20) + (q ? 30 : 170));
 
-  // 1. Spring stiffness: the largest stable dt of the 8-way cloth against k_s.
+  // 1. Spring stiffness: the safe dt of the 8-way cloth against k_s, scanned
+  //    over the window 0.3/√k_s … 10/√k_s (capped at 0.5) around the
+  //    spring's time scale.
   {
     const std::vector<double> stiffness = q ? std::vector<double>{1, 100} : logSpace(1, 1e5, 6);
-    const double lo = 1e-5, hi = 0.5, duration = q ? 1.0 : 5.0;
-    Csv csv(options.outDir + "/extremes_stiffness.csv", {"integrator", "stiffness", "max_dt"});
+    const double duration = q ? 1.0 : 5.0;
+    Csv csv(options.outDir + "/extremes_stiffness.csv",
+            {"integrator", "stiffness", "safe_dt", "first_failure_dt", "first_failure", "grid_lo", "grid_hi"});
+    std::vector<std::pair<std::string, double>> cells;
+    for (const auto& name : scanned)
+      for (double ks : stiffness) cells.push_back({name, ks});
+    std::map<std::string, std::vector<std::string>> rows;
+    parallelMap<Boundary>(
+        options.jobs, cells.size(),
+        [&](std::size_t k) {
+          const auto& [name, ks] = cells[k];
+          ScanSettings window = scan;
+          window.grid = stepGrid(0.3 / std::sqrt(ks), std::min(0.5, 10.0 / std::sqrt(ks)));
+          auto build = [&, ks = ks] {
+            return buildLabScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
+                                           {"links", "8"}, {"stiffness", general(ks, 6)}});
+          };
+          auto b = scanSafeStep(build, name, duration, window, criterion);
+          progress.tick();
+          return b;
+        },
+        [&](std::size_t k, Boundary& b) {
+          const auto& [name, ks] = cells[k];
+          csv << name << ks << b.safeDt << b.firstFailureDt << failureName(b.firstFailure) << b.lowest << b.highest;
+          csv.endRow();
+          rows[name].push_back(safeStepText(b));
+        });
+    if (interrupted()) return 130;
     std::vector<std::vector<std::string>> table;
-    for (const auto& name : integrators) {
+    for (const auto& name : scanned) {
       std::vector<std::string> row{name};
-      for (double ks : stiffness) {
-        if (interrupted()) break;
-        auto build = [&] {
-          return scenes::buildScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
-                                              {"links", "8"}, {"stiffness", general(ks, 6)}},
-                                    scenes::kSeedPreset);
-        };
-        const double dt = maxStableStep(build, name, duration, lo, hi, rounds, explosion, progress);
-        if (interrupted()) break;  // a bisection cut short is not a measurement
-        csv << name << ks << dt;
-        csv.endRow();
-        row.push_back(stepText(dt, lo, hi));
-      }
+      row.insert(row.end(), rows[name].begin(), rows[name].end());
       table.push_back(row);
     }
     std::vector<std::string> header{"integrator"};
     for (double ks : stiffness) header.push_back("k_s " + general(ks));
-    writeTable(options, "extremes_stiffness", "Largest stable dt of the 8-way cloth against spring stiffness",
+    writeTable(options, "extremes_stiffness",
+               "Safe dt of the " + std::string(q ? "4×4" : "10×10") + " 8-way cloth against spring stiffness, T = " +
+                   general(duration) + " s, " + std::to_string(scan.members) + " starts",
                header, table);
   }
 
   // 2. Mass ratio: a heavy tip on a light chain.
   {
     const std::vector<double> ratios = q ? std::vector<double>{1, 100} : logSpace(1, 1e4, 5);
-    const double lo = 1e-4, hi = 0.5, duration = q ? 1.0 : 10.0;
+    const double duration = q ? 1.0 : 10.0;
+    const int length = q ? 6 : 24;
+    ScanSettings window = scan;
+    window.grid = stepGrid(q ? 0.0125 : 0.05 / 32, 0.5);
     Csv csv(options.outDir + "/extremes_mass_ratio.csv",
-            {"integrator", "mass_ratio", "max_dt", "cg_iterations_per_step"});
+            {"integrator", "mass_ratio", "safe_dt", "first_failure_dt", "first_failure", "cg_iterations_per_step"});
+    std::vector<std::pair<std::string, double>> cells;
+    for (const auto& name : scanned)
+      for (double ratio : ratios) cells.push_back({name, ratio});
+    std::map<std::string, std::vector<std::string>> rows;
+    using Result = std::pair<Boundary, double>;
+    parallelMap<Result>(
+        options.jobs, cells.size(),
+        [&](std::size_t k) -> std::optional<Result> {
+          const auto& [name, ratio] = cells[k];
+          ChainSpec spec{length};
+          spec.extra["tip-mass-ratio"] = general(ratio, 6);
+          auto b = scanSafeStep([&] { return buildChain(spec); }, name, duration, window, criterion);
+          progress.tick();
+          if (!b) return std::nullopt;
+          // Iterations of Jacobi CG show how the mass ratio conditions J W Jᵀ.
+          scenes::Scene chain = buildChain(spec);
+          chain.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
+          const StepCost cost = measureStepCost(chain, name, chain.dt, {1, 5});
+          return Result{*b, cost.cgIterations};
+        },
+        [&](std::size_t k, Result& r) {
+          const auto& [name, ratio] = cells[k];
+          const Boundary& b = r.first;
+          csv << name << ratio << b.safeDt << b.firstFailureDt << failureName(b.firstFailure) << r.second;
+          csv.endRow();
+          rows[name].push_back(safeStepText(b) + " (" + general(r.second, 3) + " it)");
+        });
+    if (interrupted()) return 130;
     std::vector<std::vector<std::string>> table;
-    for (const auto& name : integrators) {
+    for (const auto& name : scanned) {
       std::vector<std::string> row{name};
-      for (double ratio : ratios) {
-        if (interrupted()) break;
-        ChainSpec spec{q ? 6 : 24};
-        spec.extra["tip-mass-ratio"] = general(ratio, 6);
-        const double dt = maxStableStep([&] { return buildChain(spec); }, name, duration, lo, hi, rounds,
-                                        explosion, progress);
-        // Iterations of Jacobi CG show how the mass ratio conditions J W Jᵀ.
-        scenes::Scene chain = buildChain(spec);
-        chain.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
-        const StepCost cost = measureStepCost(chain, name, chain.dt, {1, 5});
-        csv << name << ratio << dt << cost.cgIterations;
-        csv.endRow();
-        row.push_back(stepText(dt, lo, hi) + " (" + general(cost.cgIterations, 3) + " it)");
-      }
+      row.insert(row.end(), rows[name].begin(), rows[name].end());
       table.push_back(row);
     }
     std::vector<std::string> header{"integrator"};
     for (double r : ratios) header.push_back("tip/link mass " + general(r));
     writeTable(options, "extremes_mass_ratio",
-               "Largest stable dt (and Jacobi-CG iterations per step at the default dt) against tip mass ratio",
+               "Safe dt of the " + std::to_string(length) + "-chain, T = " + general(duration) +
+                   " s (and Jacobi-CG iterations per step at the default dt) against tip mass ratio",
                header, table);
   }
 
@@ -92,7 +137,7 @@ int runExtremes(const LabOptions& options) {
     const std::vector<double> kd = q ? std::vector<double>{0, 10} : std::vector<double>{0, 1, 3, 10, 30, 100, 300};
     const double duration = q ? 1.0 : 20.0, dt = q ? 0.02 : 0.05;
     Csv csv(options.outDir + "/extremes_feedback.csv",
-            {"ks", "kd", "critical_kd", "survived", "max_relative_stretch", "final_relative_stretch"});
+            {"ks", "kd", "critical_kd", "survived", "failure", "max_relative_stretch", "final_relative_stretch"});
     for (double s : ks)
       for (double d : kd) {
         if (interrupted()) break;
@@ -100,12 +145,14 @@ int runExtremes(const LabOptions& options) {
         chain.system->solver().settings.stiffness = s;
         chain.system->solver().settings.damping = d;
         auto stepper = particles::makeIntegrator("rk4");
-        const RunResult r = simulate(chain, *stepper, dt, duration, explosion);
-        csv << s << d << 2.0 * std::sqrt(s) << (r.exploded ? 0L : 1L) << r.maxRelativeStretch
+        const RunResult r = simulate(chain, *stepper, dt, duration, criterion);
+        if (r.cutShort) break;
+        csv << s << d << 2.0 * std::sqrt(s) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.maxRelativeStretch
             << chain.system->maxRelativeConstraintError();
         csv.endRow();
         progress.tick();
       }
+    if (interrupted()) return 130;
     recordValue(options, "extremes.feedback.dt", general(dt));
     recordValue(options, "extremes.feedback.duration", general(duration));
   }
@@ -117,57 +164,102 @@ int runExtremes(const LabOptions& options) {
     const std::vector<int> caps = q ? std::vector<int>{2, 0} : std::vector<int>{1, 2, 5, 10, 20, 50, 0};
     const double duration = q ? 1.0 : 20.0, dt = 0.01;
     Csv csv(options.outDir + "/extremes_cg_budget.csv",
-            {"warm_start", "tolerance", "max_iterations", "survived", "max_relative_stretch", "cg_iterations_per_step"});
+            {"warm_start", "tolerance", "max_iterations", "survived", "failure", "max_relative_stretch",
+             "cg_iterations_per_step"});
+    struct Budget {
+      bool warm;
+      double tolerance;
+      int cap;
+    };
+    std::vector<Budget> cells;
     for (bool warm : {false, true})
-    for (double tol : tolerances)
-      for (int cap : caps) {
-        if (interrupted()) break;
-        scenes::Scene chain = buildChain({q ? 12 : 80});
-        auto& settings = chain.system->solver().settings;
-        settings.tolerance = tol;
-        settings.method = particles::SolveMethod::ConjugateGradient;
-        settings.maxIterations = cap;
-        settings.warmStart = warm;
-        settings.preconditioner = particles::Preconditioner::None;
-        auto stepper = particles::makeIntegrator("rk4");
-        const RunResult r = simulate(chain, *stepper, dt, duration, explosion);
-        csv << static_cast<long>(warm) << tol << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.maxRelativeStretch
-            << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
-        csv.endRow();
-        progress.tick();
-      }
+      for (double tol : tolerances)
+        for (int cap : caps) cells.push_back({warm, tol, cap});
+    parallelMap<RunResult>(
+        options.jobs, cells.size(),
+        [&](std::size_t k) -> std::optional<RunResult> {
+          const Budget& c = cells[k];
+          scenes::Scene chain = buildChain({q ? 12 : 80});
+          auto& settings = chain.system->solver().settings;
+          settings.tolerance = c.tolerance;
+          settings.method = particles::SolveMethod::ConjugateGradient;
+          settings.maxIterations = c.cap;
+          settings.warmStart = c.warm;
+          settings.preconditioner = particles::Preconditioner::None;
+          auto stepper = particles::makeIntegrator("rk4");
+          RunResult r = simulate(chain, *stepper, dt, duration, criterion);
+          progress.tick();
+          if (r.cutShort) return std::nullopt;
+          return r;
+        },
+        [&](std::size_t k, RunResult& r) {
+          const Budget& c = cells[k];
+          csv << static_cast<long>(c.warm) << c.tolerance << static_cast<long>(c.cap) << (r.failed ? 0L : 1L)
+              << failureName(r.failure) << r.maxRelativeStretch
+              << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
+          csv.endRow();
+        });
+    if (interrupted()) return 130;
+    recordValue(options, "extremes.cg_budget.duration", general(duration));
+    recordValue(options, "extremes.cg_budget.length", std::to_string(q ? 12 : 80));
   }
 
-  // 5. Squared against root rods: cost, stretch and largest stable step.
+  // 5. Squared against root rods: cost, stretch and safe step.
   {
-    const double lo = 1e-3, hi = 0.5, duration = q ? 1.0 : 20.0;
+    const double duration = q ? 1.0 : 20.0;
+    ScanSettings window = scan;
+    window.grid = stepGrid(q ? 0.0125 : 0.05 / 16, 0.5);
     Csv csv(options.outDir + "/extremes_rod_form.csv",
-            {"integrator", "rod", "max_dt", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
+            {"integrator", "rod", "safe_dt", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
+    std::vector<std::pair<std::string, std::string>> cells;
+    for (const auto& name : scanned)
+      for (const std::string form : {"squared", "root"}) cells.push_back({name, form});
+    struct Result {
+      Boundary boundary;
+      StepCost cost;
+      double stretch;
+    };
+    std::map<std::string, std::vector<std::string>> rows;
+    // The step cost is timed on this thread after the scans, so the timings
+    // never share the machine with another cell.
+    std::vector<Boundary> boundaries(cells.size());
+    parallelMap<Boundary>(
+        options.jobs, cells.size(),
+        [&](std::size_t k) {
+          const auto& [name, form] = cells[k];
+          ChainSpec spec{q ? 6 : 24, form};
+          auto b = scanSafeStep([&] { return buildChain(spec); }, name, duration, window, criterion);
+          progress.tick();
+          return b;
+        },
+        [&](std::size_t k, Boundary& b) { boundaries[k] = b; });
+    if (interrupted()) return 130;
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const auto& [name, form] = cells[k];
+      ChainSpec big{q ? 12 : 80, form};
+      scenes::Scene chain = buildChain(big);
+      const StepCost cost = measureStepCost(chain, name, chain.dt, {q ? 1 : 5, q ? 5 : 20});
+      scenes::Scene fresh = buildChain(big);
+      auto stepper = particles::makeIntegrator(name);
+      const RunResult r = simulate(fresh, *stepper, fresh.dt, duration, criterion);
+      if (r.cutShort) return 130;
+      csv << name << form << boundaries[k].safeDt << cost.seconds << cost.cgIterations << r.maxRelativeStretch;
+      csv.endRow();
+      rows[name].push_back(safeStepText(boundaries[k]));
+      rows[name].push_back(general(cost.seconds * 1e6, 3));
+      rows[name].push_back(general(r.maxRelativeStretch, 2));
+    }
     std::vector<std::vector<std::string>> table;
-    for (const auto& name : integrators) {
+    for (const auto& name : scanned) {
       std::vector<std::string> row{name};
-      for (const std::string form : {"squared", "root"}) {
-        if (interrupted()) break;
-        ChainSpec spec{q ? 6 : 24, form};
-        const double dt = maxStableStep([&] { return buildChain(spec); }, name, duration, lo, hi, rounds,
-                                        explosion, progress);
-        if (interrupted()) break;
-        ChainSpec big{q ? 12 : 80, form};
-        scenes::Scene chain = buildChain(big);
-        const StepCost cost = measureStepCost(chain, name, chain.dt, {q ? 1 : 5, q ? 5 : 20});
-        scenes::Scene fresh = buildChain(big);
-        auto stepper = particles::makeIntegrator(name);
-        const RunResult r = simulate(fresh, *stepper, fresh.dt, duration, explosion);
-        csv << name << form << dt << cost.seconds << cost.cgIterations << r.maxRelativeStretch;
-        csv.endRow();
-        row.push_back(stepText(dt, lo, hi));
-        row.push_back(general(cost.seconds * 1e6, 3));
-        row.push_back(general(r.maxRelativeStretch, 2));
-      }
+      row.insert(row.end(), rows[name].begin(), rows[name].end());
       table.push_back(row);
     }
-    writeTable(options, "extremes_rod_form", "Squared against root rods",
-               {"integrator", "squared: max dt", "squared: µs/step", "squared: max stretch", "root: max dt",
+    writeTable(options, "extremes_rod_form",
+               "Squared against root rods: safe dt (" + std::to_string(q ? 6 : 24) + "-chain, T = " +
+                   general(duration) + " s), µs per step and max stretch at the scene's dt (" +
+                   std::to_string(q ? 12 : 80) + "-chain)",
+               {"integrator", "squared: safe dt", "squared: µs/step", "squared: max stretch", "root: safe dt",
                 "root: µs/step", "root: max stretch"},
                table);
   }
@@ -186,30 +278,34 @@ int runExtremes(const LabOptions& options) {
       std::vector<std::string> row{name};
       for (int cap : caps) {
         if (interrupted()) break;
-        scenes::Scene taut = scenes::buildScene("taut-chain", {}, scenes::kSeedPreset);
+        scenes::Scene taut = buildLabScene("taut-chain");
         auto& settings = taut.system->solver().settings;
         if (cap >= 0) {
           settings.method = particles::SolveMethod::ConjugateGradient;
           settings.maxIterations = cap;
         }
         auto stepper = particles::makeIntegrator(name);
-        const RunResult r = simulate(taut, *stepper, taut.dt, duration, explosion);
-        csv << name << static_cast<long>(cap) << (r.exploded ? 0L : 1L) << r.reason << r.time
+        const RunResult r = simulate(taut, *stepper, taut.dt, duration, criterion);
+        if (r.cutShort) break;
+        csv << name << static_cast<long>(cap) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.time
             << r.maxRelativeStretch << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
-        row.push_back(r.exploded ? r.reason + " at t = " + general(r.time, 3)
+        row.push_back(r.failed ? r.reason + " at t = " + general(r.time, 3)
                                  : "held (stretch " + general(r.maxRelativeStretch, 2) + ")");
         progress.tick();
       }
       table.push_back(row);
     }
+    if (interrupted()) return 130;
     std::vector<std::string> header{"integrator"};
     for (int cap : caps)
       header.push_back(cap > 0 ? "CG cap " + std::to_string(cap) : cap == 0 ? "CG uncapped" : "direct LDLT");
     writeTable(options, "extremes_taut_chain", "Taut chain between two wires, T = " + general(duration) + " s",
                header, table);
   }
-  return interrupted() ? 130 : 0;
+  if (interrupted()) return 130;
+  recordValue(options, "extremes.members", std::to_string(scan.members));
+  return 0;
 }
 
 }  // namespace lab

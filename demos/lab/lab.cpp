@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
+#include "lab/lab_scene.h"
 #include "output_file.h"
 #include "particles/forces/gravity.h"
 
@@ -22,54 +24,93 @@ double gravityMagnitude(const ParticleSystem& system) {
   return 0.0;
 }
 
-double energyScale(const ParticleSystem& system) {
-  const int n = system.size();
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
-  double movingMass = 0.0;
-  for (int i = 0; i < n; ++i) {
-    lo = lo.cwiseMin(system.position(i));
-    hi = hi.cwiseMax(system.position(i));
-    if (!system.pinned(i)) movingMass += system.masses()[i];
-  }
-  const double diagonal = n > 0 ? (hi - lo).norm() : 0.0;
-  return movingMass * gravityMagnitude(system) * diagonal + std::abs(system.totalEnergy()) + 1.0;
-}
-
-particles::DivergenceLimits Explosion::limits(const ParticleSystem& system) const {
-  particles::DivergenceLimits limits;
-  limits.maxRelativeConstraintError = maxRelativeStretch;
-  limits.energyScale = energyScale(system);
-  limits.energyRiseFraction = energyGain;
-  return limits;
-}
+int defaultJobs() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
-                   double duration, const Explosion& explosion,
-                   const std::function<void(const ParticleSystem&)>& observe) {
+                   double duration, const FailureCriterion& criterion,
+                   const std::function<bool(const ParticleSystem&)>& observe) {
   ParticleSystem& system = *scene.system;
   RunResult result;
   result.energyStart = system.totalEnergy();
-  const particles::DivergenceLimits limits = explosion.limits(system);
+  result.energyScale = releasableEnergy(system);
   const long steps = std::lround(duration / dt);
+  // An infinite threshold switches that test off (the engine's convention).
+  const particles::DivergenceLimits limits = divergenceLimits(criterion, result.energyScale);
   using Clock = std::chrono::steady_clock;
-  for (long k = 0; k < steps && !interrupted(); ++k) {
+  auto fail = [&](Failure failure) {
+    result.failed = true;
+    result.failure = failure;
+    result.reason = failureName(failure);
+  };
+  for (long k = 0; k < steps; ++k) {
+    if (interrupted()) {
+      result.cutShort = true;
+      break;
+    }
     const auto start = Clock::now();
-    const particles::StepStats stats = system.step(integrator, dt);
+    particles::StepStats stats;
+    try {
+      stats = system.step(integrator, dt);
+    } catch (const std::exception&) {
+      result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+      ++result.steps;
+      result.time = k * dt + dt;
+      fail(Failure::StepFailed);
+      break;
+    }
     result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
     ++result.steps;
     result.time = system.time();
     result.work += stats;
-    if (system.finite())
+    if (system.finite()) {
       result.maxRelativeStretch = std::max(result.maxRelativeStretch, system.maxRelativeConstraintError());
-    if (const particles::Divergence d = particles::checkDivergence(system, limits, result.energyStart, stats)) {
-      result.exploded = true;
-      result.reason = particles::divergenceReasonName(d.reason);
+      const double rise = (system.totalEnergy() - result.energyStart) / result.energyScale;
+      if (std::isfinite(rise)) result.maxEnergyRise = std::max(result.maxEnergyRise, rise);
+    }
+    const Failure failure = checkFailure(system, limits, result.energyStart, stats);
+    if (failure != Failure::None) {
+      fail(failure);
       break;
     }
-    if (observe) observe(system);
+    if (observe && !observe(system)) {
+      result.stopped = true;
+      break;
+    }
   }
   result.energyEnd = system.totalEnergy();
   return result;
+}
+
+std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, const std::string& integrator,
+                               double dt, int member, double duration, const FailureCriterion& criterion) {
+  scenes::Scene scene = build();
+  perturbStart(scene, member);
+  auto stepper = particles::makeIntegrator(integrator);
+  const RunResult r = simulate(scene, *stepper, dt, duration, criterion);
+  if (r.cutShort) return std::nullopt;
+  Probe p;
+  p.failed = r.failed;
+  p.failure = r.failure;
+  p.time = r.time;
+  p.maxRelativeStretch = r.maxRelativeStretch;
+  p.maxEnergyRise = r.maxEnergyRise;
+  return p;
+}
+
+std::optional<Boundary> scanSafeStep(const std::function<scenes::Scene()>& build, const std::string& integrator,
+                                     double duration, ScanSettings settings, const FailureCriterion& criterion) {
+  settings.durations = {duration};
+  const auto runs = scanSteps(
+      [&](double dt, int member, double T) { return runMember(build, integrator, dt, member, T, criterion); },
+      settings);
+  if (!runs) return std::nullopt;
+  return boundaryOf(survivalAt(*runs, duration, settings.members));
+}
+
+std::string safeStepText(const Boundary& b) {
+  if (b.belowGrid()) return "< " + general(b.lowest, 2);
+  if (b.aboveGrid()) return "≥ " + general(b.highest, 2);
+  return general(b.safeDt, 2);
 }
 
 std::vector<std::string> selectedIntegrators(const LabOptions& options) {
@@ -81,37 +122,6 @@ std::vector<std::string> selectedIntegrators(const LabOptions& options) {
       names.push_back(info.name);
   for (const auto& name : options.integrators) particles::makeIntegrator(name);  // rejects unknown
   return names;
-}
-
-double bisectStep(const std::function<bool(double)>& survives, double lo, double hi, int rounds) {
-  if (survives(hi)) return hi;
-  bool found = false;
-  const double bottom = lo;
-  for (int k = 0; k < rounds && !interrupted(); ++k) {
-    const double mid = std::sqrt(lo * hi);
-    if (survives(mid)) {
-      lo = mid;
-      found = true;
-    } else {
-      hi = mid;
-    }
-  }
-  if (interrupted()) return 0.0;  // cut short: the caller discards it
-  if (!found) return survives(bottom) ? bottom : 0.0;
-  return lo;
-}
-
-double maxStableStep(const std::function<scenes::Scene()>& build, const std::string& integrator,
-                     double duration, double lo, double hi, int rounds, const Explosion& explosion,
-                     Progress& progress) {
-  return bisectStep(
-      [&](double dt) {
-        scenes::Scene scene = build();
-        auto stepper = particles::makeIntegrator(integrator);
-        progress.tick();
-        return !simulate(scene, *stepper, dt, duration, explosion).exploded;
-      },
-      lo, hi, rounds);
 }
 
 std::vector<double> logSpace(double lo, double hi, int count) {
@@ -233,6 +243,7 @@ Progress::Progress(std::string label, long total)
     : label_(std::move(label)), total_(total), start_(std::chrono::steady_clock::now()), lastPrint_(start_) {}
 
 void Progress::tick(long count) {
+  std::lock_guard<std::mutex> lock(mutex_);
   done_ += count;
   const auto now = std::chrono::steady_clock::now();
   if (now - lastPrint_ < std::chrono::seconds(2) && done_ < total_) return;

@@ -6,72 +6,76 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "scene.h"
-#include "particles/divergence.h"
+#include "lab/failure.h"
+#include "lab/scan.h"
 #include "particles/integrator.h"
-#include "particles/step_stats.h"
 
 namespace lab {
+
+// Threads used when --jobs is not given: every core (at least one).
+int defaultJobs();
 
 // Options shared by every experiment subcommand.
 struct LabOptions {
   std::string outDir = "lab-out";  // CSVs and tables are written here
   bool quick = false;              // small grids, short runs: proves the code runs
   std::vector<std::string> integrators;  // empty: every integrator in the table
-};
-
-// The laboratory's thresholds for particles::checkDivergence, the one
-// definition of "exploded" used by every experiment and the report. A run
-// explodes at the first step where the state is not finite, the step failed,
-//  - a constraint is violated by more than maxRelativeStretch of its length
-//    (max |C|/r, C in length units), or
-//  - the total energy exceeds its initial value by more than energyGain times
-//    the scene's energy scale (energyScale below).
-struct Explosion {
-  double maxRelativeStretch = 0.1;
-  double energyGain = 1.0;
-
-  // The limits for a freshly built scene (its energy scale taken now).
-  particles::DivergenceLimits limits(const particles::ParticleSystem& system) const;
+  int jobs = defaultJobs();        // threads for independent sweep cells (parallel.h)
+  FailureCriterion criterion;      // when a run counts as failed (failure.h)
 };
 
 struct RunResult {
-  bool exploded = false;
-  std::string reason;        // particles::divergenceReasonName of the explosion, or ""
+  bool failed = false;
+  Failure failure = Failure::None;
+  std::string reason;        // failureName(failure), "" while none fired
+  bool cutShort = false;     // an interrupt stopped the run: not a measurement
   double time = 0.0;         // simulated time reached
   long steps = 0;
   double seconds = 0.0;      // wall time of the simulation work
-  double maxRelativeStretch = 0.0;
+  double maxRelativeStretch = 0.0;  // max over steps of max |C|/r
+  double maxEnergyRise = 0.0;       // max over steps of (E − E(0)) / E_s
   particles::StepStats work{0, 0, 0.0, 0, 0, 0};  // summed over the steps taken
   double energyStart = 0.0, energyEnd = 0.0;
+  double energyScale = 0.0;  // E_s, releasableEnergy() of the start
+  bool stopped = false;      // the observer ended the run before T
+  bool blewUp() const { return failed && isBlowUp(failure); }
 };
 
-// Steps the scene with the integrator for `duration` simulated seconds,
-// stopping at the first explosion (or at an interrupt: callers then discard
-// the result). `observe` (optional) runs after each step.
+// Steps the scene with the integrator for `duration` simulated seconds
+// (round(duration/dt) steps), stopping at the first failure by `criterion` or
+// at an interrupt (then cutShort is set and callers discard the result).
+// `observe` (optional) runs after each step that did not fail; returning
+// false ends the run there (RunResult::stopped).
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
-                   double duration, const Explosion& explosion = {},
-                   const std::function<void(const particles::ParticleSystem&)>& observe = {});
+                   double duration, const FailureCriterion& criterion = {},
+                   const std::function<bool(const particles::ParticleSystem&)>& observe = {});
 
-// Energy scale of the explosion criterion for a freshly built scene:
-// Σ m |g| D + |E(0)| + 1, with D the diagonal of the initial bounding box —
-// more energy than falling the whole scene could give.
-double energyScale(const particles::ParticleSystem& system);
+// One scan run: ensemble member `member` (perturbStart) of a freshly built
+// scene under the integrator for `duration`; nullopt when an interrupt cut it short.
+std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, const std::string& integrator,
+                               double dt, int member, double duration, const FailureCriterion& criterion);
+
+// The safe boundary of one scene under one integrator at T = duration: a scan
+// (scanSteps) of `settings.grid` over `settings.members` starts; nullopt when
+// an interrupt cut it short.
+std::optional<Boundary> scanSafeStep(const std::function<scenes::Scene()>& build, const std::string& integrator,
+                                     double duration, ScanSettings settings, const FailureCriterion& criterion);
+
+// "< lo" when even the grid's smallest dt failed, "≥ hi" when nothing on the
+// scanned grid failed (a lower bound), the safe dt otherwise.
+std::string safeStepText(const Boundary& boundary);
 
 // Magnitude of the scene's gravity (0 without a gravity force).
 double gravityMagnitude(const particles::ParticleSystem& system);
 
 // Integrators selected by the options, in table order.
 std::vector<std::string> selectedIntegrators(const LabOptions& options);
-
-// Largest x in [lo, hi] with survives(x), by bisection in log x over `rounds`
-// halvings; hi if it survives, 0 if nothing does. Assumes survival is monotone.
-// Surviving probes are the costly ones, so lo is probed only when every
-// bisection probe failed.
-double bisectStep(const std::function<bool(double)>& survives, double lo, double hi, int rounds);
 
 // Log-spaced values from lo to hi inclusive.
 std::vector<double> logSpace(double lo, double hi, int count);
@@ -114,20 +118,15 @@ std::string general(double value, int digits = 3);
 class Progress {
  public:
   Progress(std::string label, long total);
-  void tick(long count = 1);
+  void tick(long count = 1);  // safe from several threads
   ~Progress();
 
  private:
+  std::mutex mutex_;
   std::string label_;
   long total_, done_ = 0;
   std::chrono::steady_clock::time_point start_, lastPrint_;
 };
-
-// Largest dt in [lo, hi] at which a freshly built scene survives `duration`
-// under the integrator (bisectStep over fresh runs); each run ticks `progress`.
-double maxStableStep(const std::function<scenes::Scene()>& build, const std::string& integrator,
-                     double duration, double lo, double hi, int rounds, const Explosion& explosion,
-                     Progress& progress);
 
 // Set by SIGINT/SIGTERM once installInterruptHandler() ran; loops stop early.
 void installInterruptHandler();

@@ -6,6 +6,7 @@
 
 #include "lab/chain.h"
 #include "lab/experiments.h"
+#include "lab/lab_scene.h"
 
 namespace lab {
 
@@ -72,9 +73,8 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
     }
     for (int side : cloths) {
       if (interrupted()) break;
-      scenes::Scene cloth = scenes::buildScene(
-          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", "8"}},
-          scenes::kSeedPreset);
+      scenes::Scene cloth = buildLabScene(
+          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", "8"}});
       TimingOptions small = timing;
       if (side >= 128) small.repeats = std::min(timing.repeats, 3), small.steps = std::min(timing.steps, 4);
       const StepCost cost = measureStepCost(cloth, name, cloth.dt, small);

@@ -12,6 +12,7 @@
 
 #include "join_names.h"
 #include "particles/integrator.h"
+#include "particles/solver_names.h"
 #include "scene_file/codecs.h"
 #include "scene_file/json_parse.h"
 #include "scene_limits.h"
@@ -62,17 +63,23 @@ void readView(const JsonNode& node, Scene& scene) {
 
 void readSolver(const JsonNode& node, particles::SolverSettings& s) {
   if (!node.present()) return;
-  node.allowOnly({"tolerance", "maxIterations", "stiffness", "damping", "warmStart", "preconditioner"});
+  node.allowOnly({"tolerance", "maxIterations", "stiffness", "damping", "warmStart", "method", "preconditioner"});
   if (node["tolerance"].present()) s.tolerance = node["tolerance"].positive();
   if (node["maxIterations"].present()) s.maxIterations = node["maxIterations"].integer(0, 1000000);
   if (node["stiffness"].present()) s.stiffness = node["stiffness"].nonNegative();
   if (node["damping"].present()) s.damping = node["damping"].nonNegative();
   s.warmStart = node["warmStart"].boolean(s.warmStart);
+  const JsonNode method = node["method"];
+  if (method.present()) {
+    const std::optional<particles::SolveMethod> value = particles::solveMethodNamed(method.text());
+    if (!value) method.expected(particles::validSolveMethodNames());
+    s.method = *value;
+  }
   const JsonNode preconditioner = node["preconditioner"];
   if (preconditioner.present()) {
-    const std::string name = preconditioner.text();
-    if (name != "none" && name != "jacobi") preconditioner.expected("\"none\" or \"jacobi\"");
-    s.preconditioner = name == "none" ? particles::Preconditioner::None : particles::Preconditioner::Jacobi;
+    const std::optional<particles::Preconditioner> value = particles::preconditionerNamed(preconditioner.text());
+    if (!value) preconditioner.expected(particles::validPreconditionerNames());
+    s.preconditioner = *value;
   }
 }
 

@@ -1,6 +1,7 @@
 // Writing a scene as a JSON scene file (format: demos/scenes/FORMAT.md).
 #include <cstring>
 
+#include "particles/solver_names.h"
 #include "scene_file/codecs.h"
 #include "scene_file/scene_file.h"
 
@@ -34,7 +35,8 @@ Json sceneToJson(const Scene& scene) {
                    {"stiffness", solver.stiffness},
                    {"damping", solver.damping},
                    {"warmStart", solver.warmStart},
-                   {"preconditioner", solver.preconditioner == particles::Preconditioner::None ? "none" : "jacobi"}};
+                   {"method", particles::nameOf(solver.method)},
+                   {"preconditioner", particles::nameOf(solver.preconditioner)}};
   doc["particleRestitution"] = s.particleContacts().restitution;
   doc["particles"] = Json::array();
   for (int i = 0; i < s.size(); ++i) {

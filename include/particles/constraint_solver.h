@@ -10,6 +10,9 @@
 //   sparsity pattern analysed once per constraint structure and only
 //   refactorised numerically each solve.
 // Rows whose diagonal is zero (every particle in them pinned) get λ = 0 in all three.
+// When J W Jᵀ loses rank the direct solve is damped, (J W Jᵀ + μ I) λ = b with
+// μ = 1e-6·max diag, a bounded approximation of the least-squares λ (see
+// ConstraintSolver::directSolve in the source for its effect on accuracy).
 #include <memory>
 #include <vector>
 
@@ -55,6 +58,8 @@ struct SolveStats {
   // λ is set to 0 so that no NaN reaches the state, and the step reports
   // StepFailure::SolveFailed, which the tools treat as a divergence.
   bool failed = false;
+  // J W Jᵀ had lost rank and the direct solve was damped (see directSolve).
+  bool regularized = false;
 };
 
 using ConstraintList = std::vector<std::unique_ptr<Constraint>>;

@@ -2,7 +2,22 @@
 
 #include "particles/check.h"
 
+#include <cmath>
+#include <string>
+
 namespace particles {
+
+MouseSpringGains mouseSpringGains(double mass, const MouseJointSettings& joint) {
+  requirePositive("grabbed mass", mass);
+  requirePositive("mouse joint frequency", joint.frequency);
+  requireNonNegative("mouse joint damping ratio", joint.dampingRatio);
+  const double omega = 2.0 * M_PI * joint.frequency;
+  const MouseSpringGains gains{mass * omega * omega, 2.0 * mass * joint.dampingRatio * omega};
+  if (!std::isfinite(gains.stiffness) || !std::isfinite(gains.damping))
+    throw std::invalid_argument("mouse spring stiffness m (2 pi f)^2 overflows for mass " + formatValue(mass) +
+                                " at " + formatValue(joint.frequency) + " Hz");
+  return gains;
+}
 
 MouseSpringForce::MouseSpringForce(int i, const Eigen::Vector2d& target, double stiffness,
                                    double damping)

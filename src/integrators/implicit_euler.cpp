@@ -60,8 +60,13 @@ double ImplicitEulerIntegrator::worstRelativeViolation(ParticleSystem& system,
                                                       const Eigen::VectorXd& x,
                                                       const Eigen::VectorXd& v) const {
   const Phase s = system.phase(x, v);
+  const Eigen::VectorXd& w = system.inverseMasses();
   double worst = 0.0;
   for (const auto& c : system.constraints()) {
+    // A row whose particles are all pinned is −ν = 0 in the solve: no pass can
+    // change its violation, so it must not keep the passes going.
+    const std::vector<int>& ps = c->particles();
+    if (std::all_of(ps.begin(), ps.end(), [&](int p) { return w[p] == 0.0; })) continue;
     const double scale = c->lengthScale();
     worst = std::max(worst, c->violation(s) / (scale > 0.0 ? scale : 1.0));
   }

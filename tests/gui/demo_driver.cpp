@@ -99,7 +99,8 @@ StateLog readStateLog(const std::string& path) {
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '#') continue;
     const std::vector<std::string> f = split(line, ',');
-    auto number = [&](std::size_t k) { return std::stod(f.at(k)); };
+    // strtod, not stod: a denormal such as a dt of 5e-324 is a valid value.
+    auto number = [&](std::size_t k) { return std::strtod(f.at(k).c_str(), nullptr); };
     const std::string& record = f.at(0);
     if (record == "frame") {
       log.frames = std::stoll(f.at(1));
@@ -116,6 +117,12 @@ StateLog readStateLog(const std::string& path) {
       p.mouseSprings = std::stoi(f.at(8));
       p.energy = number(9);
       p.maxConstraintError = number(10);
+      p.mouseSpringEnergy = number(11);
+      p.slowMotion = f.at(12) == "1";
+      p.substeps = std::stoi(f.at(13));
+      p.framesAdvanced = std::stoll(f.at(14));
+      p.owedTime = number(15);
+      p.plotPoints = std::stoi(f.at(16));
       log.panes.push_back(p);
     } else if (record == "view") {
       LoggedPane& p = log.panes.at(std::stoul(f.at(1)));
@@ -134,8 +141,17 @@ StateLog readStateLog(const std::string& path) {
       log.panes.at(std::stoul(f.at(1))).particles.push_back(q);
     } else if (record == "wall") {
       log.panes.at(std::stoul(f.at(1))).walls.push_back({{number(2), number(3)}, {number(4), number(5)}});
-    } else if (record == "overlay") {
-      log.overlays.push_back({f.at(1), std::stoi(f.at(2)), std::stoi(f.at(3)), std::stoi(f.at(4)), std::stoi(f.at(5))});
+    } else if (record == "overlay" || record == "widget") {
+      LoggedOverlay o{f.at(1), std::stoi(f.at(2)), std::stoi(f.at(3)), std::stoi(f.at(4)), std::stoi(f.at(5)), ""};
+      for (std::size_t k = 6; k < f.size(); ++k) o.text += (k > 6 ? "," : "") + f[k];
+      (record == "overlay" ? log.overlays : log.widgets).push_back(o);
+    } else if (record == "frame-times") {
+      log.measuredFrames = std::stoll(f.at(1));
+      log.medianFrameMs = number(2);
+    } else if (record == "timing") {
+      log.sceneDrawMs = number(1);
+      log.overlayDrawMs = number(2);
+      log.panelShown = f.at(3) == "1";
     } else {
       throw std::runtime_error("unknown record '" + record + "' in " + path);
     }

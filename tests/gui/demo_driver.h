@@ -42,19 +42,27 @@ struct LoggedWall {
 struct LoggedPane {
   std::string scene, integrator;
   double dt = 0.0, time = 0.0, energy = 0.0, maxConstraintError = 0.0;
-  long long steps = 0;
-  bool diverged = false;
-  int mouseSprings = 0;
+  double mouseSpringEnergy = 0.0;  // apart from energy, the scene's own
+  double owedTime = 0.0;           // time + owedTime is the clock all panes share
+  int plotPoints = 0;
+  long long steps = 0, framesAdvanced = 0;
+  bool diverged = false, slowMotion = false;
+  int mouseSprings = 0, substeps = 0;
   int pixelX = 0, pixelY = 0, pixelWidth = 0, pixelHeight = 0;
   Eigen::Vector2d worldMin, worldMax;
   std::vector<LoggedParticle> particles;
   std::vector<LoggedWall> walls;
   // Window pixel (column, row) of a world point, as the demo's view maps it.
   Eigen::Vector2d toPixel(const Eigen::Vector2d& world) const;
+  bool inWorldRect(const Eigen::Vector2d& pixel) const {
+    return pixel.x() >= pixelX && pixel.y() >= pixelY && pixel.x() < pixelX + pixelWidth && pixel.y() < pixelY + pixelHeight;
+  }
 };
 struct LoggedOverlay {
-  std::string kind;  // hud, pane-hud, status, divergence, help, panel
+  std::string kind;  // top-bar, hud, pane-hud, indicator, help, panel; widget names for widgets
   int x = 0, y = 0, width = 0, height = 0;
+  std::string text;  // line breaks as " | "
+  Eigen::Vector2d centre() const { return {x + 0.5 * width, y + 0.5 * height}; }
   bool covers(const Eigen::Vector2d& pixel, double margin) const {
     return pixel.x() > x - margin && pixel.x() < x + width + margin && pixel.y() > y - margin &&
            pixel.y() < y + height + margin;
@@ -64,7 +72,22 @@ struct StateLog {
   long long frames = 0;
   bool paused = false;
   std::vector<LoggedPane> panes;
-  std::vector<LoggedOverlay> overlays;
+  std::vector<LoggedOverlay> overlays, widgets;
+  double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
+  bool panelShown = false;
+  long long measuredFrames = 0;  // frame-times: frames after the warm-up, and their median wall time
+  double medianFrameMs = 0.0;
+  const LoggedOverlay* widget(const std::string& name) const {
+    for (const LoggedOverlay& w : widgets)
+      if (w.kind == name) return &w;
+    return nullptr;
+  }
+  // Every overlay's text, one after another.
+  std::string text() const {
+    std::string all;
+    for (const LoggedOverlay& o : overlays) all += o.text + "\n";
+    return all;
+  }
   // Whether text or a panel is drawn at (or within margin pixels of) a pixel.
   bool underOverlay(const Eigen::Vector2d& pixel, double margin = 3) const {
     for (const LoggedOverlay& o : overlays)

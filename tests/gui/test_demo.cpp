@@ -160,7 +160,8 @@ TEST(DemoKeys, EveryScenePlusEveryIntegratorByKeyThenQuitExitsZero) {
     EXPECT_EQ(log.panes[0].integrator, scenes::buildScene(key.choice.name, key.choice.params).integrator);
     EXPECT_GT(log.panes[0].steps, 0);
     EXPECT_NE(log.overlay("help"), nullptr);    // h shows the help overlay
-    EXPECT_NE(log.overlay("legend"), nullptr);  // f shows the force legend
+    ASSERT_NE(log.overlay("hud"), nullptr);     // f adds the force legend to the bottom bar
+    EXPECT_NE(log.overlay("hud")->text.find("arrows: --> "), std::string::npos) << log.overlay("hud")->text;
   }
 }
 
@@ -371,9 +372,16 @@ TEST(DemoCompare, EulerAndRk4PanesStartAlikeDivergeApartAndAreBothDrawn) {
     const int drawn = particlesDrawn(image, log, *pane, &checked);
     EXPECT_GE(checked, 5);
     EXPECT_EQ(drawn, checked);
-    // Its HUD line in its top-left corner.
-    EXPECT_GT(countNear(image, demo::palette::hudText, 40, pane->pixelX + 6, pane->pixelY + 6, pane->pixelX + 300,
-                        pane->pixelY + 50),
+    // Its HUD lines in its header strip, just above its world.
+    const LoggedOverlay* header = nullptr;
+    for (const LoggedOverlay& o : log.overlays)
+      if (o.kind == "pane-hud" && o.x <= pane->pixelX && o.x + o.width >= pane->pixelX + pane->pixelWidth &&
+          o.y + o.height <= pane->pixelY && o.y + o.height >= pane->pixelY - 20)
+        header = &o;
+    ASSERT_NE(header, nullptr);
+    EXPECT_NE(header->text.find(pane->integrator), std::string::npos) << header->text;
+    EXPECT_GT(countNear(image, demo::palette::hudText, 40, header->x, header->y, header->x + header->width,
+                        header->y + header->height),
               100);
   }
 }
@@ -400,12 +408,12 @@ TEST(DemoDivergence, HugeDtDivergesShowsTheMessageRewindsAndKeepsRunning) {
   EXPECT_TRUE(diverged.paused);
   const double divergedAt = diverged.panes[0].time;
 
-  // The message, in its colour, across the middle of the pane.
-  const LoggedPane& pane = diverged.panes[0];
-  const int midY = pane.pixelY + pane.pixelHeight / 2;
+  // The message, in its colour, in the top bar (never over the scene).
+  const LoggedOverlay* bar = diverged.overlay("top-bar");
+  ASSERT_NE(bar, nullptr);
+  EXPECT_NE(bar->text.find("diverged at t = "), std::string::npos) << bar->text;
   auto messagePixels = [&](const Image& image) {
-    return countNear(image, demo::palette::divergenceText, 30, pane.pixelX + 20, midY - 25, pane.pixelX + pane.pixelWidth - 20,
-                     midY + 25);
+    return countNear(image, demo::palette::divergenceText, 30, bar->x, bar->y, bar->x + bar->width, bar->y + bar->height);
   };
   EXPECT_GT(messagePixels(readPng(dir + "/diverged.png")), 100);
 
@@ -452,10 +460,13 @@ TEST(DemoView, ResizeKeepsTheWorldsAspectRatioAndShowsTheWholeView) {
   EXPECT_LE(p.worldMin.y(), scene.viewMin.y() + 1e-12);
   EXPECT_GE(p.worldMax.x(), scene.viewMax.x() - 1e-12);
   EXPECT_GE(p.worldMax.y(), scene.viewMax.y() - 1e-12);
-  EXPECT_EQ(p.pixelHeight, 900);
-  const LoggedOverlay* panel = log.overlay("panel");
-  ASSERT_NE(panel, nullptr);
-  EXPECT_EQ(p.pixelWidth + panel->width, 700);
+  // The world fills the window between the bars, beside the panel, inside its gutter.
+  const LoggedOverlay *panel = log.overlay("panel"), *top = log.overlay("top-bar"), *bottom = log.overlay("hud");
+  ASSERT_TRUE(panel && top && bottom);
+  const int gutter = p.pixelX;
+  EXPECT_GT(gutter, 0);
+  EXPECT_EQ(top->height + 2 * gutter + p.pixelHeight + bottom->height, 900);
+  EXPECT_EQ(p.pixelWidth + 2 * gutter + panel->width, 700);
 }
 
 TEST(DemoCompare, PanesCanDifferInDtAndKeepTheSameClock) {

@@ -26,7 +26,8 @@ namespace particles {
 // dt = 0.2) the linearisation at x₀ is not enough, so further passes do Newton
 // on the constraints alone: with x̃ = x₀ + h v̄ from the last pass, J̃ = J(x̃),
 // C̃ = C(x̃), solve the same system with J̃ and  J̃ v⁺ = J̃ v̄ − β C̃/h, until
-// max |C̃|/r ≤ constraintTolerance or constraintPasses solves. The force part
+// max |C̃|/r ≤ constraintTolerance or constraintPasses solves; the maximum
+// skips constraints whose particles are all pinned (no pass can move them). The force part
 // (A, f₀, K) stays linearised at the start of the step, as in Baraff & Witkin;
 // the constraint force acts along J̃ᵀ, its direction at the end of the step.
 //

@@ -1,0 +1,115 @@
+// `particle-lab advise`: measures this scene and names the cheapest integrator
+// and step whose maximum position error over [0, T] against a reference is at
+// most E (lab/advise.h). The table goes to stdout, progress to stderr; the last
+// line is the advice as run options.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "cli/command.h"
+#include "cli/scene_source.h"
+#include "lab/advise.h"
+#include "particles/check.h"
+
+namespace cli {
+
+namespace {
+
+struct AdviseOptions {
+  SceneSource source;
+  double error = 0.0;    // E, world units
+  double horizon = 0.0;  // T, simulated seconds
+  std::vector<std::string> integrators;
+  int repeats = 5;
+  long maxSteps = 100000;
+  double referenceTolerance = lab::SurveySettings{}.referenceTolerance;
+};
+
+std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "–"; }
+
+int advise(const AdviseOptions& o) {
+  if (!(std::isfinite(o.error) && o.error > 0.0)) throw UsageError("--error must be > 0, got " + cell(o.error));
+  particles::requirePositive("--horizon", o.horizon);
+  particles::requirePositive("--reference-tolerance", o.referenceTolerance);
+  if (!std::isfinite(o.horizon)) throw UsageError("--horizon must be finite, got " + cell(o.horizon));
+  if (o.repeats < 1) throw UsageError("--repeats must be >= 1, got " + std::to_string(o.repeats));
+  if (o.maxSteps < 1) throw UsageError("--max-steps must be >= 1, got " + std::to_string(o.maxSteps));
+  for (const auto& name : o.integrators) particles::makeIntegrator(name);
+  o.source.load();  // bad scene input fails here, before any measurement
+
+  lab::SurveySettings settings;
+  settings.horizon = o.horizon;
+  settings.targetError = settings.abortError = o.error;
+  settings.integrators = o.integrators;
+  settings.repeats = o.repeats;
+  settings.maxSteps = o.maxSteps;
+  settings.referenceTolerance = o.referenceTolerance;
+  lab::installInterruptHandler();
+  double lastReport = -1.0;
+  settings.progress = [&](double fraction) {
+    if (fraction - lastReport < 0.05 && fraction < 1.0) return;
+    lastReport = fraction;
+    if (fraction == 0.0)
+      std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
+    else
+      std::fprintf(stderr, "advise: %3.0f%% scanned\n", 100.0 * fraction);
+  };
+  const auto build = [&] { return o.source.load(); };
+  const lab::Survey survey = lab::surveyScene(build, settings);
+  std::fprintf(stderr, "advise: timing the picks (%d repeats each) ...\n", o.repeats);
+  const std::vector<lab::Pick> picks = lab::pickPerIntegrator(build, survey, settings, o.error);
+  if (lab::interrupted()) return 130;
+
+  std::cout << "scene " << survey.scene << ", " << survey.particles << " particles, size "
+            << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
+            << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
+  std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
+  for (std::size_t k = 0; k < picks.size(); ++k) {
+    const auto& scan = survey.integrators[k];
+    const auto& p = picks[k];
+    const std::string safe = scan.adaptive ? "–" : cell(scan.safeDt) + (scan.safeAtTop ? "+" : "");
+    char line[256];
+    if (p.found)
+      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-11s %s (%s-%s)\n", scan.integrator.c_str(),
+                    cell(p.candidate.dt).c_str(), scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–",
+                    cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),
+                    cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
+    else
+      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%zu runs), safe dt %s\n",
+                    scan.integrator.c_str(), scan.scanned.size(), safe.c_str());
+    std::cout << line;
+  }
+  const int best = lab::cheapest(picks);
+  if (best < 0) {
+    std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)
+              << " s within its safe range\n";
+    return 1;
+  }
+  std::cout << "advise: " << lab::pickArguments(picks[best].candidate) << "\n";
+  return kSuccess;
+}
+
+}  // namespace
+
+Command addAdviseCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "advise", "measure the scene and name the cheapest integrator and dt within a position error over a horizon");
+  auto options = std::make_shared<AdviseOptions>();
+  options->source.addOptions(*command);
+  command->add_option("--error", options->error, "E: largest particle position error allowed, world units")
+      ->required();
+  command->add_option("--horizon", options->horizon, "T: simulated seconds the error is measured over")->required();
+  command->add_option("--integrator", options->integrators,
+                      "consider only these integrators (repeatable; default: every one)");
+  command->add_option("--repeats", options->repeats, "timed repeats of each pick; the median is reported")
+      ->capture_default_str();
+  command->add_option("--max-steps", options->maxSteps, "the smallest dt scanned is T / max-steps")
+      ->capture_default_str();
+  command->add_option("--reference-tolerance", options->referenceTolerance,
+                      "odeint's error tolerance per step for the reference (checked at 100x it)")
+      ->capture_default_str();
+  return {command, [=] { return advise(*options); }};
+}
+
+}  // namespace cli

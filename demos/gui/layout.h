@@ -1,0 +1,38 @@
+#pragma once
+// Where everything goes in the window, so that no text covers the scene:
+// reserved margins for the text (a top bar for the scene's name, hints and
+// messages; a bottom bar for the HUD, the keys and the force legend; in
+// compare mode a header strip at the top of each pane), the control panel at
+// the right edge, and for each pane the rectangle where the world is drawn,
+// inset by a gutter that holds the out-of-view indicators.
+#include <vector>
+
+#include "view.h"
+
+namespace demo {
+
+struct LayoutMetrics {
+  int lineHeight = 18;       // pixels per line of HUD text (15 px font)
+  int padding = 4;           // around the text of a bar
+  int topLines = 2;          // scene · summary; hint or message (a long message takes both)
+  int bottomLines = 4;       // single pane: three HUD lines and the keys / legend
+  int compareBottomLines = 1;  // compare mode: the keys / legend
+  int paneHeaderLines = 3;   // compare mode: each pane's integrator, numbers, state
+  int gutter = 12;           // around each pane's world, for the edge indicators
+  int panelWidth = 340;      // the control panel, when shown (at most half the window)
+};
+
+struct Layout {
+  PixelRect topBar, bottomBar, panel;  // panel has zero width when hidden
+  std::vector<PixelRect> panes;        // each pane's whole rectangle
+  std::vector<PixelRect> headers;      // compare mode: each pane's text strip (empty rectangles otherwise)
+  std::vector<PixelRect> worlds;       // where each pane draws the world
+};
+
+Layout computeLayout(int windowWidth, int windowHeight, bool panelShown, int paneCount,
+                     const LayoutMetrics& metrics = {});
+
+// Whether two rectangles share a pixel.
+bool intersects(const PixelRect& a, const PixelRect& b);
+
+}  // namespace demo

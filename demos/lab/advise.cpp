@@ -1,0 +1,267 @@
+#include "lab/advise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include "particles/check.h"
+
+namespace lab {
+
+namespace {
+
+bool cancelled(const SurveySettings& s) { return interrupted() || (s.cancel && s.cancel->load()); }
+
+bool usesTolerance(const std::string& integrator) {
+  for (const auto& info : particles::integratorTable())
+    if (integrator == info.name) return info.usesTolerance;
+  return false;
+}
+
+void validate(const SurveySettings& s) {
+  particles::requirePositive("horizon", s.horizon);
+  particles::requirePositive("error", s.targetError);
+  particles::requirePositive("abort error", s.abortError);
+  if (s.dtMax != 0.0) particles::requirePositive("dt max", s.dtMax);
+  if (s.interval != 0.0) particles::requirePositive("interval", s.interval);
+  particles::requirePositive("adaptive interval", s.adaptiveInterval);
+  particles::requirePositive("reference tolerance", s.referenceTolerance);
+  particles::requireInRange("safe fraction", s.safeFraction, 1e-3, 1.0);
+  if (!(s.gridRatio > 1.0)) throw std::invalid_argument("grid ratio must be > 1, got " + general(s.gridRatio));
+  if (s.maxSteps < 1) throw std::invalid_argument("max steps must be >= 1, got " + std::to_string(s.maxSteps));
+  if (s.repeats < 1) throw std::invalid_argument("repeats must be >= 1, got " + std::to_string(s.repeats));
+  for (const auto& name : s.integrators) particles::makeIntegrator(name);  // rejects unknown names
+}
+
+struct Measurer {
+  const std::function<scenes::Scene()>& build;
+  const SurveySettings& settings;
+  const Trajectory& reference;
+  double energyScale;
+
+  Candidate run(const std::string& name, double dt, double tolerance, bool abortOnError) const {
+    return measureRun(build, reference, name, dt, tolerance, settings.horizon, settings.failure, energyScale,
+                      abortOnError ? settings.abortError : std::numeric_limits<double>::infinity(), settings.cancel);
+  }
+};
+
+// Fixed-step schemes: dt descends a log grid from dtMax. Runs are complete
+// (so survival is known) until the safe boundary is established: nothing
+// failed yet, or survivorsBelowFailure grid points survived below the lowest
+// failure. Below safeFraction × boundary a run stops once its error exceeds
+// abortError (it could meet no budget). The scan ends at the first point
+// there that survives within targetError.
+void scanSteps(const Measurer& m, const SurveySettings& s, IntegratorSurvey& out,
+               const std::function<void(double)>& progress) {
+  const double dtMax = s.dtMax > 0.0 ? s.dtMax : std::min(s.horizon / 20.0, 0.5);
+  const double dtMin = s.horizon / static_cast<double>(s.maxSteps);
+  const int points = std::max(1, static_cast<int>(std::floor(std::log(dtMax / dtMin) / std::log(s.gridRatio))) + 1);
+  double lowestFailure = std::numeric_limits<double>::infinity(), top = 0.0;
+  int survivorsBelow = 0;
+  long previousSteps = 0;
+  for (int j = 0; j < points && !cancelled(s); ++j) {
+    // dt divides T into whole steps, so the run ends exactly at T.
+    const long steps = std::max(1L, std::lround(s.horizon / (dtMax / std::pow(s.gridRatio, j))));
+    if (steps == previousSteps) continue;
+    previousSteps = steps;
+    const double dt = s.horizon / steps;
+    const bool established = std::isinf(lowestFailure) || survivorsBelow >= s.survivorsBelowFailure;
+    const bool belowSafe = top > 0.0 && dt <= s.safeFraction * top * (1 + 1e-12);
+    Candidate c = m.run(out.integrator, dt, 0.0, established && belowSafe);
+    if (cancelled(s)) break;
+    out.scanned.push_back(c);
+    if (progress) progress(static_cast<double>(j + 1) / points);
+    if (!c.survived && !c.aborted) {
+      lowestFailure = dt, top = 0.0, survivorsBelow = 0;
+      continue;
+    }
+    if (c.survived) {
+      if (top == 0.0) top = dt;
+      ++survivorsBelow;
+    }
+    const bool nowEstablished = std::isinf(lowestFailure) || survivorsBelow >= s.survivorsBelowFailure;
+    if (nowEstablished && belowSafe && c.survived && c.maxError <= s.targetError) break;
+  }
+  out.safeDt = top;
+  out.safeAtTop = std::isinf(lowestFailure) && top > 0.0;
+  out.firstFailureDt = std::isinf(lowestFailure) ? 0.0 : lowestFailure;
+}
+
+// Adaptive schemes: the tolerance descends at a fixed call interval.
+void scanTolerances(const Measurer& m, const SurveySettings& s, double interval, IntegratorSurvey& out,
+                    const std::function<void(double)>& progress) {
+  std::vector<double> tolerances = s.tolerances;
+  if (tolerances.empty())
+    for (int k = 0; k <= 20; ++k) tolerances.push_back(1e-2 * std::pow(10.0, -0.5 * k));
+  std::sort(tolerances.rbegin(), tolerances.rend());
+  for (std::size_t j = 0; j < tolerances.size() && !cancelled(s); ++j) {
+    Candidate c = m.run(out.integrator, interval, tolerances[j], true);
+    if (cancelled(s)) break;
+    out.scanned.push_back(c);
+    if (progress) progress(static_cast<double>(j + 1) / tolerances.size());
+    if (c.survived && c.maxError <= s.targetError) break;
+  }
+  out.safeDt = interval;
+}
+
+}  // namespace
+
+Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajectory& reference,
+                     const std::string& integrator, double dt, double tolerance, double horizon,
+                     const FailureCriterion& failure, double energyScale, double abortError,
+                     const std::atomic<bool>* cancel) {
+  const auto stop = [&] { return interrupted() || (cancel && cancel->load()); };
+  Candidate c;
+  c.integrator = integrator, c.dt = dt, c.tolerance = tolerance;
+  scenes::Scene scene = build();
+  particles::IntegratorSettings integratorSettings;
+  if (tolerance > 0.0) integratorSettings.tolerance = tolerance;
+  auto stepper = particles::makeIntegrator(integrator, integratorSettings);
+  double error = 0.0;
+  long k = 0;
+  const RunResult r = simulate(scene, *stepper, dt, horizon, failure, [&](const particles::ParticleSystem& system) {
+    ++k;
+    error = maxParticleDistance(system.positions(), reference.positionsAt(k * dt));
+    c.maxError = std::max(c.maxError, error);
+    // Energy is compared where the reference has a sample.
+    const double sample = k * dt / reference.interval;
+    const auto nearest = static_cast<std::size_t>(std::lround(sample));
+    if (std::abs(sample - nearest) < 1e-9 && nearest < reference.energy.size())
+      c.energyError = std::max(c.energyError, std::abs(system.totalEnergy() - reference.energy[nearest]) / energyScale);
+    c.constraintDrift = std::max(c.constraintDrift, system.maxRelativeConstraintError());
+    if (c.maxError > abortError) c.aborted = true;
+    return !c.aborted && !stop();
+  });
+  c.failure = r.reason;
+  c.survived = !r.failed && !r.stopped && !r.cutShort && !stop();
+  if (r.failed) c.maxError = std::numeric_limits<double>::infinity();
+  c.errorAtT = c.survived ? error : std::numeric_limits<double>::infinity();
+  c.seconds = r.seconds;
+  return c;
+}
+
+Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
+                        double tolerance, const ClosedForm& closedForm) {
+  ReferenceSettings tight;
+  tight.tolerance = tolerance;
+  tight.interval = interval;
+  // The check integrates again at 100× the tolerance, observed only about once
+  // a second so that odeint chooses its own steps (observed every interval,
+  // both runs would be held to the same short steps and agree trivially).
+  ReferenceSettings check = tight;
+  check.tolerance = 100.0 * tight.tolerance;
+  const long stride = std::max(1L, std::lround(1.0 / interval));
+  check.interval = stride * interval;
+  Reference out;
+  scenes::Scene scene = build();
+  out.trajectory = closedForm ? closedForm(horizon, interval) : odeintReference(scene, horizon, tight);
+  scenes::Scene again = build();
+  const Trajectory checked = odeintReference(again, horizon, check);
+  for (std::size_t k = 0; k < checked.x.size() && k * stride < out.trajectory.x.size(); ++k)
+    out.agreement = std::max(out.agreement, maxParticleDistance(out.trajectory.x[k * stride], checked.x[k]));
+  out.description = closedForm ? "closed form (odeint RKF78 at tolerance " + general(check.tolerance) +
+                                     " agrees within " + general(out.agreement) + ")"
+                               : "odeint RKF78 at tolerance " + general(tight.tolerance) + " (at " +
+                                     general(check.tolerance) + " it differs by " + general(out.agreement) + ")";
+  return out;
+}
+
+Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
+                   const ClosedForm& closedForm) {
+  validate(settings);
+  SurveySettings s = settings;
+  s.abortError = std::max(s.abortError, s.targetError);
+  scenes::Scene first = build();
+  const double interval = s.interval > 0.0 ? s.interval : first.dt;
+  if (interval > s.horizon)
+    throw std::invalid_argument("horizon must be >= the sample interval " + general(interval) + ", got " +
+                                general(s.horizon));
+  Survey survey;
+  survey.scene = first.name;
+  survey.horizon = s.horizon;
+  survey.particles = first.system->size();
+  if (s.progress) s.progress(0.0);  // valid: the reference starts
+  const double scale = releasableEnergy(*first.system);
+
+  const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm);
+  survey.referenceAgreement = reference.agreement;
+  survey.reference = reference.description;
+  survey.size = reference.trajectory.size();
+  survey.touchedWall = reference.trajectory.touchedWall;
+  if (s.relativeToSize) s.abortError *= survey.size, s.targetError *= survey.size;
+
+  std::vector<std::string> names;
+  for (const auto& info : particles::integratorTable())
+    if (s.integrators.empty() || std::count(s.integrators.begin(), s.integrators.end(), info.name))
+      names.push_back(info.name);
+  const Measurer measurer{build, s, reference.trajectory, scale};
+  for (std::size_t i = 0; i < names.size() && !cancelled(s); ++i) {
+    IntegratorSurvey out;
+    out.integrator = names[i];
+    out.adaptive = usesTolerance(names[i]);
+    auto progress = [&](double f) {
+      if (s.progress) s.progress((i + f) / names.size());
+    };
+    if (out.adaptive)
+      scanTolerances(measurer, s, s.horizon / std::max(1L, std::lround(s.horizon / s.adaptiveInterval)), out,
+                     progress);
+    else
+      scanSteps(measurer, s, out, progress);
+    survey.integrators.push_back(std::move(out));
+  }
+  return survey;
+}
+
+std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
+                                    const SurveySettings& settings, double error) {
+  std::vector<Pick> picks;
+  for (const auto& scan : survey.integrators) {
+    Pick pick;
+    for (const auto& c : scan.scanned) {
+      const bool safe = scan.adaptive || c.dt <= settings.safeFraction * scan.safeDt * (1 + 1e-12);
+      if (!c.survived || !safe || !(c.maxError <= error)) continue;
+      const bool better = !pick.found || (scan.adaptive ? c.tolerance > pick.candidate.tolerance
+                                                        : c.dt > pick.candidate.dt);
+      if (better) pick.found = true, pick.candidate = c;
+    }
+    if (pick.found) {
+      std::vector<double> perSecond;
+      for (int r = 0; r < settings.repeats && !cancelled(settings); ++r) {
+        scenes::Scene scene = build();
+        particles::IntegratorSettings integratorSettings;
+        if (pick.candidate.tolerance > 0.0) integratorSettings.tolerance = pick.candidate.tolerance;
+        auto stepper = particles::makeIntegrator(pick.candidate.integrator, integratorSettings);
+        perSecond.push_back(simulate(scene, *stepper, pick.candidate.dt, survey.horizon, settings.failure).seconds /
+                            survey.horizon);
+      }
+      if (perSecond.empty()) perSecond.push_back(pick.candidate.seconds / survey.horizon);
+      pick.cpuPerSimulatedSecond = median(perSecond);
+      pick.cpuMin = *std::min_element(perSecond.begin(), perSecond.end());
+      pick.cpuMax = *std::max_element(perSecond.begin(), perSecond.end());
+    }
+    picks.push_back(pick);
+  }
+  return picks;
+}
+
+int cheapest(const std::vector<Pick>& picks) {
+  int best = -1;
+  for (int k = 0; k < static_cast<int>(picks.size()); ++k)
+    if (picks[k].found && (best < 0 || picks[k].cpuPerSimulatedSecond < picks[best].cpuPerSimulatedSecond)) best = k;
+  return best;
+}
+
+std::string pickArguments(const Candidate& c) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "--integrator %s --dt %.9g", c.integrator.c_str(), c.dt);
+  std::string args = buffer;
+  if (c.tolerance > 0.0) {
+    std::snprintf(buffer, sizeof buffer, " --tolerance %.3g", c.tolerance);
+    args += buffer;
+  }
+  return args;
+}
+
+}  // namespace lab

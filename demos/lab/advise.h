@@ -1,0 +1,122 @@
+#pragma once
+// The advice core: for one scene and horizon, the largest step (or loosest
+// tolerance) of each integrator whose maximum particle position error over
+// [0, T] against an independent reference stays within a budget, inside the
+// integrator's safe range, and what it costs per simulated second. Shared by
+// `particle-lab advise`, the cost-of-accuracy experiment and the demo's panel.
+// Only measured points are reported; nothing is extrapolated.
+#include <atomic>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "lab/lab.h"
+#include "lab/reference.h"
+
+namespace lab {
+
+struct SurveySettings {
+  double horizon = 10.0;            // T, simulated seconds
+  double abortError = 1e-2;         // a run stops once its error exceeds this (world units)
+  double targetError = 1e-4;        // the scan of an integrator ends at the first safe point within this
+  bool relativeToSize = false;      // abortError and targetError are fractions of the scene's size
+  std::vector<std::string> integrators;  // empty: every integrator in the engine's table
+  double dtMax = 0.0;               // largest dt scanned; 0: min(T/20, 0.5)
+  long maxSteps = 100000;           // smallest dt scanned is T / maxSteps
+  double gridRatio = 1.1225;        // 2^(1/6): neighbouring grid steps differ by 12%
+  double safeFraction = 0.8;        // a pick's dt is at most this × the safe boundary
+  int survivorsBelowFailure = 3;    // grid points that must survive below the lowest failure
+  std::vector<double> tolerances;   // adaptive schemes; empty: 1e-2 … 1e-12, factor √10
+  double interval = 0.0;            // reference sample spacing; 0: the scene's dt
+  double adaptiveInterval = 0.1;    // an adaptive scheme's call (output) interval, simulated seconds:
+                                    // long enough that its tolerance, not the call, limits its step
+  int repeats = 5;                  // timed repeats of each pick; the median is reported
+  FailureCriterion failure;         // the failure criterion (lab/failure.h)
+  double referenceTolerance = 1e-11;  // odeint's; the check run uses 100× this
+  std::function<void(double)> progress;        // fraction of the scan done, 0..1 (any thread)
+  const std::atomic<bool>* cancel = nullptr;   // set to stop early
+};
+
+// One measured configuration.
+struct Candidate {
+  std::string integrator;
+  double dt = 0.0;            // step, or the call interval of an adaptive scheme
+  double tolerance = 0.0;     // adaptive schemes; 0 for fixed-step ones
+  bool survived = false;      // reached T without the failure criterion firing
+  bool aborted = false;       // stopped once the error exceeded abortError
+  std::string failure;        // which criterion fired, if any
+  double maxError = 0.0;      // max over the run's steps of the largest particle error
+  double errorAtT = 0.0;
+  double energyError = 0.0;   // max |E − E_ref| over the steps / E_s (releasableEnergy)
+  double constraintDrift = 0.0;  // max |C|/r over the run
+  double seconds = 0.0;       // wall time of the scan run's steps
+};
+
+// One run of a freshly built scene against the reference, sampled at every
+// step (every call of an adaptive scheme) through the reference's interpolant;
+// it stops early once the error exceeds abortError (Candidate::aborted).
+Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajectory& reference,
+                     const std::string& integrator, double dt, double tolerance, double horizon,
+                     const FailureCriterion& failure, double energyScale,
+                     double abortError = std::numeric_limits<double>::infinity(),
+                     const std::atomic<bool>* cancel = nullptr);
+
+struct IntegratorSurvey {
+  std::string integrator;
+  bool adaptive = false;
+  double safeDt = 0.0;        // largest scanned dt below which every scanned dt survived (0: none)
+  double firstFailureDt = 0.0;  // lowest failing dt scanned above safeDt (0: none failed)
+  bool safeAtTop = false;     // nothing failed: safeDt is the top of the grid, a lower bound
+  std::vector<Candidate> scanned;  // in scan order (dt or tolerance descending)
+};
+
+struct Survey {
+  std::string scene;
+  double horizon = 0.0;
+  double size = 0.0;                 // diagonal of the reference's bounding box, world units
+  double referenceAgreement = 0.0;   // max distance between the references at two tolerances
+  std::string reference;             // how it was computed
+  bool touchedWall = false;          // the reference passed through a wall (contacts ignored)
+  int particles = 0;
+  std::vector<IntegratorSurvey> integrators;
+};
+
+// A closed-form reference: the trajectory over [0, duration] sampled every interval.
+using ClosedForm = std::function<Trajectory(double duration, double interval)>;
+
+// A reference with its check: `agreement` is the largest particle distance
+// between it and odeint at 100× the tolerance, at common samples about 1 s apart.
+struct Reference {
+  Trajectory trajectory;
+  double agreement = 0.0;
+  std::string description;
+};
+Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
+                        double tolerance, const ClosedForm& closedForm = {});
+
+// Runs the reference and scans every integrator. `build` makes a fresh scene
+// each call. The reference is the closed form when one is given (checked
+// against odeint), otherwise odeint at referenceTolerance (checked against
+// odeint at 100× that). Throws std::invalid_argument for bad settings.
+Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
+                   const ClosedForm& closedForm = {});
+
+struct Pick {
+  bool found = false;
+  Candidate candidate;
+  double cpuPerSimulatedSecond = 0.0, cpuMin = 0.0, cpuMax = 0.0;  // median and spread of repeats
+};
+
+// Per integrator, the largest scanned safe dt (fixed-step: dt ≤ safeFraction ×
+// safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`.
+std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
+                                    const SurveySettings& settings, double error);
+
+// Index of the cheapest found pick by median CPU time, −1 if none is found.
+int cheapest(const std::vector<Pick>& picks);
+
+// The command line that reproduces a pick: "--integrator NAME --dt X [--tolerance Y]".
+std::string pickArguments(const Candidate& c);
+
+}  // namespace lab

@@ -1,0 +1,131 @@
+// `particle-lab cost`: the cost of accuracy. For each scene and error budget
+// (relative to the scene's size), the cheapest integrator and dt whose maximum
+// particle position error over [0, T] against an independent reference meets
+// the budget while dt ≤ 0.8 × that integrator's safe boundary on this scene,
+// and its CPU time per simulated second (median of repeats, with the spread).
+// Built on the advice core (lab/advise.h): one survey per scene serves every budget.
+#include <cmath>
+
+#include "lab/advise.h"
+#include "lab/experiments.h"
+#include "lab/lab_scene.h"
+
+namespace lab {
+
+namespace {
+
+struct CostScene {
+  std::string label;
+  std::string scene;
+  std::map<std::string, std::string> params;
+  double horizon;   // T, simulated seconds
+  long maxSteps;    // the grid's smallest dt is T / maxSteps
+  bool closedForm;  // the oscillator: its closed form is the reference
+};
+
+// A budget is only measurable where the reference is much better than it.
+constexpr double kReferenceMargin = 10.0;
+
+}  // namespace
+
+int runCost(const LabOptions& options) {
+  prepareOutput(options);
+  const bool q = options.quick;
+  const std::vector<CostScene> scenes = q
+      ? std::vector<CostScene>{
+            {"oscillator", "oscillator", {}, 10.0, 2000, true},
+            {"pendulum", "pendulum", {}, 20.0, 2000, false},
+            {"6-chain", "test-chain", {{"cl", "6"}}, 5.0, 1000, false},
+            {"6x6 cloth", "cloth", {{"width", "6"}, {"height", "6"}}, 2.0, 500, false},
+            {"hair", "hair", {{"curls", "1"}, {"particles", "6"}}, 1.0, 1000, false}}
+      : std::vector<CostScene>{
+            {"oscillator", "oscillator", {}, 32.0, 100000, true},
+            {"pendulum", "pendulum", {}, 100.0, 100000, false},
+            {"24-chain", "test-chain", {{"cl", "24"}}, 20.0, 20000, false},
+            {"24-chain", "test-chain", {{"cl", "24"}}, 60.0, 20000, false},
+            {"16x16 cloth", "cloth", {{"width", "16"}, {"height", "16"}}, 10.0, 10000, false},
+            {"hair", "hair", {}, 10.0, 20000, false}};
+  const std::vector<double> budgets = {1e-2, 1e-4, 1e-6};  // × the scene's size
+  const SurveySettings defaults;
+  recordValue(options, "cost.safe_fraction", general(defaults.safeFraction));
+  recordValue(options, "cost.grid_ratio", fixed(defaults.gridRatio, 3));
+  recordValue(options, "cost.reference_tolerance", general(defaults.referenceTolerance));
+  recordValue(options, "cost.repeats", std::to_string(q ? 2 : defaults.repeats));
+  recordValue(options, "cost.failure", describe(options.criterion));
+  Progress progress("cost", static_cast<long>(scenes.size()));
+
+  Csv picksCsv(options.outDir + "/cost_of_accuracy.csv",
+               {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",
+                "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
+  Csv safeCsv(options.outDir + "/cost_safe_dt.csv",
+              {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs"});
+  std::vector<std::vector<std::string>> table;
+  for (const auto& cs : scenes) {
+    if (interrupted()) break;
+    const auto build = [&] { return buildLabScene(cs.scene, cs.params); };
+    SurveySettings settings;
+    settings.horizon = cs.horizon;
+    settings.maxSteps = cs.maxSteps;
+    settings.integrators = selectedIntegrators(options);
+    settings.repeats = q ? 2 : defaults.repeats;
+    settings.failure = options.criterion;
+    // One survey: runs stop once beyond the loosest budget, and each
+    // integrator's scan ends within the tightest.
+    settings.relativeToSize = true;
+    settings.abortError = budgets.front();
+    settings.targetError = budgets.back();
+    ClosedForm closedForm;
+    if (cs.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(cs.params, T, h, scenes::kSeedPreset); };
+    const Survey survey = surveyScene(build, settings, closedForm);
+    if (interrupted()) break;
+    for (const auto& scan : survey.integrators) {
+      safeCsv << cs.label << cs.horizon << scan.integrator << (scan.adaptive ? std::nan("") : scan.safeDt)
+              << scan.firstFailureDt << static_cast<long>(scan.scanned.size());
+      safeCsv.endRow();
+    }
+    const std::string label = cs.label + " (" + std::to_string(survey.particles) + " particles, T = " +
+                              general(cs.horizon) + " s)";
+    for (double relative : budgets) {
+      const double budget = relative * survey.size;
+      std::vector<std::string> row{label, general(relative) + " (" + general(budget, 2) + ")"};
+      if (budget < kReferenceMargin * survey.referenceAgreement) {
+        row.insert(row.end(), {"reference not converged (tolerances differ by " +
+                                   general(survey.referenceAgreement, 2) + ")",
+                               "–", "–", "–"});
+        table.push_back(row);
+        continue;
+      }
+      const auto picks = pickPerIntegrator(build, survey, settings, budget);
+      for (std::size_t k = 0; k < picks.size(); ++k) {
+        if (!picks[k].found) continue;
+        const Candidate& c = picks[k].candidate;
+        picksCsv << cs.label << static_cast<long>(survey.particles) << cs.horizon << survey.size << relative << budget
+                 << c.integrator << c.dt << c.tolerance << c.maxError << survey.integrators[k].safeDt
+                 << picks[k].cpuPerSimulatedSecond << picks[k].cpuMin << picks[k].cpuMax << survey.referenceAgreement;
+        picksCsv.endRow();
+      }
+      const int best = cheapest(picks);
+      if (best < 0) {
+        row.insert(row.end(), {"none within budget (grid down to dt = " + general(cs.horizon / cs.maxSteps) + ")",
+                               "–", "–", "–"});
+      } else {
+        const auto& p = picks[best];
+        const std::string step = general(p.candidate.dt) +
+                                 (p.candidate.tolerance > 0 ? ", tol " + general(p.candidate.tolerance) : "");
+        row.insert(row.end(), {p.candidate.integrator, step, general(p.candidate.maxError),
+                               general(p.cpuPerSimulatedSecond) + " (" + general(p.cpuMin, 2) + "–" +
+                                   general(p.cpuMax, 2) + ")"});
+      }
+      table.push_back(row);
+    }
+    progress.tick();
+  }
+  writeTable(options, "cost_of_accuracy",
+             "The cost of accuracy: cheapest integrator and dt whose max particle position error over [0, T] "
+             "against the reference is within the budget (relative to the scene's size; absolute in brackets), "
+             "at dt <= 0.8 x its safe boundary; CPU seconds per simulated second, median of repeats (min–max)",
+             {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s"}, table);
+  return interrupted() ? 130 : 0;
+}
+
+}  // namespace lab

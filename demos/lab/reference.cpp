@@ -1,0 +1,133 @@
+#include "lab/reference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <boost/numeric/odeint.hpp>
+
+#include "scenes/oscillator.h"
+#include "scenes/param_fields.h"
+
+namespace lab {
+
+namespace {
+
+// The first-order form y = (x, v), ẏ = (v, a(x, v)) that odeint integrates.
+using State = std::vector<double>;
+
+void recordSample(particles::ParticleSystem& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                  Trajectory& out) {
+  Eigen::VectorXd a(x.size());
+  system.acceleration(x, v, a);
+  out.x.push_back(x);
+  out.v.push_back(v);
+  out.a.push_back(a);
+  const particles::Snapshot saved = system.snapshot();
+  system.positions() = x;
+  system.velocities() = v;
+  out.energy.push_back(system.totalEnergy());
+  for (const particles::Collider& collider : system.colliders())
+    for (int i = 0; i < system.size(); ++i)
+      if (collider.distance(x.segment<2>(2 * i)).distance < system.radii()[i]) out.touchedWall = true;
+  system.restore(saved);
+}
+
+}  // namespace
+
+Eigen::VectorXd Trajectory::positionsAt(double t) const {
+  const int last = static_cast<int>(x.size()) - 1;
+  const double s = std::clamp(t / interval, 0.0, static_cast<double>(last));
+  const int k = std::min(static_cast<int>(std::floor(s)), std::max(last - 1, 0));
+  if (last == 0) return x[0];
+  const double u = s - k, h = interval;
+  // Quintic Hermite basis on [0, 1] for values, first and second derivatives.
+  const double u2 = u * u, u3 = u2 * u, u4 = u3 * u, u5 = u4 * u;
+  const double h00 = 1 - 10 * u3 + 15 * u4 - 6 * u5, h01 = 1 - h00;
+  const double h10 = u - 6 * u3 + 8 * u4 - 3 * u5, h11 = -4 * u3 + 7 * u4 - 3 * u5;
+  const double h20 = 0.5 * (u2 - 3 * u3 + 3 * u4 - u5), h21 = 0.5 * (u3 - 2 * u4 + u5);
+  return h00 * x[k] + h01 * x[k + 1] + h * (h10 * v[k] + h11 * v[k + 1]) + h * h * (h20 * a[k] + h21 * a[k + 1]);
+}
+
+double Trajectory::size() const {
+  if (x.empty()) return 0.0;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& sample : x)
+    for (int i = 0; i < sample.size() / 2; ++i) {
+      lo = lo.cwiseMin(sample.segment<2>(2 * i));
+      hi = hi.cwiseMax(sample.segment<2>(2 * i));
+    }
+  return (hi - lo).norm();
+}
+
+Trajectory odeintReference(scenes::Scene& scene, double duration, const ReferenceSettings& settings) {
+  namespace odeint = boost::numeric::odeint;
+  particles::ParticleSystem& system = *scene.system;
+  system.solver().settings.tolerance = settings.solverTolerance;
+  const int n2 = 2 * system.size();
+  Trajectory out;
+  out.interval = settings.interval;
+  const long samples = std::lround(duration / settings.interval);
+  std::vector<double> times(samples + 1);
+  for (long k = 0; k <= samples; ++k) times[k] = k * settings.interval;
+
+  State y(2 * n2);
+  Eigen::Map<Eigen::VectorXd>(y.data(), n2) = system.positions();
+  Eigen::Map<Eigen::VectorXd>(y.data() + n2, n2) = system.velocities();
+  Eigen::VectorXd x(n2), v(n2), a(n2);
+  auto rhs = [&](const State& state, State& derivative, double) {
+    x = Eigen::Map<const Eigen::VectorXd>(state.data(), n2);
+    v = Eigen::Map<const Eigen::VectorXd>(state.data() + n2, n2);
+    system.acceleration(x, v, a);
+    Eigen::Map<Eigen::VectorXd>(derivative.data(), n2) = v;
+    Eigen::Map<Eigen::VectorXd>(derivative.data() + n2, n2) = a;
+  };
+  auto observe = [&](const State& state, double) {
+    recordSample(system, Eigen::Map<const Eigen::VectorXd>(state.data(), n2),
+                 Eigen::Map<const Eigen::VectorXd>(state.data() + n2, n2), out);
+  };
+  auto stepper = odeint::make_controlled(settings.tolerance, settings.tolerance,
+                                         odeint::runge_kutta_fehlberg78<State>());
+  odeint::integrate_times(stepper, rhs, y, times.begin(), times.end(), settings.interval / 10, observe);
+  return out;
+}
+
+Trajectory oscillatorReference(const std::map<std::string, std::string>& params, double duration, double interval,
+                               const std::string& preset) {
+  const auto p = scenes::readParams<scenes::OscillatorParams>(
+      scenes::SceneParams(scenes::paramSpecs<scenes::OscillatorParams>(), params, preset));
+  scenes::Scene scene = scenes::buildScene("oscillator", params, preset);
+  particles::ParticleSystem& system = *scene.system;
+  Trajectory out;
+  out.interval = interval;
+  const long samples = std::lround(duration / interval);
+  // The bob (particle 1) moves on the x axis at rest + u(t); u̇ by a central
+  // difference of the closed form is only used for a, which is interpolation data.
+  for (long k = 0; k <= samples; ++k) {
+    const double t = k * interval, e = 1e-6;
+    Eigen::VectorXd x = system.positions(), v = Eigen::VectorXd::Zero(x.size());
+    x(2) = p.rest + scenes::oscillatorDisplacement(p, t);
+    v(2) = (scenes::oscillatorDisplacement(p, t + e) - scenes::oscillatorDisplacement(p, t - e)) / (2 * e);
+    recordSample(system, x, v, out);
+  }
+  return out;
+}
+
+double maxParticleDistance(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  double worst = 0.0;
+  for (int i = 0; i < x.size() / 2; ++i) {
+    const double e = (x.segment<2>(2 * i) - y.segment<2>(2 * i)).norm();
+    if (!std::isfinite(e)) return std::numeric_limits<double>::infinity();
+    worst = std::max(worst, e);
+  }
+  return worst;
+}
+
+double maxTrajectoryDistance(const Trajectory& a, const Trajectory& b) {
+  double worst = 0.0;
+  const std::size_t n = std::min(a.x.size(), b.x.size());
+  for (std::size_t k = 0; k < n; ++k) worst = std::max(worst, maxParticleDistance(a.x[k], b.x[k]));
+  return worst;
+}
+
+}  // namespace lab

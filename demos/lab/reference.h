@@ -1,0 +1,54 @@
+#pragma once
+// Reference trajectories independent of the integrators under test: the
+// closed form where one exists, otherwise Boost.Odeint's controlled
+// Runge–Kutta–Fehlberg 7(8) driving ParticleSystem::acceleration.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "scene.h"
+
+namespace lab {
+
+// States sampled on a uniform grid t_k = k·interval, k = 0..K. Between samples
+// the positions are the quintic Hermite interpolant of (x, v, a) at both ends,
+// error ≤ h⁶ max|x⁽⁶⁾| / 46080, far below any error a budget asks for.
+class Trajectory {
+ public:
+  double interval = 0.0;                 // h, simulated seconds
+  std::vector<Eigen::VectorXd> x, v, a;  // per sample, 2n each
+  std::vector<double> energy;            // total energy per sample
+  bool touchedWall = false;  // a sample lies inside a wall: the reference ignored a contact
+
+  double duration() const { return interval * (x.size() - 1); }
+  // Positions at time t in [0, duration()].
+  Eigen::VectorXd positionsAt(double t) const;
+  // Diagonal of the bounding box of every particle over every sample: the
+  // scene's size that relative error budgets are taken of.
+  double size() const;
+};
+
+struct ReferenceSettings {
+  double tolerance = 1e-11;        // odeint absolute and relative error per step
+  double solverTolerance = 1e-13;  // the constraint solve's, so it does not floor the reference
+  double interval = 0.01;          // sample spacing h, simulated seconds
+};
+
+// Integrates a freshly built scene (collisions are not modelled: touchedWall
+// reports whether that mattered) over [0, duration] with odeint's
+// controlled runge_kutta_fehlberg78, observed at every sample (integrate_times).
+Trajectory odeintReference(scenes::Scene& scene, double duration, const ReferenceSettings& settings = {});
+
+// The oscillator scene's closed form (scenes::oscillatorDisplacement) on the
+// same grid; a and energy from the scene's own evaluation at the exact state.
+Trajectory oscillatorReference(const std::map<std::string, std::string>& params, double duration, double interval,
+                               const std::string& preset = scenes::kDefaultPreset);
+
+// Largest distance between corresponding particles of two position vectors;
+// infinite if either is not finite.
+double maxParticleDistance(const Eigen::VectorXd& x, const Eigen::VectorXd& y);
+
+// Largest particle distance between two trajectories over their common samples.
+double maxTrajectoryDistance(const Trajectory& a, const Trajectory& b);
+
+}  // namespace lab

@@ -1,0 +1,133 @@
+// The accuracy side of the laboratory: the odeint reference against the
+// oscillator's closed form, and `advise` against a brute-force search of the
+// same grid with errors taken from the closed form.
+#include <cmath>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "lab/advise.h"
+#include "lab/reference.h"
+#include "scenes/oscillator.h"
+
+using namespace lab;
+
+namespace {
+
+// Counts acceleration evaluations: every evaluation applies every force once.
+// Adds nothing to the force accumulator.
+class EvaluationCounter : public particles::Force {
+ public:
+  explicit EvaluationCounter(long& count) : count_(count) {}
+  const char* type() const override { return "counter"; }
+  void apply(const particles::Phase&, Eigen::VectorXd&) const override { ++count_; }
+  bool hasJacobians() const override { return true; }  // both zero
+  void addJacobians(const particles::Phase&, particles::Triplets&, particles::Triplets&) const override {}
+
+ private:
+  long& count_;
+};
+
+// Max over the run's steps of the bob's distance from the closed form.
+double closedFormError(const Candidate& c, double horizon, long* evaluations = nullptr) {
+  const scenes::OscillatorParams p;
+  scenes::Scene scene = scenes::buildScene("oscillator");
+  long count = 0;
+  scene.system->addForce(std::make_unique<EvaluationCounter>(count));
+  particles::IntegratorSettings settings;
+  if (c.tolerance > 0) settings.tolerance = c.tolerance;
+  auto stepper = particles::makeIntegrator(c.integrator, settings);
+  double worst = 0.0;
+  const long steps = std::lround(horizon / c.dt);
+  for (long k = 1; k <= steps; ++k) {
+    scene.system->step(*stepper, c.dt);
+    const Eigen::Vector2d exact(p.rest + scenes::oscillatorDisplacement(p, k * c.dt), 0.0);
+    worst = std::max(worst, (scene.system->position(1) - exact).norm());
+  }
+  if (evaluations) *evaluations = count;
+  return worst;
+}
+
+}  // namespace
+
+TEST(OdeintReference, MatchesTheOscillatorClosedForm) {
+  const double horizon = 32.0;  // five periods of ω = 1
+  scenes::Scene scene = scenes::buildScene("oscillator");
+  ReferenceSettings settings;
+  settings.interval = 0.05;
+  const Trajectory odeint = odeintReference(scene, horizon, settings);
+  const Trajectory exact = oscillatorReference({}, horizon, settings.interval);
+  ASSERT_EQ(odeint.x.size(), exact.x.size());
+  EXPECT_NEAR(odeint.duration(), horizon, 1e-12);
+  // The bob moves 0.3 at first: a reference that stood still would be 0.3 off.
+  EXPECT_LT(maxTrajectoryDistance(odeint, exact), 1e-8);
+  // Between samples the Hermite interpolant keeps that accuracy.
+  const scenes::OscillatorParams p;
+  for (double t : {0.013, 7.77, 31.99}) {
+    const double x = odeint.positionsAt(t)(2);
+    EXPECT_NEAR(x, p.rest + scenes::oscillatorDisplacement(p, t), 1e-8) << "t = " << t;
+  }
+  // A loose tolerance with sparse samples (odeint's steps then grow) is
+  // measurably worse: the comparison can tell references apart.
+  scenes::Scene again = scenes::buildScene("oscillator");
+  settings.tolerance = 1e-3;
+  settings.interval = 4.0;
+  EXPECT_GT(maxTrajectoryDistance(odeintReference(again, horizon, settings),
+                                  oscillatorReference({}, horizon, settings.interval)),
+            1e-8);
+}
+
+TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
+  const double error = 1e-4, horizon = 32.0;
+  SurveySettings settings;
+  settings.horizon = horizon;
+  settings.targetError = settings.abortError = error;
+  settings.maxSteps = 20000;
+  settings.repeats = 3;
+  const auto build = [] { return scenes::buildScene("oscillator"); };
+  const Survey survey = surveyScene(build, settings);
+  const auto picks = pickPerIntegrator(build, survey, settings, error);
+  const int best = cheapest(picks);
+  ASSERT_GE(best, 0);
+  const Candidate& chosen = picks[best].candidate;
+  long chosenCost = 0;
+  EXPECT_LE(closedFormError(chosen, horizon, &chosenCost), error) << pickArguments(chosen);
+
+  // Brute force over every integrator's scanned grid: the cheapest point whose
+  // closed-form error is within E and that survives, by evaluations counted.
+  long cheapestCost = -1;
+  std::string cheapestName;
+  for (const auto& scan : survey.integrators)
+    for (const auto& c : scan.scanned) {
+      long cost = 0;
+      if (!c.survived || closedFormError(c, horizon, &cost) > error) continue;
+      if (cheapestCost < 0 || cost < cheapestCost) cheapestCost = cost, cheapestName = pickArguments(c);
+    }
+  ASSERT_GT(cheapestCost, 0);
+  EXPECT_LE(chosenCost, 2 * cheapestCost) << "chose " << pickArguments(chosen) << ", cheapest " << cheapestName;
+}
+
+TEST(Advise, NothingWithinAnUnreachableBudget) {
+  SurveySettings settings;
+  settings.horizon = 10.0;
+  settings.targetError = settings.abortError = 1e-9;
+  settings.integrators = {"euler"};
+  settings.maxSteps = 2000;
+  settings.repeats = 1;
+  const auto build = [] { return scenes::buildScene("oscillator"); };
+  const Survey survey = surveyScene(build, settings);
+  const auto picks = pickPerIntegrator(build, survey, settings, 1e-9);
+  ASSERT_EQ(picks.size(), 1u);
+  EXPECT_FALSE(picks[0].found);
+  EXPECT_EQ(cheapest(picks), -1);
+}
+
+TEST(Advise, RejectsBadSettingsNamingTheField) {
+  SurveySettings settings;
+  settings.horizon = -1.0;
+  const auto build = [] { return scenes::buildScene("oscillator"); };
+  EXPECT_THROW(surveyScene(build, settings), std::invalid_argument);
+  settings.horizon = 1.0;
+  settings.integrators = {"rk5"};
+  EXPECT_THROW(surveyScene(build, settings), std::invalid_argument);
+}
