@@ -187,8 +187,7 @@ int ParticleSystem::collide(double dt) {
   // A pass ends the iteration when it changes no speed by more than would
   // move a particle by the slop in a step.
   const double settled = contactSettings_.slop / dt;
-  // Edges alone (a cloth) take two passes: a corner seldom presses on more than two edges.
-  const int passes = discs ? contactSettings_.iterations : edges ? 2 : 0;
+  const int passes = discs || edges ? contactSettings_.iterations : 0;
   for (int pass = 0; pass < passes; ++pass) {
     double largest = 0.0;
     int resolved = 0;
