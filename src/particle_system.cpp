@@ -87,9 +87,16 @@ Constraint& ParticleSystem::addConstraint(std::unique_ptr<Constraint> constraint
   return *constraints_.back();
 }
 
-void ParticleSystem::addWall(const Wall& wall) {
-  wall.validate();
-  walls_.push_back(wall);
+void ParticleSystem::addCollider(const Collider& collider) {
+  collider.validate();
+  colliders_.push_back(collider);
+}
+
+void ParticleSystem::addCollisionEdge(int a, int b) {
+  requireIndex("collision edge", a, size());
+  requireIndex("collision edge", b, size());
+  if (a == b) throw std::invalid_argument("collision edge joins particle " + std::to_string(a) + " to itself");
+  edges_.push_back({a, b});
 }
 
 void ParticleSystem::removeForce(const Force* force) {
@@ -143,20 +150,65 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   // Settings are public fields: check them before anything moves, so a bad
   // value never leaves a step half done.
   solver_.settings.validate();
-  if (collidable_.size() > 1)
-    requireInRange("particle contact restitution", contacts_.restitution, 0.0, 1.0);
+  const bool colliding = !colliders_.empty() || collidable_.size() > 1;
+  if (colliding) {
+    contactSettings_.validate();
+    if (collidable_.size() > 1)
+      requireInRange("particle contact restitution", contacts_.restitution, 0.0, 1.0);
+    startX_ = x_;
+    startV_ = v_;
+  }
   StepStats stats = integrator.step(*this, dt);
   StepStats untaken = takeEvaluationStats();  // evaluations the integrator left in the tally
   untaken.internalSteps = 0;
   stats += untaken;
-  // Disc contacts first, walls last: separating two discs can push one into a
-  // wall, and a wall is the hard boundary a step must never end inside.
-  contactsLastStep_ =
-      collidable_.size() > 1 ? contacts_.resolve(collidable_, inverseMass_, radius_, x_, v_) : 0;
-  if (!walls_.empty()) resolveWallContacts(walls_, inverseMass_, radius_, x_, v_);
+  contactsLastStep_ = colliding ? collide(dt) : 0;
   time_ += dt;
   lastStepStats_ = stats;
   return stats;
+}
+
+int ParticleSystem::collide(double dt) {
+  // Each particle's path over the step as the integrator left it (contact_path.h):
+  // mean acceleration a = (v₁ − v₀)/dt and lead = v₁ − ((x₁ − x₀)/dt + ½ a dt).
+  stepAcceleration_ = (v_ - startV_) / dt;
+  stepLead_ = v_ - ((x_ - startX_) / dt + 0.5 * dt * stepAcceleration_);
+  const StepStart start{startX_, startV_, dt, &stepAcceleration_, &stepLead_};
+  const bool discs = collidable_.size() > 1, walls = !colliders_.empty();
+  events_.reset(startX_);
+  int contacts = 0;
+  if (walls)
+    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_, events_,
+                                        lastFree_);
+  // Disc impacts change paths: those are swept against the colliders again
+  // from the impact on, and a disc sent back into another meets it again.
+  for (int round = 0; discs && round < contactSettings_.maxImpacts; ++round) {
+    const int impacts =
+        contacts_.resolve(collidable_, start, inverseMass_, radius_, contactSettings_, true, x_, v_, &events_);
+    contacts += impacts;
+    if (impacts == 0) break;
+    if (walls)
+      contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
+                                          events_, lastFree_);
+  }
+  if (walls && !edges_.empty()) contacts += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_);
+  // Resting contacts push on each other (a stack on a floor, a rope over a
+  // nail): Gauss–Seidel passes until none is left, colliders last, as the
+  // hard boundary.
+  const bool edges = walls && !edges_.empty();
+  // A pass ends the iteration when it changes no speed by more than would
+  // move a particle by the slop in a step.
+  const double settled = contactSettings_.slop / dt;
+  const int passes = discs || edges ? contactSettings_.iterations : 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    double largest = 0.0;
+    int resolved = 0;
+    if (discs) largest = contacts_.resolveResting(inverseMass_, radius_, contactSettings_, pass % 2 == 0, x_, v_);
+    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_);
+    if (walls) resolved += pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
+    if (largest <= settled && resolved == 0) break;
+  }
+  return contacts;
 }
 
 double ParticleSystem::kineticEnergy() const {

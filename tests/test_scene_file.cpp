@@ -84,7 +84,7 @@ TEST(SceneFile, ParametersSurviveExport) {
   // in each of the 4·3 cells, gravity and air drag.
   EXPECT_EQ(loaded.system->forceObjects().size(), 16u + 15u + 24u + 1u + 1u);
   EXPECT_EQ(loaded.system->constraints().size(), 5u);
-  EXPECT_EQ(loaded.system->walls().size(), 2u);
+  EXPECT_EQ(loaded.system->colliders().size(), 2u);
 }
 
 TEST(SceneFile, EveryShippedExampleLoadsAndSteps) {

@@ -55,13 +55,13 @@ TEST(Scenes, EveryBuiltInSceneStepsWithMidpointAndRk4WithinOnePercentConstraintE
 TEST(Scenes, ModelOnlyWhatTheyNeed) {
   const scenes::Scene oscillator = scenes::buildScene("oscillator");
   EXPECT_TRUE(oscillator.system->constraints().empty());
-  EXPECT_TRUE(oscillator.system->walls().empty());
+  EXPECT_TRUE(oscillator.system->colliders().empty());
   EXPECT_EQ(oscillator.system->forceObjects().size(), 1u);  // the spring; no gravity
   const scenes::Scene pendulum = scenes::buildScene("pendulum");
   EXPECT_EQ(pendulum.system->constraints().size(), 1u);
-  EXPECT_TRUE(pendulum.system->walls().empty());
+  EXPECT_TRUE(pendulum.system->colliders().empty());
   const scenes::Scene cloth = scenes::buildScene("cloth");
-  EXPECT_EQ(cloth.system->walls().size(), 2u);  // the big wall and the nail
+  EXPECT_EQ(cloth.system->colliders().size(), 2u);  // the big wall and the nail
   for (int i = 0; i < cloth.system->size(); ++i) EXPECT_FALSE(cloth.system->collidable(i));
   // Every hair particle but the roots is a disc; the default's roots are pinned.
   const scenes::Scene hair = scenes::buildScene("hair");
@@ -69,7 +69,7 @@ TEST(Scenes, ModelOnlyWhatTheyNeed) {
   for (int i = 0; i < hair.system->size(); ++i)
     EXPECT_EQ(hair.system->collidable(i), i % hairParams.particles != 0) << i;
   EXPECT_TRUE(hair.system->constraints().empty());
-  EXPECT_TRUE(hair.system->walls().empty());
+  EXPECT_TRUE(hair.system->colliders().empty());
 }
 
 // The largest distance any particle has moved from its start, over the run.
@@ -298,7 +298,7 @@ void expectSameSystem(const scenes::Scene& a, const scenes::Scene& b, const std:
   }
   EXPECT_EQ(a.system->forceObjects().size(), b.system->forceObjects().size()) << what;
   EXPECT_EQ(a.system->constraints().size(), b.system->constraints().size()) << what;
-  EXPECT_EQ(a.system->walls().size(), b.system->walls().size()) << what;
+  EXPECT_EQ(a.system->colliders().size(), b.system->colliders().size()) << what;
 }
 
 TEST(ScenePresets, TheSeedPresetHoldsTheSeedReportsValuesForEveryScene) {

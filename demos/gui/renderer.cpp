@@ -59,7 +59,7 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   for (auto& entry : pointsBySize_) entry.second.clear();
   for (auto& entry : discsBySize_) entry.second.clear();
 
-  collectWalls(system);
+  collectWalls(system, view);
   collectFaces(simulation);
   collectSketches(system, options, view.pixelsPerUnit, !simulation.scene().faces.empty());
   if (options.forces) collectForceArrows(system, view);
@@ -124,10 +124,41 @@ void Renderer::draw(const Batch& batch, unsigned mode) {
   glDrawArrays(mode, 0, static_cast<GLsizei>(batch.xy.size() / 2));
 }
 
-void Renderer::collectWalls(const particles::ParticleSystem& system) {
-  for (const particles::Wall& w : system.walls()) {
-    const Eigen::Vector2d a = w.min, b(w.max.x(), w.min.y()), c = w.max, d(w.min.x(), w.max.y());
-    for (const Eigen::Vector2d& v : {a, b, c, a, c, d}) walls_.add(v, palette::wall);
+// The outline of a collider grown by its radius, counter-clockwise: the
+// vertices joined by arcs of radius r about each (for a capsule the two ends,
+// for a disc one whole circle); a half-plane is cut to a square of side 2·far.
+static std::vector<Eigen::Vector2d> colliderOutline(const particles::Collider& c, double far) {
+  if (c.shape == particles::ColliderShape::HalfPlane) {
+    const Eigen::Vector2d p = c.points[0], n = c.normal, t(-n.y(), n.x());
+    return {p - far * t, p - far * t - 2.0 * far * n, p + far * t - 2.0 * far * n, p + far * t};
+  }
+  if (c.radius == 0.0) return c.points;
+  const std::size_t count = c.points.size();
+  std::vector<Eigen::Vector2d> outline;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Eigen::Vector2d& p = c.points[k];
+    double from = 0.0, to = 2.0 * M_PI;
+    if (count > 1) {
+      const Eigen::Vector2d in = p - c.points[(k + count - 1) % count], out = c.points[(k + 1) % count] - p;
+      from = std::atan2(-in.x(), in.y());  // outward normal (e.y, −e.x) of the edge arriving
+      to = std::atan2(-out.x(), out.y());   // and of the edge leaving
+      while (to < from) to += 2.0 * M_PI;
+    }
+    const int segments = std::max(1, static_cast<int>(std::ceil((to - from) / (2.0 * M_PI) * circleSegments)));
+    for (int s = 0; s <= segments; ++s) {
+      const double angle = from + (to - from) * s / segments;
+      outline.push_back(p + c.radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+    }
+  }
+  return outline;
+}
+
+void Renderer::collectWalls(const particles::ParticleSystem& system, const ViewTransform& view) {
+  const double far = 4.0 * (view.worldMax - view.worldMin).norm() + view.worldMin.norm() + view.worldMax.norm();
+  for (const particles::Collider& c : system.colliders()) {
+    const std::vector<Eigen::Vector2d> outline = colliderOutline(c, far);
+    for (std::size_t k = 1; k + 1 < outline.size(); ++k)  // a fan: the outline is convex
+      for (const Eigen::Vector2d& v : {outline[0], outline[k], outline[k + 1]}) walls_.add(v, palette::wall);
   }
 }
 

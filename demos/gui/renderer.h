@@ -50,7 +50,7 @@ class Renderer {
     }
   };
 
-  void collectWalls(const particles::ParticleSystem& system);
+  void collectWalls(const particles::ParticleSystem& system, const ViewTransform& view);  // colliders
   void collectFaces(const Simulation& simulation);
   // surface: the springs are drawn faintly over the shaded faces.
   void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options, double pixelsPerUnit,

@@ -31,8 +31,10 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
       out << "particle," << k << "," << i << "," << x.x() << "," << x.y() << "," << u.x() << "," << u.y() << ","
           << s.masses()[i] << "," << (s.pinned(i) ? 1 : 0) << "\n";
     }
-    for (const particles::Wall& w : s.walls())
-      out << "wall," << k << "," << w.min.x() << "," << w.min.y() << "," << w.max.x() << "," << w.max.y() << "\n";
+    for (const particles::Collider& c : s.colliders()) {
+      Eigen::Vector2d lo, hi;  // a bounded collider's bounding box; a half-plane has none
+      if (c.bounds(lo, hi)) out << "wall," << k << "," << lo.x() << "," << lo.y() << "," << hi.x() << "," << hi.y() << "\n";
+    }
   }
   for (const Overlay& o : extras.overlays) {
     std::string text;

@@ -27,13 +27,9 @@ void recordSample(particles::ParticleSystem& system, const Eigen::VectorXd& x, c
   system.positions() = x;
   system.velocities() = v;
   out.energy.push_back(system.totalEnergy());
-  for (const auto& wall : system.walls())
-    for (int i = 0; i < system.size(); ++i) {
-      const Eigen::Vector2d p = x.segment<2>(2 * i);
-      const double r = system.radii()[i];
-      if ((p.array() > wall.min.array() - r).all() && (p.array() < wall.max.array() + r).all())
-        out.touchedWall = true;
-    }
+  for (const particles::Collider& collider : system.colliders())
+    for (int i = 0; i < system.size(); ++i)
+      if (collider.distance(x.segment<2>(2 * i)).distance < system.radii()[i]) out.touchedWall = true;
   system.restore(saved);
 }
 

@@ -101,14 +101,24 @@ void readParticle(const JsonNode& node, particles::ParticleSystem& s) {
   if (node["radius"].present()) s.setCollidable(i, node["radius"].positive());
 }
 
-particles::Wall readWall(const JsonNode& node) {
-  node.allowOnly({"min", "max", "restitution", "friction"});
-  particles::Wall wall;
-  wall.min = node["min"].vec2();
-  wall.max = node["max"].vec2();
-  wall.restitution = node["restitution"].present() ? node["restitution"].inRange(0.0, 1.0) : wall.restitution;
-  wall.friction = node["friction"].present() ? node["friction"].inRange(0.0, 1.0) : wall.friction;
-  return wall;
+// A collider by its "type"; "walls" holds boxes without one (the older spelling).
+particles::Collider readCollider(const JsonNode& node, bool box) {
+  if (box)
+    for (const ColliderCodec& codec : colliderCodecs())
+      if (codec.shape == particles::ColliderShape::Box) return codec.read(node);
+  const JsonNode type = node["type"];
+  const std::string name = type.present() ? type.text() : "";
+  for (const ColliderCodec& codec : colliderCodecs())
+    if (name == particles::colliderName(codec.shape)) return codec.read(node);
+  type.expected("a collider type (" + joinNames(particles::colliderKinds()) + ")");
+}
+
+void readCollisionEdges(const JsonNode& list, particles::ParticleSystem& s) {
+  for (std::size_t k = 0; k < list.arraySize(); ++k) {
+    const JsonNode node = list[k];
+    const std::vector<int> p = node.particles(2, s.size());
+    guarded(node, [&] { s.addCollisionEdge(p[0], p[1]); });
+  }
 }
 
 // An array of at most limit elements (absent: none).
@@ -120,7 +130,7 @@ void requireCount(const JsonNode& node, const char* what, long long limit) {
 
 Scene readDocument(const JsonNode& root, const std::string& source) {
   root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution", "particles", "forces",
-                  "constraints", "walls"});
+                  "constraints", "walls", "colliders", "collisionEdges"});
   Scene scene;
   scene.name = root["name"].present() ? root["name"].text() : source;
   readIntegrator(root["integrator"], scene);
@@ -139,6 +149,8 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   requireCount(root["forces"], "forces", SceneLimits::forces);
   requireCount(root["constraints"], "constraints", SceneLimits::constraints);
   requireCount(root["walls"], "walls", SceneLimits::walls);
+  requireCount(root["colliders"], "colliders", SceneLimits::walls);
+  requireCount(root["collisionEdges"], "collisionEdges", SceneLimits::forces);
   for (std::size_t k = 0; k < particleList.arraySize(); ++k) {
     const JsonNode node = particleList[k];
     guarded(node, [&] { readParticle(node, s); });
@@ -160,10 +172,13 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
                     std::to_string(SceneLimits::constraintsPerParticle) + " constraints");
     guarded(node, [&] { s.addConstraint(std::move(constraint)); });
   }
-  for (std::size_t k = 0, count = root["walls"].arraySize(); k < count; ++k) {
-    const JsonNode node = root["walls"][k];
-    guarded(node, [&] { s.addWall(readWall(node)); });
-  }
+  for (const char* list : {"walls", "colliders"})
+    for (std::size_t k = 0, count = root[list].arraySize(); k < count; ++k) {
+      const JsonNode node = root[list][k];
+      const particles::Collider collider = readCollider(node, list == std::string("walls"));
+      guarded(node, [&] { s.addCollider(collider); });
+    }
+  readCollisionEdges(root["collisionEdges"], s);
   return scene;
 }
 

@@ -14,6 +14,12 @@ Json writeWith(const std::vector<Codec>& table, const Object& object) {
     if (std::strcmp(codec.type, object.type()) == 0) return codec.write(object);
   throw std::logic_error(std::string("no scene-file writer for type '") + object.type() + "'");
 }
+Json writeCollider(const particles::Collider& collider) {
+  for (const ColliderCodec& codec : colliderCodecs())
+    if (codec.shape == collider.shape) return codec.write(collider);
+  throw std::logic_error(std::string("no scene-file writer for collider '") +
+                         particles::colliderName(collider.shape) + "'");
+}
 }  // namespace
 
 Json sceneToJson(const Scene& scene) {
@@ -46,17 +52,17 @@ Json sceneToJson(const Scene& scene) {
   for (const auto& force : s.forceObjects()) doc["forces"].push_back(writeWith(forceCodecs(), *force));
   doc["constraints"] = Json::array();
   for (const auto& constraint : s.constraints()) doc["constraints"].push_back(writeWith(constraintCodecs(), *constraint));
-  doc["walls"] = Json::array();
-  for (const particles::Wall& wall : s.walls())
-    doc["walls"].push_back({{"min", toJson(wall.min)},
-                            {"max", toJson(wall.max)},
-                            {"restitution", wall.restitution},
-                            {"friction", wall.friction}});
+  doc["colliders"] = Json::array();
+  for (const particles::Collider& collider : s.colliders()) doc["colliders"].push_back(writeCollider(collider));
+  if (!s.collisionEdges().empty()) {
+    doc["collisionEdges"] = Json::array();
+    for (const particles::CollisionEdge& e : s.collisionEdges()) doc["collisionEdges"].push_back({e.a, e.b});
+  }
   return doc;
 }
 
 // One top-level field per line, and one line per particle, force, constraint
-// and wall, so that a file reads (and diffs) as a list of objects.
+// and collider, so that a file reads (and diffs) as a list of objects.
 std::string writeScene(const Scene& scene) {
   const Json doc = sceneToJson(scene);
   std::string out = "{";

@@ -102,16 +102,13 @@ Scene buildCloth(const ClothParams& p) {
   // of the cloth hanging stretched under its weight (about twice its rest
   // height under the seed preset), and a small nail to the right, near the
   // top. With edgeContacts the cloth's face edges, not only its particles,
-  // are to meet them (faceEdges), so the nail can catch the cloth between
-  // two particles.
-  particles::Wall wall;
-  wall.min = Eigen::Vector2d(topLeft.x() - 0.9 * L, topLeft.y() - 2.6 * L);
-  wall.max = Eigen::Vector2d(topLeft.x() - 0.3 * L, topLeft.y() - 0.3 * L);
-  s.addWall(wall);
-  particles::Wall nail;
-  nail.min = Eigen::Vector2d(-topLeft.x() + 0.3 * L, topLeft.y() - 0.4 * L);
-  nail.max = nail.min + Eigen::Vector2d::Constant(0.05 * L);
-  s.addWall(nail);
+  // meet them (faceEdges), so the nail can catch the cloth between two particles.
+  s.addCollider(particles::Collider::box(Eigen::Vector2d(topLeft.x() - 0.9 * L, topLeft.y() - 2.6 * L),
+                                        Eigen::Vector2d(topLeft.x() - 0.3 * L, topLeft.y() - 0.3 * L)));
+  const Eigen::Vector2d nail(-topLeft.x() + 0.3 * L, topLeft.y() - 0.4 * L);
+  s.addCollider(particles::Collider::box(nail, nail + Eigen::Vector2d::Constant(0.05 * L)));
+  if (scene.edgeContacts)
+    for (const std::array<int, 2>& edge : faceEdges(scene)) s.addCollisionEdge(edge[0], edge[1]);
 
   scene.viewMin = Eigen::Vector2d::Constant(-half);
   scene.viewMax = Eigen::Vector2d::Constant(half);

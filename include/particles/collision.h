@@ -1,46 +1,124 @@
 #pragma once
-// Collisions, resolved after each whole step (never inside integrator stages).
+// Contacts, resolved after each whole step (never inside integrator stages):
+// continuous against colliders, disc against disc, and collision edges
+// (segments between particles, e.g. a cloth's springs) against colliders.
+//
+// Every contact sees the motion of a particle over the step as the path of
+// constant acceleration through the step's two ends (contact_path.h), finds
+// the time τ the contact begins on that path, and applies a velocity change
+// there; a velocity change Δv at τ moves the step's end by Δv·(dt − τ), so no
+// position is corrected by hand and an elastic bounce in uniform gravity is
+// exact. A contact that would close again within the step is resting: it
+// holds the particle on the surface for the rest of the step with the normal
+// impulse that cancels its approach (weight × dt for a particle at rest).
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "particles/collider.h"
+
 namespace particles {
 
-// An axis-aligned rectangular obstacle. A particle found inside is moved to the
-// nearest face; its normal velocity v_n becomes −s·v_n and its tangential
-// velocity is scaled by (1 − friction). (The seed report scales both axes and
-// takes both signs from the nearest edges, which reflects a particle that only
-// grazes a face along the other axis too; here only the face normal reflects.)
-struct Wall {
-  Eigen::Vector2d min{0.0, 0.0};
-  Eigen::Vector2d max{0.0, 0.0};
-  double restitution = 0.5;  // s in [0, 1]: fraction of normal speed kept
-  double friction = 0.0;     // in [0, 1]: fraction of tangential speed removed
+struct ContactSettings {
+  int iterations = 100;   // Gauss–Seidel passes over resting contacts (stacks), after the first; ≥ 1
+  int maxImpacts = 8;     // successive impacts of one particle in one step (a corner, a wedge)
+  double slop = 1e-9;     // world units: a gap this small counts as touching
 
   void validate() const;  // throws naming the bad field
 };
 
-// Pushes every particle out of every wall (particles as discs of radius[i],
-// 0 for a point). Pinned particles (inverse mass 0) are never moved.
-void resolveWallContacts(const std::vector<Wall>& walls, const Eigen::VectorXd& inverseMass,
-                         const Eigen::VectorXd& radius, Eigen::VectorXd& x, Eigen::VectorXd& v);
+// The state at the start of the step, from which continuous detection sweeps.
+// acceleration: each particle's mean acceleration (v₁ − v₀)/dt over the step
+// as the integrator left it, measured before any contact changed v₁, so that
+// one contact's impulse does not bend the path a later contact sees; when
+// null, it is measured from the current state.
+struct StepStart {
+  const Eigen::VectorXd& x;  // 2n positions
+  const Eigen::VectorXd& v;  // 2n velocities
+  double dt;
+  const Eigen::VectorXd* acceleration = nullptr;  // 2n
+  const Eigen::VectorXd* lead = nullptr;          // 2n: v₁ − path velocity at the end (contact_path.h)
+};
+
+// Particles (discs of radius[i], 0 for a point) against colliders: each
+// particle's path over the step is swept against every collider; at the
+// first impact the normal velocity becomes −e times the impact velocity and
+// the tangential impulse is Coulomb's (at most μ times the normal impulse);
+// the rest of the path is swept again from there, so touching colliders act
+// as one closed boundary. Pinned particles (inverse mass 0) are never moved.
+// Each particle's sweep starts from its last event (eventX at time eventT:
+// the step's start, or its last impact, which every impact updates), so the
+// pass can run again after disc impacts have changed some paths.
+// `lastFree` receives each particle's end position (known to be outside every
+// collider), from which pushOutOfColliders sweeps later. Returns the contacts.
+struct ContactEvents {
+  Eigen::VectorXd x;  // 2n: position of each particle's last impact (or its start)
+  Eigen::VectorXd t;  // n: its time within the step
+  void reset(const Eigen::VectorXd& start) {
+    x = start;
+    t.setZero(start.size() / 2);
+  }
+};
+int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
+                            const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                            const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                            ContactEvents& events, Eigen::VectorXd& lastFree);
+
+// A resting pass for particles that another contact pushed into a collider
+// after resolveColliderContacts: the path lastFree → x finds the face entered,
+// the particle is put back on it and its approach (with Coulomb friction)
+// removed. Updates lastFree; returns the contacts.
+int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& inverseMass,
+                       const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
+                       Eigen::VectorXd& v, Eigen::VectorXd& lastFree);
 
 // Disc–disc contact between collidable particles, with a uniform-grid broad
-// phase so the cost stays linear in the number of particles. Overlapping pairs
-// are separated along the line of centres in proportion to inverse mass and
-// exchange the impulse j = −(1 + e) v_n / (w_i + w_j) when approaching.
+// phase so the cost stays linear in the number of particles. A pair that
+// meets during the step exchanges the impulse j = −(1 + e) u_n / (w_i + w_j)
+// at the time of impact (u_n the approach speed along the line of centres
+// then); a pair that was already touching is resting: its approach is
+// removed and its overlap split in proportion to inverse mass, which keeps
+// momentum and the centre of mass.
 class ParticleContacts {
  public:
   double restitution = 0.5;  // e in [0, 1]
 
+  // impacts: the first pass of a step (continuous, restitution); later passes
+  // (impacts = false) only resolve the resting contacts at the step's end.
   // Returns the number of contacts resolved.
-  int resolve(const std::vector<int>& collidable, const Eigen::VectorXd& inverseMass,
-              const Eigen::VectorXd& radius, Eigen::VectorXd& x, Eigen::VectorXd& v);
+  // Each pass keeps the pairs it found in contact; resolveResting goes over
+  // them again (alternating the order, which carries a push through a stack
+  // in both directions) without a new broad phase. Returns the largest speed
+  // change it made.
+  // events (may be null) records each impact for a later collider pass.
+  int resolve(const std::vector<int>& collidable, const StepStart& start, const Eigen::VectorXd& inverseMass,
+              const Eigen::VectorXd& radius, const ContactSettings& settings, bool impacts, Eigen::VectorXd& x,
+              Eigen::VectorXd& v, ContactEvents* events = nullptr);
+  double resolveResting(const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                        const ContactSettings& settings, bool reverse, Eigen::VectorXd& x, Eigen::VectorXd& v);
 
  private:
+  std::vector<std::pair<int, int>> touching_;  // pairs found in contact by the last resolve
   // Broad-phase scratch, kept between steps to avoid allocation.
   std::vector<Eigen::Vector2i> cells_;
   std::vector<int> bucket_, order_, bucketStart_, fill_;
 };
+
+// A collision edge: the segment between two particles (a spring of a cloth),
+// which collider corners and discs cannot cross.
+struct CollisionEdge {
+  int a, b;  // particle indices
+};
+
+// Edges against the corners of colliders (the vertices of boxes, polygons and
+// capsules, and the centres of discs, grown by the collider's radius): a
+// corner on one side of an edge at the step's start may not be on the other
+// side, or nearer than its radius, at the end. The edge is pushed clear with
+// the weights of the point of the edge facing the corner, its approach
+// removed and Coulomb friction applied. Returns the contacts.
+int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
+                        const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
+                        Eigen::VectorXd& v);
 
 }  // namespace particles

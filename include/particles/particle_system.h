@@ -43,7 +43,10 @@ class ParticleSystem {
   // Take ownership; throw std::invalid_argument if an index is out of range.
   Force& addForce(std::unique_ptr<Force> force);
   Constraint& addConstraint(std::unique_ptr<Constraint> constraint);
-  void addWall(const Wall& wall);
+  // Validates the collider (std::invalid_argument naming the bad field).
+  void addCollider(const Collider& collider);
+  // Makes the segment between particles a and b collide with colliders (a cloth's springs).
+  void addCollisionEdge(int a, int b);
   // Removes a force previously added (e.g. the mouse spring on release).
   void removeForce(const Force* force);
 
@@ -74,12 +77,15 @@ class ParticleSystem {
   // between systems: integrators that prepare per-structure data key it on this.
   std::uint64_t structureStamp() const { return structureStamp_; }
   const ConstraintList& constraints() const { return constraints_; }
-  const std::vector<Wall>& walls() const { return walls_; }
+  const std::vector<Collider>& colliders() const { return colliders_; }
+  const std::vector<CollisionEdge>& collisionEdges() const { return edges_; }
 
   ConstraintSolver& solver() { return solver_; }
   const ConstraintSolver& solver() const { return solver_; }
   ParticleContacts& particleContacts() { return contacts_; }
   const ParticleContacts& particleContacts() const { return contacts_; }
+  ContactSettings& contactSettings() { return contactSettings_; }
+  const ContactSettings& contactSettings() const { return contactSettings_; }
 
   // --- dynamics -----------------------------------------------------------
   // q̈ at (x, v): clear forces → apply forces → solve λ → add Jᵀλ → a = W(Q + Q̂).
@@ -93,8 +99,9 @@ class ParticleSystem {
   // from step(), adding their own counts.
   StepStats takeEvaluationStats();
 
-  // One step: integrate by dt, then resolve collisions (skipped without
-  // colliders), then advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
+  // One step: keep the start state → integrate by dt → collide (continuous,
+  // from the start state; skipped without colliders or collidable discs) →
+  // advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
   StepStats step(Integrator& integrator, double dt);
   const StepStats& lastStepStats() const { return lastStepStats_; }
@@ -116,10 +123,19 @@ class ParticleSystem {
   double time_ = 0.0;
   std::vector<std::unique_ptr<Force>> forces_;
   ConstraintList constraints_;
-  std::vector<Wall> walls_;
+  std::vector<Collider> colliders_;
+  std::vector<CollisionEdge> edges_;
   std::vector<int> collidable_;
   ConstraintSolver solver_;
   ParticleContacts contacts_;
+  ContactSettings contactSettings_;
+  // Collision scratch: the step's start, its paths, the last known free positions.
+  Eigen::VectorXd startX_, startV_, stepAcceleration_, stepLead_, lastFree_;
+  ContactEvents events_;
+
+  // The collision phase of step(): colliders (continuous) → disc impacts →
+  // edges → resting passes over discs and colliders. Returns the contacts.
+  int collide(double dt);
   int contactsLastStep_ = 0;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;

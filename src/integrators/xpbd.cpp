@@ -124,9 +124,6 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
     predict(system, h);
     for (int pass = 0; pass < iterations; ++pass) project(system);
     updateVelocities(system, h);
-    if (!system.walls().empty())
-      resolveWallContacts(system.walls(), system.inverseMasses(), system.radii(), system.positions(),
-                          system.velocities());
   }
   lastStep_ = h;
   // The constraint passes are Gauss–Seidel sweeps, not linear solves: solves

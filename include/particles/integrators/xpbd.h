@@ -23,7 +23,10 @@ class Constraint;
 //     angle springs as compliant angle constraints (xpbd/angle.h), then the rods,
 //     wires and lines as hard constraints through their C and J kernels
 //     (xpbd/constraint_projection.h), the multipliers λ starting at 0;
-//   sets v ← (x − xⁿ)/h and resolves wall contacts.
+//   sets v ← (x − xⁿ)/h.
+// Contacts are resolved once after the whole step by ParticleSystem::step's
+// continuous collision pass, swept along each particle's path over dt, as for
+// every other integrator.
 // The position error is first order in h. A force type the table in xpbd.cpp
 // does not know is refused with an exception naming it.
 class XpbdIntegrator : public Integrator {

@@ -1,0 +1,178 @@
+// Particles against colliders: continuous detection along the step's path,
+// impacts with restitution and Coulomb friction, resting contact.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "contact_path.h"
+#include "particles/check.h"
+#include "particles/collision.h"
+
+namespace particles {
+
+void ContactSettings::validate() const {
+  if (iterations < 1 || iterations > 1000)
+    throw std::invalid_argument("contact iterations must be in [1, 1000], got " + std::to_string(iterations));
+  if (maxImpacts < 1 || maxImpacts > 1000)
+    throw std::invalid_argument("contact maxImpacts must be in [1, 1000], got " + std::to_string(maxImpacts));
+  requireNonNegative("contact slop", slop);
+}
+
+namespace {
+
+struct Hit {
+  int collider = -1;
+  double s = std::numeric_limits<double>::infinity();  // fraction of the swept segment
+};
+
+// Each collider's bounding box (a half-plane's is everything), for a cheap
+// rejection of paths that pass nowhere near it.
+struct Boxes {
+  std::vector<Eigen::Vector2d> lo, hi;
+  explicit Boxes(const std::vector<Collider>& colliders) : lo(colliders.size()), hi(colliders.size()) {
+    for (std::size_t k = 0; k < colliders.size(); ++k)
+      if (!colliders[k].bounds(lo[k], hi[k])) {
+        lo[k].setConstant(-std::numeric_limits<double>::infinity());
+        hi[k].setConstant(std::numeric_limits<double>::infinity());
+      }
+  }
+};
+
+// The first collider the straight path a → b enters (grown by the particle's radius r).
+Hit firstHit(const std::vector<Collider>& colliders, const Boxes& boxes, const Eigen::Vector2d& a,
+             const Eigen::Vector2d& b, double r, double slop) {
+  const Eigen::Vector2d pathLo = a.cwiseMin(b).array() - (r + slop), pathHi = a.cwiseMax(b).array() + (r + slop);
+  Hit hit;
+  for (int k = 0; k < static_cast<int>(colliders.size()); ++k) {
+    if ((pathLo.array() > boxes.hi[k].array()).any() || (pathHi.array() < boxes.lo[k].array()).any()) continue;
+    if (const std::optional<double> s = colliders[k].sweep(a, b, r, slop))
+      if (*s < hit.s) hit = {k, *s};
+  }
+  return hit;
+}
+
+// The time the curved path reaches the surface, refined by Newton's method on
+// f(τ) = distance(q(τ)) − r from the time the straight chord reaches it; the
+// chord's time is kept when the iteration leaves [from, dt] or does not settle.
+double impactTime(const Collider& c, const contact::Path& path, double r, double chordTime, double from,
+                  double dt) {
+  double t = chordTime;
+  for (int k = 0; k < 4; ++k) {
+    const SurfaceDistance d = c.distance(path.position(t));
+    const double slope = d.normal.dot(path.velocity(t));
+    if (!(slope < 0.0)) return chordTime;
+    t -= (d.distance - r) / slope;
+    if (!(t >= from && t <= dt)) return chordTime;
+  }
+  return t;
+}
+
+// Puts p on the collider's surface grown by r, along the surface normal at p.
+Eigen::Vector2d ontoSurface(const Collider& c, const Eigen::Vector2d& p, double r, Eigen::Vector2d* normal) {
+  const SurfaceDistance d = c.distance(p);
+  if (normal) *normal = d.normal;
+  return p - (d.distance - r) * d.normal;
+}
+
+}  // namespace
+
+int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
+                            const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                            const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                            ContactEvents& events, Eigen::VectorXd& lastFree) {
+  const double dt = start.dt;
+  const int n = static_cast<int>(inverseMass.size());
+  const Boxes boxes(colliders);
+  lastFree = x;
+  int contacts = 0;
+  for (int i = 0; i < n; ++i) {
+    if (inverseMass[i] == 0.0) continue;
+    const double r = radius[i];
+    Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
+    contact::Path path = contact::Path::of(start, i, x, v);
+    Eigen::Vector2d from = events.x.segment<2>(2 * i);
+    double t = events.t[i];  // the time at `from`
+    int impacts = 0;
+    for (; impacts < settings.maxImpacts; ++impacts) {
+      const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
+      if (hit.collider < 0) break;
+      const Collider& c = colliders[hit.collider];
+      const double chordTime = t + hit.s * (dt - t);
+      const double tau = hit.s > 0.0 ? impactTime(c, path, r, chordTime, t, dt) : t;
+      // The face entered is the one under the chord's entry point; the contact
+      // point is the curved path's point at τ, put on that face's plane.
+      Eigen::Vector2d normal;
+      const Eigen::Vector2d entry = ontoSurface(c, from + hit.s * (x1 - from), r, &normal);
+      const Eigen::Vector2d q = path.position(tau), p = q - normal.dot(q - entry) * normal;
+      const Eigen::Vector2d u = path.velocity(tau);
+      const double un = u.dot(normal), remaining = dt - tau;
+      const contact::NormalChange change = contact::normalChange(un, path.a.dot(normal), remaining, c.restitution);
+      if (!change.resting) {
+        // An impulse at τ: the velocity jumps by Δv there and the rest of the
+        // path, and so the step's end, is displaced by Δv·(dt − τ).
+        const Eigen::Vector2d dv = change.dv * normal + contact::coulomb(u - un * normal, change.dv, c.friction);
+        path = {p, u + dv, path.a, tau};
+        v1 += dv;
+        x1 = path.position(dt);
+      } else {
+        // Resting for the rest of the step: the normal impulse cancels the
+        // normal velocity at the end (for a particle at rest, its weight × dt);
+        // friction, spread evenly over the time left, moves the end by ½ Δv_t (dt − τ).
+        const double v1n = v1.dot(normal), dvn = std::max(0.0, -v1n);
+        const Eigen::Vector2d dvt = contact::coulomb(v1 - v1n * normal, dvn, c.friction);
+        v1 += dvn * normal + dvt;
+        x1 += 0.5 * remaining * dvt;
+        if (c.distance(x1).distance < r) x1 = ontoSurface(c, x1, r, nullptr);
+        path = remaining > 0.0 ? contact::Path{p, (x1 - p) / remaining - 0.5 * path.a * remaining, path.a, tau}
+                               : contact::Path{p, v1, path.a, tau};
+      }
+      from = p;
+      t = tau;
+      events.x.segment<2>(2 * i) = p;
+      events.t[i] = tau;
+      ++contacts;
+    }
+    // Out of impacts (a particle wedged in a narrow corner): stop at the last
+    // contact point, which is outside every collider.
+    if (impacts == settings.maxImpacts && firstHit(colliders, boxes, from, x1, r, settings.slop).collider >= 0) x1 = from;
+    x.segment<2>(2 * i) = x1;
+    v.segment<2>(2 * i) = v1;
+    lastFree.segment<2>(2 * i) = x1;
+  }
+  return contacts;
+}
+
+int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& inverseMass,
+                       const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
+                       Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
+  const int n = static_cast<int>(inverseMass.size());
+  const Boxes boxes(colliders);
+  int contacts = 0;
+  for (int i = 0; i < n; ++i) {
+    if (inverseMass[i] == 0.0) continue;
+    const double r = radius[i];
+    Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
+    Eigen::Vector2d from = lastFree.segment<2>(2 * i);
+    for (int pass = 0; pass < settings.maxImpacts; ++pass) {
+      const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
+      if (hit.collider < 0) break;
+      const Collider& c = colliders[hit.collider];
+      // The face entered on the way from the last free position: back onto
+      // it along its normal, the approach removed, Coulomb friction applied.
+      Eigen::Vector2d normal;
+      const Eigen::Vector2d p = ontoSurface(c, from + hit.s * (x1 - from), r, &normal);
+      x1 += std::max(0.0, normal.dot(p - x1)) * normal;
+      const double vn = v1.dot(normal);
+      if (vn < 0.0) v1 += -vn * normal + contact::coulomb(v1 - vn * normal, vn, c.friction);
+      from = p;
+      ++contacts;
+    }
+    x.segment<2>(2 * i) = x1;
+    v.segment<2>(2 * i) = v1;
+    lastFree.segment<2>(2 * i) = x1;
+  }
+  return contacts;
+}
+
+}  // namespace particles

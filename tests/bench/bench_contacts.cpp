@@ -1,0 +1,71 @@
+// The collision pass beside an RK4 step: a 64×64 4-way spring cloth (spacing
+// 0.05, k_s 500, k_d 1, masses 0.01, top row free) falling under gravity onto
+// a floor box, between two wall boxes, with every structural spring a
+// collision edge; from step 50 on most of its hem rests on the floor.
+//   contacts64x64/rk4/with      the whole step: RK4 + the collision pass
+//   contacts64x64/rk4/without   the same cloth and step with no colliders
+// The pass's share of a step is (with − without) / without, from medians:
+//   ./build/tests/bench_contacts --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include "particles/forces/gravity.h"
+#include "particles/forces/spring.h"
+#include "particles/particle_system.h"
+
+using namespace particles;
+using Eigen::Vector2d;
+
+namespace {
+
+constexpr int kSide = 64;
+constexpr double kSpacing = 0.05, kDt = 0.002;
+
+std::unique_ptr<ParticleSystem> buildCloth(bool colliders) {
+  auto s = std::make_unique<ParticleSystem>();
+  std::vector<Vector2d> positions;
+  for (int row = 0; row < kSide; ++row)
+    for (int col = 0; col < kSide; ++col) positions.emplace_back(-1.6 + kSpacing * col, 1.0 - kSpacing * row);
+  s->addParticles(positions, std::vector<double>(positions.size(), 0.01));
+  auto id = [](int row, int col) { return row * kSide + col; };
+  for (int row = 0; row < kSide; ++row)
+    for (int col = 0; col < kSide; ++col) {
+      for (const auto& [r, c] : {std::pair{row, col + 1}, std::pair{row + 1, col}}) {
+        if (r >= kSide || c >= kSide) continue;
+        s->addForce(std::make_unique<SpringForce>(id(row, col), id(r, c), kSpacing, 500.0, 1.0));
+        if (colliders) s->addCollisionEdge(id(row, col), id(r, c));
+      }
+    }
+  s->addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
+  if (colliders) {
+    s->addCollider(Collider::box(Vector2d(-3, -2.5), Vector2d(3, -2.1)));   // floor, 0.1 below the hem
+    s->addCollider(Collider::box(Vector2d(-3, -2.1), Vector2d(-1.7, 2)));   // left wall
+    s->addCollider(Collider::box(Vector2d(1.7, -2.1), Vector2d(3, 2)));     // right wall
+  }
+  return s;
+}
+
+void clothStep(benchmark::State& state, bool colliders) {
+  auto system = buildCloth(colliders);
+  auto integrator = makeIntegrator("rk4");
+  for (int k = 0; k < 50; ++k) system->step(*integrator, kDt);  // onto the floor
+  const Snapshot warm = system->snapshot();
+  int steps = 0;
+  for (auto _ : state) {
+    system->step(*integrator, kDt);
+    if (++steps % 200 == 0) {
+      state.PauseTiming();
+      system->restore(warm);
+      state.ResumeTiming();
+    }
+  }
+  state.counters["contacts"] = system->contactsLastStep();
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(clothStep, contacts64x64/rk4/with, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(clothStep, contacts64x64/rk4/without, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
