@@ -14,33 +14,18 @@ using namespace lab;
 
 namespace {
 
-// Counts acceleration evaluations: every evaluation applies every force once.
-// Adds nothing to the force accumulator.
-class EvaluationCounter : public particles::Force {
- public:
-  explicit EvaluationCounter(long& count) : count_(count) {}
-  const char* type() const override { return "counter"; }
-  void apply(const particles::Phase&, Eigen::VectorXd&) const override { ++count_; }
-  bool hasJacobians() const override { return true; }  // both zero
-  void addJacobians(const particles::Phase&, particles::Triplets&, particles::Triplets&) const override {}
-
- private:
-  long& count_;
-};
-
 // Max over the run's steps of the bob's distance from the closed form.
 double closedFormError(const Candidate& c, double horizon, long* evaluations = nullptr) {
   const scenes::OscillatorParams p;
   scenes::Scene scene = scenes::buildScene("oscillator");
-  long count = 0;
-  scene.system->addForce(std::make_unique<EvaluationCounter>(count));
+  long count = 0;  // force evaluations, as each step reports them (StepStats)
   particles::IntegratorSettings settings;
   if (c.tolerance > 0) settings.tolerance = c.tolerance;
   auto stepper = particles::makeIntegrator(c.integrator, settings);
   double worst = 0.0;
   const long steps = std::lround(horizon / c.dt);
   for (long k = 1; k <= steps; ++k) {
-    scene.system->step(*stepper, c.dt);
+    count += scene.system->step(*stepper, c.dt).forceEvaluations;
     const Eigen::Vector2d exact(p.rest + scenes::oscillatorDisplacement(p, k * c.dt), 0.0);
     worst = std::max(worst, (scene.system->position(1) - exact).norm());
   }
@@ -94,7 +79,7 @@ TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
   EXPECT_LE(closedFormError(chosen, horizon, &chosenCost), error) << pickArguments(chosen);
 
   // Brute force over every integrator's scanned grid: the cheapest point whose
-  // closed-form error is within E and that survives, by evaluations counted.
+  // closed-form error is within E and that survives, by force evaluations.
   long cheapestCost = -1;
   std::string cheapestName;
   for (const auto& scan : survey.integrators)

@@ -70,7 +70,10 @@ int advise(const AdviseOptions& o) {
     const auto& p = picks[k];
     const std::string safe = scan.adaptive ? "–" : cell(scan.safeDt) + (scan.safeAtTop ? "+" : "");
     char line[256];
-    if (p.found)
+    if (!scan.refused.empty())
+      std::snprintf(line, sizeof line, "%-17s refuses the scene: %.180s\n", scan.integrator.c_str(),
+                    scan.refused.c_str());
+    else if (p.found)
       std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-11s %s (%s-%s)\n", scan.integrator.c_str(),
                     cell(p.candidate.dt).c_str(), scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–",
                     cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),

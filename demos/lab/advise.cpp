@@ -204,11 +204,20 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
     auto progress = [&](double f) {
       if (s.progress) s.progress((i + f) / names.size());
     };
-    if (out.adaptive)
-      scanTolerances(measurer, s, s.horizon / std::max(1L, std::lround(s.horizon / s.adaptiveInterval)), out,
-                     progress);
-    else
-      scanSteps(measurer, s, out, progress);
+    // An integrator may refuse a scene it has no form for (xpbd and a force
+    // without a position form): it is listed with its reason, never picked.
+    try {
+      if (out.adaptive)
+        scanTolerances(measurer, s, s.horizon / std::max(1L, std::lround(s.horizon / s.adaptiveInterval)), out,
+                       progress);
+      else
+        scanSteps(measurer, s, out, progress);
+    } catch (const std::invalid_argument& e) {
+      out.refused = e.what();
+      out.scanned.clear();
+      out.safeDt = out.firstFailureDt = 0.0;
+      out.safeAtTop = false;
+    }
     survey.integrators.push_back(std::move(out));
   }
   return survey;

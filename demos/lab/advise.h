@@ -69,6 +69,7 @@ struct IntegratorSurvey {
   double firstFailureDt = 0.0;  // lowest failing dt scanned above safeDt (0: none failed)
   bool safeAtTop = false;     // nothing failed: safeDt is the top of the grid, a lower bound
   std::vector<Candidate> scanned;  // in scan order (dt or tolerance descending)
+  std::string refused;             // why the integrator refuses this scene ("" if it takes it)
 };
 
 struct Survey {
