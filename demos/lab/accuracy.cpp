@@ -120,14 +120,18 @@ int runAccuracy(const LabOptions& options) {
           knobs.push_back(adaptive ? knob : dt), errors.push_back(c.maxError);
         progress.tick();
       }
+      // An interrupted sweep is missing points: no slope is derived from it.
+      if (interrupted()) break;
       const double slope = logLogSlope(knobs, errors);
       slopes << p.label << name << slope;
       slopes.endRow();
       row.push_back(std::isfinite(slope) ? fixed(slope, 2) : "–");
-      recordValue(options, "accuracy.slope." + p.label + "." + name, fixed(slope, 2));
+      recordValue(options, "accuracy.slope." + p.label + "." + name, std::isfinite(slope) ? fixed(slope, 2) : "–");
     }
+    if (interrupted()) break;
     table.push_back(row);
   }
+  if (interrupted()) return 130;  // rows already written stay; no table from missing data
   writeTable(options, "accuracy_references",
              "Work–precision problems and their references (agreement: largest particle distance from odeint "
              "at 100x the tolerance, at samples about 1 s apart)",

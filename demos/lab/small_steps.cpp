@@ -14,6 +14,7 @@
 
 #include "lab/experiments.h"
 #include "lab/failure.h"
+#include "lab/lab_scene.h"
 #include "particles/forces/spring.h"
 #include "scenes/cloth.h"
 
@@ -126,7 +127,7 @@ int runSmallSteps(const LabOptions& options) {
   std::map<std::string, std::string> undampedCloth;
   const int clothSize = q ? 8 : 24;
   const std::vector<Problem> problems = {
-      {"chain80", [] { return scenes::buildScene("test-chain", {{"cl", "80"}}); }, q ? 1.0 : 5.0, 1e-3,
+      {"chain80", [] { return buildLabScene("test-chain", {{"cl", "80"}}); }, q ? 1.0 : 5.0, 1e-3,
        q ? std::vector<double>{frame, frame / 8} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8, frame / 16},
        q ? std::vector<double>{frame} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8}},
       {"stiff-cloth",
@@ -138,7 +139,7 @@ int runSmallSteps(const LabOptions& options) {
        q ? 0.25 : 1.0, 1e-4,
        q ? std::vector<double>{frame / 64} : std::vector<double>{frame / 16, frame / 32, frame / 64, frame / 128},
        q ? std::vector<double>{frame} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8}},
-      {"hair", [] { return scenes::buildScene("hair", {{"damping", "0"}, {"bend-damping", "0"}}); }, q ? 1.0 : 4.0,
+      {"hair", [] { return buildLabScene("hair", {{"damping", "0"}, {"bend-damping", "0"}}); }, q ? 1.0 : 4.0,
        2e-4, q ? std::vector<double>{frame / 8} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8, frame / 16},
        q ? std::vector<double>{frame} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8}},
   };
