@@ -35,8 +35,7 @@ double worstViolation(const particles::ParticleSystem& s) {
   double worst = s.maxRelativeConstraintError();
   for (const auto& force : s.forceObjects())
     if (const auto* spring = dynamic_cast<const particles::SpringForce*>(force.get())) {
-      const double length = (s.position(spring->first()) - s.position(spring->second())).norm();
-      worst = std::max(worst, std::abs(length / spring->restLength() - 1.0));
+      worst = std::max(worst, std::abs(spring->strain(s.positions())));
     }
   return worst;
 }

@@ -26,8 +26,7 @@ double worstSpringStrain(const particles::ParticleSystem& system) {
   double worst = 0.0;
   for (const auto& force : system.forceObjects())
     if (const auto* spring = dynamic_cast<const particles::SpringForce*>(force.get())) {
-      const double length = (system.position(spring->first()) - system.position(spring->second())).norm();
-      worst = std::max(worst, std::abs(length / spring->restLength() - 1.0));
+      worst = std::max(worst, std::abs(spring->strain(system.positions())));
     }
   return worst;
 }

@@ -39,6 +39,10 @@ class SpringForce : public Force {
   int first() const { return i_; }
   int second() const { return j_; }
   double restLength() const { return rest_; }
+  // Strain |x_j − x_i| / r − 1 at positions x (2n): > 0 stretched, < 0 compressed.
+  double strain(const Eigen::VectorXd& x) const {
+    return (x.segment<2>(2 * j_) - x.segment<2>(2 * i_)).norm() / rest_ - 1.0;
+  }
   double stiffness() const { return stiffness_; }
   double damping() const { return damping_; }
 
