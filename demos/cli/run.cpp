@@ -74,11 +74,12 @@ int run(const RunOptions& o) {
     if (trajectory) trajectory->close();
     return code;
   };
-  if (const std::string reason = nonFiniteDiagnostics(s); !reason.empty()) {
+  const Diagnostics initial = measureDiagnostics(0, s);
+  if (const std::string reason = nonFiniteDiagnostics(initial); !reason.empty()) {
     diverge(0, reason);
     return finish(kDiverged);
   }
-  if (csv) writeDiagnostics(csv->stream(), 0, s, 0.0);
+  if (csv) writeDiagnostics(csv->stream(), initial, 0.0);
   if (trajectory) writeTrajectory(trajectory->stream(), 0, s);
   using Clock = std::chrono::steady_clock;
   Clock::duration simulated{};
@@ -92,12 +93,13 @@ int run(const RunOptions& o) {
       diverge(step, d.message());
       return finish(kDiverged);
     }
-    if (const std::string reason = nonFiniteDiagnostics(s); !reason.empty()) {
+    const Diagnostics row = measureDiagnostics(step, s);
+    if (const std::string reason = nonFiniteDiagnostics(row); !reason.empty()) {
       diverge(step, reason);
       return finish(kDiverged);
     }
     if (csv) {
-      writeDiagnostics(csv->stream(), step, s, std::chrono::duration<double, std::micro>(elapsed).count());
+      writeDiagnostics(csv->stream(), row, std::chrono::duration<double, std::micro>(elapsed).count());
       csv->check();
     }
     if (trajectory && step % o.every == 0) {

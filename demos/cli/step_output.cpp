@@ -15,27 +15,36 @@ particles::DivergenceLimits runnerDivergenceLimits() {
   return limits;
 }
 
-std::string nonFiniteDiagnostics(const particles::ParticleSystem& s) {
-  const double kinetic = s.kineticEnergy(), potential = s.potentialEnergy();
+Diagnostics measureDiagnostics(long long step, const particles::ParticleSystem& s) {
+  Diagnostics d;
+  d.step = step;
+  d.time = s.time();
+  d.kinetic = s.kineticEnergy();
+  d.potential = s.potentialEnergy();
+  d.constraintError = s.maxConstraintError();
+  if (step > 0) d.stats = s.lastStepStats();
+  else d.stats.internalSteps = 0;  // no step taken yet
+  return d;
+}
+
+std::string nonFiniteDiagnostics(const Diagnostics& d) {
   const std::pair<const char*, double> columns[] = {
-      {"the time", s.time()},
-      {"the kinetic energy", kinetic},
-      {"the potential energy", potential},
-      {"the total energy", kinetic + potential},
-      {"the constraint error", s.maxConstraintError()},
-      {"the constraint solve's residual", s.lastStepStats().maxResidual},
+      {"the time", d.time},
+      {"the kinetic energy", d.kinetic},
+      {"the potential energy", d.potential},
+      {"the total energy", d.kinetic + d.potential},
+      {"the constraint error", d.constraintError},
+      {"the constraint solve's residual", d.stats.maxResidual},
   };
   for (const auto& [name, value] : columns)
     if (!std::isfinite(value)) return std::string(name) + " is not finite";
   return {};
 }
 
-void writeDiagnostics(std::ostream& out, long long step, const particles::ParticleSystem& s, double stepMicros) {
-  particles::StepStats stats = s.lastStepStats();
-  if (step == 0) stats = particles::StepStats{}, stats.internalSteps = 0;  // no step taken yet
-  const double kinetic = s.kineticEnergy(), potential = s.potentialEnergy();
-  out << step << ',' << formatNumber(s.time()) << ',' << formatNumber(kinetic) << ',' << formatNumber(potential)
-      << ',' << formatNumber(kinetic + potential) << ',' << formatNumber(s.maxConstraintError()) << ','
+void writeDiagnostics(std::ostream& out, const Diagnostics& d, double stepMicros) {
+  const particles::StepStats& stats = d.stats;
+  out << d.step << ',' << formatNumber(d.time) << ',' << formatNumber(d.kinetic) << ',' << formatNumber(d.potential)
+      << ',' << formatNumber(d.kinetic + d.potential) << ',' << formatNumber(d.constraintError) << ','
       << stats.cgIterations << ',' << formatNumber(stats.maxResidual) << ',' << stats.solves << ','
       << stats.forceEvaluations << ',' << stats.internalSteps << ',' << formatNumber(stepMicros) << '\n';
 }

@@ -23,16 +23,25 @@ particles::DivergenceLimits runnerDivergenceLimits();
 constexpr const char* kDiagnosticsHeader =
     "step,t,kinetic,potential,total_energy,max_constraint_error,cg_iterations,cg_residual,solves,"
     "force_evaluations,internal_steps,step_us";
-// The first CSV column of the state after a step that is not finite, as a
-// phrase for the divergence message ("the kinetic energy is not finite");
-// empty when all are. The CSV only ever holds finite numbers: the runner ends
-// a run whose diagnostics are not finite as a divergence, after
-// particles::checkDivergence (which judges the state and the step).
-std::string nonFiniteDiagnostics(const particles::ParticleSystem& s);
+// The measured columns of one row, evaluated once per step (the energies
+// and the constraint error each cost a pass over the forces or constraints).
+struct Diagnostics {
+  long long step = 0;
+  double time = 0.0, kinetic = 0.0, potential = 0.0, constraintError = 0.0;
+  particles::StepStats stats;  // the step's statistics (zeros for row 0)
+};
+// The state after `step`, its statistics from s.lastStepStats().
+Diagnostics measureDiagnostics(long long step, const particles::ParticleSystem& s);
 
-// One diagnostics row for the state after `step` (its statistics from
-// s.lastStepStats(); row 0 has zeros); stepMicros is that step's wall time.
-void writeDiagnostics(std::ostream& out, long long step, const particles::ParticleSystem& s, double stepMicros);
+// The first CSV column of a row that is not finite, as a phrase for the
+// divergence message ("the kinetic energy is not finite"); empty when all
+// are. The CSV only ever holds finite numbers: the runner ends a run whose
+// diagnostics are not finite as a divergence, after
+// particles::checkDivergence (which judges the state and the step).
+std::string nonFiniteDiagnostics(const Diagnostics& d);
+
+// One diagnostics row; stepMicros is that step's wall time.
+void writeDiagnostics(std::ostream& out, const Diagnostics& d, double stepMicros);
 
 constexpr const char* kTrajectoryHeader = "step,t,particle,x,y,vx,vy";
 // One trajectory row per particle.
