@@ -2,6 +2,8 @@
 
 #include <charconv>
 
+#include <fmt/format.h>
+
 namespace scenes {
 
 std::string formatNumber(double value) {
@@ -9,5 +11,9 @@ std::string formatNumber(double value) {
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, result.ptr);
 }
+
+std::string formatGeneral(double value, int digits) { return fmt::format("{:.{}g}", value, digits); }
+
+std::string formatFixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
 
 }  // namespace scenes

@@ -3,9 +3,9 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libboost-dev
+  libeigen3-dev libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libboost-dev libfmt-dev
   freeglut3-dev libglu1-mesa-dev libgl1-mesa-dev libimgui-dev libpng-dev
-  xvfb xauth gnuplot-nox
+  xvfb xauth gnuplot-nox parallel
 )
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi

@@ -4,6 +4,8 @@
 // the action main runs when that subcommand was given.
 #include <functional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -43,5 +45,12 @@ Command addCostCommand(CLI::App& app);
 Command addLongtimeCommand(CLI::App& app);
 Command addSmallStepsCommand(CLI::App& app);
 Command addRenderReportCommand(CLI::App& app);
+Command addMergeCommand(CLI::App& app);
+
+// The arguments after the program's name, as given (cli/main.cpp).
+const std::vector<std::string>& commandLine();
+// Parses `arguments` (the subcommand first) and runs that subcommand:
+// particle-lab's main, and merge running an experiment again.
+int runCommandLine(const std::vector<std::string>& arguments);
 
 }  // namespace cli

@@ -1,9 +1,11 @@
 // The laboratory's subcommands: stability, timing, accuracy, extremes, claims,
 // and render-report, which fills the report template from their output.
 #include <memory>
+#include <optional>
 
 #include "cli/command.h"
 #include "cli/option_checks.h"
+#include "lab/cells.h"
 #include "lab/experiments.h"
 #include "lab/render.h"
 #include "output_file.h"
@@ -13,9 +15,16 @@ namespace cli {
 
 namespace {
 
-// Options every experiment takes; held by the returned action.
-std::shared_ptr<lab::LabOptions> addLabOptions(CLI::App* command) {
-  auto options = std::make_shared<lab::LabOptions>();
+// The recorded cells a merge replays (set by runReplay while it runs the experiment again).
+std::shared_ptr<lab::Cells> replayCells;
+
+// Options every experiment takes, with --shard; held by the returned action.
+struct ExperimentOptions : lab::LabOptions {
+  std::string shard;  // "K/N", empty: every cell
+};
+
+std::shared_ptr<ExperimentOptions> addLabOptions(CLI::App* command) {
+  auto options = std::make_shared<ExperimentOptions>();
   command->add_option("--out", options->outDir, "directory for the CSVs and tables")->capture_default_str();
   command->add_flag("--quick", options->quick, "small grids and short runs (what CI runs)");
   command->add_option("--integrator", options->integrators,
@@ -29,6 +38,9 @@ std::shared_ptr<lab::LabOptions> addLabOptions(CLI::App* command) {
   command->add_option("--energy-rise", options->criterion.energyRiseFraction,
                       "failure threshold on E(t) - E(0), as a fraction of the scene's releasable energy")
       ->capture_default_str();
+  command->add_option("--shard", options->shard,
+                      "K/N: run only shard K of N of the sweep's cells (index % N == K-1) into --out; "
+                      "particle-lab merge combines the N shards");
   return options;
 }
 
@@ -39,11 +51,40 @@ void validate(const lab::LabOptions& options) {
   particles::requireInRange("--energy-rise", options.criterion.energyRiseFraction, 1e-6, 1e3);
 }
 
-// Runs an experiment: Ctrl-C stops it early, keeping the rows already written.
-int experiment(const std::function<int()>& run) {
+// The experiment's command line without the options that do not change its
+// results (--shard, --out, --jobs): what a shard's manifest records.
+std::vector<std::string> resultArguments() {
+  std::vector<std::string> kept;
+  const std::vector<std::string>& all = commandLine();
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    bool dropped = false;
+    for (const char* option : {"--shard", "--out", "--jobs"}) {
+      const std::string name(option);
+      if (all[k] == name) dropped = true, ++k;  // and its value
+      else if (all[k].rfind(name + "=", 0) == 0) dropped = true;
+      if (dropped) break;
+    }
+    if (!dropped) kept.push_back(all[k]);
+  }
+  return kept;
+}
+
+// Runs an experiment: all its cells, a shard of them (--shard), or the cells a
+// merge replays. Ctrl-C stops it early, keeping the rows already written.
+int experiment(const CLI::App* command, ExperimentOptions& options, const std::function<int()>& run) {
+  std::optional<lab::ShardSpec> shard;
+  if (!options.shard.empty()) shard = lab::parseShard(options.shard);
+  if (replayCells) {
+    if (shard) throw UsageError("merge: the shards' arguments hold --shard");
+    options.cells = replayCells;
+  } else if (shard) {
+    options.cells = std::make_shared<lab::Cells>(*shard, options.outDir);
+  }
   lab::installInterruptHandler();
   try {
-    return run();
+    const int code = run();
+    if (code == 0) options.cells->writeManifest(command->get_name(), resultArguments());
+    return code;
   } catch (const scenes::WriteError&) {
     throw;  // exit 4, not a bad option
   } catch (const std::runtime_error& e) {  // an output file that cannot be written
@@ -65,7 +106,7 @@ Command addStabilityCommand(CLI::App& app) {
             validate(*options);
             particles::requireInRange("--duration", stability->duration, lab::StabilityOptions::minDuration,
                                       lab::StabilityOptions::maxDuration);
-            return experiment([&] { return lab::runStability(*options, *stability); });
+            return experiment(command, *options, [&] { return lab::runStability(*options, *stability); });
           }};
 }
 
@@ -81,7 +122,7 @@ Command addTimingCommand(CLI::App& app) {
       ->check(decimalInteger(1, 1000000000));
   return {command, [=] {
             validate(*options);
-            return experiment([&] { return lab::runTiming(*options, *timing); });
+            return experiment(command, *options, [&] { return lab::runTiming(*options, *timing); });
           }};
 }
 
@@ -90,7 +131,7 @@ Command addAccuracyCommand(CLI::App& app) {
   auto options = addLabOptions(command);
   return {command, [=] {
             validate(*options);
-            return experiment([&] { return lab::runAccuracy(*options); });
+            return experiment(command, *options, [&] { return lab::runAccuracy(*options); });
           }};
 }
 
@@ -100,7 +141,7 @@ Command addExtremesCommand(CLI::App& app) {
   auto options = addLabOptions(command);
   return {command, [=] {
             validate(*options);
-            return experiment([&] { return lab::runExtremes(*options); });
+            return experiment(command, *options, [&] { return lab::runExtremes(*options); });
           }};
 }
 
@@ -109,7 +150,7 @@ Command addClaimsCommand(CLI::App& app) {
   auto options = addLabOptions(command);
   return {command, [=] {
             validate(*options);
-            return experiment([&] { return lab::runClaims(*options); });
+            return experiment(command, *options, [&] { return lab::runClaims(*options); });
           }};
 }
 
@@ -117,21 +158,21 @@ Command addCostCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "cost", "the cost of accuracy: cheapest safe integrator and dt per scene and error budget");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment([&] { return lab::runCost(*options); }); }};
+  return {command, [=] { return experiment(command, *options, [&] { return lab::runCost(*options); }); }};
 }
 
 Command addLongtimeCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "longtime", "energy over 500 s per integrator (pendulum, 6-chain); implicit Euler's loss per period");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment([&] { return lab::runLongtime(*options); }); }};
+  return {command, [=] { return experiment(command, *options, [&] { return lab::runLongtime(*options); }); }};
 }
 
 Command addSmallStepsCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "small-steps", "XPBD substeps against iterations and against implicit Euler and RK4; the stiff cloth at 60 Hz");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment([&] { return lab::runSmallSteps(*options); }); }};
+  return {command, [=] { return experiment(command, *options, [&] { return lab::runSmallSteps(*options); }); }};
 }
 
 Command addRenderReportCommand(CLI::App& app) {
@@ -143,7 +184,40 @@ Command addRenderReportCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingDirectory);
   command->add_option("--out", render->outPath, "rendered Markdown file")->required();
-  return {command, [=] { return experiment([&] { return lab::renderReport(*render); }); }};
+  return {command, [=] {
+            lab::installInterruptHandler();
+            try {
+              return lab::renderReport(*render);
+            } catch (const scenes::WriteError&) {
+              throw;
+            } catch (const std::runtime_error& e) {
+              throw UsageError(e.what());
+            }
+          }};
+}
+
+Command addMergeCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "merge", "combine the shards of one experiment (--shard K/N) into the files an unsharded run writes");
+  auto dirs = std::make_shared<std::vector<std::string>>();
+  auto out = std::make_shared<std::string>();
+  command->add_option("dirs", *dirs, "the shards' output directories")->required();
+  command->add_option("--out", *out, "directory for the merged CSVs, tables and values")->required();
+  return {command, [=] {
+            const lab::ShardSet set = lab::readShards(*dirs);
+            // The experiment runs again with its own arguments, every cell
+            // read from the shards: tables and derived numbers from all cells.
+            replayCells = std::make_shared<lab::Cells>(set.cells);
+            std::vector<std::string> arguments = set.arguments;
+            arguments.insert(arguments.end(), {"--out", *out});
+            const int code = runCommandLine(arguments);
+            const std::size_t enumerated = replayCells->count();
+            replayCells.reset();
+            if (code == 0 && enumerated != set.cellCount)
+              throw UsageError("merge: the shards hold " + std::to_string(set.cellCount) + " cells, the experiment has " +
+                               std::to_string(enumerated) + " (made by a different version?)");
+            return code;
+          }};
 }
 
 }  // namespace cli

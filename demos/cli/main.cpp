@@ -27,7 +27,10 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addAdviseCommand,
     cli::addSmallStepsCommand,
     cli::addRenderReportCommand,
+    cli::addMergeCommand,
 };
+
+std::vector<std::string> arguments;
 
 // One line on stderr (control characters escaped), and the exit code.
 int fail(const std::string& message, int code = cli::kBadInput) {
@@ -37,13 +40,19 @@ int fail(const std::string& message, int code = cli::kBadInput) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace cli {
+
+const std::vector<std::string>& commandLine() { return arguments; }
+
+int runCommandLine(const std::vector<std::string>& given) {
   CLI::App app{"particle-lab: run particle-system scenes without a window, list and export them, and run the laboratory's experiments"};
   app.require_subcommand(1);
   std::vector<cli::Command> commands;
   for (auto add : kCommands) commands.push_back(add(app));
+  arguments = given;
+  std::vector<std::string> reversed(given.rbegin(), given.rend());  // CLI11 takes them last first
   try {
-    app.parse(argc, argv);
+    app.parse(reversed);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     return fail(e.what());
@@ -64,3 +73,7 @@ int main(int argc, char** argv) {
   }
   return fail("no subcommand given");
 }
+
+}  // namespace cli
+
+int main(int argc, char** argv) { return cli::runCommandLine(std::vector<std::string>(argv + 1, argv + argc)); }

@@ -64,10 +64,10 @@ int runAccuracy(const LabOptions& options) {
   recordValue(options, "accuracy.repeats", std::to_string(repeats));
   recordValue(options, "accuracy.output_interval", general(outputInterval));
 
-  Csv csv(options.outDir + "/accuracy.csv",
+  Csv csv(options, "accuracy.csv",
           {"problem", "integrator", "dt", "tolerance", "error", "seconds_per_simulated_second", "error_at_T",
            "energy_error", "constraint_drift", "cpu_min", "cpu_max", "survived", "failure"});
-  Csv slopes(options.outDir + "/accuracy_slopes.csv", {"problem", "integrator", "slope"});
+  Csv slopes(options, "accuracy_slopes.csv", {"problem", "integrator", "slope"});
   std::vector<std::vector<std::string>> table, references;
   const FailureCriterion& failure = options.criterion;
   for (const auto& p : problems) {

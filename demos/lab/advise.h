@@ -52,6 +52,13 @@ struct Candidate {
   double constraintDrift = 0.0;  // max |C|/r over the run
   double seconds = 0.0;       // wall time of the scan run's steps
 };
+// The fields a cell's result keeps (lab/cell_json.h).
+template <class Io>
+void fields(Io& io, Candidate& c) {
+  io("integrator", c.integrator), io("dt", c.dt), io("tolerance", c.tolerance), io("survived", c.survived);
+  io("aborted", c.aborted), io("failure", c.failure), io("max_error", c.maxError), io("error_at_t", c.errorAtT);
+  io("energy_error", c.energyError), io("constraint_drift", c.constraintDrift), io("seconds", c.seconds);
+}
 
 // One run of a freshly built scene against the reference, sampled at every
 // step (every call of an adaptive scheme) through the reference's interpolant;
@@ -108,6 +115,11 @@ struct Pick {
   Candidate candidate;
   double cpuPerSimulatedSecond = 0.0, cpuMin = 0.0, cpuMax = 0.0;  // median and spread of repeats
 };
+template <class Io>
+void fields(Io& io, Pick& p) {
+  io("found", p.found), io("candidate", p.candidate), io("cpu_per_simulated_second", p.cpuPerSimulatedSecond);
+  io("cpu_min", p.cpuMin), io("cpu_max", p.cpuMax);
+}
 
 // Per integrator, the largest scanned safe dt (fixed-step: dt ≤ safeFraction ×
 // safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`.

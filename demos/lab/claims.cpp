@@ -7,7 +7,7 @@
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
-#include "lab/parallel.h"
+#include "lab/cells.h"
 #include "particles/forces/mouse_spring.h"
 
 namespace lab {
@@ -48,7 +48,7 @@ int runClaims(const LabOptions& options) {
 
   // 1. "Changing the time step size has virtually no effect on the duration of the time step."
   {
-    Csv csv(options.outDir + "/claims_cost_vs_dt.csv", {"integrator", "dt", "step_seconds", "cg_iterations_per_step"});
+    Csv csv(options, "claims_cost_vs_dt.csv", {"integrator", "dt", "step_seconds", "cg_iterations_per_step"});
     double worstRatio = 0.0;
     for (const std::string name : {"midpoint", "rk4"}) {
       double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
@@ -82,8 +82,8 @@ int runClaims(const LabOptions& options) {
     scan.members = q ? 1 : 3;
     const std::vector<std::string> pair = {"rk4", "midpoint"};
     std::vector<Boundary> boundaries(2);
-    parallelMap<Boundary>(
-        options.jobs, 2,
+    sweep<Boundary>(
+        options, 2,
         [&](std::size_t k) {
           auto b = scanSafeStep([&] { return buildChain({cl}); }, pair[k], duration, scan, criterion);
           progress.tick();
@@ -105,7 +105,7 @@ int runClaims(const LabOptions& options) {
 
   // 3. "The number of CG steps is about linear in the number of constraints."
   {
-    Csv csv(options.outDir + "/claims_cg_iterations.csv",
+    Csv csv(options, "claims_cg_iterations.csv",
             {"constraints", "plain_cg_iterations_per_solve", "jacobi_warm_cg_iterations_per_solve"});
     const std::vector<int> lengths = q ? std::vector<int>{5, 10, 20} : std::vector<int>{10, 20, 40, 80, 160, 320, 500};
     std::vector<double> m, plain;
@@ -155,11 +155,11 @@ int runClaims(const LabOptions& options) {
     FailureCriterion finiteOnly = criterion;
     finiteOnly.maxRelativeConstraintError = std::numeric_limits<double>::infinity();
     finiteOnly.energyRiseFraction = std::numeric_limits<double>::infinity();
-    Csv csv(options.outDir + "/claims_starved_cg.csv",
+    Csv csv(options, "claims_starved_cg.csv",
             {"warm_start", "max_iterations", "failure", "time", "max_relative_stretch", "max_energy_rise"});
     std::vector<RunResult> results(cells.size());
-    parallelMap<RunResult>(
-        options.jobs, cells.size(),
+    sweep<RunResult>(
+        options, cells.size(),
         [&](std::size_t k) -> std::optional<RunResult> {
           scenes::Scene chain = buildChain({chainLength});
           auto& settings = chain.system->solver().settings;
@@ -194,7 +194,7 @@ int runClaims(const LabOptions& options) {
     }
     // The verdict at each stretch threshold, with and without the energy test.
     const std::vector<double> thresholds = {0.01, 0.03, 0.1, 0.3, 1.0};
-    Csv verdicts(options.outDir + "/claims_starved_cg_verdict.csv",
+    Csv verdicts(options, "claims_starved_cg_verdict.csv",
                  {"max_stretch_threshold", "cold", "warm", "cold_non_finite_only", "warm_non_finite_only"});
     std::vector<std::vector<std::string>> rows;
     std::string atCriterion;
@@ -232,7 +232,7 @@ int runClaims(const LabOptions& options) {
 
   // 5. "The 4-way cloth under gravity or pulling is less cloth-like than the 8-way one": cell shear.
   {
-    Csv csv(options.outDir + "/claims_cloth_shear.csv", {"links", "mean_shear_degrees", "max_shear_degrees"});
+    Csv csv(options, "claims_cloth_shear.csv", {"links", "mean_shear_degrees", "max_shear_degrees"});
     const int side = q ? 5 : 10;
     double mean[2] = {0, 0};
     for (int k = 0; k < 2; ++k) {

@@ -54,10 +54,10 @@ int runCost(const LabOptions& options) {
   recordValue(options, "cost.failure", describe(options.criterion));
   Progress progress("cost", static_cast<long>(scenes.size()));
 
-  Csv picksCsv(options.outDir + "/cost_of_accuracy.csv",
+  Csv picksCsv(options, "cost_of_accuracy.csv",
                {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",
                 "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
-  Csv safeCsv(options.outDir + "/cost_safe_dt.csv",
+  Csv safeCsv(options, "cost_safe_dt.csv",
               {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs"});
   std::vector<std::vector<std::string>> table;
   for (const auto& cs : scenes) {

@@ -36,6 +36,11 @@ struct StepCost {
   // CG iterations per solve (0 without solves).
   double cgIterationsPerSolve() const { return solves > 0.0 ? cgIterations / solves : 0.0; }
 };
+// The fields a cell's result keeps (lab/cell_json.h).
+template <class Io>
+void fields(Io& io, StepCost& c) {
+  io("seconds", c.seconds), io("cg_iterations", c.cgIterations), io("solves", c.solves);
+}
 StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, double dt,
                          const TimingOptions& timing);
 

@@ -9,7 +9,7 @@
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
-#include "lab/parallel.h"
+#include "lab/cells.h"
 
 namespace lab {
 
@@ -39,14 +39,14 @@ int runExtremes(const LabOptions& options) {
   {
     const std::vector<double> stiffness = q ? std::vector<double>{1, 100} : logSpace(1, 1e5, 6);
     const double duration = q ? 1.0 : 5.0;
-    Csv csv(options.outDir + "/extremes_stiffness.csv",
+    Csv csv(options, "extremes_stiffness.csv",
             {"integrator", "stiffness", "safe_dt", "first_failure_dt", "first_failure", "grid_lo", "grid_hi"});
     std::vector<std::pair<std::string, double>> cells;
     for (const auto& name : scanned)
       for (double ks : stiffness) cells.push_back({name, ks});
     std::map<std::string, std::vector<std::string>> rows;
-    parallelMap<Boundary>(
-        options.jobs, cells.size(),
+    sweep<Boundary>(
+        options, cells.size(),
         [&](std::size_t k) {
           const auto& [name, ks] = cells[k];
           ScanSettings window = scan;
@@ -88,15 +88,15 @@ int runExtremes(const LabOptions& options) {
     const int length = q ? 6 : 24;
     ScanSettings window = scan;
     window.grid = stepGrid(q ? 0.0125 : 0.05 / 32, 0.5);
-    Csv csv(options.outDir + "/extremes_mass_ratio.csv",
+    Csv csv(options, "extremes_mass_ratio.csv",
             {"integrator", "mass_ratio", "safe_dt", "first_failure_dt", "first_failure", "cg_iterations_per_step"});
     std::vector<std::pair<std::string, double>> cells;
     for (const auto& name : scanned)
       for (double ratio : ratios) cells.push_back({name, ratio});
     std::map<std::string, std::vector<std::string>> rows;
     using Result = std::pair<Boundary, double>;
-    parallelMap<Result>(
-        options.jobs, cells.size(),
+    sweep<Result>(
+        options, cells.size(),
         [&](std::size_t k) -> std::optional<Result> {
           const auto& [name, ratio] = cells[k];
           ChainSpec spec{length};
@@ -137,21 +137,27 @@ int runExtremes(const LabOptions& options) {
     const std::vector<double> ks = q ? std::vector<double>{0, 60} : std::vector<double>{0, 1, 10, 60, 100, 1000, 10000};
     const std::vector<double> kd = q ? std::vector<double>{0, 10} : std::vector<double>{0, 1, 3, 10, 30, 100, 300};
     const double duration = q ? 1.0 : 20.0, dt = q ? 0.02 : 0.05;
-    Csv csv(options.outDir + "/extremes_feedback.csv",
+    Csv csv(options, "extremes_feedback.csv",
             {"ks", "kd", "critical_kd", "survived", "failure", "max_relative_stretch", "final_relative_stretch"});
     for (double s : ks)
       for (double d : kd) {
         if (interrupted()) break;
-        scenes::Scene chain = buildChain({q ? 6 : 24});
-        chain.system->solver().settings.stiffness = s;
-        chain.system->solver().settings.damping = d;
-        auto stepper = particles::makeIntegrator("rk4");
-        const RunResult r = simulate(chain, *stepper, dt, duration, criterion);
-        if (r.cutShort) break;
+        // The run and its final max |C|/r.
+        const auto result = cell<std::pair<RunResult, double>>(options, [&]() -> std::optional<std::pair<RunResult, double>> {
+          scenes::Scene chain = buildChain({q ? 6 : 24});
+          chain.system->solver().settings.stiffness = s;
+          chain.system->solver().settings.damping = d;
+          auto stepper = particles::makeIntegrator("rk4");
+          const RunResult r = simulate(chain, *stepper, dt, duration, criterion);
+          progress.tick();
+          if (r.cutShort) return std::nullopt;
+          return std::pair{r, chain.system->maxRelativeConstraintError()};
+        });
+        if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
+        const RunResult& r = result->first;
         csv << s << d << 2.0 * std::sqrt(s) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.maxRelativeStretch
-            << chain.system->maxRelativeConstraintError();
+            << result->second;
         csv.endRow();
-        progress.tick();
       }
     if (interrupted()) return 130;
     recordValue(options, "extremes.feedback.dt", general(dt));
@@ -164,7 +170,7 @@ int runExtremes(const LabOptions& options) {
     const std::vector<double> tolerances = q ? std::vector<double>{1e-2, 1e-8} : logSpace(1e-10, 1e-2, 5);
     const std::vector<int> caps = q ? std::vector<int>{2, 0} : std::vector<int>{1, 2, 5, 10, 20, 50, 0};
     const double duration = q ? 1.0 : 20.0, dt = 0.01;
-    Csv csv(options.outDir + "/extremes_cg_budget.csv",
+    Csv csv(options, "extremes_cg_budget.csv",
             {"warm_start", "tolerance", "max_iterations", "survived", "failure", "max_relative_stretch",
              "cg_iterations_per_step"});
     struct Budget {
@@ -176,8 +182,8 @@ int runExtremes(const LabOptions& options) {
     for (bool warm : {false, true})
       for (double tol : tolerances)
         for (int cap : caps) cells.push_back({warm, tol, cap});
-    parallelMap<RunResult>(
-        options.jobs, cells.size(),
+    sweep<RunResult>(
+        options, cells.size(),
         [&](std::size_t k) -> std::optional<RunResult> {
           const Budget& c = cells[k];
           scenes::Scene chain = buildChain({q ? 12 : 80});
@@ -210,7 +216,7 @@ int runExtremes(const LabOptions& options) {
     const double duration = q ? 1.0 : 20.0;
     ScanSettings window = scan;
     window.grid = stepGrid(q ? 0.0125 : 0.05 / 16, 0.5);
-    Csv csv(options.outDir + "/extremes_rod_form.csv",
+    Csv csv(options, "extremes_rod_form.csv",
             {"integrator", "rod", "safe_dt", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
     std::vector<std::pair<std::string, std::string>> cells;
     for (const auto& name : scanned)
@@ -224,8 +230,8 @@ int runExtremes(const LabOptions& options) {
     // The step cost is timed on this thread after the scans, so the timings
     // never share the machine with another cell.
     std::vector<Boundary> boundaries(cells.size());
-    parallelMap<Boundary>(
-        options.jobs, cells.size(),
+    sweep<Boundary>(
+        options, cells.size(),
         [&](std::size_t k) {
           const auto& [name, form] = cells[k];
           ChainSpec spec{q ? 6 : 24, form};
@@ -237,18 +243,26 @@ int runExtremes(const LabOptions& options) {
     if (interrupted()) return 130;
     for (std::size_t k = 0; k < cells.size(); ++k) {
       const auto& [name, form] = cells[k];
-      ChainSpec big{q ? 12 : 80, form};
-      scenes::Scene chain = buildChain(big);
-      const StepCost cost = measureStepCost(chain, name, chain.dt, {q ? 1 : 5, q ? 5 : 20});
-      scenes::Scene fresh = buildChain(big);
-      auto stepper = particles::makeIntegrator(name);
-      const RunResult r = simulate(fresh, *stepper, fresh.dt, duration, criterion);
-      if (r.cutShort) return 130;
-      csv << name << form << boundaries[k].safeDt << cost.seconds << cost.cgIterations << r.maxRelativeStretch;
+      // The step cost and the max stretch of a run.
+      const auto result = cell<std::pair<StepCost, double>>(options, [&, &name = name, &form = form]()
+                                                                -> std::optional<std::pair<StepCost, double>> {
+        ChainSpec big{q ? 12 : 80, form};
+        scenes::Scene chain = buildChain(big);
+        const StepCost cost = measureStepCost(chain, name, chain.dt, {q ? 1 : 5, q ? 5 : 20});
+        scenes::Scene fresh = buildChain(big);
+        auto stepper = particles::makeIntegrator(name);
+        const RunResult r = simulate(fresh, *stepper, fresh.dt, duration, criterion);
+        if (r.cutShort) return std::nullopt;
+        return std::pair{cost, r.maxRelativeStretch};
+      });
+      if (interrupted()) return 130;
+      if (!result) continue;  // another shard's cell
+      const auto& [cost, stretch] = *result;
+      csv << name << form << boundaries[k].safeDt << cost.seconds << cost.cgIterations << stretch;
       csv.endRow();
       rows[name].push_back(safeStepText(boundaries[k]));
       rows[name].push_back(general(cost.seconds * 1e6, 3));
-      rows[name].push_back(general(r.maxRelativeStretch, 2));
+      rows[name].push_back(general(stretch, 2));
     }
     std::vector<std::vector<std::string>> table;
     for (const auto& name : scanned) {
@@ -271,7 +285,7 @@ int runExtremes(const LabOptions& options) {
     // CG with an iteration cap (0: uncapped), and −1 for the direct solve.
     const std::vector<int> caps = q ? std::vector<int>{0, -1} : std::vector<int>{5, 20, 0, -1};
     const double duration = q ? 1.0 : 20.0;
-    Csv csv(options.outDir + "/extremes_taut_chain.csv",
+    Csv csv(options, "extremes_taut_chain.csv",
             {"integrator", "max_iterations", "survived", "reason", "time", "max_relative_stretch",
              "cg_iterations_per_step"});
     std::vector<std::vector<std::string>> table;
@@ -279,21 +293,26 @@ int runExtremes(const LabOptions& options) {
       std::vector<std::string> row{name};
       for (int cap : caps) {
         if (interrupted()) break;
-        scenes::Scene taut = buildLabScene("taut-chain");
-        auto& settings = taut.system->solver().settings;
-        if (cap >= 0) {
-          settings.method = particles::SolveMethod::ConjugateGradient;
-          settings.maxIterations = cap;
-        }
-        auto stepper = particles::makeIntegrator(name);
-        const RunResult r = simulate(taut, *stepper, taut.dt, duration, criterion);
-        if (r.cutShort) break;
+        const auto result = cell<RunResult>(options, [&]() -> std::optional<RunResult> {
+          scenes::Scene taut = buildLabScene("taut-chain");
+          auto& settings = taut.system->solver().settings;
+          if (cap >= 0) {
+            settings.method = particles::SolveMethod::ConjugateGradient;
+            settings.maxIterations = cap;
+          }
+          auto stepper = particles::makeIntegrator(name);
+          RunResult r = simulate(taut, *stepper, taut.dt, duration, criterion);
+          progress.tick();
+          if (r.cutShort) return std::nullopt;
+          return r;
+        });
+        if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
+        const RunResult& r = *result;
         csv << name << static_cast<long>(cap) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.time
             << r.maxRelativeStretch << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
         csv.endRow();
         row.push_back(r.failed ? r.reason + " at t = " + general(r.time, 3)
                                  : "held (stretch " + general(r.maxRelativeStretch, 2) + ")");
-        progress.tick();
       }
       table.push_back(row);
     }

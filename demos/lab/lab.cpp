@@ -9,7 +9,9 @@
 #include <sstream>
 #include <thread>
 
+#include "lab/cells.h"
 #include "lab/lab_scene.h"
+#include "lab/values.h"
 #include "output_file.h"
 #include "particles/forces/gravity.h"
 
@@ -158,41 +160,38 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-Csv::Csv(const std::string& path, const std::vector<std::string>& columns)
-    : path_(path), out_(path), columns_(columns.size()) {
-  if (!out_) throw std::runtime_error("cannot write " + path);
-  for (std::size_t k = 0; k < columns.size(); ++k) out_ << (k ? "," : "") << columns[k];
-  out_ << '\n' << std::flush;
-  if (!out_) scenes::throwWriteError("the CSV", path_);
+Csv::Csv(const LabOptions& options, const std::string& name, const std::vector<std::string>& columns) {
+  if (options.cells->writesOutputs())
+    writer_ = std::make_unique<scenes::CsvWriter>(options.outDir + "/" + name, "the CSV", columns,
+                                                  scenes::CsvFormat{10, true});
 }
 
+Csv::~Csv() = default;
+
 Csv& Csv::operator<<(const std::string& cell) {
-  out_ << (cell_++ ? "," : "") << cell;
+  if (writer_) *writer_ << cell;
   return *this;
 }
 
 Csv& Csv::operator<<(double value) {
-  std::ostringstream s;
-  s.precision(10);
-  s << value;
-  return *this << s.str();
+  if (writer_) *writer_ << value;
+  return *this;
 }
 
-Csv& Csv::operator<<(long value) { return *this << std::to_string(value); }
+Csv& Csv::operator<<(long value) {
+  if (writer_) *writer_ << value;
+  return *this;
+}
 
 void Csv::endRow() {
-  if (cell_ != columns_)
-    throw std::logic_error(path_ + ": row has " + std::to_string(cell_) + " cells, expected " +
-                           std::to_string(columns_));
-  out_ << '\n' << std::flush;
-  if (!out_) scenes::throwWriteError("the CSV", path_);
-  cell_ = 0;
+  if (writer_) writer_->endRow();
 }
 
 void prepareOutput(const LabOptions& options) { std::filesystem::create_directories(options.outDir); }
 
 void writeTable(const LabOptions& options, const std::string& name, const std::string& title,
                 const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
+  if (!options.cells->writesOutputs()) return;
   std::ostringstream md;
   md << "*" << title << "*\n\n";
   auto line = [&](const std::vector<std::string>& cells) {
@@ -206,46 +205,14 @@ void writeTable(const LabOptions& options, const std::string& name, const std::s
   md << '\n';
   for (const auto& row : rows) line(row);
   const std::string path = options.outDir + "/" + name + ".md";
-  std::ofstream out(path);
-  out << md.str();
+  scenes::OutputFile out(path, "the table");
+  out.stream() << md.str();
   out.close();
-  if (!out) scenes::throwWriteError("the table", path);
   std::cout << "\n" << md.str() << std::flush;
 }
 
 void recordValue(const LabOptions& options, const std::string& key, const std::string& value) {
-  const std::string path = options.outDir + "/values.csv";
-  std::map<std::string, std::string> values;
-  {
-    std::ifstream in(path);
-    std::string row;
-    while (std::getline(in, row)) {
-      const auto comma = row.find(',');
-      if (comma != std::string::npos && row.substr(0, comma) != "key")
-        values[row.substr(0, comma)] = row.substr(comma + 1);
-    }
-  }
-  values[key] = value;
-  std::ofstream out(path);
-  out << "key,value\n";
-  for (const auto& [k, v] : values) out << k << ',' << v << '\n';
-  out.close();
-  if (!out) scenes::throwWriteError("the values", path);
-}
-
-std::string fixed(double value, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << value;
-  return s.str();
-}
-
-std::string general(double value, int digits) {
-  std::ostringstream s;
-  s.precision(digits);
-  s << value;
-  return s.str();
+  if (options.cells->writesOutputs()) writeValue(options.outDir, key, value);
 }
 
 Progress::Progress(std::string label, long total)

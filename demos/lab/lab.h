@@ -6,11 +6,14 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "csv_writer.h"
+#include "format_number.h"
 #include "scene.h"
 #include "lab/failure.h"
 #include "lab/scan.h"
@@ -21,6 +24,10 @@ namespace lab {
 // Threads used when --jobs is not given: every core (at least one).
 int defaultJobs();
 
+class Cells;  // lab/cells.h
+// Every cell computed, results written: an experiment run on its own.
+std::shared_ptr<Cells> allCells();
+
 // Options shared by every experiment subcommand.
 struct LabOptions {
   std::string outDir = "lab-out";  // CSVs and tables are written here
@@ -28,6 +35,7 @@ struct LabOptions {
   std::vector<std::string> integrators;  // empty: every integrator in the table
   int jobs = defaultJobs();        // threads for independent sweep cells (parallel.h)
   FailureCriterion criterion;      // when a run counts as failed (failure.h)
+  std::shared_ptr<Cells> cells = allCells();  // this run's cells: all, a shard's, or replayed (cells.h)
 };
 
 struct RunResult {
@@ -46,6 +54,16 @@ struct RunResult {
   bool stopped = false;      // the observer ended the run before T
   bool blewUp() const { return failed && isBlowUp(failure); }
 };
+// The fields a cell's result keeps (lab/cell_json.h); cutShort is never kept.
+template <class Io>
+void fields(Io& io, RunResult& r) {
+  io("failed", r.failed), io("failure", r.failure), io("reason", r.reason), io("time", r.time);
+  io("steps", r.steps), io("seconds", r.seconds), io("max_relative_stretch", r.maxRelativeStretch);
+  io("max_energy_rise", r.maxEnergyRise), io("solves", r.work.solves), io("cg_iterations", r.work.cgIterations);
+  io("max_residual", r.work.maxResidual), io("force_evaluations", r.work.forceEvaluations);
+  io("internal_steps", r.work.internalSteps), io("energy_start", r.energyStart), io("energy_end", r.energyEnd);
+  io("energy_scale", r.energyScale), io("stopped", r.stopped);
+}
 
 // Steps the scene with the integrator for `duration` simulated seconds
 // (round(duration/dt) steps), stopping at the first failure by `criterion` or
@@ -86,33 +104,34 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 // Median of a non-empty sample.
 double median(std::vector<double> values);
 
-// A CSV file written row by row and flushed after every row, so an
-// interrupted experiment keeps what it measured.
+// An experiment's CSV file DIR/NAME (scenes::CsvWriter, numbers to 10
+// significant digits), flushed after every row so an interrupted experiment
+// keeps what it measured. In a shard (cells.h) it writes nothing.
 class Csv {
  public:
-  Csv(const std::string& path, const std::vector<std::string>& columns);
+  Csv(const LabOptions& options, const std::string& name, const std::vector<std::string>& columns);
+  ~Csv();
   Csv& operator<<(const std::string& cell);
   Csv& operator<<(double value);
   Csv& operator<<(long value);
   Csv& operator<<(int value) { return *this << static_cast<long>(value); }
   void endRow();
-  const std::string& path() const { return path_; }
 
  private:
-  std::string path_;
-  std::ofstream out_;
-  std::size_t columns_, cell_ = 0;
+  std::unique_ptr<scenes::CsvWriter> writer_;  // null in a shard
 };
 
 // Writes a Markdown table under its title in italics (also printed to stdout) to DIR/NAME.md.
 void writeTable(const LabOptions& options, const std::string& name, const std::string& title,
                 const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 
-// Appends key,value pairs that the report quotes to DIR/values.csv.
+// Records a value the report quotes under `key` in DIR/values.csv (lab/values.h).
 void recordValue(const LabOptions& options, const std::string& key, const std::string& value);
 
-std::string fixed(double value, int digits);
-std::string general(double value, int digits = 3);
+// Numbers in tables and quoted values (format_number.h): `digits` after the
+// point, or `digits` significant digits (printf's %.*f and %.*g).
+inline std::string fixed(double value, int digits) { return scenes::formatFixed(value, digits); }
+inline std::string general(double value, int digits = 3) { return scenes::formatGeneral(value, digits); }
 
 // Progress on stderr: done/total, elapsed, estimated time left (at most every 2 s).
 class Progress {

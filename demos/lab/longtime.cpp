@@ -39,7 +39,7 @@ int runLongtime(const LabOptions& options) {
   // Only non-finite states end a run: the drift itself is what is shown.
   FailureCriterion drift;
   drift.maxRelativeConstraintError = drift.energyRiseFraction = std::numeric_limits<double>::infinity();
-  Csv energy(options.outDir + "/longtime_energy.csv", {"problem", "integrator", "dt", "time", "energy_change"});
+  Csv energy(options, "longtime_energy.csv", {"problem", "integrator", "dt", "time", "energy_change"});
   std::vector<std::vector<std::string>> table;
   for (const auto& run : runs) {
     std::vector<std::string> row{run.label + " (dt = " + general(run.dt) + " s)"};
@@ -91,7 +91,7 @@ int runLongtime(const LabOptions& options) {
     simulate(chain, *stepper, chainT / std::round(chainT / dt), chainT, drift);
     return (e0 - chain.system->totalEnergy()) / drop;
   };
-  Csv loss(options.outDir + "/longtime_implicit_loss.csv",
+  Csv loss(options, "longtime_implicit_loss.csv",
            {"dt", "periods", "swing_energy_left", "loss_per_period", "chain6_loss"});
   std::vector<std::vector<std::string>> lossRows;
   for (double wanted : implicitSteps) {

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lab/values.h"
 #include "output_file.h"
 
 namespace lab {
@@ -17,17 +18,6 @@ std::string readFile(const std::string& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-std::map<std::string, std::string> readValues(const std::string& dataDir) {
-  std::map<std::string, std::string> values;
-  std::ifstream in(dataDir + "/values.csv");
-  std::string row;
-  while (std::getline(in, row)) {
-    const auto comma = row.find(',');
-    if (comma != std::string::npos) values[row.substr(0, comma)] = row.substr(comma + 1);
-  }
-  return values;
 }
 
 }  // namespace

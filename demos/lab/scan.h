@@ -26,6 +26,12 @@ struct Probe {
   double maxEnergyRise = 0.0;  // max (E − E(0)) / E_s
   bool survives(double duration, double dt) const { return !failed || time > duration + 0.5 * dt; }
 };
+// The fields a cell's result keeps (lab/cell_json.h).
+template <class Io>
+void fields(Io& io, Probe& p) {
+  io("failed", p.failed), io("failure", p.failure), io("time", p.time);
+  io("max_relative_stretch", p.maxRelativeStretch), io("max_energy_rise", p.maxEnergyRise);
+}
 
 // Every run of a scan, in the order made: ascending dt, members 0.. at each.
 struct ScanRun {
@@ -33,6 +39,10 @@ struct ScanRun {
   int member;
   Probe probe;
 };
+template <class Io>
+void fields(Io& io, ScanRun& r) {
+  io("dt", r.dt), io("member", r.member), io("probe", r.probe);
+}
 
 struct ScanSettings {
   std::vector<double> grid;          // ascending (stepGrid)
@@ -70,6 +80,11 @@ struct Boundary {
   bool belowGrid() const { return safeDt == 0.0; }
   bool aboveGrid() const { return firstFailureDt == 0.0; }  // safeDt is then the grid's top: a lower bound
 };
+template <class Io>
+void fields(Io& io, Boundary& b) {
+  io("safe_dt", b.safeDt), io("first_failure_dt", b.firstFailureDt), io("first_failure", b.firstFailure);
+  io("survival_above", b.survivalAbove), io("lowest", b.lowest), io("highest", b.highest);
+}
 Boundary boundaryOf(const std::vector<GridSurvival>& survival);
 
 }  // namespace lab

@@ -145,7 +145,7 @@ int runSmallSteps(const LabOptions& options) {
   // 20 is xpbd's default (20 × 1), the equal-cost yardstick below.
   const std::vector<int> budgets = q ? std::vector<int>{1, 4, 20} : std::vector<int>{1, 2, 4, 8, 16, 20, 32, 64};
 
-  Csv csv(options.outDir + "/small_steps.csv",
+  Csv csv(options, "small_steps.csv",
           {"scene", "family", "split", "budget", "substeps", "iterations", "dt", "cpu_per_simulated_second",
            "constraint_error", "energy_loss_per_second", "position_error", "exploded"});
   auto write = [&](const std::string& scene, const std::string& family, const std::string& split, int budget,
@@ -249,7 +249,7 @@ int runSmallSteps(const LabOptions& options) {
   // --- the stiff cloth at 60 Hz ---------------------------------------------
   const int n = q ? 32 : 128;
   const int repeats = q ? 3 : 5;
-  Csv cloth(options.outDir + "/small_steps_cloth.csv",
+  Csv cloth(options, "small_steps_cloth.csv",
             {"method", "substeps", "frame_ms_median", "frame_ms_min", "frame_ms_max", "max_strain"});
   auto medianFrames = [&](scenes::Scene& scene, particles::Integrator& stepper, double dt, int frames) {
     std::vector<double> ms;

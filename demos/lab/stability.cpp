@@ -16,7 +16,7 @@
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab.h"
-#include "lab/parallel.h"
+#include "lab/cells.h"
 
 namespace lab {
 
@@ -118,8 +118,8 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   // The whip's frequency per chain length, over the longest T each is scanned for.
   std::vector<int> whipLengths(lengths);
   std::map<int, double> whipRate;
-  parallelMap<double>(
-      options.jobs, whipLengths.size(),
+  sweep<double>(
+      options, whipLengths.size(),
       [&](std::size_t k) -> std::optional<double> {
         const int cl = whipLengths[k];
         const double rate = fastestLinkRate(cl, sweepLengths.count(cl) ? durations.back() : T, criterion);
@@ -129,11 +129,11 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
       [&](std::size_t k, double& rate) { whipRate[whipLengths[k]] = rate; });
   if (interrupted()) return 130;
 
-  Csv boundaryCsv(options.outDir + "/stability_boundary.csv",
+  Csv boundaryCsv(options, "stability_boundary.csv",
                   {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
                    "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
                    "omega_chain", "omega_whip", "stiffest"});
-  Csv mapCsv(options.outDir + "/stability_map.csv",
+  Csv mapCsv(options, "stability_map.csv",
              {"integrator", "chain_length", "feedback_ks", "duration", "dt", "members_run", "survivors", "survived",
               "failure", "max_relative_stretch", "max_energy_rise"});
   Progress progress("stability", static_cast<long>(cells.size()));
@@ -141,8 +141,8 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   // safe[T][integrator][cl] at the default k_s; safe boundaries at 4 k_s.
   std::map<double, std::map<std::string, std::map<int, Boundary>>> safe;
   std::map<std::string, std::map<int, Boundary>> stiffSafe;
-  parallelMap<std::vector<ScanRun>>(
-      options.jobs, cells.size(),
+  sweep<std::vector<ScanRun>>(
+      options, cells.size(),
       [&](std::size_t k) {
         const Cell& c = cells[k];
         ScanSettings s = scan;
@@ -203,11 +203,11 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   for (const auto& name : integrators)
     for (double dt : tableSteps)
       for (int cl : ladder) ladderCells.push_back({name, dt, cl});
-  Csv ladderCsv(options.outDir + "/table1_runs.csv",
+  Csv ladderCsv(options, "table1_runs.csv",
                 {"integrator", "dt", "chain_length", "survived", "failure", "failure_time"});
   std::map<std::string, std::map<double, std::map<int, bool>>> ladderSurvived;
-  parallelMap<Probe>(
-      options.jobs, ladderCells.size(),
+  sweep<Probe>(
+      options, ladderCells.size(),
       [&](std::size_t k) -> std::optional<Probe> {
         const LadderCell& c = ladderCells[k];
         Probe worst;
@@ -237,7 +237,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
       {"midpoint", {"0.1", "0.1", "0.085"}},
       {"rk4", {"0.25", "0.22", "0.115"}}};
   const std::vector<int> tableLengths = q ? std::vector<int>{2, 6} : std::vector<int>{6, 12, 24};
-  Csv table1Csv(options.outDir + "/table1_max_chain_length.csv",
+  Csv table1Csv(options, "table1_max_chain_length.csv",
                 {"integrator", "dt", "max_chain_length", "first_failing_length", "survival_above"});
   std::vector<std::vector<std::string>> table1, table2, details, vsDuration, feedback, frequency;
   for (const auto& name : integrators) {

@@ -54,7 +54,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
                                                 : std::vector<int>{8, 16, 32, 64, 128, 256};
   Progress progress("timing", static_cast<long>(integrators.size() * (chains.size() + cloths.size() + 2)));
 
-  Csv csv(options.outDir + "/timing.csv",
+  Csv csv(options, "timing.csv",
           {"scene", "integrator", "particles", "constraints", "springs", "dt", "step_seconds", "cg_iterations_per_step"});
   std::map<std::string, std::vector<double>> chainN, chainT, clothN, clothT;
   for (const auto& name : integrators) {
@@ -112,7 +112,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
         {"direct LDLT", SolveMethod::Direct, Preconditioner::None, false},
     };
     const std::vector<int> lengths = options.quick ? std::vector<int>{20} : std::vector<int>{80, 500};
-    Csv solvers(options.outDir + "/timing_solvers.csv",
+    Csv solvers(options, "timing_solvers.csv",
                 {"solver", "chain_length", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
     std::vector<std::vector<std::string>> rows;
     std::map<std::string, std::map<int, double>> solverCost;
@@ -156,7 +156,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
 
   // Growth: fitted log–log slope of cost against size.
   std::vector<std::vector<std::string>> growth;
-  Csv slopes(options.outDir + "/timing_slopes.csv", {"integrator", "chain_slope", "cloth_slope"});
+  Csv slopes(options, "timing_slopes.csv", {"integrator", "chain_slope", "cloth_slope"});
   for (const auto& name : integrators) {
     const double chainSlope = logLogSlope(chainN[name], chainT[name]);
     const double clothSlope = logLogSlope(clothN[name], clothT[name]);
@@ -173,7 +173,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
   const std::map<std::string, std::vector<std::string>> seedTable3 = {
       {"symplectic-euler", {"2", "2"}}, {"midpoint", {"5", "5"}}, {"rk4", {"10", "9"}}};
   std::vector<std::vector<std::string>> table3;
-  Csv table3Csv(options.outDir + "/table3_step_cost.csv", {"integrator", "dt", "step_ms", "cg_iterations_per_step"});
+  Csv table3Csv(options, "table3_step_cost.csv", {"integrator", "dt", "step_ms", "cg_iterations_per_step"});
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
     for (double dt : {0.1, 0.2}) {

@@ -1,0 +1,186 @@
+#include "lab/cells.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <stdexcept>
+
+namespace lab {
+
+Json encode(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return value;
+}
+
+void decode(const Json& j, double& value) {
+  if (j.is_string()) {
+    const std::string text = j.get<std::string>();
+    if (text == "nan") value = std::nan("");
+    else if (text == "inf") value = HUGE_VAL;
+    else if (text == "-inf") value = -HUGE_VAL;
+    else throw std::invalid_argument("not a number: '" + text + "'");
+    return;
+  }
+  value = j.get<double>();
+}
+
+std::shared_ptr<Cells> allCells() { return std::make_shared<Cells>(); }
+
+ShardSpec parseShard(const std::string& text) {
+  const auto bad = [&] {
+    return std::invalid_argument("--shard: expected K/N with 1 <= K <= N (shard K of N), got '" + text + "'");
+  };
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) throw bad();
+  const auto number = [&](std::size_t from, std::size_t to) {
+    int value = 0;
+    const char* first = text.data() + from;
+    const char* last = text.data() + to;
+    if (first == last || *first == '0' || *first == '+') throw bad();
+    const auto [end, error] = std::from_chars(first, last, value);
+    if (error != std::errc() || end != last) throw bad();
+    return value;
+  };
+  ShardSpec spec;
+  spec.index = number(0, slash);
+  spec.count = number(slash + 1, text.size());
+  if (spec.index < 1 || spec.count < 1 || spec.index > spec.count) throw bad();
+  return spec;
+}
+
+Cells::Cells(ShardSpec spec, const std::string& dir) : mode_(Mode::Shard), spec_(spec), dir_(dir) {
+  std::filesystem::create_directories(dir_);
+  std::filesystem::remove(dir_ + "/" + kManifestFile);
+  cellsFile_ = std::make_unique<scenes::OutputFile>(dir_ + "/" + kCellsFile, "the shard's cells");
+}
+
+Cells::Cells(std::map<std::size_t, Json> recorded) : mode_(Mode::Replay), recorded_(std::move(recorded)) {}
+
+std::size_t Cells::reserve(std::size_t count) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::size_t first = next_;
+  next_ += count;
+  return first;
+}
+
+std::optional<Json> Cells::result(std::size_t index, const std::function<std::optional<Json>()>& compute) {
+  if (mode_ == Mode::Replay) {
+    const auto found = recorded_.find(index);
+    if (found == recorded_.end())
+      throw std::invalid_argument("merge: the shards hold no cell " + std::to_string(index) +
+                                  " (made by a different version of the experiment?)");
+    return found->second;
+  }
+  if (mode_ == Mode::Shard && static_cast<long>(index % spec_.count) != spec_.index - 1) return std::nullopt;
+  const std::optional<Json> computed = compute();
+  if (!computed) return std::nullopt;
+  // The same text a shard records and a merge reads back, in every mode.
+  const std::string text = computed->dump();
+  if (mode_ == Mode::Shard) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cellsFile_->stream() << Json{{"cell", index}, {"result", Json::parse(text)}}.dump() << '\n' << std::flush;
+    cellsFile_->check();
+    ++owned_;
+  }
+  return Json::parse(text);
+}
+
+void Cells::writeManifest(const std::string& experiment, const std::vector<std::string>& arguments) {
+  if (mode_ != Mode::Shard) return;
+  cellsFile_->close();
+  const Json manifest = {{"experiment", experiment},
+                         {"arguments", arguments},
+                         {"shard", spec_.index},
+                         {"shards", spec_.count},
+                         {"cells", next_},
+                         {"owned", owned_}};
+  scenes::OutputFile out(dir_ + "/" + kManifestFile, "the shard manifest");
+  out.stream() << manifest.dump(2) << '\n';
+  out.close();
+}
+
+namespace {
+
+Json readJson(const std::string& path, const std::string& what) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("merge: no " + what + " '" + path + "' (not a shard, or its run did not finish)");
+  try {
+    return Json::parse(in);
+  } catch (const Json::exception&) {
+    throw std::invalid_argument("merge: malformed " + what + " '" + path + "'");
+  }
+}
+
+}  // namespace
+
+ShardSet readShards(const std::vector<std::string>& dirs) {
+  if (dirs.empty()) throw std::invalid_argument("merge: no shard directories given");
+  ShardSet set;
+  std::map<int, std::string> seen;  // shard index → its directory
+  int shards = 0;
+  for (const std::string& dir : dirs) {
+    const Json m = readJson(dir + "/" + kManifestFile, "shard manifest");
+    std::string experiment;
+    std::vector<std::string> arguments;
+    int index = 0, count = 0;
+    std::size_t cells = 0;
+    long owned = 0;
+    try {
+      experiment = m.at("experiment").get<std::string>();
+      arguments = m.at("arguments").get<std::vector<std::string>>();
+      index = m.at("shard").get<int>();
+      count = m.at("shards").get<int>();
+      cells = m.at("cells").get<std::size_t>();
+      owned = m.at("owned").get<long>();
+    } catch (const Json::exception&) {
+      throw std::invalid_argument("merge: malformed shard manifest '" + dir + "/" + kManifestFile + "'");
+    }
+    const std::string name = "shard " + std::to_string(index) + "/" + std::to_string(count) + " in '" + dir + "'";
+    if (seen.empty()) {
+      set.experiment = experiment, set.arguments = arguments, set.cellCount = cells, shards = count;
+    } else if (experiment != set.experiment || arguments != set.arguments) {
+      throw std::invalid_argument("merge: " + name + " ran a different experiment or options than '" +
+                                  seen.begin()->second + "'");
+    } else if (count != shards || cells != set.cellCount) {
+      throw std::invalid_argument("merge: " + name + " has " + std::to_string(cells) + " cells in " +
+                                  std::to_string(count) + " shards, '" + seen.begin()->second + "' " +
+                                  std::to_string(set.cellCount) + " in " + std::to_string(shards));
+    }
+    if (index < 1 || index > count) throw std::invalid_argument("merge: " + name + " is not a shard of " + std::to_string(count));
+    if (!seen.emplace(index, dir).second)
+      throw std::invalid_argument("merge: shard " + std::to_string(index) + "/" + std::to_string(count) +
+                                  " given twice ('" + seen[index] + "', '" + dir + "')");
+    std::ifstream in(dir + "/" + kCellsFile);
+    if (!in) throw std::invalid_argument("merge: " + name + " has no " + kCellsFile);
+    long read = 0;
+    std::string line;
+    while (std::getline(in, line)) {
+      std::size_t cell = 0;
+      Json result;
+      try {
+        const Json row = Json::parse(line);
+        cell = row.at("cell").get<std::size_t>();
+        result = row.at("result");
+      } catch (const Json::exception&) {
+        throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + dir + "/" +
+                                    kCellsFile + "'");
+      }
+      if (cell >= cells || static_cast<int>(cell % count) != index - 1 || !set.cells.emplace(cell, result).second)
+        throw std::invalid_argument("merge: " + name + " holds cell " + std::to_string(cell) + ", not one of its own");
+      ++read;
+    }
+    if (read != owned)
+      throw std::invalid_argument("merge: " + name + " holds " + std::to_string(read) + " cells, its manifest says " +
+                                  std::to_string(owned));
+  }
+  for (int k = 1; k <= shards; ++k)
+    if (!seen.count(k))
+      throw std::invalid_argument("merge: incomplete shard set: shard " + std::to_string(k) + "/" +
+                                  std::to_string(shards) + " is missing");
+  return set;
+}
+
+}  // namespace lab

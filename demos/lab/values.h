@@ -1,0 +1,18 @@
+#pragma once
+// DIR/values.csv: the values the report quotes, one `key,value` row each
+// under the header `key,value` (the value is the rest of the row, commas and
+// all). The experiments record them (recordValue), scripts/make-report.sh
+// appends the ones it measures itself, and render-report reads them back:
+// this is the one reader and the one writer.
+#include <map>
+#include <string>
+
+namespace lab {
+
+// Every value in DIR/values.csv (none when the file does not exist).
+std::map<std::string, std::string> readValues(const std::string& dir);
+
+// Sets one value in DIR/values.csv, keeping the others (rows sorted by key).
+void writeValue(const std::string& dir, const std::string& key, const std::string& value);
+
+}  // namespace lab
