@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "lab/advise.h"
+#include "lab/cells.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
 
@@ -26,6 +27,29 @@ struct Problem {
   bool closedForm = false;    // the oscillator: the closed form is the reference
   double referenceTolerance = 1e-11;
 };
+
+// What the tables need of a problem's reference (its trajectory stays in the
+// processes that measure against it).
+struct ReferenceSummary {
+  double agreement = 0.0;
+  double size = 0.0;
+  std::string description;
+};
+template <class Io>
+void fields(Io& io, ReferenceSummary& r) {
+  io("agreement", r.agreement), io("size", r.size), io("description", r.description);
+}
+
+// One point of the work–precision sweep: the run against the reference and
+// the CPU time per simulated second of its timed repeats.
+struct Point {
+  Candidate candidate;
+  std::vector<double> perSecond;
+};
+template <class Io>
+void fields(Io& io, Point& p) {
+  io("candidate", p.candidate), io("per_second", p.perSecond);
+}
 
 bool usesTolerance(const std::string& integrator) {
   for (const auto& info : particles::integratorTable())
@@ -78,11 +102,21 @@ int runAccuracy(const LabOptions& options) {
     scenes::Scene first = build();
     const int particles = first.system->size();
     const double scale = releasableEnergy(*first.system);
-    const Reference reference = makeReference(build, p.horizon, first.dt, p.referenceTolerance, closedForm);
-    const double size = reference.trajectory.size();
+    // Computed at most once here, by whichever of the problem's cells needs it first.
+    std::optional<Reference> computed;
+    const auto reference = [&]() -> const Reference& {
+      if (!computed) computed = makeReference(build, p.horizon, first.dt, p.referenceTolerance, closedForm);
+      return *computed;
+    };
+    const ReferenceSummary summary = cell<ReferenceSummary>(options, [&]() -> std::optional<ReferenceSummary> {
+                                       const Reference& r = reference();
+                                       if (interrupted()) return std::nullopt;
+                                       return ReferenceSummary{r.agreement, r.trajectory.size(), r.description};
+                                     }).value_or(ReferenceSummary{});
+    const double size = summary.size;
     references.push_back({p.label, std::to_string(particles), general(p.horizon), general(size),
-                          reference.description});
-    recordValue(options, "accuracy.reference_agreement." + p.label, general(reference.agreement, 2));
+                          summary.description});
+    recordValue(options, "accuracy.reference_agreement." + p.label, general(summary.agreement, 2));
     recordValue(options, "accuracy.horizon." + p.label, general(p.horizon));
 
     std::vector<std::string> row{p.label + " (" + std::to_string(particles) + " particles, T = " + general(p.horizon) +
@@ -96,17 +130,25 @@ int runAccuracy(const LabOptions& options) {
         const double wanted = adaptive ? outputInterval : knob;
         const double dt = p.horizon / std::max(1.0, std::round(p.horizon / wanted));
         const double tolerance = adaptive ? knob : 0.0;
-        const Candidate c = measureRun(build, reference.trajectory, name, dt, tolerance, p.horizon, failure, scale);
-        std::vector<double> perSecond;
-        for (int r = 0; r < repeats && c.survived && !interrupted(); ++r) {
-          scenes::Scene scene = build();
-          particles::IntegratorSettings settings;
-          if (adaptive) settings.tolerance = tolerance;
-          auto stepper = particles::makeIntegrator(name, settings);
-          perSecond.push_back(simulate(scene, *stepper, dt, p.horizon, failure).seconds / p.horizon);
-        }
+        const auto point = cell<Point>(options, [&]() -> std::optional<Point> {
+          Point out;
+          out.candidate = measureRun(build, reference().trajectory, name, dt, tolerance, p.horizon, failure, scale);
+          for (int r = 0; r < repeats && out.candidate.survived && !interrupted(); ++r) {
+            scenes::Scene scene = build();
+            particles::IntegratorSettings settings;
+            if (adaptive) settings.tolerance = tolerance;
+            auto stepper = particles::makeIntegrator(name, settings);
+            out.perSecond.push_back(simulate(scene, *stepper, dt, p.horizon, failure).seconds / p.horizon);
+          }
+          if (interrupted()) return std::nullopt;
+          if (out.perSecond.empty()) out.perSecond.push_back(out.candidate.seconds / p.horizon);
+          return out;
+        });
         if (interrupted()) break;
-        if (perSecond.empty()) perSecond.push_back(c.seconds / p.horizon);
+        progress.tick();
+        if (!point) continue;  // another shard's cell
+        const Candidate& c = point->candidate;
+        const std::vector<double>& perSecond = point->perSecond;
         csv << p.label << name << dt << tolerance << c.maxError << median(perSecond) << c.errorAtT << c.energyError
             << c.constraintDrift << *std::min_element(perSecond.begin(), perSecond.end())
             << *std::max_element(perSecond.begin(), perSecond.end()) << (c.survived ? 1L : 0L)
@@ -115,10 +157,9 @@ int runAccuracy(const LabOptions& options) {
         // The order is read where the error is asymptotic (below a tenth of the
         // scene) and above the reference's uncertainty, bounded by its
         // distance from the check run at 100× its tolerance.
-        const double floor = p.closedForm ? 1e-13 : reference.agreement;
+        const double floor = p.closedForm ? 1e-13 : summary.agreement;
         if (c.survived && c.maxError < 0.1 * size && c.maxError > floor)
           knobs.push_back(adaptive ? knob : dt), errors.push_back(c.maxError);
-        progress.tick();
       }
       // An interrupted sweep is missing points: no slope is derived from it.
       if (interrupted()) break;

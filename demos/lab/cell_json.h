@@ -44,6 +44,15 @@ template <class T>
 auto decode(const Json& j, T& value) -> decltype(fields(std::declval<FieldDecoder&>(), value), void());
 
 template <class T>
+Json encode(const std::vector<T>& values);
+template <class T>
+void decode(const Json& j, std::vector<T>& values);
+template <class A, class B>
+Json encode(const std::pair<A, B>& value);
+template <class A, class B>
+void decode(const Json& j, std::pair<A, B>& value);
+
+template <class T>
 Json encode(const std::vector<T>& values) {
   Json j = Json::array();
   for (const T& v : values) j.push_back(encode(v));

@@ -53,8 +53,12 @@ int runClaims(const LabOptions& options) {
     for (const std::string name : {"midpoint", "rk4"}) {
       double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
       for (double dt : {0.005, 0.01, 0.02, 0.05, 0.1}) {
-        scenes::Scene chain = buildChain({chainLength});
-        const StepCost cost = measureStepCost(chain, name, dt, timing);
+        const auto measured = cell<StepCost>(options, [&]() -> std::optional<StepCost> {
+          scenes::Scene chain = buildChain({chainLength});
+          return measureStepCost(chain, name, dt, timing);
+        });
+        if (!measured) continue;  // another shard's cell
+        const StepCost& cost = *measured;
         csv << name << dt << cost.seconds << cost.cgIterations;
         csv.endRow();
         if (std::isfinite(cost.seconds)) lo = std::min(lo, cost.seconds), hi = std::max(hi, cost.seconds);
@@ -72,9 +76,13 @@ int runClaims(const LabOptions& options) {
 
   // 2. "RK4 is about twice as slow as midpoint, but allows more than twice the step."
   {
-    scenes::Scene a = buildChain({chainLength}), b = buildChain({chainLength});
-    const double rk4 = measureStepCost(a, "rk4", a.dt, timing).seconds;
-    const double mid = measureStepCost(b, "midpoint", b.dt, timing).seconds;
+    // Both step times measured in one cell, so their ratio is taken in one run.
+    const auto times = cell<std::pair<double, double>>(options, [&]() -> std::optional<std::pair<double, double>> {
+      scenes::Scene a = buildChain({chainLength}), b = buildChain({chainLength});
+      return std::pair{measureStepCost(a, "rk4", a.dt, timing).seconds,
+                       measureStepCost(b, "midpoint", b.dt, timing).seconds};
+    });
+    const double rk4 = times ? times->first : std::nan(""), mid = times ? times->second : std::nan("");
     const int cl = q ? 6 : 24;
     const double duration = T;
     ScanSettings scan;
@@ -110,20 +118,27 @@ int runClaims(const LabOptions& options) {
     const std::vector<int> lengths = q ? std::vector<int>{5, 10, 20} : std::vector<int>{10, 20, 40, 80, 160, 320, 500};
     std::vector<double> m, plain;
     for (int cl : lengths) {
-      scenes::Scene chain = buildChain({cl});
-      auto& settings = chain.system->solver().settings;
-      settings.method = particles::SolveMethod::ConjugateGradient;
-      settings.warmStart = false;
-      settings.preconditioner = particles::Preconditioner::None;
-      const StepCost plainCost = measureStepCost(chain, "rk4", chain.dt, {1, 5});
-      scenes::Scene tuned = buildChain({cl});
-      tuned.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
-      const StepCost defaultCost = measureStepCost(tuned, "rk4", tuned.dt, {1, 5});
-      const double constraints = static_cast<double>(chain.system->constraints().size());
-      csv << constraints << plainCost.cgIterationsPerSolve() << defaultCost.cgIterationsPerSolve();
+      // (constraints, plain CG iterations per solve, Jacobi warm-started CG iterations per solve)
+      using Counts = std::pair<double, std::pair<double, double>>;
+      const auto counts = cell<Counts>(options, [&]() -> std::optional<Counts> {
+        scenes::Scene chain = buildChain({cl});
+        auto& settings = chain.system->solver().settings;
+        settings.method = particles::SolveMethod::ConjugateGradient;
+        settings.warmStart = false;
+        settings.preconditioner = particles::Preconditioner::None;
+        const StepCost plainCost = measureStepCost(chain, "rk4", chain.dt, {1, 5});
+        scenes::Scene tuned = buildChain({cl});
+        tuned.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
+        const StepCost defaultCost = measureStepCost(tuned, "rk4", tuned.dt, {1, 5});
+        progress.tick();
+        return Counts{static_cast<double>(chain.system->constraints().size()),
+                      {plainCost.cgIterationsPerSolve(), defaultCost.cgIterationsPerSolve()}};
+      });
+      if (!counts) continue;  // another shard's cell
+      const auto& [constraints, perSolve] = *counts;
+      csv << constraints << perSolve.first << perSolve.second;
       csv.endRow();
-      m.push_back(constraints), plain.push_back(plainCost.cgIterationsPerSolve());
-      progress.tick();
+      m.push_back(constraints), plain.push_back(perSolve.first);
     }
     if (interrupted()) return 130;
     const double slope = logLogSlope(m, plain);
@@ -243,19 +258,25 @@ int runClaims(const LabOptions& options) {
       const int corner = (side - 1) * side;
       cloth.system->addForce(std::make_unique<particles::MouseSpringForce>(
           corner, cloth.system->position(corner) + Eigen::Vector2d(-0.3, 0.0), 1.0, 0.5));
-      auto stepper = particles::makeIntegrator("rk4");
-      double sum = 0.0, worst = 0.0;
-      int samples = 0;
-      const RunResult r = simulate(cloth, *stepper, cloth.dt, T, criterion, [&](const particles::ParticleSystem& s) {
-        const auto [m, w] = cellShear(s, side, side);
-        sum += m, worst = std::max(worst, w), ++samples;
-        return true;
+      // (mean, largest) cell shear over the run.
+      const auto shear = cell<std::pair<double, double>>(options, [&]() -> std::optional<std::pair<double, double>> {
+        auto stepper = particles::makeIntegrator("rk4");
+        double sum = 0.0, worst = 0.0;
+        int samples = 0;
+        const RunResult r = simulate(cloth, *stepper, cloth.dt, T, criterion, [&](const particles::ParticleSystem& s) {
+          const auto [m, w] = cellShear(s, side, side);
+          sum += m, worst = std::max(worst, w), ++samples;
+          return true;
+        });
+        progress.tick();
+        if (r.cutShort) return std::nullopt;
+        return std::pair{samples ? sum / samples : 0.0, worst};
       });
-      if (r.cutShort) return 130;
-      mean[k] = samples ? sum / samples : 0.0;
-      csv << links << mean[k] << worst;
+      if (interrupted()) return 130;
+      if (!shear) continue;  // another shard's cell
+      mean[k] = shear->first;
+      csv << links << mean[k] << shear->second;
       csv.endRow();
-      progress.tick();
     }
     recordValue(options, "claims.shear_4way", fixed(mean[0], 2));
     recordValue(options, "claims.shear_8way", fixed(mean[1], 2));

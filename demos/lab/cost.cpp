@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "lab/advise.h"
+#include "lab/cells.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
 
@@ -25,6 +26,35 @@ struct CostScene {
 
 // A budget is only measurable where the reference is much better than it.
 constexpr double kReferenceMargin = 10.0;
+
+// What the tables need of one integrator's scan.
+struct ScanSummary {
+  std::string integrator;
+  bool adaptive = false;
+  double safeDt = 0.0, firstFailureDt = 0.0;
+  long runs = 0;
+};
+template <class Io>
+void fields(Io& io, ScanSummary& s) {
+  io("integrator", s.integrator), io("adaptive", s.adaptive), io("safe_dt", s.safeDt);
+  io("first_failure_dt", s.firstFailureDt), io("runs", s.runs);
+}
+
+// One scene's cell: its survey and the picks per budget (none where the
+// reference is not converged enough to judge the budget).
+struct Surveyed {
+  int particles = 0;
+  double size = 0.0, referenceAgreement = 0.0;
+  std::vector<ScanSummary> integrators;
+  std::vector<std::vector<Pick>> picks;  // per budget
+};
+template <class Io>
+void fields(Io& io, Surveyed& s) {
+  io("particles", s.particles), io("size", s.size), io("reference_agreement", s.referenceAgreement);
+  io("integrators", s.integrators), io("picks", s.picks);
+}
+
+bool measurable(double budget, double referenceAgreement) { return !(budget < kReferenceMargin * referenceAgreement); }
 
 }  // namespace
 
@@ -76,26 +106,43 @@ int runCost(const LabOptions& options) {
     settings.targetError = budgets.back();
     ClosedForm closedForm;
     if (cs.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(cs.params, T, h, scenes::kSeedPreset); };
-    const Survey survey = surveyScene(build, settings, closedForm);
+    const auto surveyed = cell<Surveyed>(options, [&]() -> std::optional<Surveyed> {
+      const Survey survey = surveyScene(build, settings, closedForm);
+      if (interrupted()) return std::nullopt;
+      Surveyed out{survey.particles, survey.size, survey.referenceAgreement, {}, {}};
+      for (const auto& scan : survey.integrators)
+        out.integrators.push_back({scan.integrator, scan.adaptive, scan.safeDt, scan.firstFailureDt,
+                                   static_cast<long>(scan.scanned.size())});
+      for (double relative : budgets)
+        out.picks.push_back(measurable(relative * survey.size, survey.referenceAgreement)
+                                ? pickPerIntegrator(build, survey, settings, relative * survey.size)
+                                : std::vector<Pick>{});
+      if (interrupted()) return std::nullopt;
+      return out;
+    });
     if (interrupted()) break;
+    progress.tick();
+    if (!surveyed) continue;  // another shard's cell
+    const Surveyed& survey = *surveyed;
     for (const auto& scan : survey.integrators) {
       safeCsv << cs.label << cs.horizon << scan.integrator << (scan.adaptive ? std::nan("") : scan.safeDt)
-              << scan.firstFailureDt << static_cast<long>(scan.scanned.size());
+              << scan.firstFailureDt << scan.runs;
       safeCsv.endRow();
     }
     const std::string label = cs.label + " (" + std::to_string(survey.particles) + " particles, T = " +
                               general(cs.horizon) + " s)";
-    for (double relative : budgets) {
+    for (std::size_t b = 0; b < budgets.size(); ++b) {
+      const double relative = budgets[b];
       const double budget = relative * survey.size;
       std::vector<std::string> row{label, general(relative) + " (" + general(budget, 2) + ")"};
-      if (budget < kReferenceMargin * survey.referenceAgreement) {
+      if (!measurable(budget, survey.referenceAgreement)) {
         row.insert(row.end(), {"reference not converged (tolerances differ by " +
                                    general(survey.referenceAgreement, 2) + ")",
                                "–", "–", "–"});
         table.push_back(row);
         continue;
       }
-      const auto picks = pickPerIntegrator(build, survey, settings, budget);
+      const std::vector<Pick>& picks = survey.picks[b];
       for (std::size_t k = 0; k < picks.size(); ++k) {
         if (!picks[k].found) continue;
         const Candidate& c = picks[k].candidate;
@@ -118,7 +165,6 @@ int runCost(const LabOptions& options) {
       }
       table.push_back(row);
     }
-    progress.tick();
   }
   writeTable(options, "cost_of_accuracy",
              "The cost of accuracy: cheapest integrator and dt whose max particle position error over [0, T] "

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lab/cells.h"
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
@@ -20,6 +21,27 @@ struct LongRun {
   std::map<std::string, std::string> params;
   double dt;  // common to every integrator: inside every scheme's safe range
 };
+
+// One integrator's run: (E − E(0)) / E_s sampled against time.
+struct EnergyRun {
+  std::vector<std::pair<double, double>> samples;  // (t, energy change), every `every` s
+  bool failed = false;
+  double time = 0.0;  // reached
+  double last = 0.0;  // the energy change after the last step
+};
+template <class Io>
+void fields(Io& io, EnergyRun& r) {
+  io("samples", r.samples), io("failed", r.failed), io("time", r.time), io("last", r.last);
+}
+
+// Implicit Euler at one dt: the pendulum's swing energy left and lost per period, the 6-chain's loss.
+struct Damping {
+  double dt = 0.0, left = 0.0, perPeriod = 0.0, chain = 0.0;
+};
+template <class Io>
+void fields(Io& io, Damping& d) {
+  io("dt", d.dt), io("left", d.left), io("per_period", d.perPeriod), io("chain", d.chain);
+}
 
 }  // namespace
 
@@ -45,26 +67,34 @@ int runLongtime(const LabOptions& options) {
     std::vector<std::string> row{run.label + " (dt = " + general(run.dt) + " s)"};
     for (const auto& name : integrators) {
       if (interrupted()) break;
-      scenes::Scene scene = buildLabScene(run.scene, run.params);
-      const double scale = releasableEnergy(*scene.system), e0 = scene.system->totalEnergy();
-      auto stepper = particles::makeIntegrator(name);
-      const long stride = std::max(1L, std::lround(every / run.dt));
-      long k = 0;
-      double last = 0.0;
+      const auto result = cell<EnergyRun>(options, [&]() -> std::optional<EnergyRun> {
+        scenes::Scene scene = buildLabScene(run.scene, run.params);
+        const double scale = releasableEnergy(*scene.system), e0 = scene.system->totalEnergy();
+        auto stepper = particles::makeIntegrator(name);
+        const long stride = std::max(1L, std::lround(every / run.dt));
+        long k = 0;
+        EnergyRun out;
+        const RunResult r = simulate(scene, *stepper, run.dt, horizon, drift, [&](const particles::ParticleSystem& s) {
+          out.last = (s.totalEnergy() - e0) / scale;
+          if (++k % stride == 0) out.samples.push_back({s.time(), out.last});
+          return true;
+        });
+        progress.tick();
+        if (r.cutShort) return std::nullopt;
+        out.failed = r.failed, out.time = r.time;
+        return out;
+      });
+      if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
       energy << run.label << name << run.dt << 0.0 << 0.0;
       energy.endRow();
-      const RunResult r = simulate(scene, *stepper, run.dt, horizon, drift, [&](const particles::ParticleSystem& s) {
-        last = (s.totalEnergy() - e0) / scale;
-        if (++k % stride == 0) {
-          energy << run.label << name << run.dt << s.time() << last;
-          energy.endRow();
-        }
-        return true;
-      });
-      row.push_back(r.failed ? "non-finite at t = " + general(r.time, 3)
-                               : std::abs(last) > 1e3 ? "diverged (" + general(last, 2) + ")" : general(last, 2));
+      for (const auto& [t, change] : result->samples) {
+        energy << run.label << name << run.dt << t << change;
+        energy.endRow();
+      }
+      const double last = result->last;
+      row.push_back(result->failed ? "non-finite at t = " + general(result->time, 3)
+                                   : std::abs(last) > 1e3 ? "diverged (" + general(last, 2) + ")" : general(last, 2));
       recordValue(options, "longtime.energy_change." + run.label + "." + name, general(last, 2));
-      progress.tick();
     }
     table.push_back(row);
   }
@@ -96,20 +126,26 @@ int runLongtime(const LabOptions& options) {
   std::vector<std::vector<std::string>> lossRows;
   for (double wanted : implicitSteps) {
     if (interrupted()) break;
-    const double dt = T / std::round(T / wanted);
-    scenes::Scene scene = buildLabScene("pendulum");
-    const double swing0 = scene.system->totalEnergy() - eBottom;
-    auto stepper = particles::makeIntegrator("implicit-euler");
-    simulate(scene, *stepper, dt, T, drift);
-    if (interrupted()) break;
-    const double left = (scene.system->totalEnergy() - eBottom) / swing0;
-    const double perPeriod = 1.0 - std::pow(std::max(left, 0.0), period / T);
-    const double chain = chainLoss(dt);
-    loss << dt << T / period << left << perPeriod << chain;
+    const auto result = cell<Damping>(options, [&]() -> std::optional<Damping> {
+      Damping d;
+      d.dt = T / std::round(T / wanted);
+      scenes::Scene scene = buildLabScene("pendulum");
+      const double swing0 = scene.system->totalEnergy() - eBottom;
+      auto stepper = particles::makeIntegrator("implicit-euler");
+      simulate(scene, *stepper, d.dt, T, drift);
+      if (interrupted()) return std::nullopt;
+      d.left = (scene.system->totalEnergy() - eBottom) / swing0;
+      d.perPeriod = 1.0 - std::pow(std::max(d.left, 0.0), period / T);
+      d.chain = chainLoss(d.dt);
+      progress.tick();
+      return d;
+    });
+    if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
+    const Damping& d = *result;
+    loss << d.dt << T / period << d.left << d.perPeriod << d.chain;
     loss.endRow();
-    lossRows.push_back({general(dt), general(100 * left, 3) + "%", general(100 * perPeriod, 2) + "%",
-                        general(100 * chain, 2) + "%"});
-    progress.tick();
+    lossRows.push_back({general(d.dt), general(100 * d.left, 3) + "%", general(100 * d.perPeriod, 2) + "%",
+                        general(100 * d.chain, 2) + "%"});
   }
   writeTable(options, "longtime_implicit_loss",
              "Implicit Euler on the pendulum (period P = " + fixed(period, 2) + " s) over " + general(T / period) +

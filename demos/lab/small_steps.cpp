@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lab/cells.h"
 #include "lab/experiments.h"
 #include "lab/failure.h"
 #include "lab/lab_scene.h"
@@ -56,6 +57,23 @@ struct Outcome {
   double positionError = 0.0;    // max_i |x_i(T) − x_ref,i(T)| / D
   Eigen::VectorXd x;
 };
+// The fields a cell's result keeps (lab/cell_json.h): x only feeds the runs
+// measured against a reference, in the process that computed it.
+template <class Io>
+void fields(Io& io, Outcome& o) {
+  io("exploded", o.exploded), io("cpu_per_second", o.cpuPerSecond), io("constraint_error", o.constraintError);
+  io("energy_loss", o.energyLoss), io("position_error", o.positionError);
+}
+
+// Frame times (ms) of the stiff cloth and the worst strain over the run.
+struct Frames {
+  std::vector<double> ms;
+  double worst = 0.0;
+};
+template <class Io>
+void fields(Io& io, Frames& f) {
+  io("ms", f.ms), io("worst", f.worst);
+}
 
 Outcome runOne(const Problem& p, const std::string& integrator, const particles::IntegratorSettings& settings,
                double dt, const Eigen::VectorXd* reference) {
@@ -162,10 +180,22 @@ int runSmallSteps(const LabOptions& options) {
   bool substepsWinEverywhere = true, xpbdBeatsImplicitEverywhere = true;
   for (const Problem& p : problems) {
     const particles::IntegratorSettings defaults;
-    const Outcome reference = runOne(p, "rk4", defaults, p.referenceDt, nullptr);
-    progress.tick();
+    // The converged reference: its outcome is a cell; its positions at T are
+    // computed at most once here, by the first of the problem's cells that needs them.
+    std::optional<Outcome> computed;
+    const auto referenceX = [&]() -> const Eigen::VectorXd* {
+      if (!computed) computed = runOne(p, "rk4", defaults, p.referenceDt, nullptr);
+      return &computed->x;
+    };
+    const auto referenceCell = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
+      referenceX();
+      progress.tick();
+      if (interrupted()) return std::nullopt;
+      return *computed;
+    });
     if (interrupted()) return 130;
-    write(p.name, "reference", "-", 0, 1, 1, p.referenceDt, reference);
+    const Outcome reference = referenceCell.value_or(Outcome{});
+    if (referenceCell) write(p.name, "reference", "-", 0, 1, 1, p.referenceDt, reference);
     std::map<std::string, Outcome> atLargest;
     Outcome xpbdDefault;
     const int largest = budgets.back();
@@ -174,9 +204,15 @@ int runSmallSteps(const LabOptions& options) {
         particles::IntegratorSettings settings;
         settings.substeps = si.first;
         settings.iterations = si.second;
-        const Outcome o = runOne(p, "xpbd", settings, frame, &reference.x);
-        progress.tick();
+        const auto run = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
+          const Outcome o = runOne(p, "xpbd", settings, frame, referenceX());
+          progress.tick();
+          if (interrupted()) return std::nullopt;
+          return o;
+        });
         if (interrupted()) return 130;
+        if (!run) continue;  // another shard's cell
+        const Outcome& o = *run;
         write(p.name, "xpbd", split, n, si.first, si.second, frame, o);
         if (n == largest) atLargest[split] = o;
         if (si.first == defaults.substeps && si.second == defaults.iterations) xpbdDefault = o;
@@ -208,9 +244,15 @@ int runSmallSteps(const LabOptions& options) {
       double chosenDt = 0.0;
       bool any = false;
       for (double dt : stepsList) {
-        const Outcome o = runOne(p, family, defaults, dt, &reference.x);
-        progress.tick();
+        const auto run = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
+          const Outcome o = runOne(p, family, defaults, dt, referenceX());
+          progress.tick();
+          if (interrupted()) return std::nullopt;
+          return o;
+        });
         if (interrupted()) return 130;
+        if (!run) continue;  // another shard's cell
+        const Outcome& o = *run;
         write(p.name, family, "-", 0, 1, 1, dt, o);
         const bool affordable = o.cpuPerSecond <= budget;
         if (!any || (affordable && (chosen.cpuPerSecond > budget || dt < chosenDt)) ||
@@ -260,28 +302,40 @@ int runSmallSteps(const LabOptions& options) {
     }
     return ms;
   };
-  {
-    scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(n));
-    auto rk4 = particles::makeIntegrator("rk4");
-    const std::vector<double> ms = medianFrames(scene, *rk4, 2e-4, 2 * repeats);
+  if (const auto frames = cell<Frames>(options, [&]() -> std::optional<Frames> {
+        scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(n));
+        auto rk4 = particles::makeIntegrator("rk4");
+        Frames out;
+        out.ms = medianFrames(scene, *rk4, 2e-4, 2 * repeats);
+        out.worst = worstViolation(*scene.system);
+        return out;
+      })) {
+    const std::vector<double>& ms = frames->ms;
     cloth << std::string("rk4-step") << 0 << median(ms) << *std::min_element(ms.begin(), ms.end())
-          << *std::max_element(ms.begin(), ms.end()) << worstViolation(*scene.system);
+          << *std::max_element(ms.begin(), ms.end()) << frames->worst;
     cloth.endRow();
     recordValue(options, "small_steps.cloth.rk4_step_ms", fixed(median(ms), 2));
   }
   for (int substeps : q ? std::vector<int>{10, 40} : std::vector<int>{10, 20, 30, 40, 60}) {
-    scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(n));
-    particles::IntegratorSettings settings;
-    settings.substeps = substeps;
-    auto xpbd = particles::makeIntegrator("xpbd", settings);
-    double worst = 0.0;
-    for (int k = 0; k < (q ? 10 : 60) && !interrupted(); ++k) {  // one simulated second: the cloth hangs loaded
-      scene.system->step(*xpbd, frame);
-      worst = std::max(worst, worstViolation(*scene.system));
-    }
-    const std::vector<double> ms = medianFrames(scene, *xpbd, frame, repeats);
-    worst = std::max(worst, worstViolation(*scene.system));
+    const auto frames = cell<Frames>(options, [&]() -> std::optional<Frames> {
+      scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(n));
+      particles::IntegratorSettings settings;
+      settings.substeps = substeps;
+      auto xpbd = particles::makeIntegrator("xpbd", settings);
+      Frames out;
+      for (int k = 0; k < (q ? 10 : 60) && !interrupted(); ++k) {  // one simulated second: the cloth hangs loaded
+        scene.system->step(*xpbd, frame);
+        out.worst = std::max(out.worst, worstViolation(*scene.system));
+      }
+      out.ms = medianFrames(scene, *xpbd, frame, repeats);
+      out.worst = std::max(out.worst, worstViolation(*scene.system));
+      if (interrupted()) return std::nullopt;
+      return out;
+    });
     if (interrupted()) return 130;
+    if (!frames) continue;  // another shard's cell
+    const std::vector<double>& ms = frames->ms;
+    const double worst = frames->worst;
     cloth << std::string("xpbd") << substeps << median(ms) << *std::min_element(ms.begin(), ms.end())
           << *std::max_element(ms.begin(), ms.end()) << worst;
     cloth.endRow();

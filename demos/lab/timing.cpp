@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "lab/cells.h"
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
@@ -45,6 +46,32 @@ StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, do
   return {median(perRepeat), iterations / steps, solves / steps};
 }
 
+namespace {
+
+// One timed scene: its step cost and what it holds.
+struct Timed {
+  StepCost cost;
+  long particles = 0, constraints = 0, forces = 0;
+  double dt = 0.0;
+};
+template <class Io>
+void fields(Io& io, Timed& t) {
+  io("cost", t.cost), io("particles", t.particles), io("constraints", t.constraints), io("forces", t.forces);
+  io("dt", t.dt);
+}
+
+Timed timeScene(scenes::Scene& scene, const std::string& integrator, const TimingOptions& timing) {
+  Timed t;
+  t.cost = measureStepCost(scene, integrator, scene.dt, timing);
+  t.particles = scene.system->size();
+  t.constraints = static_cast<long>(scene.system->constraints().size());
+  t.forces = static_cast<long>(scene.system->forceObjects().size());
+  t.dt = scene.dt;
+  return t;
+}
+
+}  // namespace
+
 int runTiming(const LabOptions& options, const TimingOptions& timing) {
   prepareOutput(options);
   const auto integrators = selectedIntegrators(options);
@@ -60,37 +87,40 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
   for (const auto& name : integrators) {
     for (int cl : chains) {
       if (interrupted()) break;
-      scenes::Scene chain = buildChain({cl});
-      const StepCost cost = measureStepCost(chain, name, chain.dt, timing);
-      csv << "test-chain" << name << static_cast<long>(cl)
-          << static_cast<long>(chain.system->constraints().size())
-          << static_cast<long>(chain.system->forceObjects().size()) << chain.dt << cost.seconds
-          << cost.cgIterations;
+      const auto timed = cell<Timed>(options, [&]() -> std::optional<Timed> {
+        scenes::Scene chain = buildChain({cl});
+        return timeScene(chain, name, timing);
+      });
+      progress.tick();
+      if (!timed) continue;  // another shard's cell
+      csv << "test-chain" << name << static_cast<long>(cl) << timed->constraints << timed->forces << timed->dt
+          << timed->cost.seconds << timed->cost.cgIterations;
       csv.endRow();
       chainN[name].push_back(cl);
-      chainT[name].push_back(cost.seconds);
-      progress.tick();
+      chainT[name].push_back(timed->cost.seconds);
     }
     for (int side : cloths) {
       if (interrupted()) break;
-      scenes::Scene cloth = buildLabScene(
-          "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", "8"}});
-      TimingOptions small = timing;
-      if (side >= 128) small.repeats = std::min(timing.repeats, 3), small.steps = std::min(timing.steps, 4);
-      const StepCost cost = measureStepCost(cloth, name, cloth.dt, small);
+      const auto timed = cell<Timed>(options, [&]() -> std::optional<Timed> {
+        scenes::Scene cloth = buildLabScene(
+            "cloth", {{"width", std::to_string(side)}, {"height", std::to_string(side)}, {"links", "8"}});
+        TimingOptions small = timing;
+        if (side >= 128) small.repeats = std::min(timing.repeats, 3), small.steps = std::min(timing.steps, 4);
+        return timeScene(cloth, name, small);
+      });
+      progress.tick();
+      if (!timed) continue;  // another shard's cell
+      const StepCost& cost = timed->cost;
       recordValue(options, "timing.cloth" + std::to_string(side) + "." + name + "_ms", general(cost.seconds * 1e3, 3));
-      csv << "cloth-8" << name << static_cast<long>(cloth.system->size())
-          << static_cast<long>(cloth.system->constraints().size())
-          << static_cast<long>(cloth.system->forceObjects().size()) << cloth.dt << cost.seconds
+      csv << "cloth-8" << name << timed->particles << timed->constraints << timed->forces << timed->dt << cost.seconds
           << cost.cgIterations;
       csv.endRow();
       // The growth slope is fitted from 32×32 up, past the sizes where fixed
       // per-step overheads dominate.
       if (options.quick || side >= 32) {
-        clothN[name].push_back(cloth.system->size());
+        clothN[name].push_back(timed->particles);
         clothT[name].push_back(cost.seconds);
       }
-      progress.tick();
     }
   }
 
@@ -126,19 +156,26 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
           settings.preconditioner = variant.preconditioner;
           settings.warmStart = variant.warmStart;
         };
-        scenes::Scene timed = buildChain({cl});
-        configure(timed);
-        const StepCost cost = measureStepCost(timed, "rk4", timed.dt, timing);
-        scenes::Scene run = buildChain({cl});
-        configure(run);
-        auto rk4 = particles::makeIntegrator("rk4");
-        const RunResult r = simulate(run, *rk4, run.dt, options.quick ? 0.5 : 5.0);
-        solvers << std::string(variant.name) << static_cast<long>(cl) << cost.seconds << cost.cgIterations
-                << r.maxRelativeStretch;
+        // The step cost, and the max stretch of a short run.
+        const auto measured = cell<std::pair<StepCost, double>>(options, [&]() -> std::optional<std::pair<StepCost, double>> {
+          scenes::Scene timed = buildChain({cl});
+          configure(timed);
+          const StepCost cost = measureStepCost(timed, "rk4", timed.dt, timing);
+          scenes::Scene run = buildChain({cl});
+          configure(run);
+          auto rk4 = particles::makeIntegrator("rk4");
+          const RunResult r = simulate(run, *rk4, run.dt, options.quick ? 0.5 : 5.0);
+          if (r.cutShort) return std::nullopt;
+          return std::pair{cost, r.maxRelativeStretch};
+        });
+        if (!measured) continue;  // another shard's cell, or cut short (the check above ends the loop)
+        const StepCost& cost = measured->first;
+        const double stretch = measured->second;
+        solvers << std::string(variant.name) << static_cast<long>(cl) << cost.seconds << cost.cgIterations << stretch;
         solvers.endRow();
         solverCost[variant.name][cl] = cost.seconds;
         row.push_back(general(cost.seconds * 1e6, 3) + " µs, " + general(cost.cgIterationsPerSolve(), 3) + " it, stretch " +
-                      general(r.maxRelativeStretch, 2));
+                      general(stretch, 2));
       }
       rows.push_back(row);
     }
@@ -177,8 +214,12 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
     for (double dt : {0.1, 0.2}) {
-      scenes::Scene chain = buildChain({80});
-      const StepCost cost = measureStepCost(chain, name, dt, timing);
+      const auto measured = cell<StepCost>(options, [&]() -> std::optional<StepCost> {
+        scenes::Scene chain = buildChain({80});
+        return measureStepCost(chain, name, dt, timing);
+      });
+      if (!measured) continue;  // another shard's cell
+      const StepCost& cost = *measured;
       table3Csv << name << dt << cost.seconds * 1e3 << cost.cgIterations;
       table3Csv.endRow();
       row.push_back(std::isfinite(cost.seconds) ? general(cost.seconds * 1e3, 3) : "diverges");
