@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "format_number.h"
+#include "particles/format.h"
 
 namespace scenes {
 
@@ -20,7 +20,7 @@ CsvWriter& CsvWriter::operator<<(const std::string& cell) {
 }
 
 CsvWriter& CsvWriter::operator<<(double value) {
-  return *this << (format_.digits > 0 ? formatGeneral(value, format_.digits) : formatNumber(value));
+  return *this << (format_.digits > 0 ? particles::formatGeneral(value, format_.digits) : particles::formatNumber(value));
 }
 
 CsvWriter& CsvWriter::operator<<(long long value) { return *this << std::to_string(value); }

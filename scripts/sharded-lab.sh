@@ -41,7 +41,7 @@ if [ "${SLURM:-0}" = 1 ]; then
   array=$(sbatch --parsable --array=1-"$shards" --job-name="lab-$experiment" --output="$out/shards/%a.log" \
     --wrap "'$program' '$experiment' $* --shard \$SLURM_ARRAY_TASK_ID/$shards --out '$out/shards/'\$SLURM_ARRAY_TASK_ID")
   sbatch --dependency=afterok:"$array" --job-name="lab-$experiment-merge" --output="$out/merge.log" \
-    --wrap "'$program' merge '$out'/shards/[0-9]* --out '$out'"
+    --wrap "'$program' merge \$(seq -f '$out/shards/%g' $shards) --out '$out'"
   echo "submitted array job $array ($shards shards) and its merge; results in $out"
   exit 0
 fi

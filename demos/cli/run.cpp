@@ -37,12 +37,11 @@ struct RunOptions {
   long long every = 1;
 };
 
-// An output file with its header written, or none when path is empty.
-std::unique_ptr<scenes::OutputFile> openOutput(const std::string& path, const char* option, const char* header) {
+// A CSV file with its header written (numbers in their shortest exact form), or none when path is empty.
+std::unique_ptr<scenes::CsvWriter> openOutput(const std::string& path, const char* option,
+                                              const std::vector<std::string>& columns) {
   if (path.empty()) return nullptr;
-  auto file = std::make_unique<scenes::OutputFile>(path, option);
-  file->stream() << header << '\n';
-  return file;
+  return std::make_unique<scenes::CsvWriter>(path, option, columns);
 }
 
 int run(const RunOptions& o) {
@@ -59,8 +58,8 @@ int run(const RunOptions& o) {
   // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
   // step boundary and the files are closed with complete rows.
   lab::installInterruptHandler();
-  const std::unique_ptr<scenes::OutputFile> csv = openOutput(o.csvPath, "--csv", kDiagnosticsHeader);
-  const std::unique_ptr<scenes::OutputFile> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
+  const std::unique_ptr<scenes::CsvWriter> csv = openOutput(o.csvPath, "--csv", kDiagnosticsColumns);
+  const std::unique_ptr<scenes::CsvWriter> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryColumns);
 
   particles::ParticleSystem& s = *scene.system;
   const particles::DivergenceLimits limits = runnerDivergenceLimits();
@@ -79,8 +78,8 @@ int run(const RunOptions& o) {
     diverge(0, reason);
     return finish(kDiverged);
   }
-  if (csv) writeDiagnostics(csv->stream(), initial, 0.0);
-  if (trajectory) writeTrajectory(trajectory->stream(), 0, s);
+  if (csv) writeDiagnostics(*csv, initial, 0.0);
+  if (trajectory) writeTrajectory(*trajectory, 0, s);
   using Clock = std::chrono::steady_clock;
   Clock::duration simulated{};
   long long done = 0;
@@ -98,14 +97,8 @@ int run(const RunOptions& o) {
       diverge(step, reason);
       return finish(kDiverged);
     }
-    if (csv) {
-      writeDiagnostics(csv->stream(), row, std::chrono::duration<double, std::micro>(elapsed).count());
-      csv->check();
-    }
-    if (trajectory && step % o.every == 0) {
-      writeTrajectory(trajectory->stream(), step, s);
-      trajectory->check();
-    }
+    if (csv) writeDiagnostics(*csv, row, std::chrono::duration<double, std::micro>(elapsed).count());
+    if (trajectory && step % o.every == 0) writeTrajectory(*trajectory, step, s);
     done = step;
   }
   if (lab::interrupted()) {

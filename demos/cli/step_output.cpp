@@ -3,11 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "format_number.h"
 
 namespace cli {
-
-using scenes::formatNumber;
 
 particles::DivergenceLimits runnerDivergenceLimits() {
   particles::DivergenceLimits limits;
@@ -41,20 +38,19 @@ std::string nonFiniteDiagnostics(const Diagnostics& d) {
   return {};
 }
 
-void writeDiagnostics(std::ostream& out, const Diagnostics& d, double stepMicros) {
+void writeDiagnostics(scenes::CsvWriter& csv, const Diagnostics& d, double stepMicros) {
   const particles::StepStats& stats = d.stats;
-  out << d.step << ',' << formatNumber(d.time) << ',' << formatNumber(d.kinetic) << ',' << formatNumber(d.potential)
-      << ',' << formatNumber(d.kinetic + d.potential) << ',' << formatNumber(d.constraintError) << ','
-      << stats.cgIterations << ',' << formatNumber(stats.maxResidual) << ',' << stats.solves << ','
-      << stats.forceEvaluations << ',' << stats.internalSteps << ',' << formatNumber(stepMicros) << '\n';
+  csv << d.step << d.time << d.kinetic << d.potential << d.kinetic + d.potential << d.constraintError
+      << stats.cgIterations << stats.maxResidual << stats.solves << stats.forceEvaluations << stats.internalSteps
+      << stepMicros;
+  csv.endRow();
 }
 
-void writeTrajectory(std::ostream& out, long long step, const particles::ParticleSystem& s) {
-  const std::string prefix = std::to_string(step) + ',' + formatNumber(s.time()) + ',';
+void writeTrajectory(scenes::CsvWriter& csv, long long step, const particles::ParticleSystem& s) {
   for (int i = 0; i < s.size(); ++i) {
     const Eigen::Vector2d x = s.position(i), v = s.velocity(i);
-    out << prefix << i << ',' << formatNumber(x.x()) << ',' << formatNumber(x.y()) << ','
-        << formatNumber(v.x()) << ',' << formatNumber(v.y()) << '\n';
+    csv << step << s.time() << i << x.x() << x.y() << v.x() << v.y();
+    csv.endRow();
   }
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // What a run writes per step, shared by the subcommands that step scenes:
 // the runner's divergence limits and the CSV rows of --csv and --trajectory.
-#include <ostream>
 #include <string>
+#include <vector>
+
+#include "csv_writer.h"
 
 #include "particles/divergence.h"
 #include "particles/particle_system.h"
@@ -20,9 +22,9 @@ particles::DivergenceLimits runnerDivergenceLimits();
 // cg_iterations summed over every solve of the step, cg_residual the largest
 // relative residual of any of them, solves, force_evaluations and
 // internal_steps (accepted steps of an adaptive scheme; 1 otherwise).
-constexpr const char* kDiagnosticsHeader =
-    "step,t,kinetic,potential,total_energy,max_constraint_error,cg_iterations,cg_residual,solves,"
-    "force_evaluations,internal_steps,step_us";
+inline const std::vector<std::string> kDiagnosticsColumns = {
+    "step",         "t",      "kinetic",           "potential",      "total_energy", "max_constraint_error",
+    "cg_iterations", "cg_residual", "solves", "force_evaluations", "internal_steps", "step_us"};
 // The measured columns of one row, evaluated once per step (the energies
 // and the constraint error each cost a pass over the forces or constraints).
 struct Diagnostics {
@@ -41,10 +43,10 @@ Diagnostics measureDiagnostics(long long step, const particles::ParticleSystem& 
 std::string nonFiniteDiagnostics(const Diagnostics& d);
 
 // One diagnostics row; stepMicros is that step's wall time.
-void writeDiagnostics(std::ostream& out, const Diagnostics& d, double stepMicros);
+void writeDiagnostics(scenes::CsvWriter& csv, const Diagnostics& d, double stepMicros);
 
-constexpr const char* kTrajectoryHeader = "step,t,particle,x,y,vx,vy";
+inline const std::vector<std::string> kTrajectoryColumns = {"step", "t", "particle", "x", "y", "vx", "vy"};
 // One trajectory row per particle.
-void writeTrajectory(std::ostream& out, long long step, const particles::ParticleSystem& s);
+void writeTrajectory(scenes::CsvWriter& csv, long long step, const particles::ParticleSystem& s);
 
 }  // namespace cli

@@ -3,11 +3,11 @@
 // legend), the per-pane headers of compare mode, the out-of-view indicators
 // in each pane's gutter, and the help overlay (key h), the one text drawn
 // over the scene, on request.
+#include <fmt/format.h>
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <string>
 
@@ -32,15 +32,8 @@ constexpr ImGuiWindowFlags overlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiW
                                           ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                           ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
 
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...) {
-  char buffer[1024];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buffer, sizeof buffer, fmt, args);
-  va_end(args);
-  return buffer;
-}
+// The HUD's text ({fmt}: the same presentations as printf's).
+using fmt::format;
 
 ImU32 colour(Rgb c, int alpha = 255) { return IM_COL32(c.r, c.g, c.b, alpha); }
 const ImU32 titleColour = IM_COL32(255, 217, 115, 255);
@@ -101,21 +94,21 @@ std::vector<std::string> wrap(const std::string& text, float width, std::size_t 
   return lines;
 }
 
-std::string plural(int n, const char* word) { return format("%d %s%s", n, word, n == 1 ? "" : "s"); }
+std::string plural(int n, const char* word) { return format("{} {}{}", n, word, n == 1 ? "" : "s"); }
 }  // namespace
 
 // Why a pane shows what it shows, beyond its numbers: stopped, slow motion,
 // or a dt longer than a frame.
 std::string App::paneStateLine(const Simulation& sim) const {
   if (sim.divergedAt())
-    return format("diverged at t = %.3f s (%s): r resets, b rewinds", *sim.divergedAt(),
-                  sim.divergence().message().c_str());
+    return format("diverged at t = {:.3f} s ({}): r resets, b rewinds", *sim.divergedAt(),
+                  sim.divergence().message());
   if (sim.refusal()) return *sim.refusal() + ": press i for another integrator";
   const FrameStats& f = sim.lastFrame();
-  if (f.capped) return format("slow motion: %d steps/frame fill the %.0f ms budget (+ doubles dt)", f.substeps, stepBudgetMsPerFrame / panes_.size());
+  if (f.capped) return format("slow motion: {} steps/frame fill the {:.0f} ms budget (+ doubles dt)", f.substeps, stepBudgetMsPerFrame / panes_.size());
   const double frameTime = speed_ / 60.0;
   if (stepMode_ == StepMode::FixedTime && sim.dt() > frameTime)
-    return format("dt %g s > one frame (%.3g s): a step every %.0f frames (- halves dt)", sim.dt(), frameTime,
+    return format("dt {:g} s > one frame ({:.3g} s): a step every {:.0f} frames (- halves dt)", sim.dt(), frameTime,
                   std::ceil(sim.dt() / frameTime));
   return "";
 }
@@ -133,7 +126,7 @@ void App::drawTopBar() {
     summary = info->summary;
   Line title{{scene_.label, titleColour}, {"  " + summary, dimColour}};
   if (panes_.size() == 1)
-    title.push_back({format("     t = %.2f s%s", first.timeReached(), paused_ ? "   [paused]" : ""), colour(palette::hudText)});
+    title.push_back({format("     t = {:.2f} s{}", first.timeReached(), paused_ ? "   [paused]" : ""), colour(palette::hudText)});
   else if (paused_)
     title.push_back({"     [paused]", colour(palette::hudText)});
 
@@ -182,12 +175,12 @@ void App::drawBottomBar() {
     const FrameStats& f = sim.lastFrame();
     const ImU32 text = colour(palette::hudText);
     const std::string state = paneStateLine(sim);
-    lines.push_back({{format("%s   dt %g s   %s/frame%s", sim.integratorName(), sim.dt(), plural(f.substeps, "substep").c_str(),
+    lines.push_back({{format("{}   dt {:g} s   {}/frame{}", sim.integratorName(), sim.dt(), plural(f.substeps, "substep"),
                              stepMode_ == StepMode::Lockstep ? " (lockstep)" : ""),
                       text},
                      {state.empty() ? "" : "   " + state, sim.stopped() ? colour(palette::divergenceText) : titleColour}});
     // Fixed-width numbers, so that the line does not jitter from frame to frame.
-    lines.push_back({{format("simulation %7.2f ms   draw %6.1f ms (scene %5.1f + text and panel %5.1f)   per frame",
+    lines.push_back({{format("simulation {:7.2f} ms   draw {:6.1f} ms (scene {:5.1f} + text and panel {:5.1f})   per frame",
                              f.simulationMs, sceneDrawMs_ + overlayDrawMs_, sceneDrawMs_, overlayDrawMs_),
                       text}});
     std::string numbers = plural(s.size(), "particle");
@@ -195,11 +188,11 @@ void App::drawBottomBar() {
     const particles::StepStats& step = s.lastStepStats();
     if (step.solves > 0)
       numbers += step.cgIterations == 0
-                     ? format("   %s, residual %.1e", plural(step.solves, "solve").c_str(), step.maxResidual)
-                     : format("   %s, CG %d iterations, residual %.1e", plural(step.solves, "solve").c_str(),
+                     ? format("   {}, residual {:.1e}", plural(step.solves, "solve"), step.maxResidual)
+                     : format("   {}, CG {} iterations, residual {:.1e}", plural(step.solves, "solve"),
                               step.cgIterations, step.maxResidual);
-    numbers += format("   max |C| %.2e   energy % .5e", s.maxConstraintError(), sim.sceneEnergy());
-    if (sim.mouseSpring()) numbers += format("   (mouse spring % .3e apart)", sim.mouseSpringEnergy());
+    numbers += format("   max |C| {:.2e}   energy {: .5e}", s.maxConstraintError(), sim.sceneEnergy());
+    if (sim.mouseSpring()) numbers += format("   (mouse spring {: .3e} apart)", sim.mouseSpringEnergy());
     lines.push_back({{numbers, text}});
   }
   Line keys{{"h help   p panel   v compare   a frame all   wheel zoom   middle-drag pan", dimColour}};
@@ -225,9 +218,9 @@ void App::drawPaneHeaders() {
     const particles::ParticleSystem& s = sim.system();
     const ImU32 text = colour(palette::hudText);
     std::vector<Line> lines;
-    lines.push_back({{format("%zu  %s", k + 1, sim.integratorName()), titleColour},
-                     {format("   dt %g s   t = %.2f s   %lld steps", sim.dt(), sim.timeReached(), sim.steps()), text}});
-    lines.push_back({{format("E % .5e   max |C| %.1e   %.2f ms/frame", sim.sceneEnergy(), s.maxConstraintError(),
+    lines.push_back({{format("{}  {}", k + 1, sim.integratorName()), titleColour},
+                     {format("   dt {:g} s   t = {:.2f} s   {} steps", sim.dt(), sim.timeReached(), sim.steps()), text}});
+    lines.push_back({{format("E {: .5e}   max |C| {:.1e}   {:.2f} ms/frame", sim.sceneEnergy(), s.maxConstraintError(),
                              sim.lastFrame().simulationMs),
                       text}});
     lines.push_back({{paneStateLine(sim), sim.stopped() ? colour(palette::divergenceText) : titleColour}});

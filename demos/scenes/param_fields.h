@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "format_number.h"
+#include "particles/format.h"
 #include "scene.h"
 
 namespace scenes {
 
-inline std::string formatParam(double value) { return formatNumber(value); }
+inline std::string formatParam(double value) { return particles::formatNumber(value); }
 std::string formatParam(int value);
 inline std::string formatParam(const std::string& value) { return value; }
 

@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace particles {
+#include "particles/format.h"
 
-std::string formatValue(double value);
+namespace particles {
 
 inline void requireFinite(const char* name, double value) {
   if (!std::isfinite(value))

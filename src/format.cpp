@@ -1,10 +1,10 @@
-#include "format_number.h"
+#include "particles/format.h"
 
 #include <charconv>
 
 #include <fmt/format.h>
 
-namespace scenes {
+namespace particles {
 
 std::string formatNumber(double value) {
   char buffer[32];
@@ -12,8 +12,10 @@ std::string formatNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
+// {fmt}'s g and f presentations with a precision write what printf's %.*g
+// and %.*f write (and what an ostream with that precision writes).
 std::string formatGeneral(double value, int digits) { return fmt::format("{:.{}g}", value, digits); }
 
 std::string formatFixed(double value, int digits) { return fmt::format("{:.{}f}", value, digits); }
 
-}  // namespace scenes
+}  // namespace particles
