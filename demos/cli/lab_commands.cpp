@@ -15,7 +15,7 @@ namespace cli {
 
 namespace {
 
-// The recorded cells a merge replays (set by runReplay while it runs the experiment again).
+// The recorded cells a merge replays (set by merge while it runs the experiment again).
 std::shared_ptr<lab::Cells> replayCells;
 
 // Options every experiment takes, with --shard; held by the returned action.

@@ -81,12 +81,10 @@ class Cells {
   std::mutex mutex_;
 };
 
-// One cell: compute() (nullopt: interrupted) in a run or the owning shard,
-// the recorded result in a replay, nullopt in another shard.
+// Cell `index`'s result as a Result, through its JSON (Cells::result).
 template <class Result>
-std::optional<Result> cell(const LabOptions& options, const std::function<std::optional<Result>()>& compute) {
-  const std::size_t index = options.cells->reserve(1);
-  const auto j = options.cells->result(index, [&]() -> std::optional<Json> {
+std::optional<Result> cellResult(Cells& cells, std::size_t index, const std::function<std::optional<Result>()>& compute) {
+  const auto j = cells.result(index, [&]() -> std::optional<Json> {
     auto r = compute();
     if (!r) return std::nullopt;
     return encode(*r);
@@ -95,6 +93,13 @@ std::optional<Result> cell(const LabOptions& options, const std::function<std::o
   Result r{};
   decode(*j, r);
   return r;
+}
+
+// One cell: compute() (nullopt: interrupted) in a run or the owning shard,
+// the recorded result in a replay, nullopt in another shard.
+template <class Result>
+std::optional<Result> cell(const LabOptions& options, const std::function<std::optional<Result>()>& compute) {
+  return cellResult<Result>(*options.cells, options.cells->reserve(1), compute);
 }
 
 // `count` cells on options.jobs threads (parallelMap): deliver(k, result) in
@@ -106,17 +111,7 @@ void sweep(const LabOptions& options, std::size_t count,
   const std::size_t base = options.cells->reserve(count);
   parallelMap<Result>(
       options.jobs, count,
-      [&](std::size_t k) -> std::optional<Result> {
-        const auto j = options.cells->result(base + k, [&]() -> std::optional<Json> {
-          auto r = compute(k);
-          if (!r) return std::nullopt;
-          return encode(*r);
-        });
-        if (!j) return std::nullopt;
-        Result r{};
-        decode(*j, r);
-        return r;
-      },
+      [&](std::size_t k) { return cellResult<Result>(*options.cells, base + k, [&] { return compute(k); }); },
       deliver);
 }
 

@@ -196,6 +196,15 @@ int runSmallSteps(const LabOptions& options) {
     if (interrupted()) return 130;
     const Outcome reference = referenceCell.value_or(Outcome{});
     if (referenceCell) write(p.name, "reference", "-", 0, 1, 1, p.referenceDt, reference);
+    // One run against the reference, as a cell.
+    const auto measure = [&](const std::string& integrator, const particles::IntegratorSettings& settings, double dt) {
+      return cell<Outcome>(options, [&]() -> std::optional<Outcome> {
+        const Outcome o = runOne(p, integrator, settings, dt, referenceX());
+        progress.tick();
+        if (interrupted()) return std::nullopt;
+        return o;
+      });
+    };
     std::map<std::string, Outcome> atLargest;
     Outcome xpbdDefault;
     const int largest = budgets.back();
@@ -204,12 +213,7 @@ int runSmallSteps(const LabOptions& options) {
         particles::IntegratorSettings settings;
         settings.substeps = si.first;
         settings.iterations = si.second;
-        const auto run = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
-          const Outcome o = runOne(p, "xpbd", settings, frame, referenceX());
-          progress.tick();
-          if (interrupted()) return std::nullopt;
-          return o;
-        });
+        const auto run = measure("xpbd", settings, frame);
         if (interrupted()) return 130;
         if (!run) continue;  // another shard's cell
         const Outcome& o = *run;
@@ -244,12 +248,7 @@ int runSmallSteps(const LabOptions& options) {
       double chosenDt = 0.0;
       bool any = false;
       for (double dt : stepsList) {
-        const auto run = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
-          const Outcome o = runOne(p, family, defaults, dt, referenceX());
-          progress.tick();
-          if (interrupted()) return std::nullopt;
-          return o;
-        });
+        const auto run = measure(family, defaults, dt);
         if (interrupted()) return 130;
         if (!run) continue;  // another shard's cell
         const Outcome& o = *run;
