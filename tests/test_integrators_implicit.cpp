@@ -1,6 +1,7 @@
 // The integrators of issue 7 — velocity Verlet, backward Euler with the
 // constraints in its solve, adaptive RK4 — and the force Jacobians the
 // implicit step relies on.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -361,16 +362,18 @@ TEST(ImplicitEuler, NewtonPassesStopOnAPinnedOnlyRowAndLeaveTheRestAlone) {
     s->addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
     return s;
   };
-  for (double dt : {0.01, 0.1}) {
+  for (double dt : {0.01, 0.05, 0.1}) {
     auto with = build(true), without = build(false);
     ImplicitEulerIntegrator a, b;
-    for (int k = 0; k < 50; ++k) {
+    for (int k = 0; k < 100; ++k) {
       const StepStats sa = with->step(a, dt), sb = without->step(b, dt);
       ASSERT_EQ(sa.solves, sb.solves) << "dt " << dt << " step " << k;
       ASSERT_LT(sa.solves, a.settings.constraintPasses) << "dt " << dt << " step " << k;
     }
     const double shift = (with->positions().head(12) - without->positions().head(12)).cwiseAbs().maxCoeff();
+    // Only the factorisation's ordering differs (AMD sees one more row): round-off.
     EXPECT_LT(shift, 1e-9) << "dt " << dt;  // in rod lengths: 1e-8
+    EXPECT_LE(a.lastConstraintResidual(), a.settings.constraintTolerance) << "dt " << dt;
   }
 }
 
@@ -518,7 +521,7 @@ struct EnergyRecord {
   double worstRise = -INFINITY;  // largest E(t_{k+1}) − E(t_k), in E_s
   double change = 0.0;           // (E(T) − E(0)) / E_s
   int worstPasses = 0;
-  double worstConstraintResidual = 0.0;
+  double worstResidual = 0.0;     // of the committed steps: max(constraint, momentum) residual
 };
 
 EnergyRecord runEnergy(EnergyScene s, double dt, double T) {
@@ -534,7 +537,7 @@ EnergyRecord runEnergy(EnergyScene s, double dt, double T) {
     r.worstRise = std::max(r.worstRise, (e - last) / s.releasable);
     last = e;
     r.worstPasses = std::max(r.worstPasses, integrator.lastPasses());
-    r.worstConstraintResidual = std::max(r.worstConstraintResidual, integrator.lastConstraintResidual());
+    r.worstResidual = std::max({r.worstResidual, integrator.lastConstraintResidual(), integrator.lastMomentumResidual()});
   }
   r.change = (last - e0) / s.releasable;
   return r;
@@ -550,14 +553,14 @@ constexpr double kRoundOff = 1e-12;
 // energy must fall monotonically up to round-off, at every dt, and visibly so
 // at the large ones (the header's identity). Before the discrete-gradient
 // impulses and converged passes the 6-chain gained 0.063 E_s over 500 s at
-// dt 0.01, and the pendulum 0.005 E_s at dt 0.05.
+// dt 0.01 (per step up to +2.8e-3 E_s), and the pendulum 0.005 E_s at dt 0.05.
 TEST(ImplicitEuler, PendulumEnergyNeverRisesOver200s) {
   for (double dt : {0.005, 0.01, 0.05, 0.1}) {
     const EnergyRecord r = runEnergy(pendulumScene(), dt, 200.0);
     RecordProperty("pendulum_change_dt_" + std::to_string(dt), std::to_string(r.change));
     EXPECT_LE(r.worstRise, kRoundOff) << "dt " << dt;
     EXPECT_LT(r.change, 0.0) << "dt " << dt;
-    EXPECT_LE(r.worstConstraintResidual, ImplicitEulerSettings{}.constraintTolerance) << "dt " << dt;
+    EXPECT_LE(r.worstResidual, ImplicitEulerSettings{}.constraintTolerance) << "dt " << dt;  // passes converged
     if (dt >= 0.05) {
       EXPECT_LT(r.change, -0.1) << "dt " << dt << ": backward Euler should damp visibly";
     }
@@ -570,7 +573,7 @@ TEST(ImplicitEuler, ChainEnergyNeverRisesOver500s) {
     RecordProperty("chain6_change_dt_" + std::to_string(dt), std::to_string(r.change));
     EXPECT_LE(r.worstRise, kRoundOff) << "dt " << dt;
     EXPECT_LT(r.change, 0.0) << "dt " << dt;
-    EXPECT_LE(r.worstConstraintResidual, ImplicitEulerSettings{}.constraintTolerance) << "dt " << dt;
+    EXPECT_LE(r.worstResidual, ImplicitEulerSettings{}.constraintTolerance) << "dt " << dt;  // passes converged
     if (dt >= 0.05) {
       EXPECT_LT(r.change, -0.1) << "dt " << dt << ": backward Euler should damp visibly";
     }
