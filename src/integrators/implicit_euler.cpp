@@ -90,6 +90,9 @@ struct ImplicitEulerIntegrator::Impl {
   // Pieces of assemble() and solvePass().
   bool patternMatches(const ParticleSystem& system, bool direct) const;
   void buildPattern(const ParticleSystem& system, bool direct);
+  template <class Visit>
+  void forEachGeometricStiffnessEntry(const Visit& visit) const;
+  void recordSlots(const Eigen::VectorXd& inverseMass);
   bool fillValues(double h, const Eigen::VectorXd& mass, const Eigen::VectorXd& inverseMass);
   void addGeometricStiffness(ParticleSystem& system, double h);
 };
@@ -338,6 +341,17 @@ bool ImplicitEulerIntegrator::Impl::patternMatches(const ParticleSystem& system,
          direct == patternDirect && dfdx.size() == xRow.size() && dfdv.size() == vRow.size();
 }
 
+// Calls visit(row, col) for every DOF pair of G, in the loop order of
+// addGeometricStiffness: constraint k, then column (particle b, axis c), then row (a, r).
+template <class Visit>
+void ImplicitEulerIntegrator::Impl::forEachGeometricStiffnessEntry(const Visit& visit) const {
+  for (int k = 0; k < m; ++k)
+    for (int eb = iterate.rowStart[k]; eb < iterate.rowStart[k + 1]; ++eb)
+      for (int c = 0; c < 2; ++c)
+        for (int ea = iterate.rowStart[k]; ea < iterate.rowStart[k + 1]; ++ea)
+          for (int r = 0; r < 2; ++r) visit(2 * iterate.entryParticle[ea] + r, 2 * iterate.entryParticle[eb] + c);
+}
+
 // The KKT matrix: A on the 2n velocity unknowns, then one row per constraint,
 // in a SymmetricPattern: AMD-ordered for the direct solve, natural for CG,
 // whose products are faster in the mesh's own order. Every value's slot is
@@ -345,27 +359,33 @@ bool ImplicitEulerIntegrator::Impl::patternMatches(const ParticleSystem& system,
 void ImplicitEulerIntegrator::Impl::buildPattern(const ParticleSystem& system, bool direct) {
   const Eigen::VectorXd& inverseMass = system.inverseMasses();
   auto free = [&](int dof) { return inverseMass[dof / 2] != 0.0; };
-  const std::vector<int>& rowStart = iterate.rowStart;
-  const std::vector<int>& entryParticle = iterate.entryParticle;
   pattern.reset(dofs + m);
   for (const Triplets* list : {&dfdx, &dfdv})
     for (const auto& t : *list)
       if (free(t.row()) && free(t.col())) pattern.add(t.row(), t.col());
   for (int k = 0; k < m; ++k) {
-    for (int e = rowStart[k]; e < rowStart[k + 1]; ++e)
-      if (inverseMass[entryParticle[e]] != 0.0)
-        for (int r = 0; r < 2; ++r) pattern.add(dofs + k, 2 * entryParticle[e] + r);
-    // Geometric stiffness couples every pair of free particles of the constraint.
-    for (int eb = rowStart[k]; eb < rowStart[k + 1]; ++eb)
-      for (int ea = rowStart[k]; ea < rowStart[k + 1]; ++ea)
-        for (int c = 0; c < 2; ++c)
-          for (int r = 0; r < 2; ++r) {
-            const int row = 2 * entryParticle[ea] + r, col = 2 * entryParticle[eb] + c;
-            if (free(row) && free(col)) pattern.add(row, col);
-          }
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e)
+      if (inverseMass[iterate.entryParticle[e]] != 0.0)
+        for (int r = 0; r < 2; ++r) pattern.add(dofs + k, 2 * iterate.entryParticle[e] + r);
   }
+  // Geometric stiffness couples every pair of free particles of a constraint.
+  forEachGeometricStiffnessEntry([&](int row, int col) {
+    if (free(row) && free(col)) pattern.add(row, col);
+  });
   pattern.finish(direct ? linear::SymmetricPattern::Ordering::Amd : linear::SymmetricPattern::Ordering::Natural);
+  recordSlots(inverseMass);
+  patternStamp = system.structureStamp();
+  patternCoupled = coupled;
+  patternDirect = direct;
+  ldlt.forgetAnalysis();  // analysed on the first factorisation
+  analysed = true;
+}
 
+// Where each value of the matrix goes: the diagonal of A, every force
+// triplet, every free block of J̃, each row's compliance, every entry of G
+// (−1: a pinned DOF, dropped).
+void ImplicitEulerIntegrator::Impl::recordSlots(const Eigen::VectorXd& inverseMass) {
+  auto free = [&](int dof) { return inverseMass[dof / 2] != 0.0; };
   diagonalSlot.resize(dofs);
   for (int d = 0; d < dofs; ++d) diagonalSlot[d] = pattern.slot(d, d);
   auto record = [&](const Triplets& list, std::vector<int>& rows, std::vector<int>& cols, std::vector<int>& slots) {
@@ -383,26 +403,15 @@ void ImplicitEulerIntegrator::Impl::buildPattern(const ParticleSystem& system, b
   jSlot.assign(2 * (coupled ? iterate.entries() : 0), -1);
   complianceSlot.resize(m);
   for (int k = 0; k < m; ++k) {
-    for (int e = rowStart[k]; e < rowStart[k + 1]; ++e)
-      if (inverseMass[entryParticle[e]] != 0.0)
-        for (int r = 0; r < 2; ++r) jSlot[2 * e + r] = pattern.slot(dofs + k, 2 * entryParticle[e] + r);
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e)
+      if (inverseMass[iterate.entryParticle[e]] != 0.0)
+        for (int r = 0; r < 2; ++r) jSlot[2 * e + r] = pattern.slot(dofs + k, 2 * iterate.entryParticle[e] + r);
     complianceSlot[k] = pattern.slot(dofs + k, dofs + k);
   }
-  // In the loop order of addGeometricStiffness: k, then column (b, c), then row (a, r).
   gSlot.clear();
-  for (int k = 0; k < m; ++k)
-    for (int eb = rowStart[k]; eb < rowStart[k + 1]; ++eb)
-      for (int c = 0; c < 2; ++c)
-        for (int ea = rowStart[k]; ea < rowStart[k + 1]; ++ea)
-          for (int r = 0; r < 2; ++r) {
-            const int row = 2 * entryParticle[ea] + r, col = 2 * entryParticle[eb] + c;
-            gSlot.push_back(free(row) && free(col) ? pattern.slot(row, col) : -1);
-          }
-  patternStamp = system.structureStamp();
-  patternCoupled = coupled;
-  patternDirect = direct;
-  ldlt.forgetAnalysis();  // analysed on the first factorisation
-  analysed = true;
+  forEachGeometricStiffnessEntry([&](int row, int col) {
+    gSlot.push_back(free(row) && free(col) ? pattern.slot(row, col) : -1);
+  });
 }
 
 // Values of the stored KKT triangle: A = M − h D − h² K, J̃ and −E. A triplet
