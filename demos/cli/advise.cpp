@@ -35,7 +35,7 @@ int advise(const AdviseOptions& o) {
   if (!std::isfinite(o.horizon)) throw UsageError("--horizon must be finite, got " + cell(o.horizon));
   if (o.repeats < 1) throw UsageError("--repeats must be >= 1, got " + std::to_string(o.repeats));
   if (o.maxSteps < 1) throw UsageError("--max-steps must be >= 1, got " + std::to_string(o.maxSteps));
-  for (const auto& name : o.integrators) particles::makeIntegrator(name);
+  for (const auto& name : o.integrators) particles::requireIntegrator(name);
   o.source.load();  // bad scene input fails here, before any measurement
 
   lab::SurveySettings settings;

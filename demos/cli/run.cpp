@@ -129,7 +129,7 @@ Command addRunCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
-                  "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
+                  "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)");
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
                       "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "

@@ -40,12 +40,9 @@ constexpr ComparePreset comparePresets[] = {
     {"midpoint", 4.0},
 };
 
+// The table position of the integrator named `name`; throws for an unknown one.
 int integratorIndexByName(const std::string& name) {
-  const auto& table = particles::integratorTable();
-  for (std::size_t k = 0; k < table.size(); ++k)
-    if (name == table[k].name) return static_cast<int>(k);
-  particles::makeIntegrator(name);  // throws, listing the valid names
-  return 0;
+  return static_cast<int>(&particles::requireIntegrator(name) - particles::integratorTable().data());
 }
 
 // The scene table's "try this" line, on a table that has one (SceneInfo::hint).
