@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "particles/constants.h"
 #include "particles/collision.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
@@ -299,7 +300,7 @@ TEST(Issue13Tunnelling, NoKindOfThinColliderIsPassedAtSpeedTimesDtOfTenThickness
 // polygon) rolls up, comes back and keeps its energy; a disc dropped on a
 // capsule bounces along the capsule's normal.
 TEST(CollidersAtAnyAngle, ElasticContactReflectsAboutTheSurfaceNormal) {
-  const double theta = M_PI / 6, dt = 0.001;
+  const double theta = particles::kPi / 6, dt = 0.001;
   const Vector2d t(std::cos(theta), std::sin(theta)), n(-std::sin(theta), std::cos(theta));
   Collider ramp = Collider::polygon({Vector2d(0, 0) - 5 * t - 5 * n, Vector2d(0, 0) + 5 * t - 5 * n,
                                      Vector2d(0, 0) + 5 * t, Vector2d(0, 0) - 5 * t});
@@ -479,7 +480,7 @@ TEST(ParticleContacts, GridBroadPhaseFindsTheSameContactsAsBruteForce) {
     centres.push_back(c);
     extents.push_back(extent);
     if (pair) {
-      const double angle = 2.0 * 3.14159265358979 * unit(rng);
+      const double angle = 2.0 * particles::kPi * unit(rng);
       const Vector2d half = 0.5 * distance * Vector2d(std::cos(angle), std::sin(angle));
       positions.push_back(c + half), radii.push_back(r0);
       positions.push_back(c - half), radii.push_back(r1);
@@ -638,7 +639,7 @@ TEST(CollisionParameters, BadCollidersAreRejectedWithTheirName) {
   expectRejected(add(Collider::polygon({Vector2d(0, 0), Vector2d(0, 1), Vector2d(1, 0)})), "counter-clockwise");
   expectRejected(add(Collider::polygon({Vector2d(0, 0), Vector2d(1, 0)})), "at least 3");
   std::vector<Vector2d> star;
-  for (int k = 0; k < 5; ++k) star.emplace_back(std::cos(4 * M_PI * k / 5), std::sin(4 * M_PI * k / 5));
+  for (int k = 0; k < 5; ++k) star.emplace_back(std::cos(4 * particles::kPi * k / 5), std::sin(4 * particles::kPi * k / 5));
   expectRejected(add(Collider::polygon(star)), "convex");
   EXPECT_EQ(s.colliders().size(), 1u);
   expectRejected([&] { s.addCollisionEdge(0, 0); }, "collision edge");

@@ -8,8 +8,9 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/scene_source.h"
 #include "lab/advise.h"
+#include "options/option_checks.h"
+#include "options/scene_source.h"
 #include "particles/check.h"
 
 namespace cli {
@@ -17,7 +18,7 @@ namespace cli {
 namespace {
 
 struct AdviseOptions {
-  SceneSource source;
+  options::SceneSource source;
   double error = 0.0;    // E, world units
   double horizon = 0.0;  // T, simulated seconds
   std::vector<std::string> integrators;
@@ -33,9 +34,6 @@ int advise(const AdviseOptions& o) {
   particles::requirePositive("--horizon", o.horizon);
   particles::requirePositive("--reference-tolerance", o.referenceTolerance);
   if (!std::isfinite(o.horizon)) throw UsageError("--horizon must be finite, got " + cell(o.horizon));
-  if (o.repeats < 1) throw UsageError("--repeats must be >= 1, got " + std::to_string(o.repeats));
-  if (o.maxSteps < 1) throw UsageError("--max-steps must be >= 1, got " + std::to_string(o.maxSteps));
-  for (const auto& name : o.integrators) particles::makeIntegrator(name);
   o.source.load();  // bad scene input fails here, before any measurement
 
   lab::SurveySettings settings;
@@ -104,11 +102,14 @@ Command addAdviseCommand(CLI::App& app) {
       ->required();
   command->add_option("--horizon", options->horizon, "T: simulated seconds the error is measured over")->required();
   command->add_option("--integrator", options->integrators,
-                      "consider only these integrators (repeatable; default: every one)");
+                      "consider only these integrators (repeatable; default: every one)")
+      ->check(options::integratorName());
   command->add_option("--repeats", options->repeats, "timed repeats of each pick; the median is reported")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, 1000000));
   command->add_option("--max-steps", options->maxSteps, "the smallest dt scanned is T / max-steps")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, 1000000000));
   command->add_option("--reference-tolerance", options->referenceTolerance,
                       "odeint's error tolerance per step for the reference (checked at 100x it)")
       ->capture_default_str();

@@ -3,12 +3,12 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/option_checks.h"
 #include "cli/run_loop.h"
-#include "cli/scene_source.h"
 #include "cli/step_output.h"
 #include "join_names.h"
 #include "lab/lab.h"
+#include "options/option_checks.h"
+#include "options/scene_source.h"
 #include "output_file.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
@@ -23,7 +23,7 @@ namespace {
 constexpr long long kMaxSteps = 1000000000000LL;
 
 struct RunOptions {
-  SceneSource source;
+  options::SceneSource source;
   std::string integrator;  // empty: the scene's own
   // --tolerance, --substeps, --iterations: each given one overrides the scene's.
   particles::IntegratorSettings integratorSettings;
@@ -108,11 +108,12 @@ Command addRunCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
-                  "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
+                  "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)");
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
                       "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
-                      "fixed-step integrators (default: the scene's, 1e-6)");
+                      "fixed-step integrators (default: the scene's, 1e-6)")
+          ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,
                       "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)");
@@ -122,7 +123,7 @@ Command addRunCommand(CLI::App& app) {
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
       ->required()
-      ->check(decimalInteger(0, kMaxSteps));
+      ->check(options::decimalInteger(0, kMaxSteps));
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
                   "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
@@ -134,7 +135,7 @@ Command addRunCommand(CLI::App& app) {
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
       ->capture_default_str()
-      ->check(decimalInteger(1, kMaxSteps));
+      ->check(options::decimalInteger(1, kMaxSteps));
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"

@@ -40,12 +40,9 @@ constexpr ComparePreset comparePresets[] = {
     {"midpoint", 4.0},
 };
 
+// The table position of the integrator named `name`; throws for an unknown one.
 int integratorIndexByName(const std::string& name) {
-  const auto& table = particles::integratorTable();
-  for (std::size_t k = 0; k < table.size(); ++k)
-    if (name == table[k].name) return static_cast<int>(k);
-  particles::makeIntegrator(name);  // throws, listing the valid names
-  return 0;
+  return static_cast<int>(&particles::requireIntegrator(name) - particles::integratorTable().data());
 }
 
 // The scene table's "try this" line, on a table that has one (SceneInfo::hint).
@@ -85,13 +82,14 @@ App::App(DemoOptions options)
   if (!options_.script.empty()) script_ = readScript(options_.script);
 
   SceneChoice first;
-  if (!options_.sceneFile.empty()) {
-    first.file = options_.sceneFile;
-    first.label = options_.sceneFile.substr(options_.sceneFile.find_last_of('/') + 1);
+  const options::SceneSource& source = options_.source;
+  if (!source.sceneFile.empty()) {
+    first.file = source.sceneFile;
+    first.label = source.sceneFile.substr(source.sceneFile.find_last_of('/') + 1);
   } else {
-    first.name = first.label = options_.scene;
-    first.params = options_.params;
-    first.preset = options_.preset;
+    first.name = first.label = source.scene;
+    first.params = source.overrides();
+    first.preset = source.preset;
     // The first key's variant that agrees with the given parameters names it.
     for (const SceneKey& k : sceneKeys()) {
       if (k.choice.name != first.name) continue;
@@ -114,23 +112,11 @@ App::App(DemoOptions options)
   integratorSettings.tolerance = options_.tolerance;
   panes_.front()->setIntegratorSettings(integratorSettings);
   if (!options_.compare.empty()) {
-    // Each entry is an integrator, optionally with its own dt: "rk4" or "rk4:0.02".
-    std::vector<std::pair<int, double>> settings;
-    for (const std::string& entry : options_.compare) {
-      const auto colon = entry.find(':');
-      double paneDt = dt;
-      if (colon != std::string::npos) {
-        char* end = nullptr;
-        paneDt = std::strtod(entry.c_str() + colon + 1, &end);
-        if (end == entry.c_str() + colon + 1 || *end != '\0' || !(paneDt > 0.0) || !std::isfinite(paneDt))
-          throw std::invalid_argument("--compare: dt in '" + entry + "' must be a finite number > 0");
-      }
-      settings.emplace_back(integratorIndexByName(entry.substr(0, colon)), paneDt);
-    }
-    setPaneCount(static_cast<int>(settings.size()));
-    for (std::size_t k = 0; k < settings.size(); ++k) {
-      panes_[k]->setIntegrator(settings[k].first);
-      panes_[k]->setDt(settings[k].second);
+    // Each pane an integrator, with its own dt or the first pane's.
+    setPaneCount(static_cast<int>(options_.compare.size()));
+    for (std::size_t k = 0; k < options_.compare.size(); ++k) {
+      panes_[k]->setIntegrator(integratorIndexByName(options_.compare[k].integrator));
+      panes_[k]->setDt(options_.compare[k].dt.value_or(dt));
     }
   }
   if (const scenes::SceneInfo* info = findSceneInfo(scene_.name)) sceneHint_ = hintOf(*info);

@@ -27,12 +27,6 @@ struct Problem {
   double referenceTolerance = 1e-11;
 };
 
-bool usesTolerance(const std::string& integrator) {
-  for (const auto& info : particles::integratorTable())
-    if (integrator == info.name) return info.usesTolerance;
-  return false;
-}
-
 }  // namespace
 
 int runAccuracy(const LabOptions& options) {
@@ -59,7 +53,7 @@ int runAccuracy(const LabOptions& options) {
   const std::vector<double> tolerances = q ? std::vector<double>{1e-5, 1e-9} : logSpace(1e-12, 1e-3, 10);
   long total = 0;
   for (const auto& p : problems)
-    for (const auto& name : integrators) total += usesTolerance(name) ? tolerances.size() : p.steps.size();
+    for (const auto& name : integrators) total += particles::requireIntegrator(name).usesTolerance ? tolerances.size() : p.steps.size();
   Progress progress("accuracy", total);
   recordValue(options, "accuracy.repeats", std::to_string(repeats));
   recordValue(options, "accuracy.output_interval", general(outputInterval));
@@ -89,7 +83,7 @@ int runAccuracy(const LabOptions& options) {
                                  " s)"};
     for (const auto& name : integrators) {
       std::vector<double> knobs, errors;
-      const bool adaptive = usesTolerance(name);
+      const bool adaptive = particles::requireIntegrator(name).usesTolerance;
       for (double knob : adaptive ? tolerances : p.steps) {
         if (interrupted()) break;
         // dt divides T, so the error at T is taken at T.

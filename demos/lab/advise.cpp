@@ -14,12 +14,6 @@ namespace {
 
 bool cancelled(const SurveySettings& s) { return interrupted() || (s.cancel && s.cancel->load()); }
 
-bool usesTolerance(const std::string& integrator) {
-  for (const auto& info : particles::integratorTable())
-    if (integrator == info.name) return info.usesTolerance;
-  return false;
-}
-
 void validate(const SurveySettings& s) {
   particles::requirePositive("horizon", s.horizon);
   particles::requirePositive("error", s.targetError);
@@ -32,7 +26,7 @@ void validate(const SurveySettings& s) {
   if (!(s.gridRatio > 1.0)) throw std::invalid_argument("grid ratio must be > 1, got " + general(s.gridRatio));
   if (s.maxSteps < 1) throw std::invalid_argument("max steps must be >= 1, got " + std::to_string(s.maxSteps));
   if (s.repeats < 1) throw std::invalid_argument("repeats must be >= 1, got " + std::to_string(s.repeats));
-  for (const auto& name : s.integrators) particles::makeIntegrator(name);  // rejects unknown names
+  for (const auto& name : s.integrators) particles::requireIntegrator(name);  // rejects unknown names
 }
 
 struct Measurer {
@@ -200,7 +194,7 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   for (std::size_t i = 0; i < names.size() && !cancelled(s); ++i) {
     IntegratorSurvey out;
     out.integrator = names[i];
-    out.adaptive = usesTolerance(names[i]);
+    out.adaptive = particles::requireIntegrator(names[i]).usesTolerance;
     auto progress = [&](double f) {
       if (s.progress) s.progress((i + f) / names.size());
     };

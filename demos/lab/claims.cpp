@@ -4,6 +4,7 @@
 #include <iostream>
 #include <limits>
 
+#include "particles/constants.h"
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
@@ -24,7 +25,7 @@ std::pair<double, double> cellShear(const particles::ParticleSystem& s, int widt
       const int i = r * width + c;
       const Eigen::Vector2d a = s.position(i + 1) - s.position(i), b = s.position(i + width) - s.position(i);
       const double cosine = a.dot(b) / (a.norm() * b.norm());
-      const double shear = std::abs(std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI - 90.0);
+      const double shear = std::abs(std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / particles::kPi - 90.0);
       sum += shear, worst = std::max(worst, shear), ++cells;
     }
   return {cells ? sum / cells : 0.0, worst};

@@ -18,11 +18,8 @@ int runExtremes(const LabOptions& options) {
   const auto integrators = selectedIntegrators(options);
   // Scanned sections leave out adaptive schemes: their dt is only a call interval.
   std::vector<std::string> scanned;
-  for (const auto& name : integrators) {
-    bool adaptive = false;
-    for (const auto& info : particles::integratorTable()) adaptive = adaptive || (name == info.name && info.usesTolerance);
-    if (!adaptive) scanned.push_back(name);
-  }
+  for (const auto& name : integrators)
+    if (!particles::requireIntegrator(name).usesTolerance) scanned.push_back(name);
   const bool q = options.quick;
   const FailureCriterion& criterion = options.criterion;
   std::cout << describe(criterion) << "\n";

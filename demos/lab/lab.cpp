@@ -129,7 +129,7 @@ std::vector<std::string> selectedIntegrators(const LabOptions& options) {
         std::find(options.integrators.begin(), options.integrators.end(), info.name) !=
             options.integrators.end())
       names.push_back(info.name);
-  for (const auto& name : options.integrators) particles::makeIntegrator(name);  // rejects unknown
+  for (const auto& name : options.integrators) particles::requireIntegrator(name);  // rejects unknown
   return names;
 }
 

@@ -65,12 +65,6 @@ double fastestLinkRate(int length, double duration, const FailureCriterion& crit
   return fastest;
 }
 
-bool adaptive(const std::string& name) {
-  for (const auto& info : particles::integratorTable())
-    if (name == info.name) return info.usesTolerance;
-  return false;
-}
-
 }  // namespace
 
 int runStability(const LabOptions& options, const StabilityOptions& so) {
@@ -82,7 +76,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   // interval would measure nothing, so it is left out here.
   std::vector<std::string> integrators;
   for (const auto& name : selectedIntegrators(options))
-    if (!adaptive(name)) integrators.push_back(name);
+    if (!particles::requireIntegrator(name).usesTolerance) integrators.push_back(name);
     else std::cout << name << ": not scanned (its internal step is chosen by --tolerance, dt is only its call interval)\n";
 
   const bool q = options.quick;

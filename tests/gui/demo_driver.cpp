@@ -42,8 +42,10 @@ std::string outputDirectory(const std::string& testName) {
   return dir;
 }
 
-RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script) {
-  std::string command = std::string("cd '") + directory + "' && '" + PARTICLE_DEMO + "' " + args;
+namespace {
+RunResult runProgram(const char* program, const std::string& directory, const std::string& args,
+                     const std::string& script) {
+  std::string command = std::string("cd '") + directory + "' && '" + program + "' " + args;
   if (!script.empty()) {
     std::ofstream(directory + "/script.txt") << script;
     command += " --script script.txt";
@@ -55,6 +57,15 @@ RunResult runDemo(const std::string& directory, const std::string& args, const s
   result.out = readFile(directory + "/stdout.txt");
   result.err = readFile(directory + "/stderr.txt");
   return result;
+}
+}  // namespace
+
+RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script) {
+  return runProgram(PARTICLE_DEMO, directory, args, script);
+}
+
+RunResult runParticleLab(const std::string& directory, const std::string& args) {
+  return runProgram(PARTICLE_LAB, directory, args, "");
 }
 
 demo::Rgb Image::at(int x, int y) const {

@@ -20,6 +20,10 @@ struct RunResult {
 // empty it is written to directory/script.txt and passed with --script.
 RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script = "");
 
+// Runs the headless runner particle-lab with `args` in `directory`, to hold
+// the demo's options against it.
+RunResult runParticleLab(const std::string& directory, const std::string& args);
+
 // A fresh directory for one test's files, kept after the run for inspection.
 std::string outputDirectory(const std::string& testName);
 
