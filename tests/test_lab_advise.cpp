@@ -1,6 +1,8 @@
 // The accuracy side of the laboratory: the odeint reference against the
 // oscillator's closed form, and `advise` against a brute-force search of the
 // same grid with errors taken from the closed form.
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 
@@ -115,4 +117,36 @@ TEST(Advise, RejectsBadSettingsNamingTheField) {
   settings.horizon = 1.0;
   settings.integrators = {"rk5"};
   EXPECT_THROW(surveyScene(build, settings), std::invalid_argument);
+}
+
+TEST(Advise, ACancelledSurveyIsIncompleteAndNamesNoPick) {
+  SurveySettings settings;
+  settings.horizon = 5.0;
+  settings.targetError = settings.abortError = 1e-2;
+  settings.repeats = 1;
+  const auto build = [] { return scenes::buildScene("pendulum"); };
+  // Cancelled while the reference is computed (the flag is already set) ...
+  std::atomic<bool> cancel{true};
+  settings.cancel = &cancel;
+  const Advice before = advise(build, settings);
+  EXPECT_FALSE(before.complete);
+  EXPECT_EQ(before.best, -1);
+  // ... and during the scan: the first progress past the reference sets it.
+  cancel = false;
+  double reached = 0.0;
+  settings.progress = [&](double f) {
+    reached = std::max(reached, f);
+    if (f > 0.0) cancel = true;
+  };
+  const Advice during = advise(build, settings);
+  EXPECT_FALSE(during.complete);
+  EXPECT_EQ(during.best, -1);
+  EXPECT_LT(reached, 0.9) << "the scan stopped before the timing";
+  // Uncancelled, the same request is complete and names the cheapest.
+  cancel = false;
+  settings.progress = {};
+  const Advice whole = advise(build, settings);
+  EXPECT_TRUE(whole.complete);
+  ASSERT_GE(whole.best, 0);
+  EXPECT_LE(whole.picks[whole.best].candidate.maxError, 1e-2);
 }

@@ -53,13 +53,13 @@ int advise(const AdviseOptions& o) {
     if (fraction == 0.0)
       std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
     else
-      std::fprintf(stderr, "advise: %3.0f%% scanned\n", 100.0 * fraction);
+      std::fprintf(stderr, "advise: %3.0f%% done (the scan, then %d timed repeats of each pick)\n",
+                   100.0 * fraction, o.repeats);
   };
-  const auto build = [&] { return o.source.load(); };
-  const lab::Survey survey = lab::surveyScene(build, settings);
-  std::fprintf(stderr, "advise: timing the picks (%d repeats each) ...\n", o.repeats);
-  const std::vector<lab::Pick> picks = lab::pickPerIntegrator(build, survey, settings, o.error);
-  if (lab::interrupted()) return 130;
+  const lab::Advice advice = lab::advise([&] { return o.source.load(); }, settings);
+  if (lab::interrupted() || !advice.complete) return 130;
+  const lab::Survey& survey = advice.survey;
+  const std::vector<lab::Pick>& picks = advice.picks;
 
   std::cout << "scene " << survey.scene << ", " << survey.particles << " particles, size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
@@ -83,7 +83,7 @@ int advise(const AdviseOptions& o) {
                     scan.integrator.c_str(), scan.scanned.size(), safe.c_str());
     std::cout << line;
   }
-  const int best = lab::cheapest(picks);
+  const int best = advice.best;
   if (best < 0) {
     std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)
               << " s within its safe range\n";

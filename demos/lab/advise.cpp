@@ -143,10 +143,11 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
 }
 
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
-                        double tolerance, const ClosedForm& closedForm) {
+                        double tolerance, const ClosedForm& closedForm, const std::atomic<bool>* cancel) {
   ReferenceSettings tight;
   tight.tolerance = tolerance;
   tight.interval = interval;
+  tight.cancel = cancel;
   // The check integrates again at 100× the tolerance, observed only about once
   // a second so that odeint chooses its own steps (observed every interval,
   // both runs would be held to the same short steps and agree trivially).
@@ -185,7 +186,7 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   if (s.progress) s.progress(0.0);  // valid: the reference starts
   const double scale = releasableEnergy(*first.system);
 
-  const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm);
+  const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm, s.cancel);
   survey.referenceAgreement = reference.agreement;
   survey.reference = reference.description;
   survey.size = reference.trajectory.size();
@@ -226,7 +227,11 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
 std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
                                     const SurveySettings& settings, double error) {
   std::vector<Pick> picks;
+  // A cancellable run checks the flag every step; the others are timed without an observer.
+  std::function<bool(const particles::ParticleSystem&)> carryOn;
+  if (settings.cancel) carryOn = [&](const particles::ParticleSystem&) { return !settings.cancel->load(); };
   for (const auto& scan : survey.integrators) {
+    if (settings.progress) settings.progress(static_cast<double>(picks.size()) / survey.integrators.size());
     Pick pick;
     for (const auto& c : scan.scanned) {
       const bool safe = scan.adaptive || c.dt <= settings.safeFraction * scan.safeDt * (1 + 1e-12);
@@ -242,8 +247,9 @@ std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build,
         particles::IntegratorSettings integratorSettings;
         if (pick.candidate.tolerance > 0.0) integratorSettings.tolerance = pick.candidate.tolerance;
         auto stepper = particles::makeIntegrator(pick.candidate.integrator, integratorSettings);
-        perSecond.push_back(simulate(scene, *stepper, pick.candidate.dt, survey.horizon, settings.failure).seconds /
-                            survey.horizon);
+        const RunResult run = simulate(scene, *stepper, pick.candidate.dt, survey.horizon, settings.failure, carryOn);
+        if (run.stopped || run.cutShort) break;
+        perSecond.push_back(run.seconds / survey.horizon);
       }
       if (perSecond.empty()) perSecond.push_back(pick.candidate.seconds / survey.horizon);
       pick.cpuPerSimulatedSecond = median(perSecond);
@@ -253,6 +259,31 @@ std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build,
     picks.push_back(pick);
   }
   return picks;
+}
+
+Advice advise(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
+              const ClosedForm& closedForm) {
+  Advice out;
+  SurveySettings s = settings;
+  const auto share = [&](double from, double width) {
+    return settings.progress ? std::function<void(double)>([=, &settings](double f) { settings.progress(from + width * f); })
+                             : std::function<void(double)>();
+  };
+  s.progress = share(0.0, 0.9);
+  try {
+    out.survey = surveyScene(build, s, closedForm);
+  } catch (const Cancelled&) {
+    return out;
+  }
+  if (cancelled(s)) return out;
+  s.progress = share(0.9, 0.1);
+  const double budget = s.relativeToSize ? s.targetError * out.survey.size : s.targetError;
+  out.picks = pickPerIntegrator(build, out.survey, s, budget);
+  if (cancelled(s)) return out;
+  out.best = cheapest(out.picks);
+  out.complete = true;
+  if (settings.progress) settings.progress(1.0);
+  return out;
 }
 
 int cheapest(const std::vector<Pick>& picks) {

@@ -34,8 +34,8 @@ struct SurveySettings {
   int repeats = 5;                  // timed repeats of each pick; the median is reported
   FailureCriterion failure;         // the failure criterion (lab/failure.h)
   double referenceTolerance = 1e-11;  // odeint's; the check run uses 100× this
-  std::function<void(double)> progress;        // fraction of the scan done, 0..1 (any thread)
-  const std::atomic<bool>* cancel = nullptr;   // set to stop early
+  std::function<void(double)> progress;        // fraction done, 0..1, on the calling thread
+  const std::atomic<bool>* cancel = nullptr;   // set (from any thread) to stop early
 };
 
 // One measured configuration.
@@ -93,13 +93,17 @@ struct Reference {
   double agreement = 0.0;
   std::string description;
 };
+// Throws Cancelled once `cancel` is set.
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
-                        double tolerance, const ClosedForm& closedForm = {});
+                        double tolerance, const ClosedForm& closedForm = {},
+                        const std::atomic<bool>* cancel = nullptr);
 
 // Runs the reference and scans every integrator. `build` makes a fresh scene
 // each call. The reference is the closed form when one is given (checked
 // against odeint), otherwise odeint at referenceTolerance (checked against
-// odeint at 100× that). Throws std::invalid_argument for bad settings.
+// odeint at 100× that). Throws std::invalid_argument for bad settings and
+// Cancelled when settings.cancel is set while the reference is computed (a
+// scan cancelled later returns the points measured so far).
 Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
                    const ClosedForm& closedForm = {});
 
@@ -110,12 +114,27 @@ struct Pick {
 };
 
 // Per integrator, the largest scanned safe dt (fixed-step: dt ≤ safeFraction ×
-// safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`.
+// safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`
+// (settings.progress: the fraction of integrators timed).
 std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
                                     const SurveySettings& settings, double error);
 
 // Index of the cheapest found pick by median CPU time, −1 if none is found.
 int cheapest(const std::vector<Pick>& picks);
+
+// The whole advice for one scene, as `particle-lab advise` and the demo's
+// panel give it: surveyScene with the budget settings.targetError (the scan's
+// share of settings.progress 0..0.9), then pickPerIntegrator at that budget
+// (0.9..1), then the cheapest. `complete` is false when settings.cancel (or an
+// interrupt) stopped it: a partial survey names no pick.
+struct Advice {
+  Survey survey;
+  std::vector<Pick> picks;  // one per survey.integrators
+  int best = -1;            // index of the cheapest pick, −1 if none meets the budget
+  bool complete = false;
+};
+Advice advise(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
+              const ClosedForm& closedForm = {});
 
 // The command line that reproduces a pick: "--integrator NAME --dt X [--tolerance Y]".
 std::string pickArguments(const Candidate& c);
