@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "lab/advise.h"
+#include "lab/lab_scene.h"
 #include "lab/reference.h"
 #include "scenes/oscillator.h"
 
@@ -149,4 +150,34 @@ TEST(Advise, ACancelledSurveyIsIncompleteAndNamesNoPick) {
   EXPECT_TRUE(whole.complete);
   ASSERT_GE(whole.best, 0);
   EXPECT_LE(whole.picks[whole.best].candidate.maxError, 1e-2);
+}
+
+TEST(Advise, SafeBoundaryIsTheLabsScanOverTheEnsemble) {
+  // The 6-chain over 5 s: fixed-step schemes fail at the top of the grid.
+  const auto build = [] { return buildLabScene("test-chain", {{"cl", "6"}}); };
+  SurveySettings settings;
+  settings.horizon = 5.0;
+  settings.targetError = settings.abortError = 1e-3;
+  settings.maxSteps = 1000;
+  settings.repeats = 1;
+  settings.integrators = {"symplectic-euler", "midpoint", "rk4"};
+  const Survey survey = surveyScene(build, settings);
+  int bounded = 0;
+  for (const IntegratorSurvey& scan : survey.integrators) {
+    ASSERT_FALSE(scan.scanned.empty()) << scan.integrator;
+    if (scan.firstFailureDt == 0.0) continue;
+    ++bounded;
+    EXPECT_GT(scan.ensembleRuns, 0) << scan.integrator;
+    // The lab's scan (scan.h) of the same grid points, every member from the
+    // bottom up, gives the same boundary.
+    ScanSettings lab;
+    lab.members = settings.members;
+    lab.beyond = 1e9;
+    for (const Candidate& c : scan.scanned) lab.grid.insert(lab.grid.begin(), c.dt);
+    const std::optional<Boundary> b = scanSafeStep(build, scan.integrator, settings.horizon, lab, settings.failure);
+    ASSERT_TRUE(b.has_value());
+    EXPECT_EQ(scan.safeDt, b->safeDt) << scan.integrator;
+    EXPECT_EQ(scan.firstFailureDt, b->firstFailureDt) << scan.integrator;
+  }
+  EXPECT_GT(bounded, 0) << "some scheme fails on the grid";
 }

@@ -24,7 +24,8 @@ struct SurveySettings {
   std::vector<std::string> integrators;  // empty: every integrator in the engine's table
   double dtMax = 0.0;               // largest dt scanned; 0: min(T/20, 0.5)
   long maxSteps = 100000;           // smallest dt scanned is T / maxSteps
-  double gridRatio = 1.1225;        // 2^(1/6): neighbouring grid steps differ by 12%
+  double gridResolution = 0.1225;   // the lab's dt grid (scan.h stepGridDividing) at 6 steps per octave
+  int members = ScanSettings{}.members;  // starts whose survival sets the safe boundary (the lab's ensemble)
   double safeFraction = 0.8;        // a pick's dt is at most this × the safe boundary
   int survivorsBelowFailure = 3;    // grid points that must survive below the lowest failure
   std::vector<double> tolerances;   // adaptive schemes; empty: 1e-2 … 1e-12, factor √10
@@ -51,6 +52,7 @@ struct Candidate {
   double energyError = 0.0;   // max |E − E_ref| over the steps / E_s (releasableEnergy)
   double constraintDrift = 0.0;  // max |C|/r over the run
   double seconds = 0.0;       // wall time of the scan run's steps
+  Probe probe;                // the run as the safe-boundary scan sees it (scan.h)
 };
 
 // One run of a freshly built scene against the reference, sampled at every
@@ -65,10 +67,13 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
 struct IntegratorSurvey {
   std::string integrator;
   bool adaptive = false;
+  // The safe boundary (scan.h boundaryOf) over every member of the ensemble at
+  // each dt run to T while it was being established.
   double safeDt = 0.0;        // largest scanned dt below which every scanned dt survived (0: none)
   double firstFailureDt = 0.0;  // lowest failing dt scanned above safeDt (0: none failed)
   bool safeAtTop = false;     // nothing failed: safeDt is the top of the grid, a lower bound
-  std::vector<Candidate> scanned;  // in scan order (dt or tolerance descending)
+  std::vector<Candidate> scanned;  // the unperturbed start, in scan order (dt or tolerance descending)
+  long ensembleRuns = 0;           // runs of the perturbed members (survival only)
   std::string refused;             // why the integrator refuses this scene ("" if it takes it)
 };
 
