@@ -11,6 +11,7 @@
 #include "cli/scene_source.h"
 #include "lab/advise.h"
 #include "particles/check.h"
+#include "format_number.h"
 
 namespace cli {
 
@@ -61,7 +62,7 @@ int advise(const AdviseOptions& o) {
   const lab::Survey& survey = advice.survey;
   const std::vector<lab::Pick>& picks = advice.picks;
 
-  std::cout << "scene " << survey.scene << ", " << survey.particles << " particles, size "
+  std::cout << "scene " << survey.scene << ", " << scenes::plural(survey.particles, "particle") << ", size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
             << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
   std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
@@ -79,8 +80,8 @@ int advise(const AdviseOptions& o) {
                     cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),
                     cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
     else
-      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%zu runs), safe dt %s\n",
-                    scan.integrator.c_str(), scan.scanned.size(), safe.c_str());
+      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
+                    scan.integrator.c_str(), scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
     std::cout << line;
   }
   const int best = advice.best;

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "app.h"
+#include "format_number.h"
 
 namespace demo {
 
@@ -57,8 +58,8 @@ void App::drawAdvicePanel() {
   if (advice_.state() != AdviceState::Done) return;
 
   const lab::Advice& a = advice_.advice();
-  ImGui::TextWrapped("%s, %d particles, T = %s s, E = %s; reference: %s%s", advice_.scene().label.c_str(),
-                     a.survey.particles, lab::general(advice_.request().horizon).c_str(),
+  ImGui::TextWrapped("%s, %s, T = %s s, E = %s; reference: %s%s", advice_.scene().label.c_str(),
+                     scenes::plural(a.survey.particles, "particle").c_str(), lab::general(advice_.request().horizon).c_str(),
                      lab::general(advice_.request().error).c_str(), a.survey.reference.c_str(),
                      adviceIsForThisScene() ? "" : " (another scene: advise again to apply)");
   const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
@@ -81,7 +82,8 @@ void App::drawAdvicePanel() {
       if (!p.found) {
         ImGui::TextDisabled("none");
         if (ImGui::IsItemHovered())
-          ImGui::SetTooltip("nothing within E on the scanned grid (%zu runs)", scan.scanned.size());
+          ImGui::SetTooltip("nothing within E on the scanned grid (%s)",
+                            scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str());
         continue;
       }
       // An adaptive scheme's dt is its call interval; its tolerance sets the steps.
@@ -94,8 +96,8 @@ void App::drawAdvicePanel() {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(cell(p.cpuPerSimulatedSecond).c_str());
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("median of %d repeats, %s to %s", advice_.request().repeats, cell(p.cpuMin).c_str(),
-                          cell(p.cpuMax).c_str());
+        ImGui::SetTooltip("median of %s, %s to %s", scenes::plural(advice_.request().repeats, "repeat").c_str(),
+                          cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
     }
     ImGui::EndTable();
   }

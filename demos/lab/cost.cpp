@@ -9,6 +9,7 @@
 #include "lab/advise.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -84,7 +85,7 @@ int runCost(const LabOptions& options) {
               << scan.firstFailureDt << static_cast<long>(scan.scanned.size()) << scan.ensembleRuns;
       safeCsv.endRow();
     }
-    const std::string label = cs.label + " (" + std::to_string(survey.particles) + " particles, T = " +
+    const std::string label = cs.label + " (" + scenes::plural(survey.particles, "particle") + ", T = " +
                               general(cs.horizon) + " s)";
     for (double relative : budgets) {
       const double budget = relative * survey.size;

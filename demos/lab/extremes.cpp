@@ -10,6 +10,7 @@
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
 #include "lab/parallel.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -30,7 +31,7 @@ int runExtremes(const LabOptions& options) {
   // starts (the scene as built and starts perturbed by 1e-6 of its size), as
   // every safe boundary of the report is.
   const ScanSettings scan;
-  const std::string starts = std::to_string(scan.members) + (scan.members == 1 ? " start" : " starts");
+  const std::string starts = scenes::plural(scan.members, "start");
   Progress progress("extremes", static_cast<long>(integrators.size()) * (q ? 8 : 20) + (q ? 30 : 170));
 
   // 1. Spring stiffness: the safe dt of the 8-way cloth against k_s, scanned
