@@ -18,8 +18,9 @@ void App::drawAdvicePanel() {
   const bool open = ImGui::CollapsingHeader("Advice: cheapest integrator within an error");
   recordWidget("advice");
   if (!open) return;
-  ImGui::TextWrapped("Measures a copy of this scene as particle-lab advise does: a reference, then per integrator "
-                     "the largest safe dt within E over [0, T], timed.");
+  ImGui::TextWrapped("Measures a copy of this scene as particle-lab advise --max-steps %ld --repeats %d does: a "
+                     "reference, then per integrator the largest safe dt within E over [0, T], timed.",
+                     adviceRequest_.maxSteps, adviceRequest_.repeats);
   ImGui::InputDouble("E (world units)", &adviceRequest_.error, 0.0, 0.0, "%.3g");
   recordWidget("advise-error");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("largest particle position error allowed over [0, T]");
