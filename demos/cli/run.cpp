@@ -14,6 +14,7 @@
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
 #include "printable.h"
+#include "format_number.h"
 
 namespace cli {
 
@@ -94,8 +95,8 @@ int run(const RunOptions& o) {
   }
   finish(kSuccess);
   const double seconds = loop.simulatedSeconds();
-  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": " << o.steps
-            << " steps to t = " << s.time() << " in " << seconds << " s of simulation ("
+  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": "
+            << scenes::plural(o.steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
             << (seconds > 0.0 ? o.steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
             << ", max |C| " << s.maxConstraintError() << '\n';
   return kSuccess;
