@@ -90,15 +90,20 @@ int ParticleContacts::resolve(const std::vector<int>& collidable, const StepStar
     const double reach = radius[i] + radius[j];
     const Eigen::Vector2d d1 = x.segment<2>(2 * i) - x.segment<2>(2 * j);
     if (impacts) {
-      const Eigen::Vector2d d0 = start.x.segment<2>(2 * i) - start.x.segment<2>(2 * j);
-      // Apart at the start: the relative chord d0 → d1 (exact in a uniform
-      // field) meets |d| = reach at s, the time of impact s·dt. Touching or
-      // overlapping at the start (a third disc pushed one into the other): s = 0.
+      // Each disc's path as it ends the step holds since its last event (an
+      // impact earlier in the step bent the path before it); both hold from
+      // the later of the two, t0.
+      const contact::Path pi = contact::Path::of(start, i, x, v), pj = contact::Path::of(start, j, x, v);
+      const double t0 = events ? std::max(events->t[i], events->t[j]) : 0.0, span = dt - t0;
+      const Eigen::Vector2d d0 = pi.position(t0) - pj.position(t0);
+      // Apart at t0: the relative chord d0 → d1 (exact when both accelerate
+      // alike, as in a uniform field) meets |d| = reach at s, the time of
+      // impact t0 + s·(dt − t0). Touching or overlapping at t0 (a third disc
+      // pushed one into the other): s = 0.
       std::optional<double> s = 0.0;
       if (d0.norm() - reach > settings.slop) s = contact::enterCircle(d0, d1 - d0, Eigen::Vector2d::Zero(), reach);
       if (!s) return false;
-      const double tau = *s * dt, remaining = dt - tau;
-      const contact::Path pi = contact::Path::of(start, i, x, v), pj = contact::Path::of(start, j, x, v);
+      const double tau = t0 + *s * span, remaining = dt - tau;
       const Eigen::Vector2d dTau = d0 + *s * (d1 - d0);
       const Eigen::Vector2d n = dTau.norm() > 0.0 ? Eigen::Vector2d(dTau.normalized()) : Eigen::Vector2d(1, 0);
       const double un = (pi.velocity(tau) - pj.velocity(tau)).dot(n);
