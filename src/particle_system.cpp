@@ -175,22 +175,21 @@ int ParticleSystem::collide(double dt) {
   stepLead_ = v_ - ((x_ - startX_) / dt + 0.5 * dt * stepAcceleration_);
   const StepStart start{startX_, startV_, dt, &stepAcceleration_, &stepLead_};
   const bool discs = collidable_.size() > 1, walls = !colliders_.empty();
-  events_.reset(startX_);
+  if (lastFree_.size() != x_.size()) lastFree_ = x_;
   int contacts = 0;
-  if (walls)
-    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_, events_,
-                                        lastFree_);
-  // Disc impacts change paths: those are swept against the colliders again
-  // from the impact on, and a disc sent back into another meets it again.
-  for (int round = 0; discs && round < contactSettings_.maxImpacts; ++round) {
-    const int impacts =
-        contacts_.resolve(collidable_, start, inverseMass_, radius_, contactSettings_, true, x_, v_, &events_);
-    contacts += impacts;
-    if (impacts == 0) break;
-    if (walls)
-      contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
-                                          events_, lastFree_);
+  // Discs meet each other and the colliders in the order of their impacts;
+  // every other particle meets only the colliders, on its own.
+  if (discs)
+    contacts += contacts_.resolve(collidable_, colliders_, start, inverseMass_, radius_, contactSettings_, true, x_,
+                                  v_, &lastFree_);
+  if (walls && discs) {
+    pointParticles_.clear();
+    for (int i = 0; i < size(); ++i)
+      if (radius_[i] == 0.0) pointParticles_.push_back(i);
   }
+  if (walls)
+    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
+                                        lastFree_, discs ? &pointParticles_ : nullptr);
   if (walls && !edges_.empty()) contacts += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_);
   // Resting contacts push on each other (a stack on a floor, a rope over a
   // nail): Gauss–Seidel passes until none is left, colliders last, as the

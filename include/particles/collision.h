@@ -11,6 +11,7 @@
 // exact. A contact that would close again within the step is resting: it
 // holds the particle on the surface for the rest of the step with the normal
 // impulse that cancels its approach (weight × dt for a particle at rest).
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -47,23 +48,13 @@ struct StepStart {
 // the tangential impulse is Coulomb's (at most μ times the normal impulse);
 // the rest of the path is swept again from there, so touching colliders act
 // as one closed boundary. Pinned particles (inverse mass 0) are never moved.
-// Each particle's sweep starts from its last event (eventX at time eventT:
-// the step's start, or its last impact, which every impact updates), so the
-// pass can run again after disc impacts have changed some paths.
-// `lastFree` receives each particle's end position (known to be outside every
-// collider), from which pushOutOfColliders sweeps later. Returns the contacts.
-struct ContactEvents {
-  Eigen::VectorXd x;  // 2n: position of each particle's last impact (or its start)
-  Eigen::VectorXd t;  // n: its time within the step
-  void reset(const Eigen::VectorXd& start) {
-    x = start;
-    t.setZero(start.size() / 2);
-  }
-};
+// `particles` lists the particles to resolve (null: all). `lastFree` receives
+// each one's end position (known to be outside every collider), from which
+// pushOutOfColliders sweeps later. Returns the contacts.
 int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            ContactEvents& events, Eigen::VectorXd& lastFree);
+                            Eigen::VectorXd& lastFree, const std::vector<int>* particles = nullptr);
 
 // A resting pass for particles that another contact pushed into a collider
 // after resolveColliderContacts: the path lastFree → x finds the face entered,
@@ -74,35 +65,49 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::Vect
                        Eigen::VectorXd& v, Eigen::VectorXd& lastFree);
 
 // Disc–disc contact between collidable particles, with a uniform-grid broad
-// phase so the cost stays linear in the number of particles. A pair that
-// meets during the step exchanges the impulse j = −(1 + e) u_n / (w_i + w_j)
+// phase so the cost stays linear in the number of particles. With impacts,
+// the discs' impacts on each other and on the colliders are taken in the
+// order of their times within the step (each on the paths the discs follow
+// then): a pair that meets exchanges the impulse j = −(1 + e) u_n / (w_i + w_j)
 // at the time of impact (u_n the approach speed along the line of centres
-// then); a pair that was already touching is resting: its approach is
-// removed and its overlap split in proportion to inverse mass, which keeps
-// momentum and the centre of mass.
+// then), a collider impact is resolveColliderContacts'. A pair touching or
+// overlapping at the step's end is resting: its approach is removed and its
+// overlap split in proportion to inverse mass, which keeps momentum and the
+// centre of mass.
 class ParticleContacts {
  public:
   double restitution = 0.5;  // e in [0, 1]
 
-  // impacts: the first pass of a step (continuous, restitution); later passes
-  // (impacts = false) only resolve the resting contacts at the step's end.
-  // Returns the number of contacts resolved.
-  // Each pass keeps the pairs it found in contact; resolveResting goes over
-  // them again (alternating the order, which carries a push through a stack
-  // in both directions) without a new broad phase. Returns the largest speed
+  ParticleContacts();
+  ~ParticleContacts();
+  ParticleContacts(ParticleContacts&&) noexcept;
+  ParticleContacts& operator=(ParticleContacts&&) noexcept;
+
+  // impacts: the continuous pass of a step, from `start` (the colliders may be
+  // empty); without, only the resting contacts at the step's end. lastFree
+  // (may be null) receives the discs' end positions after their impacts, as
+  // resolveColliderContacts' does. Returns the number of contacts resolved.
+  // The pairs found touching are kept; resolveResting goes over them again
+  // (alternating the order, which carries a push through a stack in both
+  // directions) without a new broad phase, and returns the largest speed
   // change it made.
-  // events (may be null) records each impact for a later collider pass.
-  int resolve(const std::vector<int>& collidable, const StepStart& start, const Eigen::VectorXd& inverseMass,
-              const Eigen::VectorXd& radius, const ContactSettings& settings, bool impacts, Eigen::VectorXd& x,
-              Eigen::VectorXd& v, ContactEvents* events = nullptr);
+  int resolve(const std::vector<int>& collidable, const std::vector<Collider>& colliders, const StepStart& start,
+              const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const ContactSettings& settings,
+              bool impacts, Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree = nullptr);
   double resolveResting(const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                         const ContactSettings& settings, bool reverse, Eigen::VectorXd& x, Eigen::VectorXd& v);
 
  private:
+  // Pairs of collidable discs near enough to meet this step, as indices into `collidable`.
+  void findCandidatePairs(const std::vector<int>& collidable, const Eigen::VectorXd& x, double cell);
+  int resolveImpacts(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
+                     const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                     const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                     Eigen::VectorXd* lastFree);
+
   std::vector<std::pair<int, int>> touching_;  // pairs found in contact by the last resolve
-  // Broad-phase scratch, kept between steps to avoid allocation.
-  std::vector<Eigen::Vector2i> cells_;
-  std::vector<int> bucket_, order_, bucketStart_, fill_;
+  struct Scratch;  // broad phase and event queue, kept between steps to avoid allocation
+  std::unique_ptr<Scratch> scratch_;
 };
 
 // A collision edge: the segment between two particles (a spring of a cloth),
