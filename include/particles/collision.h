@@ -30,16 +30,13 @@ struct ContactSettings {
 };
 
 // The state at the start of the step, from which continuous detection sweeps.
-// acceleration: each particle's mean acceleration (v₁ − v₀)/dt over the step
-// as the integrator left it, measured before any contact changed v₁, so that
-// one contact's impulse does not bend the path a later contact sees; when
-// null, it is measured from the current state.
+// Each particle's path through the step runs from (x, v) here to its state as
+// the integrator left it (contact_path.h); every contact pass reads it before
+// any contact has changed that particle.
 struct StepStart {
   const Eigen::VectorXd& x;  // 2n positions
   const Eigen::VectorXd& v;  // 2n velocities
   double dt;
-  const Eigen::VectorXd* acceleration = nullptr;  // 2n
-  const Eigen::VectorXd* lead = nullptr;          // 2n: v₁ − path velocity at the end (contact_path.h)
 };
 
 // Particles (discs of radius[i], 0 for a point) against colliders: each
@@ -48,13 +45,23 @@ struct StepStart {
 // the tangential impulse is Coulomb's (at most μ times the normal impulse);
 // the rest of the path is swept again from there, so touching colliders act
 // as one closed boundary. Pinned particles (inverse mass 0) are never moved.
-// `particles` lists the particles to resolve (null: all). `lastFree` receives
-// each one's end position (known to be outside every collider), from which
-// pushOutOfColliders sweeps later. Returns the contacts.
+// `only` (null: all) marks the particles to resolve, the others are left
+// alone. `lastFree` (2n) receives each resolved particle's end position (known
+// to be outside every collider), from which pushOutOfColliders sweeps later.
+// Returns the contacts.
 int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            Eigen::VectorXd& lastFree, const std::vector<int>* particles = nullptr);
+                            Eigen::VectorXd& lastFree, const std::vector<char>* only = nullptr);
+
+// Broad phase against colliders, once a step: near[i] is set when particle
+// i's path over the step (the box of x0 → x1) grown by `margin` meets a
+// collider's bounding box or comes within margin of a half-plane. A particle
+// not marked meets no collider if margin ≥ its radius (+ slop), and no edge
+// with both ends unmarked meets a corner if margin ≥ edgeReach(). Linear in
+// the number of particles, times the number of colliders.
+void markNearColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
+                       double margin, std::vector<char>& near);
 
 // A resting pass for particles that another contact pushed into a collider
 // after resolveColliderContacts: the path lastFree → x finds the face entered,
@@ -96,6 +103,7 @@ class ParticleContacts {
               bool impacts, Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree = nullptr);
   double resolveResting(const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                         const ContactSettings& settings, bool reverse, Eigen::VectorXd& x, Eigen::VectorXd& v);
+  int touchingPairs() const { return static_cast<int>(touching_.size()); }
 
  private:
   // Pairs of collidable discs near enough to meet this step, as indices into `collidable`.
@@ -122,8 +130,14 @@ struct CollisionEdge {
 // side, or nearer than its radius, at the end. The edge is pushed clear with
 // the weights of the point of the edge facing the corner, its approach
 // removed and Coulomb friction applied. Returns the contacts.
+// `near` (null: every edge is tested) skips the edges with neither end marked
+// by markNearColliders.
 int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
                         const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
-                        Eigen::VectorXd& v);
+                        Eigen::VectorXd& v, const std::vector<char>* near = nullptr);
+
+// The largest side of an edge's box over the step (its two ends at x0 and
+// x1): the margin markNearColliders needs for edges.
+double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1);
 
 }  // namespace particles

@@ -129,9 +129,9 @@ class ParticleSystem {
   ConstraintSolver solver_;
   ParticleContacts contacts_;
   ContactSettings contactSettings_;
-  // Collision scratch: the step's start, its paths, the last known free positions.
-  Eigen::VectorXd startX_, startV_, stepAcceleration_, stepLead_, lastFree_;
-  std::vector<int> pointParticles_;  // the particles that are not discs (scratch of collide())
+  // Collision scratch: the step's start and the last known free positions.
+  Eigen::VectorXd startX_, startV_, lastFree_;
+  std::vector<char> near_, wallsOnly_;  // near a collider; and of those, not discs (markNearColliders)
 
   // The collision phase of step(): discs against each other and the colliders
   // (continuous, in time order) → other particles against the colliders →

@@ -129,17 +129,18 @@ void stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderB
 int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            Eigen::VectorXd& lastFree, const std::vector<int>* particles) {
+                            Eigen::VectorXd& lastFree, const std::vector<char>* only) {
   const double dt = start.dt;
-  const int n = particles ? static_cast<int>(particles->size()) : static_cast<int>(inverseMass.size());
+  const int n = static_cast<int>(inverseMass.size());
   const contact::ColliderBoxes boxes(colliders);
   if (lastFree.size() != x.size()) lastFree = x;
   int contacts = 0;
-  for (int k = 0; k < n; ++k) {
-    const int i = particles ? (*particles)[k] : k;
+  for (int i = 0; i < n; ++i) {
+    if (only && !(*only)[i]) continue;
     lastFree.segment<2>(2 * i) = x.segment<2>(2 * i);
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];
+    if (!boxes.near(colliders, start.x.segment<2>(2 * i), x.segment<2>(2 * i), r + settings.slop)) continue;
     contact::Track track = contact::Track::of(start, i, x, v);
     while (track.impacts < settings.maxImpacts) {
       const std::optional<contact::ColliderImpact> impact =
@@ -167,6 +168,7 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::Vect
     const double r = radius[i];
     Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
     Eigen::Vector2d from = lastFree.segment<2>(2 * i);
+    if (from == x1) continue;  // not moved since it was known to be outside
     for (int pass = 0; pass < settings.maxImpacts; ++pass) {
       const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
       if (hit.collider < 0) break;

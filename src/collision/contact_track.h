@@ -3,6 +3,7 @@
 // against colliders found and applied one at a time, so that a pass that
 // orders disc and collider impacts by time (particle_contacts.cpp) and the
 // pass over colliders alone (collider_contacts.cpp) share one definition.
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -19,10 +20,7 @@ struct Track {
   int impacts = 0;         // events so far in this step
 
   static Track of(const StepStart& start, int i, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
-    const Path path = Path::of(start, i, x, v);
-    // The path runs from the start state: its origin is the start position
-    // itself (rather than the end extrapolated back, equal up to round-off).
-    return {{start.x.segment<2>(2 * i), path.u0, path.a, 0.0}, x.segment<2>(2 * i), v.segment<2>(2 * i), 0};
+    return {Path::of(start, i, x, v), x.segment<2>(2 * i), v.segment<2>(2 * i), 0};
   }
   Eigen::Vector2d from() const { return path.x0; }
   double t() const { return path.t0; }
@@ -33,6 +31,24 @@ struct Track {
 struct ColliderBoxes {
   std::vector<Eigen::Vector2d> lo, hi;
   explicit ColliderBoxes(const std::vector<Collider>& colliders);
+
+  // Whether the straight path a → b, grown by `margin`, meets any collider's
+  // box, or comes within margin of a half-plane: false means it hits nothing.
+  bool near(const std::vector<Collider>& colliders, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+            double margin) const {
+    const double loX = std::min(a.x(), b.x()) - margin, hiX = std::max(a.x(), b.x()) + margin;
+    const double loY = std::min(a.y(), b.y()) - margin, hiY = std::max(a.y(), b.y()) + margin;
+    for (std::size_t k = 0; k < lo.size(); ++k) {
+      const Collider& c = colliders[k];
+      if (c.shape == ColliderShape::HalfPlane) {
+        const double offset = c.normal.dot(c.points[0]);
+        if (std::min(c.normal.dot(a), c.normal.dot(b)) - offset <= margin) return true;
+      } else if (loX <= hi[k].x() && hiX >= lo[k].x() && loY <= hi[k].y() && hiY >= lo[k].y()) {
+        return true;
+      }
+    }
+    return false;
+  }
 };
 
 // The next impact of a particle of radius r on its track: the collider, the
