@@ -10,6 +10,7 @@
 #include "lab/cells.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -32,12 +33,12 @@ struct ScanSummary {
   std::string integrator;
   bool adaptive = false;
   double safeDt = 0.0, firstFailureDt = 0.0;
-  long runs = 0;
+  long runs = 0, ensembleRuns = 0;
 };
 template <class Io>
 void fields(Io& io, ScanSummary& s) {
   io("integrator", s.integrator), io("adaptive", s.adaptive), io("safe_dt", s.safeDt);
-  io("first_failure_dt", s.firstFailureDt), io("runs", s.runs);
+  io("first_failure_dt", s.firstFailureDt), io("runs", s.runs), io("ensemble_runs", s.ensembleRuns);
 }
 
 // One scene's cell: its survey and the picks per budget (none where the
@@ -78,7 +79,8 @@ int runCost(const LabOptions& options) {
   const std::vector<double> budgets = {1e-2, 1e-4, 1e-6};  // × the scene's size
   const SurveySettings defaults;
   recordValue(options, "cost.safe_fraction", general(defaults.safeFraction));
-  recordValue(options, "cost.grid_ratio", fixed(defaults.gridRatio, 3));
+  recordValue(options, "cost.grid_ratio", fixed(std::pow(2.0, 1.0 / stepsPerOctave(defaults.gridResolution)), 3));
+  recordValue(options, "cost.members", std::to_string(defaults.members));
   recordValue(options, "cost.reference_tolerance", general(defaults.referenceTolerance));
   recordValue(options, "cost.repeats", std::to_string(q ? 2 : defaults.repeats));
   recordValue(options, "cost.failure", describe(options.criterion));
@@ -88,7 +90,7 @@ int runCost(const LabOptions& options) {
                {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",
                 "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
   Csv safeCsv(options, "cost_safe_dt.csv",
-              {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs"});
+              {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs", "ensemble_runs"});
   std::vector<std::vector<std::string>> table;
   for (const auto& cs : scenes) {
     if (interrupted()) break;
@@ -112,7 +114,7 @@ int runCost(const LabOptions& options) {
       Surveyed out{survey.particles, survey.size, survey.referenceAgreement, {}, {}};
       for (const auto& scan : survey.integrators)
         out.integrators.push_back({scan.integrator, scan.adaptive, scan.safeDt, scan.firstFailureDt,
-                                   static_cast<long>(scan.scanned.size())});
+                                   static_cast<long>(scan.scanned.size()), scan.ensembleRuns});
       for (double relative : budgets)
         out.picks.push_back(measurable(relative * survey.size, survey.referenceAgreement)
                                 ? pickPerIntegrator(build, survey, settings, relative * survey.size)
@@ -126,10 +128,10 @@ int runCost(const LabOptions& options) {
     const Surveyed& survey = *surveyed;
     for (const auto& scan : survey.integrators) {
       safeCsv << cs.label << cs.horizon << scan.integrator << (scan.adaptive ? std::nan("") : scan.safeDt)
-              << scan.firstFailureDt << scan.runs;
+              << scan.firstFailureDt << scan.runs << scan.ensembleRuns;
       safeCsv.endRow();
     }
-    const std::string label = cs.label + " (" + std::to_string(survey.particles) + " particles, T = " +
+    const std::string label = cs.label + " (" + scenes::plural(survey.particles, "particle") + ", T = " +
                               general(cs.horizon) + " s)";
     for (std::size_t b = 0; b < budgets.size(); ++b) {
       const double relative = budgets[b];
