@@ -31,7 +31,7 @@ const std::vector<IntegratorInfo>& integratorTable() {
       {"rk4", "classic fourth-order Runge-Kutta", 4, make<Rk4Integrator>},
       {"verlet", "velocity Verlet, velocity-dependent forces at a predicted velocity", 2,
        make<VerletIntegrator>},
-      {"implicit-euler", "backward Euler, one linearised Newton step, constraints in the solve", 1,
+      {"implicit-euler", "backward Euler, constraints in the solve, Newton passes to convergence; never gains energy", 1,
        make<ImplicitEulerIntegrator>},
       {"adaptive-rk4", "RK4 with step doubling: internal step chosen to meet --tolerance", 4,
        make<AdaptiveRk4Integrator>, true},

@@ -12,6 +12,7 @@
 #include "options/option_checks.h"
 #include "options/scene_source.h"
 #include "particles/check.h"
+#include "format_number.h"
 
 namespace cli {
 
@@ -51,15 +52,15 @@ int advise(const AdviseOptions& o) {
     if (fraction == 0.0)
       std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
     else
-      std::fprintf(stderr, "advise: %3.0f%% scanned\n", 100.0 * fraction);
+      std::fprintf(stderr, "advise: %3.0f%% done (the scan, then %d timed repeats of each pick)\n",
+                   100.0 * fraction, o.repeats);
   };
-  const auto build = [&] { return o.source.load(); };
-  const lab::Survey survey = lab::surveyScene(build, settings);
-  std::fprintf(stderr, "advise: timing the picks (%d repeats each) ...\n", o.repeats);
-  const std::vector<lab::Pick> picks = lab::pickPerIntegrator(build, survey, settings, o.error);
-  if (lab::interrupted()) return 130;
+  const lab::Advice advice = lab::advise([&] { return o.source.load(); }, settings);
+  if (lab::interrupted() || !advice.complete) return 130;
+  const lab::Survey& survey = advice.survey;
+  const std::vector<lab::Pick>& picks = advice.picks;
 
-  std::cout << "scene " << survey.scene << ", " << survey.particles << " particles, size "
+  std::cout << "scene " << survey.scene << ", " << scenes::plural(survey.particles, "particle") << ", size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
             << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
   std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
@@ -77,11 +78,11 @@ int advise(const AdviseOptions& o) {
                     cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),
                     cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
     else
-      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%zu runs), safe dt %s\n",
-                    scan.integrator.c_str(), scan.scanned.size(), safe.c_str());
+      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
+                    scan.integrator.c_str(), scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
     std::cout << line;
   }
-  const int best = lab::cheapest(picks);
+  const int best = advice.best;
   if (best < 0) {
     std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)
               << " s within its safe range\n";

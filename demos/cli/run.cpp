@@ -1,9 +1,9 @@
 // particle-lab run: steps a scene without a window, with per-step diagnostics.
-#include <chrono>
 #include <iostream>
 #include <memory>
 
 #include "cli/command.h"
+#include "cli/run_loop.h"
 #include "cli/step_output.h"
 #include "join_names.h"
 #include "lab/lab.h"
@@ -14,6 +14,7 @@
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
 #include "printable.h"
+#include "format_number.h"
 
 namespace cli {
 
@@ -63,8 +64,7 @@ int run(const RunOptions& o) {
   const std::unique_ptr<scenes::OutputFile> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
 
   particles::ParticleSystem& s = *scene.system;
-  const particles::DivergenceLimits limits = runnerDivergenceLimits();
-  const double initialEnergy = s.totalEnergy();
+  RunLoop loop(s, *integrator, dt, {csv ? &csv->stream() : nullptr, trajectory ? &trajectory->stream() : nullptr, o.every});
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };
@@ -74,38 +74,18 @@ int run(const RunOptions& o) {
     if (trajectory) trajectory->close();
     return code;
   };
-  const Diagnostics initial = measureDiagnostics(0, s);
-  if (const std::string reason = nonFiniteDiagnostics(initial); !reason.empty()) {
+  if (const std::string reason = loop.start(); !reason.empty()) {
     diverge(0, reason);
     return finish(kDiverged);
   }
-  if (csv) writeDiagnostics(csv->stream(), initial, 0.0);
-  if (trajectory) writeTrajectory(trajectory->stream(), 0, s);
-  using Clock = std::chrono::steady_clock;
-  Clock::duration simulated{};
   long long done = 0;
   for (long long step = 1; step <= o.steps && !lab::interrupted(); ++step) {
-    const Clock::time_point start = Clock::now();
-    const particles::StepStats stats = s.step(*integrator, dt);
-    const Clock::duration elapsed = Clock::now() - start;
-    simulated += elapsed;
-    if (const particles::Divergence d = particles::checkDivergence(s, limits, initialEnergy, stats)) {
-      diverge(step, d.message());
-      return finish(kDiverged);
-    }
-    const Diagnostics row = measureDiagnostics(step, s);
-    if (const std::string reason = nonFiniteDiagnostics(row); !reason.empty()) {
+    if (const std::string reason = loop.step(); !reason.empty()) {
       diverge(step, reason);
       return finish(kDiverged);
     }
-    if (csv) {
-      writeDiagnostics(csv->stream(), row, std::chrono::duration<double, std::micro>(elapsed).count());
-      csv->check();
-    }
-    if (trajectory && step % o.every == 0) {
-      writeTrajectory(trajectory->stream(), step, s);
-      trajectory->check();
-    }
+    if (csv) csv->check();
+    if (trajectory) trajectory->check();
     done = step;
   }
   if (lab::interrupted()) {
@@ -114,9 +94,9 @@ int run(const RunOptions& o) {
     return finish(kInterrupted);
   }
   finish(kSuccess);
-  const double seconds = std::chrono::duration<double>(simulated).count();
-  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": " << o.steps
-            << " steps to t = " << s.time() << " in " << seconds << " s of simulation ("
+  const double seconds = loop.simulatedSeconds();
+  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": "
+            << scenes::plural(o.steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
             << (seconds > 0.0 ? o.steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
             << ", max |C| " << s.maxConstraintError() << '\n';
   return kSuccess;

@@ -162,6 +162,7 @@ void App::display() {
   }
   frameDue_ = false;
   const auto start = std::chrono::steady_clock::now();
+  guarded([&] { pollAdvice(); });
   guarded([&] { playScript(); });
   guarded([&] { advance(); });
   guarded([&] { draw(); });
@@ -178,8 +179,13 @@ void App::playScript() {
   // Keys a script pressed last frame are released now, after ImGui saw them down.
   for (unsigned char key : scriptKeysDown_) inputKeyUp(key);
   scriptKeysDown_.clear();
-  while (nextScriptEvent_ < script_.size() && script_[nextScriptEvent_].frame <= frame_) {
+  while (nextScriptEvent_ < script_.size() && script_[nextScriptEvent_].frame + scriptHeldFrames_ <= frame_) {
+    if (script_[nextScriptEvent_].action == ScriptAction::WaitAdvice && advice_.running()) {
+      ++scriptHeldFrames_;  // the script's clock stands still this frame
+      return;
+    }
     const ScriptEvent& e = script_[nextScriptEvent_++];
+    if (e.action == ScriptAction::WaitAdvice) continue;
     if (e.action == ScriptAction::Key || e.action == ScriptAction::KeyDown) {
       inputKey(e.key);
       if (e.action == ScriptAction::Key) scriptKeysDown_.push_back(e.key);
@@ -284,6 +290,16 @@ bool App::writeStateLog() const {
   StateExtras extras;
   extras.overlays = overlays_;
   extras.widgets = widgets_;
+  extras.advice.state = adviceStateName(advice_.state());
+  extras.advice.progress = advice_.progress();
+  if (advice_.state() == AdviceState::Done && advice_.advice().best >= 0) {
+    const lab::Candidate& pick = advice_.advice().picks[advice_.advice().best].candidate;
+    extras.advice.integrator = pick.integrator;
+    extras.advice.dt = pick.dt;
+    extras.advice.tolerance = pick.tolerance;
+  }
+  extras.advice.framesWhileRunning = adviceFramesWhileRunning_;
+  extras.advice.applied = adviceApplied_;
   extras.sceneDrawMs = sceneDrawMs_;
   extras.overlayDrawMs = overlayDrawMs_;
   extras.panelShown = showPanel_;
@@ -324,6 +340,54 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   setStatus("scene: " + choice.label);
   statusFrames_ = 0;  // the top bar shows the scene's summary and hint instead
   hintUntilFrame_ = frame_ + hintFramesShown;
+}
+
+// --- advice (advice_job.h; drawn by advice_panel.cpp) -----------------------
+
+void App::startAdvice() {
+  advice_.start(scene_, adviceRequest_);
+  adviceFramesWhileRunning_ = 0;
+  setStatus("advice: surveying a copy of " + scene_.label + " over " + lab::general(adviceRequest_.horizon) + " s");
+}
+
+void App::pollAdvice() {
+  if (advice_.running()) ++adviceFramesWhileRunning_;
+  if (!advice_.poll()) return;
+  switch (advice_.state()) {
+    case AdviceState::Done:
+      if (advice_.advice().best >= 0)
+        setStatus("advice: " + lab::pickArguments(advice_.advice().picks[advice_.advice().best].candidate) +
+                  " (Apply sets it)");
+      else
+        setStatus("advice: no integrator meets E = " + lab::general(advice_.request().error) + " over " +
+                  lab::general(advice_.request().horizon) + " s within its safe range");
+      break;
+    case AdviceState::Cancelled: setStatus("advice cancelled"); break;
+    case AdviceState::Failed: setError("advice failed: " + advice_.message()); break;
+    default: break;
+  }
+}
+
+bool App::adviceIsForThisScene() const {
+  const SceneChoice& a = advice_.scene();
+  return a.name == scene_.name && a.file == scene_.file && a.params == scene_.params && a.preset == scene_.preset;
+}
+
+// The cheapest pick's integrator, dt and tolerance, on the first pane (the
+// one the advice names; compare panes keep theirs). The state runs on.
+void App::applyAdvice() {
+  if (advice_.state() != AdviceState::Done || advice_.advice().best < 0)
+    throw std::invalid_argument("advice: nothing to apply");
+  if (!adviceIsForThisScene()) throw std::invalid_argument("advice: computed for another scene; advise again");
+  const lab::Candidate& pick = advice_.advice().picks[advice_.advice().best].candidate;
+  Simulation& pane = *panes_.front();
+  particles::IntegratorSettings settings = pane.integratorSettings();
+  if (pick.tolerance > 0.0) settings.tolerance = pick.tolerance;
+  pane.setIntegratorSettings(settings);
+  pane.setIntegrator(integratorIndexByName(pick.integrator));
+  pane.setDt(pick.dt);
+  adviceApplied_ = lab::pickArguments(pick);
+  setStatus("applied " + adviceApplied_ + (panes_.size() > 1 ? " to pane 1" : ""));
 }
 
 void App::resetScene() {

@@ -57,6 +57,9 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
                                      extras.frameSimulationMs.end());
   out << "frame-times," << ms.size() << "," << quantile(ms, 0.5) << "," << quantile(ms, 0.1) << "," << quantile(ms, 0.9)
       << "," << quantile(stepping, 0.5) << "\n";
+  const AdviceRecord& a = extras.advice;
+  out << "advice," << a.state << "," << a.progress << "," << a.integrator << "," << a.dt << "," << a.tolerance << ","
+      << a.framesWhileRunning << "," << a.applied << "\n";
   out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
   out.close();
   return out ? "" : "error writing state log '" + path + "'";

@@ -12,6 +12,7 @@
 #include "lab/advise.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -79,7 +80,7 @@ int runAccuracy(const LabOptions& options) {
     recordValue(options, "accuracy.reference_agreement." + p.label, general(reference.agreement, 2));
     recordValue(options, "accuracy.horizon." + p.label, general(p.horizon));
 
-    std::vector<std::string> row{p.label + " (" + std::to_string(particles) + " particles, T = " + general(p.horizon) +
+    std::vector<std::string> row{p.label + " (" + scenes::plural(particles, "particle") + ", T = " + general(p.horizon) +
                                  " s)"};
     for (const auto& name : integrators) {
       std::vector<double> knobs, errors;

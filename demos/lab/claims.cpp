@@ -10,6 +10,7 @@
 #include "lab/lab_scene.h"
 #include "lab/parallel.h"
 #include "particles/forces/mouse_spring.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -98,7 +99,7 @@ int runClaims(const LabOptions& options) {
     table.push_back({"RK4 costs about twice midpoint per step",
                      "RK4/midpoint step time: " + fixed(rk4 / mid, 2), verdict(rk4 / mid > 1.5 && rk4 / mid < 2.5)});
     table.push_back({"RK4 allows more than twice midpoint's step",
-                     "safe dt (scan, " + std::to_string(scan.members) + " starts), " + std::to_string(cl) +
+                     "safe dt (scan, " + scenes::plural(scan.members, "start") + "), " + std::to_string(cl) +
                          "-chain, T = " + general(duration) + " s: RK4 " + safeStepText(boundaries[0]) +
                          ", midpoint " + safeStepText(boundaries[1]) + " (ratio " + fixed(dtRk4 / dtMid, 2) + ")",
                      dtMid > 0.0 && !boundaries[0].aboveGrid() ? verdict(dtRk4 > 2.0 * dtMid) : "undecided"});

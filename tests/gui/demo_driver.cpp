@@ -159,6 +159,15 @@ StateLog readStateLog(const std::string& path) {
     } else if (record == "frame-times") {
       log.measuredFrames = std::stoll(f.at(1));
       log.medianFrameMs = number(2);
+    } else if (record == "advice") {
+      auto field = [&](std::size_t k) { return k < f.size() ? f[k] : std::string(); };
+      log.advice.state = f.at(1);
+      log.advice.progress = number(2);
+      log.advice.integrator = field(3);
+      log.advice.dt = number(4);
+      log.advice.tolerance = number(5);
+      log.advice.framesWhileRunning = std::stoll(f.at(6));
+      log.advice.applied = field(7);
     } else if (record == "timing") {
       log.sceneDrawMs = number(1);
       log.overlayDrawMs = number(2);

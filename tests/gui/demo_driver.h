@@ -72,8 +72,15 @@ struct LoggedOverlay {
            pixel.y() < y + height + margin;
   }
 };
+// The panel's advice: its state, the cheapest pick when done, what was applied.
+struct LoggedAdvice {
+  std::string state, integrator, applied;
+  double progress = 0.0, dt = 0.0, tolerance = 0.0;
+  long long framesWhileRunning = 0;
+};
 struct StateLog {
   long long frames = 0;
+  LoggedAdvice advice;
   bool paused = false;
   std::vector<LoggedPane> panes;
   std::vector<LoggedOverlay> overlays, widgets;
