@@ -61,16 +61,17 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   Workspace& w = *work_;
   if (w.rows.gather(s, constraints)) w.patternValid = false;
   w.inverseMass = &s.inverseMass;
-  w.rows.diagonalOfJWJt(s.inverseMass, w.diagonal);
+  const linear::ConstraintRows& rows = w.rows;
   b_.resize(m);
+  w.diagonal.resize(m);
   for (int k = 0; k < m; ++k) {
-    double jwq = 0.0;
-    for (int e = w.rows.rowStart[k]; e < w.rows.rowStart[k + 1]; ++e) {
-      const int p = w.rows.entryParticle[e];
-      jwq += s.inverseMass[p] * w.rows.J[e].dot(f.segment<2>(2 * p));
+    double jwq = 0.0;  // J W Q
+    for (int e = rows.rowStart[k]; e < rows.rowStart[k + 1]; ++e) {
+      const int p = rows.entryParticle[e];
+      jwq += s.inverseMass[p] * rows.J[e].dot(f.segment<2>(2 * p));
     }
-    b_[k] = -w.rows.rowDotTimes(k, s.v) - jwq - settings.stiffness * w.rows.C[k] -
-            settings.damping * w.rows.Cdot[k];
+    b_[k] = -rows.rowDotTimes(k, s.v) - jwq - settings.stiffness * rows.C[k] - settings.damping * rows.Cdot[k];
+    w.diagonal[k] = rows.diagonalOfJWJt(k, s.inverseMass);
   }
 
   if (!settings.warmStart || lambda_.size() != m || !lambda_.allFinite()) lambda_.setZero(m);

@@ -56,19 +56,31 @@ void IntegratorSettings::validate() const {
   requireInRange("integrator iterations", iterations, 1, 10000);
 }
 
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
-                                           const IntegratorSettings& settings) {
+const IntegratorInfo* findIntegrator(const std::string& name) {
+  for (const IntegratorInfo& info : integratorTable())
+    if (name == info.name) return &info;
+  return nullptr;
+}
+
+std::string integratorNames() {
   std::string names;
   for (const IntegratorInfo& info : integratorTable()) {
-    if (name == info.name) {
-      std::unique_ptr<Integrator> integrator = info.make();
-      integrator->configure(settings);
-      return integrator;
-    }
     names += names.empty() ? "" : ", ";
     names += info.name;
   }
-  throw std::invalid_argument("unknown integrator '" + name + "' (valid: " + names + ")");
+  return names;
+}
+
+const IntegratorInfo& requireIntegrator(const std::string& name) {
+  if (const IntegratorInfo* info = findIntegrator(name)) return *info;
+  throw std::invalid_argument("unknown integrator '" + name + "' (valid: " + integratorNames() + ")");
+}
+
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
+                                           const IntegratorSettings& settings) {
+  std::unique_ptr<Integrator> integrator = requireIntegrator(name).make();
+  integrator->configure(settings);
+  return integrator;
 }
 
 }  // namespace particles

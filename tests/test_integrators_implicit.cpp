@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include "particles/constants.h"
 #include "particles/constraints/circular_wire.h"
 #include "particles/constraints/rod.h"
 #include "particles/forces/angular_spring.h"
@@ -26,8 +27,6 @@ using namespace particles;
 using Eigen::Vector2d;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Unit mass on a zero-length spring of stiffness ω² to the origin (damping
 // optional): x(t) = x₀ cos ωt + (v₀/ω) sin ωt when undamped.

@@ -37,16 +37,6 @@ bool ConstraintRows::gather(const Phase& s, const ConstraintList& constraints) {
   return changed;
 }
 
-void ConstraintRows::diagonalOfJWJt(const Eigen::VectorXd& w, Eigen::VectorXd& out) const {
-  const int m = size();
-  out.resize(m);
-  for (int k = 0; k < m; ++k) {
-    double sum = 0.0;
-    for (int e = rowStart[k]; e < rowStart[k + 1]; ++e) sum += w[entryParticle[e]] * J[e].squaredNorm();
-    out[k] = sum;
-  }
-}
-
 void ConstraintRows::applyJWJt(const Eigen::VectorXd& w, const Eigen::VectorXd& y, Eigen::VectorXd& out,
                                Eigen::VectorXd& scatter) const {
   const int m = size();
@@ -62,24 +52,6 @@ void ConstraintRows::applyJWJt(const Eigen::VectorXd& w, const Eigen::VectorXd& 
     }
     out[k] = sum;
   }
-}
-
-void ConstraintRows::addJtTimes(const Eigen::VectorXd& lambda, Eigen::VectorXd& f) const {
-  const int m = size();
-  for (int k = 0; k < m; ++k)
-    for (int e = rowStart[k]; e < rowStart[k + 1]; ++e) f.segment<2>(2 * entryParticle[e]) += J[e] * lambda[k];
-}
-
-double ConstraintRows::rowTimes(int k, const Eigen::VectorXd& v) const {
-  double sum = 0.0;
-  for (int e = rowStart[k]; e < rowStart[k + 1]; ++e) sum += J[e].dot(v.segment<2>(2 * entryParticle[e]));
-  return sum;
-}
-
-double ConstraintRows::rowDotTimes(int k, const Eigen::VectorXd& v) const {
-  double sum = 0.0;
-  for (int e = rowStart[k]; e < rowStart[k + 1]; ++e) sum += Jdot[e].dot(v.segment<2>(2 * entryParticle[e]));
-  return sum;
 }
 
 namespace {
