@@ -110,28 +110,20 @@ StepStats ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   s.settings = &settings;
   s.begin(system);
   StepStats stats = s.lineariseForcesAtStart(system, h);
-  const int maxPasses = s.coupled ? settings.constraintPasses : 1;
-  for (s.passes = 0;; ++s.passes) {
-    if (s.coupled) {
-      s.gatherConstraintRows(system, h);
-      if (s.passes > 0) {
-        s.evaluateForces(system, s.xTilde, s.vBar);
-        ++stats.forceEvaluations;
-      }
-      s.measureResiduals(system, h);
-      if (s.passes > 0 && s.converged()) break;
-    } else {
-      s.measureResiduals(system, h);
-    }
-    if (s.passes == maxPasses) break;
-    if (s.passes > 0) s.lineariseForces(system, s.xTilde, s.vBar);
+  if (s.coupled) s.gatherConstraintRows(system, h);  // at the first iterate x₀ + h v₀
+  s.measureResiduals(system, h);
+  for (s.passes = 0;;) {
     s.assemble(system, h);
     s.solvePass(stats);
-    if (stats.failure != StepFailure::None) break;
-    if (!s.coupled) {  // one linearly implicit pass: nothing left to measure
-      s.passes = 1;
-      break;
-    }
+    ++s.passes;
+    // Without constraints one linearly implicit pass is the step (header).
+    if (!s.coupled || stats.failure != StepFailure::None) break;
+    s.gatherConstraintRows(system, h);
+    s.evaluateForces(system, s.xTilde, s.vBar);
+    ++stats.forceEvaluations;
+    s.measureResiduals(system, h);
+    if (s.converged() || s.passes == settings.constraintPasses) break;
+    s.lineariseForces(system, s.xTilde, s.vBar);
   }
   s.commit(system, h);
   lastStep_ = h;
