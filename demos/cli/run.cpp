@@ -111,8 +111,8 @@ Command addRunCommand(CLI::App& app) {
                   "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
-                      "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
-                      "fixed-step integrators (default: the scene's, 1e-6)");
+                      "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
+                      "fixed-step integrators (default: the scene's, 1e-5)");
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,
                       "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)");

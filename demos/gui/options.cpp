@@ -83,7 +83,7 @@ DemoOptions parseOptions(int argc, char** argv) {
   cli.add_option("--window", window, "window size WIDTHxHEIGHT in pixels (default 1180x760)");
   cli.add_option("--script", o.script, "timed input events to play (see demos/gui/SCRIPTING.md)");
   auto* framesOption = cli.add_option("--frames", frames, "exit after this many frames");
-  cli.add_option("--tolerance", o.tolerance, "local error tolerance of adaptive-rk4")->capture_default_str();
+  cli.add_option("--tolerance", o.tolerance, "local error tolerance of dopri5")->capture_default_str();
   cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
   cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
   try {

@@ -16,7 +16,7 @@ struct DemoOptions {
   std::string preset = scenes::kDefaultPreset;              // --preset NAME: parameter preset of the built-in scenes
   std::optional<std::string> integrator;        // default: the scene's
   std::optional<double> dt;                     // default: the scene's
-  double tolerance = 1e-6;                      // --tolerance: adaptive-rk4's local error tolerance
+  double tolerance = particles::IntegratorSettings{}.tolerance;  // --tolerance: dopri5's local error tolerance
   std::vector<std::string> compare;             // --compare euler,rk4: start in compare mode
   bool lockstep = false;
   bool hidePanel = false;
