@@ -14,7 +14,7 @@ class ParticleSystem;
 // panel. Fixed-step schemes ignore them; one struct keeps makeIntegrator's
 // signature the same for every scheme.
 struct IntegratorSettings {
-  // Adaptive schemes (dopri5, adaptive-rk4): local error allowed per internal
+  // Adaptive schemes (dopri5): local error allowed per internal
   // step, mixed absolute and relative — error_i against tolerance·(1 + |y_i|)
   // for every component of y = (x, v); each scheme's header gives its norm.
   // 1e-5: on the 80-rod chain at dt 0.01 dopri5 then makes ~6 evaluations per
