@@ -169,42 +169,46 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
 }
 
 int ParticleSystem::collide(double dt) {
-  // Each particle's path over the step as the integrator left it (contact_path.h):
-  // mean acceleration a = (v₁ − v₀)/dt and lead = v₁ − ((x₁ − x₀)/dt + ½ a dt).
-  stepAcceleration_ = (v_ - startV_) / dt;
-  stepLead_ = v_ - ((x_ - startX_) / dt + 0.5 * dt * stepAcceleration_);
-  const StepStart start{startX_, startV_, dt, &stepAcceleration_, &stepLead_};
-  const bool discs = collidable_.size() > 1, walls = !colliders_.empty();
-  events_.reset(startX_);
+  // Each particle's path over the step runs from its start to its state as the
+  // integrator left it (contact_path.h).
+  const StepStart start{startX_, startV_, dt};
+  const bool discs = collidable_.size() > 1, walls = !colliders_.empty(), edges = walls && !edges_.empty();
+  lastFree_ = x_;
   int contacts = 0;
-  if (walls)
-    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_, events_,
-                                        lastFree_);
-  // Disc impacts change paths: those are swept against the colliders again
-  // from the impact on, and a disc sent back into another meets it again.
-  for (int round = 0; discs && round < contactSettings_.maxImpacts; ++round) {
-    const int impacts =
-        contacts_.resolve(collidable_, start, inverseMass_, radius_, contactSettings_, true, x_, v_, &events_);
-    contacts += impacts;
-    if (impacts == 0) break;
-    if (walls)
-      contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
-                                          events_, lastFree_);
+  // Discs meet each other and the colliders in the order of their impacts.
+  if (discs)
+    contacts += contacts_.resolve(collidable_, colliders_, start, inverseMass_, radius_, contactSettings_, true, x_,
+                                  v_, &lastFree_);
+  // Every other particle meets only the colliders, on its own, and only if
+  // its path comes near one (as does an edge, only if one of its ends does).
+  if (walls) {
+    double margin = radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0;
+    if (edges) margin = std::max(margin, edgeReach(edges_, startX_, x_));
+    markNearColliders(colliders_, startX_, x_, margin, near_);
+    wallsOnly_ = near_;
+    if (discs) {
+      for (int i : collidable_) wallsOnly_[i] = 0;  // resolved with the discs
+      for (int i : collidable_) near_[i] = 1;       // moved by disc impacts: edges test them
+    }
+    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
+                                        lastFree_, &wallsOnly_);
   }
-  if (walls && !edges_.empty()) contacts += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_);
+  const int edgeContacts = edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &near_) : 0;
+  contacts += edgeContacts;
   // Resting contacts push on each other (a stack on a floor, a rope over a
   // nail): Gauss–Seidel passes until none is left, colliders last, as the
-  // hard boundary.
-  const bool edges = walls && !edges_.empty();
+  // hard boundary. Without discs left touching or an edge caught, nothing
+  // was pushed after the continuous passes and no pass is needed.
   // A pass ends the iteration when it changes no speed by more than would
   // move a particle by the slop in a step.
   const double settled = contactSettings_.slop / dt;
-  const int passes = discs || edges ? contactSettings_.iterations : 0;
+  const bool pushed = (discs && contacts_.touchingPairs() > 0) || edgeContacts > 0;
+  const int passes = pushed ? contactSettings_.iterations : 0;
   for (int pass = 0; pass < passes; ++pass) {
     double largest = 0.0;
     int resolved = 0;
     if (discs) largest = contacts_.resolveResting(inverseMass_, radius_, contactSettings_, pass % 2 == 0, x_, v_);
-    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_);
+    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &near_);
     if (walls) resolved += pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
     if (largest <= settled && resolved == 0) break;
   }

@@ -3,17 +3,18 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/option_checks.h"
 #include "cli/run_loop.h"
-#include "cli/scene_source.h"
 #include "cli/step_output.h"
 #include "join_names.h"
 #include "lab/lab.h"
+#include "options/option_checks.h"
+#include "options/scene_source.h"
 #include "output_file.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
 #include "printable.h"
+#include "format_number.h"
 
 namespace cli {
 
@@ -23,7 +24,7 @@ namespace {
 constexpr long long kMaxSteps = 1000000000000LL;
 
 struct RunOptions {
-  SceneSource source;
+  options::SceneSource source;
   std::string integrator;  // empty: the scene's own
   // --tolerance, --substeps, --iterations: each given one overrides the scene's.
   particles::IntegratorSettings integratorSettings;
@@ -94,8 +95,8 @@ int run(const RunOptions& o) {
   }
   finish(kSuccess);
   const double seconds = loop.simulatedSeconds();
-  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": " << o.steps
-            << " steps to t = " << s.time() << " in " << seconds << " s of simulation ("
+  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": "
+            << scenes::plural(o.steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
             << (seconds > 0.0 ? o.steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
             << ", max |C| " << s.maxConstraintError() << '\n';
   return kSuccess;
@@ -108,11 +109,12 @@ Command addRunCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
-                  "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
+                  "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)");
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
                       "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
-                      "fixed-step integrators (default: the scene's, 1e-5)");
+                      "fixed-step integrators (default: the scene's, 1e-5)")
+          ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,
                       "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)");
@@ -122,7 +124,7 @@ Command addRunCommand(CLI::App& app) {
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
       ->required()
-      ->check(decimalInteger(0, kMaxSteps));
+      ->check(options::decimalInteger(0, kMaxSteps));
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
                   "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
@@ -134,7 +136,7 @@ Command addRunCommand(CLI::App& app) {
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
       ->capture_default_str()
-      ->check(decimalInteger(1, kMaxSteps));
+      ->check(options::decimalInteger(1, kMaxSteps));
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"

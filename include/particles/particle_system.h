@@ -129,12 +129,13 @@ class ParticleSystem {
   ConstraintSolver solver_;
   ParticleContacts contacts_;
   ContactSettings contactSettings_;
-  // Collision scratch: the step's start, its paths, the last known free positions.
-  Eigen::VectorXd startX_, startV_, stepAcceleration_, stepLead_, lastFree_;
-  ContactEvents events_;
+  // Collision scratch: the step's start and the last known free positions.
+  Eigen::VectorXd startX_, startV_, lastFree_;
+  std::vector<char> near_, wallsOnly_;  // near a collider; and of those, not discs (markNearColliders)
 
-  // The collision phase of step(): colliders (continuous) → disc impacts →
-  // edges → resting passes over discs and colliders. Returns the contacts.
+  // The collision phase of step(): discs against each other and the colliders
+  // (continuous, in time order) → other particles against the colliders →
+  // edges → resting passes over discs, edges and colliders. Returns the contacts.
   int collide(double dt);
   int contactsLastStep_ = 0;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
