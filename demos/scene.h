@@ -69,7 +69,7 @@ struct Scene {
   std::string name;
   std::unique_ptr<particles::ParticleSystem> system;
   std::string integrator = "rk4";
-  particles::IntegratorSettings integratorSettings;  // adaptive-rk4's tolerance, xpbd's substeps
+  particles::IntegratorSettings integratorSettings;  // dopri5's tolerance, xpbd's substeps
   double dt = 0.01;                           // simulated seconds per step
   Eigen::Vector2d viewMin{-1.0, -1.0};        // world rectangle shown by the demo
   Eigen::Vector2d viewMax{1.0, 1.0};

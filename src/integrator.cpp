@@ -3,7 +3,6 @@
 #include <stdexcept>
 
 #include "particles/check.h"
-#include "particles/integrators/adaptive_rk4.h"
 #include "particles/integrators/dopri5.h"
 #include "particles/integrators/explicit_euler.h"
 #include "particles/integrators/implicit_euler.h"
@@ -33,8 +32,6 @@ const std::vector<IntegratorInfo>& integratorTable() {
        make<VerletIntegrator>},
       {"implicit-euler", "backward Euler, constraints in the solve, Newton passes to convergence; never gains energy", 1,
        make<ImplicitEulerIntegrator>},
-      {"adaptive-rk4", "RK4 with step doubling: internal step chosen to meet --tolerance", 4,
-       make<AdaptiveRk4Integrator>, true},
       {"dopri5", "Dormand-Prince 5(4), FSAL, PI step control: internal step chosen to meet --tolerance", 5,
        make<Dopri5Integrator>, true},
       {"xpbd", "XPBD: --substeps substeps of --iterations constraint passes, springs as compliance", 1,

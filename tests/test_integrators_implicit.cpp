@@ -17,7 +17,6 @@
 #include "particles/forces/gravity.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
-#include "particles/integrators/adaptive_rk4.h"
 #include "particles/integrators/implicit_euler.h"
 #include "particles/particle_system.h"
 #include "scenes/pendulum.h"
@@ -96,21 +95,6 @@ TEST(ImplicitEuler, GlobalErrorIsFirstOrder) {
   const double order = fittedOrder("implicit-euler", 0.0, undamped);
   RecordProperty("fitted_order", std::to_string(order));
   EXPECT_NEAR(order, 1.0, 0.3);
-}
-
-TEST(AdaptiveRk4, GlobalErrorIsFourthOrderAtFixedTolerance) {
-  // With a loose tolerance it takes exactly one internal step per dt, so it
-  // behaves as RK4 plus Richardson extrapolation: at least fourth order.
-  IntegratorSettings loose;
-  loose.tolerance = 1e3;
-  std::vector<double> errors;
-  for (int steps : {20, 40}) {
-    auto system = oscillator(1.0);
-    auto integrator = makeIntegrator("adaptive-rk4", loose);
-    for (int k = 0; k < steps; ++k) system->step(*integrator, 2.0 / steps);
-    errors.push_back((system->position(0) - oscillatorExact(1.0, 2.0)).norm());
-  }
-  EXPECT_GT(std::log2(errors[0] / errors[1]), 3.7);
 }
 
 // Energy of the undamped oscillator over 10⁴ steps of dt = 0.01 (ω = 1, 16 periods).
@@ -376,78 +360,12 @@ TEST(ImplicitEuler, NewtonPassesStopOnAPinnedOnlyRowAndLeaveTheRestAlone) {
   }
 }
 
-// --- adaptive RK4 ---------------------------------------------------------
-
-TEST(AdaptiveRk4, MeetsItsToleranceOnTheOscillator) {
-  for (double tol : {1e-4, 1e-6, 1e-8}) {
-    IntegratorSettings settings;
-    settings.tolerance = tol;
-    auto system = oscillator(2.0);
-    auto integrator = makeIntegrator("adaptive-rk4", settings);
-    double worst = 0.0;
-    for (int k = 1; k <= 100; ++k) {  // 10 s in frames of 0.1: ~3 periods
-      system->step(*integrator, 0.1);
-      worst = std::max(worst, (system->position(0) - oscillatorExact(2.0, 0.1 * k)).norm());
-    }
-    RecordProperty("error_over_tolerance_" + std::to_string(tol), std::to_string(worst / tol));
-    EXPECT_LT(worst, 10.0 * tol) << "tolerance " << tol;
-    EXPECT_GT(worst, 1e-4 * tol) << "tolerance " << tol << ": suspiciously exact";
-    EXPECT_LT(integrator->lastInternalStep(), 0.1 + 1e-15);
-  }
-}
-
-TEST(AdaptiveRk4, InternalStepFollowsTheTolerance) {
-  double previous = INFINITY;
-  for (double tol : {1e-3, 1e-6, 1e-9}) {
-    IntegratorSettings settings;
-    settings.tolerance = tol;
-    auto system = oscillator(2.0);
-    auto integrator = makeIntegrator("adaptive-rk4", settings);
-    for (int k = 0; k < 10; ++k) system->step(*integrator, 0.5);
-    const double h = static_cast<AdaptiveRk4Integrator&>(*integrator).internalStep();
-    EXPECT_LT(h, previous);
-    previous = h;
-  }
-}
-
-TEST(AdaptiveRk4, NeverAppliesARejectedStep) {
-  // Start with an internal step far too large so the first attempts are
-  // rejected; then replay only the accepted steps, each as a single step of an
-  // integrator that accepts everything. A rejected trial that leaked into the
-  // state would make the two differ.
-  IntegratorSettings tight;
-  tight.tolerance = 1e-9;
-  auto system = oscillator(3.0);
-  const Snapshot start = system->snapshot();
-  AdaptiveRk4Integrator adaptive;
-  adaptive.configure(tight);
-  adaptive.setInternalStep(1.0);
-  adaptive.step(*system, 1.0);
-  ASSERT_GT(adaptive.rejectedSteps(), 0);
-  const std::vector<double> accepted = adaptive.lastAcceptedSteps();
-  ASSERT_GT(accepted.size(), 1u);
-  const Eigen::VectorXd x = system->positions(), v = system->velocities();
-
-  system->restore(start);
-  IntegratorSettings loose;
-  loose.tolerance = 1e6;
-  for (double h : accepted) {
-    AdaptiveRk4Integrator replay;
-    replay.configure(loose);
-    replay.setInternalStep(h);
-    replay.step(*system, h);
-    ASSERT_EQ(replay.rejectedSteps(), 0);
-  }
-  EXPECT_EQ(system->positions(), x);
-  EXPECT_EQ(system->velocities(), v);
-}
-
 TEST(IntegratorTable, NewSchemesAreListedAndToleranceIsChecked) {
-  for (const char* name : {"verlet", "implicit-euler", "adaptive-rk4"})
+  for (const char* name : {"verlet", "implicit-euler", "dopri5"})
     EXPECT_STREQ(makeIntegrator(name)->name(), name);
   IntegratorSettings bad;
   bad.tolerance = -1.0;
-  EXPECT_THROW(makeIntegrator("adaptive-rk4", bad), std::invalid_argument);
+  EXPECT_THROW(makeIntegrator("dopri5", bad), std::invalid_argument);
 }
 
 TEST(ImplicitEuler, ReusedPatternGivesTheSameStepAsAFreshIntegrator) {

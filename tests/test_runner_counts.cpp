@@ -1,7 +1,8 @@
 // The runner's CSV counts what the step did: driven through the runner's own
 // step loop (demos/cli/run_loop.h), each row's force_evaluations, solves,
 // cg_iterations and internal_steps are compared with what a counting force
-// and a counting constraint saw during that step.
+// (test_support::CountingForce: its evaluations and the CG iterations the
+// solver reported at each) and a counting constraint saw during that step.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -17,34 +18,13 @@
 #include "particles/forces/spring.h"
 #include "particles/integrators/implicit_euler.h"
 #include "particles/particle_system.h"
+#include "test_support.h"
 
 using namespace particles;
 using Eigen::Vector2d;
+using test_support::CountingForce;
 
 namespace {
-
-// Counts its evaluations and sums the CG iterations of the solves it sees:
-// the force accumulator is evaluated at the start of each derivative
-// evaluation, when the solver still reports the previous evaluation's solve.
-// Adds no force; its Jacobians are exactly zero.
-class CountingForce : public Force {
- public:
-  explicit CountingForce(const ConstraintSolver& solver) : solver_(solver) {}
-  const char* type() const override { return "counting"; }
-  void apply(const Phase&, Eigen::VectorXd&) const override {
-    ++evaluations;
-    if (evaluations > 1) iterationsSeen += solver_.stats().iterations;
-  }
-  bool hasJacobians() const override { return true; }
-  void addJacobians(const Phase&, Triplets&, Triplets&) const override {}
-  void reset() const { evaluations = 0, iterationsSeen = 0; }
-
-  mutable int evaluations = 0;
-  mutable int iterationsSeen = 0;  // iterations of every solve but the last one of the step
-
- private:
-  const ConstraintSolver& solver_;
-};
 
 // A rod that counts how often its rows are gathered (once per constraint solve).
 class CountingRod : public RodConstraint {
@@ -128,12 +108,14 @@ std::vector<Row> runCounted(CountedChain& c, Integrator& integrator, double dt, 
   cli::RunLoop loop(c.system, integrator, dt, {&csv, nullptr, 1});
   EXPECT_EQ(loop.start(), "");
   for (int k = 0; k < steps; ++k) {
-    c.force->reset();
+    c.force->seen.clear();
     c.rod->gathers = 0;
     EXPECT_EQ(loop.step(), "") << "step " << k + 1;
-    // The last solve of the step is still the solver's.
-    const int last = c.system.lastSolve().iterations;
-    seen.push_back({c.force->evaluations, c.rod->gathers, c.force->iterationsSeen + last, c.system.lastStepStats()});
+    // Evaluation j + 1 saw solve j's iterations; the step's last solve is still the solver's.
+    const std::vector<int>& iterations = c.force->seen;
+    int sum = c.system.lastSolve().iterations;
+    for (std::size_t j = 1; j < iterations.size(); ++j) sum += iterations[j];
+    seen.push_back({static_cast<int>(iterations.size()), c.rod->gathers, sum, c.system.lastStepStats()});
   }
   csv.close();
   std::ifstream in(path);

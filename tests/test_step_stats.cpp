@@ -21,23 +21,6 @@ using Eigen::Vector2d;
 
 namespace {
 
-// Records, at each of its evaluations, the CG iterations the solver reports
-// then: forces are applied at the start of each derivative evaluation, when
-// the solver still holds the statistics of the previous evaluation's solve.
-// Adds no force; its Jacobians are exactly zero.
-class CountingForce : public Force {
- public:
-  explicit CountingForce(const ConstraintSolver& solver) : solver_(solver) {}
-  const char* type() const override { return "counting"; }
-  void apply(const Phase&, Eigen::VectorXd&) const override { seen.push_back(solver_.stats().iterations); }
-  bool hasJacobians() const override { return true; }
-  void addJacobians(const Phase&, Triplets&, Triplets&) const override {}
-  mutable std::vector<int> seen;
-
- private:
-  const ConstraintSolver& solver_;
-};
-
 // A chain of four rods hanging from a pinned particle, released sideways, with gravity.
 ParticleSystem makeChain() {
   ParticleSystem system;
@@ -62,7 +45,7 @@ TEST(StepStats, ExplicitSchemesCountEveryEvaluationAndSumCgIterationsOverTheStep
     ParticleSystem system = makeChain();
     system.solver().settings.method = SolveMethod::ConjugateGradient;
     system.solver().settings.warmStart = false;
-    auto& counter = static_cast<CountingForce&>(system.addForce(std::make_unique<CountingForce>(system.solver())));
+    auto& counter = static_cast<test_support::CountingForce&>(system.addForce(std::make_unique<test_support::CountingForce>(system.solver())));
     auto integrator = makeIntegrator(e.name);
     for (int step = 0; step < 3; ++step) {
       counter.seen.clear();
@@ -86,7 +69,7 @@ TEST(StepStats, ExplicitSchemesCountEveryEvaluationAndSumCgIterationsOverTheStep
 TEST(StepStats, EveryIntegratorReportsItsForceEvaluations) {
   for (const IntegratorInfo& info : integratorTable()) {
     ParticleSystem system = makeChain();
-    auto& counter = static_cast<CountingForce&>(system.addForce(std::make_unique<CountingForce>(system.solver())));
+    auto& counter = static_cast<test_support::CountingForce&>(system.addForce(std::make_unique<test_support::CountingForce>(system.solver())));
     auto integrator = info.make();
     if (info.usesSubsteps) {
       // xpbd takes only the forces its table gives a position form or an

@@ -8,9 +8,27 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
+#include "particles/constraint_solver.h"
 #include "particles/force.h"
 
 namespace test_support {
+
+// Records, at each of its evaluations, the CG iterations the solver reports
+// then: forces are applied at the start of each derivative evaluation, when
+// the solver still holds the statistics of the previous evaluation's solve.
+// Adds no force; its Jacobians are exactly zero.
+class CountingForce : public particles::Force {
+ public:
+  explicit CountingForce(const particles::ConstraintSolver& solver) : solver_(solver) {}
+  const char* type() const override { return "counting"; }
+  void apply(const particles::Phase&, Eigen::VectorXd&) const override { seen.push_back(solver_.stats().iterations); }
+  bool hasJacobians() const override { return true; }
+  void addJacobians(const particles::Phase&, particles::Triplets&, particles::Triplets&) const override {}
+  mutable std::vector<int> seen;
+
+ private:
+  const particles::ConstraintSolver& solver_;
+};
 
 // Expects `action` to throw std::invalid_argument whose message contains `text`
 // (the parameter's name, or the value it was given).

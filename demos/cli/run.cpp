@@ -109,8 +109,8 @@ Command addRunCommand(CLI::App& app) {
                   "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)");
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
-                      "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
-                      "fixed-step integrators (default: the scene's, 1e-6)")
+                      "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
+                      "fixed-step integrators (default: the scene's, 1e-5)")
           ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,

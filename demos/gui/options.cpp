@@ -100,7 +100,7 @@ DemoOptions parseOptions(int argc, char** argv) {
   cli.add_option("--script", o.script, "timed input events to play (see demos/gui/SCRIPTING.md)");
   auto* framesOption = cli.add_option("--frames", frames, "exit after this many frames")
                            ->check(options::decimalInteger(1, kMaxFrames));
-  cli.add_option("--tolerance", o.tolerance, "local error tolerance of adaptive-rk4")
+  cli.add_option("--tolerance", o.tolerance, "local error tolerance of dopri5")
       ->capture_default_str()
       ->check(options::integratorTolerance());
   cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");

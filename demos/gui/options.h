@@ -23,7 +23,7 @@ struct DemoOptions {
   options::SceneSource source;                  // --scene (default cloth), --scene-file, --param, --preset
   std::optional<std::string> integrator;        // default: the scene's
   std::optional<double> dt;                     // default: the scene's
-  double tolerance = 1e-6;                      // --tolerance: adaptive-rk4's local error tolerance
+  double tolerance = particles::IntegratorSettings{}.tolerance;  // --tolerance: dopri5's local error tolerance
   std::vector<ComparePane> compare;             // --compare euler,rk4: start in compare mode, 2 to 4 panes
   bool lockstep = false;
   bool hidePanel = false;

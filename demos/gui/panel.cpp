@@ -152,7 +152,7 @@ void App::drawPanel() {
       }
       ImGui::PopID();
     }
-    // Schemes with settings of their own (adaptive-rk4's error tolerance).
+    // Schemes with settings of their own (dopri5's error tolerance).
     bool anyTolerance = false;
     for (const auto& pane : panes_) anyTolerance |= table[pane->integratorIndex()].usesTolerance;
     if (anyTolerance) {

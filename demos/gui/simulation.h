@@ -59,7 +59,7 @@ class Simulation {
   void setIntegrator(int index);  // keeps the state; clears a refusal
   int integratorIndex() const { return integratorIndex_; }
   const char* integratorName() const;
-  // Settings of schemes that take them (adaptive-rk4's tolerance); kept across
+  // Settings of schemes that take them (dopri5's tolerance); kept across
   // integrator changes. Throws naming a bad field.
   void setIntegratorSettings(const particles::IntegratorSettings& settings);
   const particles::IntegratorSettings& integratorSettings() const { return integratorSettings_; }

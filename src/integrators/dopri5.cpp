@@ -1,6 +1,7 @@
 #include "particles/integrators/dopri5.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tuple>
 
@@ -24,8 +25,8 @@ constexpr double b[6] = {35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187
 constexpr double e[7] = {71.0 / 57600.0,      0.0,         -71.0 / 16695.0, 71.0 / 1920.0,
                          -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0};
 
-// Dense output (HNW II.6, the continuous extension of DOPRI5 by Shampine, of
-// order 4): y(t₀ + θh) = r₁ + θ (r₂ + (1−θ) (r₃ + θ (r₄ + (1−θ) r₅))) with
+// Dense output (HNW II.6, the continuous extension of DOPRI5, of order 4):
+//   y(t₀ + θh) = r₁ + θ (r₂ + (1−θ) (r₃ + θ (r₄ + (1−θ) r₅))) with
 //   r₁ = y₀,  r₂ = y₁ − y₀,  r₃ = h k₁ − r₂,  r₄ = r₂ − h k₇ − r₃,
 //   r₅ = h Σ dᵢ kᵢ  (the dᵢ below; d₂ = 0).
 constexpr double d[7] = {-12715105075.0 / 11282082432.0, 0.0, 87487479700.0 / 32700410799.0,
@@ -44,43 +45,44 @@ void Dopri5Integrator::configure(const IntegratorSettings& settings) {
   settings_ = settings;
 }
 
+namespace {
+
+// out = y₀ + h Σ_{j<count} c_j k_j in one pass over the vectors (Eigen fuses
+// the sum of a fixed number of terms into one loop, with no temporaries).
+void combine(const Eigen::VectorXd& y0, double h, const double* c, const std::array<Eigen::VectorXd, 7>& k,
+             int count, Eigen::VectorXd& out) {
+  switch (count) {
+    case 1: out = y0 + (h * c[0]) * k[0]; break;
+    case 2: out = y0 + h * (c[0] * k[0] + c[1] * k[1]); break;
+    case 3: out = y0 + h * (c[0] * k[0] + c[1] * k[1] + c[2] * k[2]); break;
+    case 4: out = y0 + h * (c[0] * k[0] + c[1] * k[1] + c[2] * k[2] + c[3] * k[3]); break;
+    case 5: out = y0 + h * (c[0] * k[0] + c[1] * k[1] + c[2] * k[2] + c[3] * k[3] + c[4] * k[4]); break;
+    default: out = y0 + h * (c[0] * k[0] + c[2] * k[2] + c[3] * k[3] + c[4] * k[4] + c[5] * k[5]); break;  // b, b₂ = 0
+  }
+}
+
+}  // namespace
+
 double Dopri5Integrator::trial(ParticleSystem& system, double h) {
   for (int s = 1; s < 6; ++s) {
-    xs_ = x0_;
-    vs_ = v0_;
-    for (int j = 0; j < s; ++j) {
-      if (a[s][j] == 0.0) continue;
-      xs_ += (h * a[s][j]) * kx_[j];
-      vs_ += (h * a[s][j]) * kv_[j];
-    }
-    kx_[s] = vs_;
-    system.acceleration(xs_, vs_, kv_[s]);
+    combine(x0_, h, a[s], kx_, s, xs_);
+    combine(v0_, h, a[s], kv_, s, kx_[s]);  // k of x at stage s is that stage's velocity
+    system.acceleration(xs_, kx_[s], kv_[s]);
   }
-  x1_ = x0_;
-  v1_ = v0_;
-  for (int j = 0; j < 6; ++j) {
-    if (b[j] == 0.0) continue;
-    x1_ += (h * b[j]) * kx_[j];
-    v1_ += (h * b[j]) * kv_[j];
-  }
+  combine(x0_, h, b, kx_, 6, x1_);
+  combine(v0_, h, b, kv_, 6, v1_);
   kx_[6] = v1_;
   system.acceleration(x1_, v1_, kv_[6]);
 
-  // err = sqrt(mean((e_i / sc_i)²)) over the 2N components of (x, v).
-  double sum = 0.0;
+  // err = sqrt(mean((e_i / sc_i)²)) over the 2N components of (x, v), e = h Σ eⱼ kⱼ (e₂ = 0).
   const Eigen::Index n = x0_.size();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    double ex = 0.0, ev = 0.0;
-    for (int j = 0; j < 7; ++j) {
-      if (e[j] == 0.0) continue;
-      ex += e[j] * kx_[j][i];
-      ev += e[j] * kv_[j][i];
-    }
-    const double sx = settings_.tolerance * (1.0 + std::max(std::abs(x0_[i]), std::abs(x1_[i])));
-    const double sv = settings_.tolerance * (1.0 + std::max(std::abs(v0_[i]), std::abs(v1_[i])));
-    sum += (h * ex / sx) * (h * ex / sx) + (h * ev / sv) * (h * ev / sv);
+  if (n == 0) return 0.0;
+  double sum = 0.0;
+  for (auto [k, y0, y1] : {std::tie(kx_, x0_, x1_), std::tie(kv_, v0_, v1_)}) {
+    error_ = h * (e[0] * k[0] + e[2] * k[2] + e[3] * k[3] + e[4] * k[4] + e[5] * k[5] + e[6] * k[6]);
+    sum += (error_.array() / (1.0 + y0.array().abs().max(y1.array().abs()))).square().sum();
   }
-  const double err = n > 0 ? std::sqrt(sum / (2.0 * n)) : 0.0;
+  const double err = std::sqrt(sum / (2.0 * n)) / settings_.tolerance;
   return std::isfinite(err) ? err : kRejected;
 }
 
@@ -110,22 +112,19 @@ double Dopri5Integrator::initialStep(ParticleSystem& system, double dt) {
   return std::isfinite(h) && h > 0.0 ? h : dt;
 }
 
-void Dopri5Integrator::prepareDenseOutput(double h) {
-  for (auto [y0, y1, k, r] : {std::tie(x0_, x1_, kx_, denseX_), std::tie(v0_, v1_, kv_, denseV_)}) {
-    r[0] = y0;
-    r[1] = y1 - y0;
-    r[2] = h * k[0] - r[1];
-    r[3] = r[1] - h * k[6] - r[2];
-    r[4] = (h * d[0]) * k[0];
-    for (int j = 2; j < 7; ++j) r[4] += (h * d[j]) * k[j];
-  }
-  denseStep_ = h;
-}
-
+// The continuous extension above, collected per stage:
+//   y(θ) = y₀ + (c₂ − c₃ + 2c₄)(y₁ − y₀) + h [(c₃ − c₄) k₁ − c₄ k₇ + c₅ Σ dᵢ kᵢ],
+//   c₂ = θ, c₃ = θ(1−θ), c₄ = θ²(1−θ), c₅ = θ²(1−θ)².
+// After the swaps that accept a step, y₀ is in (x1_, v1_), y₁ in (x0_, v0_),
+// k₁ in kx_[6], kv_[6], k₇ in kx_[0], kv_[0], and k₂…k₆ in place: intact
+// until the next trial.
 void Dopri5Integrator::denseOutput(double theta, Eigen::VectorXd& x, Eigen::VectorXd& v) const {
-  const double u = 1.0 - theta;
-  x = denseX_[0] + theta * (denseX_[1] + u * (denseX_[2] + theta * (denseX_[3] + u * denseX_[4])));
-  v = denseV_[0] + theta * (denseV_[1] + u * (denseV_[2] + theta * (denseV_[3] + u * denseV_[4])));
+  const double u = 1.0 - theta, c3 = theta * u, c4 = theta * c3, c5 = c4 * u;
+  const double alpha = theta - c3 + 2.0 * c4, h = denseStep_;
+  const double w1 = h * (c3 - c4 + c5 * d[0]), w7 = h * (c5 * d[6] - c4);
+  const double w3 = h * c5 * d[2], w4 = h * c5 * d[3], w5 = h * c5 * d[4], w6 = h * c5 * d[5];
+  x = x1_ + alpha * (x0_ - x1_) + w1 * kx_[6] + w3 * kx_[2] + w4 * kx_[3] + w5 * kx_[4] + w6 * kx_[5] + w7 * kx_[0];
+  v = v1_ + alpha * (v0_ - v1_) + w1 * kv_[6] + w3 * kv_[2] + w4 * kv_[3] + w5 * kv_[4] + w6 * kv_[5] + w7 * kv_[0];
 }
 
 StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
@@ -172,12 +171,12 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
       const double h = h_;
       const double err = trial(system, h);
       if (err <= 1.0) {
-        prepareDenseOutput(h);
         x0_.swap(x1_);
         v0_.swap(v1_);
         std::swap(kx_[0], kx_[6]);
         std::swap(kv_[0], kv_[6]);
         lead_ += h;
+        denseStep_ = h;
         ++stats.internalSteps;
         lastStep_ = std::max(lastStep_, h);
         double factor = kSafety * std::pow(std::max(err, 1e-10), -kAlpha) * std::pow(errPrevious_, kBeta);
@@ -201,7 +200,8 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
       v = v0_;
       lead_ = 0.0;
     } else {
-      // The output time lies inside the last accepted step, lead_ − dt before its end.
+      // The output time lies inside the last accepted step, lead_ − dt before
+      // its end; that step's stages are intact (no trial since).
       denseOutput(1.0 - (lead_ - dt) / denseStep_, x, v);
       lead_ -= dt;
     }

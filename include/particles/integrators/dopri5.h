@@ -51,9 +51,8 @@ class Dopri5Integrator : public Integrator {
   // (x1_, v1_) and k₇ in kx_[6], kv_[6], and returns err (the norm above).
   double trial(ParticleSystem& system, double h);
   double initialStep(ParticleSystem& system, double dt);
-  // Dense-output coefficients r₁…r₅ of the step of h just accepted (from
-  // (x0_, v0_) to (x1_, v1_), stages in kx_, kv_), and their value at θ ∈ [0, 1].
-  void prepareDenseOutput(double h);
+  // The state at t₀ + θh, θ ∈ [0, 1], inside the last accepted step (from
+  // its stages, still in kx_, kv_).
   void denseOutput(double theta, Eigen::VectorXd& x, Eigen::VectorXd& v) const;
 
   IntegratorSettings settings_;
@@ -62,8 +61,8 @@ class Dopri5Integrator : public Integrator {
   // (x0_, v0_): the internal solution, lead_ (s) ahead of the output state.
   Eigen::VectorXd x0_, v0_, x1_, v1_, xs_, vs_, a_;
   double lead_ = 0.0;
-  std::array<Eigen::VectorXd, 5> denseX_, denseV_;  // r₁…r₅ of the last accepted step
-  double denseStep_ = 0.0;                         // its length h
+  double denseStep_ = 0.0;  // length of the last accepted step
+  Eigen::VectorXd error_;   // the embedded error estimate of one component
   // The output state last returned: the internal solution (and its k₁) is
   // continued only while the system still holds it.
   Eigen::VectorXd xCached_, vCached_;
