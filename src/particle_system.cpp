@@ -150,32 +150,36 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   // Settings are public fields: check them before anything moves, so a bad
   // value never leaves a step half done.
   solver_.settings.validate();
-  const bool colliding = !colliders_.empty() || collidable_.size() > 1;
-  if (colliding) {
+  const bool collideAfter = colliding() && !integrator.collidesInSubsteps();
+  if (colliding()) {
     contactSettings_.validate();
     if (collidable_.size() > 1)
       requireInRange("particle contact restitution", contacts_.restitution, 0.0, 1.0);
+  }
+  if (collideAfter) {
     startX_ = x_;
     startV_ = v_;
   }
+  contactsLastStep_ = 0;
   StepStats stats = integrator.step(*this, dt);
   StepStats untaken = takeEvaluationStats();  // evaluations the integrator left in the tally
   untaken.internalSteps = 0;
   stats += untaken;
-  contactsLastStep_ = colliding ? collide(dt) : 0;
+  if (collideAfter) collideOver(startX_, startV_, dt);
   time_ += dt;
   lastStepStats_ = stats;
   return stats;
 }
 
-int ParticleSystem::collide(double dt) {
-  // Each particle's path over the step as the integrator left it (contact_path.h):
+int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
+  if (collidable_.size() < 2 && !pathsMayReachColliders(x0)) return 0;
+  // Each particle's path over the interval as the integrator left it (contact_path.h):
   // mean acceleration a = (v₁ − v₀)/dt and lead = v₁ − ((x₁ − x₀)/dt + ½ a dt).
-  stepAcceleration_ = (v_ - startV_) / dt;
-  stepLead_ = v_ - ((x_ - startX_) / dt + 0.5 * dt * stepAcceleration_);
-  const StepStart start{startX_, startV_, dt, &stepAcceleration_, &stepLead_};
+  stepAcceleration_ = (v_ - v0) / dt;
+  stepLead_ = v_ - ((x_ - x0) / dt + 0.5 * dt * stepAcceleration_);
+  const StepStart start{x0, v0, dt, &stepAcceleration_, &stepLead_};
   const bool discs = collidable_.size() > 1, walls = !colliders_.empty();
-  events_.reset(startX_);
+  events_.reset(x0);
   int contacts = 0;
   if (walls)
     contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_, events_,
@@ -208,7 +212,29 @@ int ParticleSystem::collide(double dt) {
     if (walls) resolved += pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
     if (largest <= settled && resolved == 0) break;
   }
+  contactsLastStep_ += contacts;
   return contacts;
+}
+
+// Every straight path a contact sweeps (particle and edge, from x0 to the
+// present x) lies in the box around all of x0 and x, grown by the largest
+// radius and the slop: when that box meets no collider's bounds (and a
+// half-plane has none), no sweep can hit, and a substep's collision pass over
+// a cloth far from the walls costs one pass over the positions.
+bool ParticleSystem::pathsMayReachColliders(const Eigen::VectorXd& x0) const {
+  if (size() == 0) return false;
+  const auto n = static_cast<Eigen::Index>(size());
+  const Eigen::Map<const Eigen::Array2Xd> start(x0.data(), 2, n), end(x_.data(), 2, n);
+  const double grow = radius_.maxCoeff() + contactSettings_.slop;
+  const Eigen::Array2d lo = start.rowwise().minCoeff().min(end.rowwise().minCoeff()) - grow;
+  const Eigen::Array2d hi = start.rowwise().maxCoeff().max(end.rowwise().maxCoeff()) + grow;
+  if (!lo.allFinite() || !hi.allFinite()) return true;  // the per-particle sweeps deal with it
+  for (const Collider& c : colliders_) {
+    Eigen::Vector2d cLo, cHi;
+    if (!c.bounds(cLo, cHi)) return true;
+    if ((lo <= cHi.array()).all() && (hi >= cLo.array()).all()) return true;
+  }
+  return false;
 }
 
 double ParticleSystem::kineticEnergy() const {

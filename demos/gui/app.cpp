@@ -85,7 +85,10 @@ App::App(DemoOptions options)
   if (!options_.script.empty()) script_ = readScript(options_.script);
 
   SceneChoice first;
-  if (!options_.sceneFile.empty()) {
+  if (options_.sceneKey) {
+    for (const SceneKey& k : sceneKeys())
+      if (k.key == static_cast<unsigned char>(*options_.sceneKey)) first = k.choice;
+  } else if (!options_.sceneFile.empty()) {
     first.file = options_.sceneFile;
     first.label = options_.sceneFile.substr(options_.sceneFile.find_last_of('/') + 1);
   } else {

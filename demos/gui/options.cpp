@@ -13,6 +13,7 @@
 #include "particles/check.h"
 #include "join_names.h"
 #include "particles/integrator.h"
+#include "scene_keys.h"
 
 namespace demo {
 
@@ -67,12 +68,19 @@ DemoOptions parseOptions(int argc, char** argv) {
       cli.add_option("--scene", o.scene, "built-in scene to start with (see particle-lab list)")->capture_default_str();
   auto* byFile = cli.add_option("--scene-file", o.sceneFile, "JSON scene file to start with (format: demos/scenes/FORMAT.md)");
   byName->excludes(byFile);
-  cli.add_option("--param", params, "scene parameter override key=value (repeatable)")->excludes(byFile);
+  std::string key;
+  auto* byKey = cli.add_option("--key", key,
+                               "start with the scene of a number key, 1-9 or 0, as pressing it (0: the stiff 64x64 "
+                               "cloth with xpbd at 60 Hz; press h in the window for the list)");
+  byKey->excludes(byName)->excludes(byFile);
+  auto* paramOption = cli.add_option("--param", params, "scene parameter override key=value (repeatable)");
+  paramOption->excludes(byFile)->excludes(byKey);
   cli.add_option("--preset", o.preset,
                  "parameter preset of the built-in scenes: " +
                      scenes::joinNames(scenes::presetTable()) + " (see particle-lab list)")
       ->capture_default_str()
-      ->excludes(byFile);
+      ->excludes(byFile)
+      ->excludes(byKey);
   auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
   auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
   auto* compareOption = cli.add_option("--compare", compare, "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or rk4:0.02,rk4:0.005 (2 to 4)");
@@ -103,6 +111,16 @@ DemoOptions parseOptions(int argc, char** argv) {
     scenes::presetIndex(o.preset);
   } catch (const std::invalid_argument& e) {
     badUsage(e.what());  // the same message as particle-lab's
+  }
+  if (*byKey) {
+    bool known = false;
+    std::string keys;
+    for (const SceneKey& k : sceneKeys()) {
+      known |= key.size() == 1 && static_cast<unsigned char>(key[0]) == k.key;
+      keys += std::string(keys.empty() ? "" : ", ") + static_cast<char>(k.key);
+    }
+    if (!known) badUsage("--key expects one of " + keys + ", got '" + key + "'");
+    o.sceneKey = key[0];
   }
   if (*integratorOption) o.integrator = integrator;
   try {

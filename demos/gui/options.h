@@ -12,6 +12,7 @@ namespace demo {
 struct DemoOptions {
   std::string scene = "cloth";
   std::string sceneFile;                        // overrides scene when set
+  std::optional<char> sceneKey;                 // --key K: the scene of number key K (scene_keys.h)
   std::map<std::string, std::string> params;    // --param key=value
   std::string preset = scenes::kDefaultPreset;              // --preset NAME: parameter preset of the built-in scenes
   std::optional<std::string> integrator;        // default: the scene's

@@ -4,8 +4,8 @@
 // in the same run (the issue's yardstick: 16 ms ≈ five RK4 steps). Each xpbd
 // benchmark first runs one simulated second so the cloth hangs loaded, then
 // reports the worst spring strain | |d|/r − 1 | seen over the warm-up and the
-// timed frames (the issue asks for ≤ 3 %; test_integrators_xpbd checks it for
-// the 40-substep configuration).
+// timed frames (the issue asks for ≤ 3 % in ≤ 16 ms; 30 substeps of one pass
+// meet both here, and test_integrators_xpbd checks the strain of that setting).
 //
 //   build/tests/bench_stiff_cloth --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
@@ -54,9 +54,11 @@ void BM_StiffClothXpbdFrame(benchmark::State& state) {
 void BM_StiffClothRk4Step(benchmark::State& state) {
   scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(static_cast<int>(state.range(0))));
   auto rk4 = particles::makeIntegrator("rk4");
-  // RK4's stable step on this cloth is below 1/1000 s; the time of a step
-  // does not depend on its size.
-  for (auto _ : state) scene.system->step(*rk4, 2e-4);
+  // RK4's stable step on this cloth is about 1e-4 s (|λ| dt ≤ 2.8 with the
+  // stiffest mode near 3e4 /s; 2e-4 blows up within a few hundred steps); the
+  // time of a step does not depend on its size, so 5e-5 keeps it finite for
+  // any number of repeats.
+  for (auto _ : state) scene.system->step(*rk4, 5e-5);
   if (!scene.system->finite()) state.SkipWithError("the cloth blew up");
 }
 
@@ -66,6 +68,7 @@ BENCHMARK(BM_StiffClothRk4Step)->ArgNames({"n"})->Arg(128)->Unit(benchmark::kMil
 BENCHMARK(BM_StiffClothXpbdFrame)
     ->ArgNames({"n", "substeps", "iterations"})
     ->Args({128, 20, 1})
+    ->Args({128, 28, 1})
     ->Args({128, 30, 1})
     ->Args({128, 40, 1})
     ->Args({128, 10, 2})
