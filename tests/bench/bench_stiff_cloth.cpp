@@ -3,8 +3,8 @@
 // xpbd at several substep counts, beside one plain RK4 step of the same cloth
 // in the same run (the issue's yardstick: 16 ms ≈ five RK4 steps). Each xpbd
 // benchmark first runs one simulated second so the cloth hangs loaded, then
-// reports the worst spring strain | |d|/r − 1 | seen over the warm-up and the
-// timed frames (the issue asks for ≤ 3 % in ≤ 16 ms; 30 substeps of one pass
+// reports the worst spring strain | |d|/r − 1 | seen over the warm-up and ten
+// frames after the timed ones (the issue asks for ≤ 3 % in ≤ 16 ms; 30 substeps of one pass
 // meet both here, and test_integrators_xpbd checks the strain of that setting).
 //
 //   build/tests/bench_stiff_cloth --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
@@ -39,13 +39,18 @@ void BM_StiffClothXpbdFrame(benchmark::State& state) {
   auto xpbd = particles::makeIntegrator("xpbd", settings);
   particles::ParticleSystem& system = *scene.system;
   const double frame = 1.0 / 60.0;
-  for (int k = 0; k < 60; ++k) system.step(*xpbd, frame);
-  double worst = worstSpringStrain(system);
-  for (auto _ : state) {
+  double worst = 0.0;
+  for (int k = 0; k < 60; ++k) {
     system.step(*xpbd, frame);
-    state.PauseTiming();
     worst = std::max(worst, worstSpringStrain(system));
-    state.ResumeTiming();
+  }
+  // The timed frames run back to back: the strain walks every spring object
+  // and would leave the caches cold for the next frame, so it is taken over
+  // ten frames after them (the loaded cloth's strain is steady by then).
+  for (auto _ : state) system.step(*xpbd, frame);
+  for (int k = 0; k < 10; ++k) {
+    system.step(*xpbd, frame);
+    worst = std::max(worst, worstSpringStrain(system));
   }
   state.counters["max_strain"] = worst;
   if (!system.finite()) state.SkipWithError("the cloth blew up");
