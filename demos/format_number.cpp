@@ -10,4 +10,8 @@ std::string formatNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
+std::string plural(long long count, const std::string& noun, const std::string& pluralNoun) {
+  return std::to_string(count) + " " + (count == 1 ? noun : pluralNoun.empty() ? noun + "s" : pluralNoun);
+}
+
 }  // namespace scenes

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is needed, builds, and runs the whole test suite under Xvfb.
 # With --sanitize: builds with ASan+UBSan and runs the unit tests, then the
-# demo's hostile-input tests (2,000 random scripted events among them) under Xvfb.
+# demo's hostile-input tests (2,000 random scripted events among them) and its advice
+# (a worker thread started, cancelled and left running at exit) under Xvfb.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -14,7 +15,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   # The demo's own code is checked; leaks are not, as Mesa and X keep
   # allocations of their own until exit.
   ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
-    ctest --test-dir build-sanitize -L gui -R '^DemoHostile\.' --output-on-failure -j"$jobs"
+    ctest --test-dir build-sanitize -L gui -R '^(DemoHostile|DemoAdvice)\.' --output-on-failure -j"$jobs"
 else
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
   cmake --build build -j"$jobs"

@@ -31,7 +31,7 @@ const std::vector<IntegratorInfo>& integratorTable() {
       {"rk4", "classic fourth-order Runge-Kutta", 4, make<Rk4Integrator>},
       {"verlet", "velocity Verlet, velocity-dependent forces at a predicted velocity", 2,
        make<VerletIntegrator>},
-      {"implicit-euler", "backward Euler, one linearised Newton step, constraints in the solve", 1,
+      {"implicit-euler", "backward Euler, constraints in the solve, Newton passes to convergence; never gains energy", 1,
        make<ImplicitEulerIntegrator>},
       {"adaptive-rk4", "RK4 with step doubling: internal step chosen to meet --tolerance", 4,
        make<AdaptiveRk4Integrator>, true},
@@ -56,19 +56,31 @@ void IntegratorSettings::validate() const {
   requireInRange("integrator iterations", iterations, 1, 10000);
 }
 
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
-                                           const IntegratorSettings& settings) {
+const IntegratorInfo* findIntegrator(const std::string& name) {
+  for (const IntegratorInfo& info : integratorTable())
+    if (name == info.name) return &info;
+  return nullptr;
+}
+
+std::string integratorNames() {
   std::string names;
   for (const IntegratorInfo& info : integratorTable()) {
-    if (name == info.name) {
-      std::unique_ptr<Integrator> integrator = info.make();
-      integrator->configure(settings);
-      return integrator;
-    }
     names += names.empty() ? "" : ", ";
     names += info.name;
   }
-  throw std::invalid_argument("unknown integrator '" + name + "' (valid: " + names + ")");
+  return names;
+}
+
+const IntegratorInfo& requireIntegrator(const std::string& name) {
+  if (const IntegratorInfo* info = findIntegrator(name)) return *info;
+  throw std::invalid_argument("unknown integrator '" + name + "' (valid: " + integratorNames() + ")");
+}
+
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
+                                           const IntegratorSettings& settings) {
+  std::unique_ptr<Integrator> integrator = requireIntegrator(name).make();
+  integrator->configure(settings);
+  return integrator;
 }
 
 }  // namespace particles

@@ -172,69 +172,51 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
 }
 
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
-  if (collidable_.size() < 2 && !pathsMayReachColliders(x0)) return 0;
-  // Each particle's path over the interval as the integrator left it (contact_path.h):
-  // mean acceleration a = (v₁ − v₀)/dt and lead = v₁ − ((x₁ − x₀)/dt + ½ a dt).
-  stepAcceleration_ = (v_ - v0) / dt;
-  stepLead_ = v_ - ((x_ - x0) / dt + 0.5 * dt * stepAcceleration_);
-  const StepStart start{x0, v0, dt, &stepAcceleration_, &stepLead_};
-  const bool discs = collidable_.size() > 1, walls = !colliders_.empty();
-  events_.reset(x0);
+  // Each particle's path over the interval runs from (x0, v0) to its state as
+  // the integrator left it (contact_path.h).
+  const StepStart start{x0, v0, dt};
+  const bool discs = collidable_.size() > 1, walls = !colliders_.empty(), edges = walls && !edges_.empty();
+  lastFree_ = x_;
   int contacts = 0;
-  if (walls)
-    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_, events_,
-                                        lastFree_);
-  // Disc impacts change paths: those are swept against the colliders again
-  // from the impact on, and a disc sent back into another meets it again.
-  for (int round = 0; discs && round < contactSettings_.maxImpacts; ++round) {
-    const int impacts =
-        contacts_.resolve(collidable_, start, inverseMass_, radius_, contactSettings_, true, x_, v_, &events_);
-    contacts += impacts;
-    if (impacts == 0) break;
-    if (walls)
-      contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
-                                          events_, lastFree_);
+  // Discs meet each other and the colliders in the order of their impacts.
+  if (discs)
+    contacts += contacts_.resolve(collidable_, colliders_, start, inverseMass_, radius_, contactSettings_, true, x_,
+                                  v_, &lastFree_);
+  // Every other particle meets only the colliders, on its own, and only if
+  // its path comes near one (as does an edge, only if one of its ends does).
+  if (walls) {
+    double margin = radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0;
+    if (edges) margin = std::max(margin, edgeReach(edges_, x0, x_));
+    markNearColliders(colliders_, x0, x_, margin, near_);
+    wallsOnly_ = near_;
+    if (discs) {
+      for (int i : collidable_) wallsOnly_[i] = 0;  // resolved with the discs
+      for (int i : collidable_) near_[i] = 1;       // moved by disc impacts: edges test them
+    }
+    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
+                                        lastFree_, &wallsOnly_);
   }
-  if (walls && !edges_.empty()) contacts += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_);
+  const int edgeContacts = edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &near_) : 0;
+  contacts += edgeContacts;
   // Resting contacts push on each other (a stack on a floor, a rope over a
   // nail): Gauss–Seidel passes until none is left, colliders last, as the
-  // hard boundary.
-  const bool edges = walls && !edges_.empty();
+  // hard boundary. Without discs left touching or an edge caught, nothing
+  // was pushed after the continuous passes and no pass is needed.
   // A pass ends the iteration when it changes no speed by more than would
   // move a particle by the slop in a step.
   const double settled = contactSettings_.slop / dt;
-  const int passes = discs || edges ? contactSettings_.iterations : 0;
+  const bool pushed = (discs && contacts_.touchingPairs() > 0) || edgeContacts > 0;
+  const int passes = pushed ? contactSettings_.iterations : 0;
   for (int pass = 0; pass < passes; ++pass) {
     double largest = 0.0;
     int resolved = 0;
     if (discs) largest = contacts_.resolveResting(inverseMass_, radius_, contactSettings_, pass % 2 == 0, x_, v_);
-    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_);
+    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &near_);
     if (walls) resolved += pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
     if (largest <= settled && resolved == 0) break;
   }
   contactsLastStep_ += contacts;
   return contacts;
-}
-
-// Every straight path a contact sweeps (particle and edge, from x0 to the
-// present x) lies in the box around all of x0 and x, grown by the largest
-// radius and the slop: when that box meets no collider's bounds (and a
-// half-plane has none), no sweep can hit, and a substep's collision pass over
-// a cloth far from the walls costs one pass over the positions.
-bool ParticleSystem::pathsMayReachColliders(const Eigen::VectorXd& x0) const {
-  if (size() == 0) return false;
-  const auto n = static_cast<Eigen::Index>(size());
-  const Eigen::Map<const Eigen::Array2Xd> start(x0.data(), 2, n), end(x_.data(), 2, n);
-  const double grow = radius_.maxCoeff() + contactSettings_.slop;
-  const Eigen::Array2d lo = start.rowwise().minCoeff().min(end.rowwise().minCoeff()) - grow;
-  const Eigen::Array2d hi = start.rowwise().maxCoeff().max(end.rowwise().maxCoeff()) + grow;
-  if (!lo.allFinite() || !hi.allFinite()) return true;  // the per-particle sweeps deal with it
-  for (const Collider& c : colliders_) {
-    Eigen::Vector2d cLo, cHi;
-    if (!c.bounds(cLo, cHi)) return true;
-    if ((lo <= cHi.array()).all() && (hi >= cLo.array()).all()) return true;
-  }
-  return false;
 }
 
 double ParticleSystem::kineticEnergy() const {

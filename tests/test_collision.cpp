@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "particles/constants.h"
 #include "particles/collision.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
@@ -299,7 +300,7 @@ TEST(Issue13Tunnelling, NoKindOfThinColliderIsPassedAtSpeedTimesDtOfTenThickness
 // polygon) rolls up, comes back and keeps its energy; a disc dropped on a
 // capsule bounces along the capsule's normal.
 TEST(CollidersAtAnyAngle, ElasticContactReflectsAboutTheSurfaceNormal) {
-  const double theta = M_PI / 6, dt = 0.001;
+  const double theta = particles::kPi / 6, dt = 0.001;
   const Vector2d t(std::cos(theta), std::sin(theta)), n(-std::sin(theta), std::cos(theta));
   Collider ramp = Collider::polygon({Vector2d(0, 0) - 5 * t - 5 * n, Vector2d(0, 0) + 5 * t - 5 * n,
                                      Vector2d(0, 0) + 5 * t, Vector2d(0, 0) - 5 * t});
@@ -319,8 +320,18 @@ TEST(CollidersAtAnyAngle, ElasticContactReflectsAboutTheSurfaceNormal) {
 // --- particle–particle ------------------------------------------------------------
 
 // Issue 13 test 7: 20 elastic discs bouncing in a closed box under gravity
-// keep their energy within 2% over 100 s (the old pass doubled it in 1000 s).
-TEST(Issue13BoxOfDiscs, DISABLED_ElasticDiscsKeepTheirEnergyWithinTwoPercentOver100Seconds) {
+// keep their energy within 2% over 100 s (the old pass doubled it in 1000 s,
+// and gained 30% in 100 s while disc impacts were found on the chord from the
+// step's start, across the walls the discs had already bounced off).
+// Impacts are now taken in time order on the paths the discs follow, and each
+// is exact in uniform gravity, so under RK4 the error is round-off except at
+// rare grazing contacts: a bounce off a wall too slow to clear it within the
+// step is held as resting contact for the rest of the step (its normal
+// kinetic energy, below m (g dt)²/8, is removed), and a disc that another
+// strikes while it rests is on a path through the step's end that is only
+// close to the one it would have had (seeds 1–3 and 7: worst 0.0–0.2% at
+// dt 0.01, 0.6% at dt 0.02).
+TEST(Issue13BoxOfDiscs, ElasticDiscsKeepTheirEnergyWithinTwoPercentOver100Seconds) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   ParticleSystem s;
@@ -441,7 +452,7 @@ TEST(ParticleContacts, UnequalMassesConserveMomentumAndScaleRelativeNormalVeloci
   VectorXd x1 = x, v1 = v;
   ParticleContacts contacts;
   contacts.restitution = e;
-  EXPECT_EQ(contacts.resolve({0, 1}, StepStart{x0, v0, dt}, w, radius, ContactSettings{}, true, x1, v1), 1);
+  EXPECT_EQ(contacts.resolve({0, 1}, {}, StepStart{x0, v0, dt}, w, radius, ContactSettings{}, true, x1, v1), 1);
   auto momentum = [&](const VectorXd& u) { return Vector2d(m0 * u.segment<2>(0) + m1 * u.segment<2>(2)); };
   EXPECT_LT((momentum(v1) - momentum(v0)).norm(), 1e-14);
   EXPECT_LT((momentum(x1) - momentum(x)).norm(), 1e-14) << "the centre of mass moves on undisturbed";
@@ -479,7 +490,7 @@ TEST(ParticleContacts, GridBroadPhaseFindsTheSameContactsAsBruteForce) {
     centres.push_back(c);
     extents.push_back(extent);
     if (pair) {
-      const double angle = 2.0 * 3.14159265358979 * unit(rng);
+      const double angle = 2.0 * particles::kPi * unit(rng);
       const Vector2d half = 0.5 * distance * Vector2d(std::cos(angle), std::sin(angle));
       positions.push_back(c + half), radii.push_back(r0);
       positions.push_back(c - half), radii.push_back(r1);
@@ -506,7 +517,7 @@ TEST(ParticleContacts, GridBroadPhaseFindsTheSameContactsAsBruteForce) {
 
   ParticleContacts contacts;
   const VectorXd x0 = x, v0 = v;  // overlapping from the start: resting contacts
-  EXPECT_EQ(contacts.resolve(collidable, StepStart{x0, v0, 0.01}, w, radius, ContactSettings{}, true, x, v),
+  EXPECT_EQ(contacts.resolve(collidable, {}, StepStart{x0, v0, 0.01}, w, radius, ContactSettings{}, true, x, v),
             bruteForce);
   int remaining = 0;
   for (int i = 0; i < n; ++i)
@@ -525,7 +536,7 @@ TEST(ParticleContacts, FarFlungAndNonFiniteParticlesDoNotBreakTheBroadPhase) {
   x << 0.0, 0.0, 0.15, 0.0, 1e300, -1e300, std::nan(""), 0.0;
   const VectorXd x0 = x, v0 = v;
   ParticleContacts contacts;
-  EXPECT_EQ(contacts.resolve({0, 1, 2, 3}, StepStart{x0, v0, 0.01}, w, r, ContactSettings{}, false, x, v), 1);
+  EXPECT_EQ(contacts.resolve({0, 1, 2, 3}, {}, StepStart{x0, v0, 0.01}, w, r, ContactSettings{}, false, x, v), 1);
   EXPECT_NEAR((x.segment<2>(0) - x.segment<2>(2)).norm(), 0.2, 1e-12);
 }
 
@@ -638,7 +649,7 @@ TEST(CollisionParameters, BadCollidersAreRejectedWithTheirName) {
   expectRejected(add(Collider::polygon({Vector2d(0, 0), Vector2d(0, 1), Vector2d(1, 0)})), "counter-clockwise");
   expectRejected(add(Collider::polygon({Vector2d(0, 0), Vector2d(1, 0)})), "at least 3");
   std::vector<Vector2d> star;
-  for (int k = 0; k < 5; ++k) star.emplace_back(std::cos(4 * M_PI * k / 5), std::sin(4 * M_PI * k / 5));
+  for (int k = 0; k < 5; ++k) star.emplace_back(std::cos(4 * particles::kPi * k / 5), std::sin(4 * particles::kPi * k / 5));
   expectRejected(add(Collider::polygon(star)), "convex");
   EXPECT_EQ(s.colliders().size(), 1u);
   expectRejected([&] { s.addCollisionEdge(0, 0); }, "collision edge");

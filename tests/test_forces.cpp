@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "particles/constants.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
@@ -23,8 +24,6 @@ using test_support::expectRejected;
 using test_support::forceAt;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -207,7 +206,7 @@ TEST(AngularSpringForce, ForceIsMinusEnergyGradient) {
     const VectorXd x = randomVector(6, rng);
     const Vector2d a = x.segment<2>(0) - x.segment<2>(2), b = x.segment<2>(4) - x.segment<2>(2);
     const double theta = std::atan2(cross(a, b), a.dot(b));
-    if (std::abs(angleDifference(theta, 0.5)) > 0.9 * kPi || a.norm() < 0.1 || b.norm() < 0.1)
+    if (std::abs(angleDifference(theta, 0.5)) > 0.9 * particles::kPi || a.norm() < 0.1 || b.norm() < 0.1)
       continue;
     const VectorXd f = forceAt(spring, system.phase(x, v));
     const VectorXd grad = centralGradient(
@@ -295,7 +294,7 @@ TEST(MouseSpringGains, FrequencyAndDampingRatioScaleWithTheMass) {
   for (double mass : {1e-3, 0.2, 10.0}) {
     const MouseSpringGains g = mouseSpringGains(mass, joint);
     const double omega = std::sqrt(g.stiffness / mass);
-    EXPECT_NEAR(omega / (2.0 * M_PI), 5.0, 1e-12);
+    EXPECT_NEAR(omega / (2.0 * particles::kPi), 5.0, 1e-12);
     EXPECT_NEAR(g.damping / (2.0 * std::sqrt(g.stiffness * mass)), 0.7, 1e-12);
   }
 }

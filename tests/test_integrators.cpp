@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "particles/constants.h"
 #include "particles/constraints/circular_wire.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
@@ -19,14 +20,12 @@ using Eigen::Vector2d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Mass m on an undamped spring of stiffness k and rest length r to a pinned
 // particle at the origin, released at rest from x = r + A on the x axis:
 //   x(t) = r + A cos ωt,  v(t) = −A ω sin ωt,  ω = √(k/m).
 struct Oscillator {
   double mass = 1.0;
-  double stiffness = 4.0 * kPi * kPi;  // period 1 s
+  double stiffness = 4.0 * particles::kPi * particles::kPi;  // period 1 s
   double rest = 1.0;
   double amplitude = 0.1;
   double omega() const { return std::sqrt(stiffness / mass); }

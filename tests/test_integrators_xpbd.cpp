@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "particles/collider.h"
+#include "particles/constants.h"
 #include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
@@ -25,8 +26,6 @@ using namespace particles;
 using Eigen::Vector2d;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::unique_ptr<Integrator> xpbd(int substeps, int iterations) {
   IntegratorSettings settings;
@@ -207,7 +206,7 @@ TEST(Xpbd, DampingRemovesTheEnergyOfTheDampedSpring) {
   // Mass m on a damped spring to a pinned particle, released stretched, no
   // gravity. The force-based reference (RK4 at dt = 1e-4) gives the energy the
   // damper removes over T; XPBD at a small h must remove the same.
-  const double mass = 1.0, stiffness = 4.0 * kPi * kPi, damping = 0.8, T = 2.0;
+  const double mass = 1.0, stiffness = 4.0 * particles::kPi * particles::kPi, damping = 0.8, T = 2.0;
   auto build = [&](double kd) {
     ParticleSystem system = hangingSpring(mass, stiffness, kd, 0.0);
     system.positions()[3] = -1.2;
@@ -234,7 +233,7 @@ TEST(Xpbd, DampingRemovesTheEnergyOfTheDampedSpring) {
 
 TEST(Xpbd, PositionErrorIsFirstOrderInTheSubstep) {
   // Undamped oscillator, ω = 2π, released at rest from r + A: x(t) = r + A cos ωt.
-  const double omega = 2.0 * kPi, A = 0.1, T = 1.3;
+  const double omega = 2.0 * particles::kPi, A = 0.1, T = 1.3;
   std::vector<double> hs, errors;
   for (int steps : {100, 200, 400, 800}) {
     ParticleSystem system = hangingSpring(1.0, omega * omega, 0.0, 0.0);

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "particles/constants.h"
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
@@ -114,7 +115,7 @@ TEST(Failure, ReleasableEnergyOfTheTestChainIsItsDropToHangingStraight) {
     const auto& p = *pendulum.system;
     const auto* wire = dynamic_cast<const particles::CircularWireConstraint*>(p.constraints().at(0).get());
     ASSERT_NE(wire, nullptr);
-    EXPECT_NEAR(releasableEnergy(p), p.masses()[0] * gravityMagnitude(p) * wire->radius() * (1 - std::cos(M_PI / 3)),
+    EXPECT_NEAR(releasableEnergy(p), p.masses()[0] * gravityMagnitude(p) * wire->radius() * (1 - std::cos(particles::kPi / 3)),
                 1e-9 * releasableEnergy(p))
         << preset;
   }

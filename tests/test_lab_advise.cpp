@@ -1,12 +1,15 @@
 // The accuracy side of the laboratory: the odeint reference against the
 // oscillator's closed form, and `advise` against a brute-force search of the
 // same grid with errors taken from the closed form.
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 
 #include <gtest/gtest.h>
 
 #include "lab/advise.h"
+#include "lab/lab_scene.h"
 #include "lab/reference.h"
 #include "scenes/oscillator.h"
 
@@ -115,4 +118,66 @@ TEST(Advise, RejectsBadSettingsNamingTheField) {
   settings.horizon = 1.0;
   settings.integrators = {"rk5"};
   EXPECT_THROW(surveyScene(build, settings), std::invalid_argument);
+}
+
+TEST(Advise, ACancelledSurveyIsIncompleteAndNamesNoPick) {
+  SurveySettings settings;
+  settings.horizon = 5.0;
+  settings.targetError = settings.abortError = 1e-2;
+  settings.repeats = 1;
+  const auto build = [] { return scenes::buildScene("pendulum"); };
+  // Cancelled while the reference is computed (the flag is already set) ...
+  std::atomic<bool> cancel{true};
+  settings.cancel = &cancel;
+  const Advice before = advise(build, settings);
+  EXPECT_FALSE(before.complete);
+  EXPECT_EQ(before.best, -1);
+  // ... and during the scan: the first progress past the reference sets it.
+  cancel = false;
+  double reached = 0.0;
+  settings.progress = [&](double f) {
+    reached = std::max(reached, f);
+    if (f > 0.0) cancel = true;
+  };
+  const Advice during = advise(build, settings);
+  EXPECT_FALSE(during.complete);
+  EXPECT_EQ(during.best, -1);
+  EXPECT_LT(reached, 0.9) << "the scan stopped before the timing";
+  // Uncancelled, the same request is complete and names the cheapest.
+  cancel = false;
+  settings.progress = {};
+  const Advice whole = advise(build, settings);
+  EXPECT_TRUE(whole.complete);
+  ASSERT_GE(whole.best, 0);
+  EXPECT_LE(whole.picks[whole.best].candidate.maxError, 1e-2);
+}
+
+TEST(Advise, SafeBoundaryIsTheLabsScanOverTheEnsemble) {
+  // The 6-chain over 5 s: fixed-step schemes fail at the top of the grid.
+  const auto build = [] { return buildLabScene("test-chain", {{"cl", "6"}}); };
+  SurveySettings settings;
+  settings.horizon = 5.0;
+  settings.targetError = settings.abortError = 1e-3;
+  settings.maxSteps = 1000;
+  settings.repeats = 1;
+  settings.integrators = {"symplectic-euler", "midpoint", "rk4"};
+  const Survey survey = surveyScene(build, settings);
+  int bounded = 0;
+  for (const IntegratorSurvey& scan : survey.integrators) {
+    ASSERT_FALSE(scan.scanned.empty()) << scan.integrator;
+    if (scan.firstFailureDt == 0.0) continue;
+    ++bounded;
+    EXPECT_GT(scan.ensembleRuns, 0) << scan.integrator;
+    // The lab's scan (scan.h) of the same grid points, every member from the
+    // bottom up, gives the same boundary.
+    ScanSettings lab;
+    lab.members = settings.members;
+    lab.beyond = 1e9;
+    for (const Candidate& c : scan.scanned) lab.grid.insert(lab.grid.begin(), c.dt);
+    const std::optional<Boundary> b = scanSafeStep(build, scan.integrator, settings.horizon, lab, settings.failure);
+    ASSERT_TRUE(b.has_value());
+    EXPECT_EQ(scan.safeDt, b->safeDt) << scan.integrator;
+    EXPECT_EQ(scan.firstFailureDt, b->firstFailureDt) << scan.integrator;
+  }
+  EXPECT_GT(bounded, 0) << "some scheme fails on the grid";
 }

@@ -10,10 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "particles/constants.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
 #include "particles/integrator.h"
+#include "format_number.h"
 #include "scene.h"
 #include "scenes/hair.h"
 #include "scenes/oscillator.h"
@@ -211,7 +213,7 @@ TEST(HairScene, RingletsBendOneWayPerStrandAtRest) {
     const int root = c * p.particles, tip = root + p.particles - 1;
     EXPECT_LT(s.position(tip).y(), s.position(root).y() - 0.2 * (p.particles - 1) * p.rest) << "strand " << c;
   }
-  std::printf("[ hair     ] smallest |theta| at rest %.1f deg (straight is 180)\n", smallest * 180.0 / 3.14159265358979);
+  std::printf("[ hair     ] smallest |theta| at rest %.1f deg (straight is 180)\n", smallest * 180.0 / particles::kPi);
 }
 
 // Springy: a strand settled for 10 s, its tip pulled toward a point 5 cm
@@ -226,7 +228,7 @@ TEST(HairScene, APulledRingletSpringsBack) {
   const Eigen::Vector2d hanging = s.position(tip);
   auto integrator = particles::makeIntegrator(scene.integrator);
   // A critically damped mouse spring of 5 Hz on the tip's mass, 5 cm below it.
-  const double omega = 2.0 * 3.14159265358979 * 5.0;
+  const double omega = 2.0 * particles::kPi * 5.0;
   const particles::Force& mouse = s.addForce(std::make_unique<particles::MouseSpringForce>(
       tip, hanging - Eigen::Vector2d(0.0, 0.05), p.mass * omega * omega, 2.0 * p.mass * omega));
   for (int k = 0; k < static_cast<int>(0.5 / scene.dt); ++k) scene.system->step(*integrator, scene.dt);
@@ -443,3 +445,12 @@ TEST(HairScene, SeedZigzagsHangDownAndKeepTheirAngles) {
 }
 
 }  // namespace
+
+TEST(Labels, CountsArePluralOnlyWhenNotOne) {
+  EXPECT_EQ(scenes::plural(1, "particle"), "1 particle");
+  EXPECT_EQ(scenes::plural(0, "particle"), "0 particles");
+  EXPECT_EQ(scenes::plural(24, "particle"), "24 particles");
+  EXPECT_EQ(scenes::plural(-1, "start"), "-1 starts");
+  EXPECT_EQ(scenes::plural(1, "index", "indices"), "1 index");
+  EXPECT_EQ(scenes::plural(3, "index", "indices"), "3 indices");
+}

@@ -8,16 +8,18 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/scene_source.h"
 #include "lab/advise.h"
+#include "options/option_checks.h"
+#include "options/scene_source.h"
 #include "particles/check.h"
+#include "format_number.h"
 
 namespace cli {
 
 namespace {
 
 struct AdviseOptions {
-  SceneSource source;
+  options::SceneSource source;
   double error = 0.0;    // E, world units
   double horizon = 0.0;  // T, simulated seconds
   std::vector<std::string> integrators;
@@ -33,9 +35,6 @@ int advise(const AdviseOptions& o) {
   particles::requirePositive("--horizon", o.horizon);
   particles::requirePositive("--reference-tolerance", o.referenceTolerance);
   if (!std::isfinite(o.horizon)) throw UsageError("--horizon must be finite, got " + cell(o.horizon));
-  if (o.repeats < 1) throw UsageError("--repeats must be >= 1, got " + std::to_string(o.repeats));
-  if (o.maxSteps < 1) throw UsageError("--max-steps must be >= 1, got " + std::to_string(o.maxSteps));
-  for (const auto& name : o.integrators) particles::makeIntegrator(name);
   o.source.load();  // bad scene input fails here, before any measurement
 
   lab::SurveySettings settings;
@@ -53,15 +52,15 @@ int advise(const AdviseOptions& o) {
     if (fraction == 0.0)
       std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
     else
-      std::fprintf(stderr, "advise: %3.0f%% scanned\n", 100.0 * fraction);
+      std::fprintf(stderr, "advise: %3.0f%% done (the scan, then %d timed repeats of each pick)\n",
+                   100.0 * fraction, o.repeats);
   };
-  const auto build = [&] { return o.source.load(); };
-  const lab::Survey survey = lab::surveyScene(build, settings);
-  std::fprintf(stderr, "advise: timing the picks (%d repeats each) ...\n", o.repeats);
-  const std::vector<lab::Pick> picks = lab::pickPerIntegrator(build, survey, settings, o.error);
-  if (lab::interrupted()) return 130;
+  const lab::Advice advice = lab::advise([&] { return o.source.load(); }, settings);
+  if (lab::interrupted() || !advice.complete) return 130;
+  const lab::Survey& survey = advice.survey;
+  const std::vector<lab::Pick>& picks = advice.picks;
 
-  std::cout << "scene " << survey.scene << ", " << survey.particles << " particles, size "
+  std::cout << "scene " << survey.scene << ", " << scenes::plural(survey.particles, "particle") << ", size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
             << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
   std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
@@ -79,11 +78,11 @@ int advise(const AdviseOptions& o) {
                     cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),
                     cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
     else
-      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%zu runs), safe dt %s\n",
-                    scan.integrator.c_str(), scan.scanned.size(), safe.c_str());
+      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
+                    scan.integrator.c_str(), scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
     std::cout << line;
   }
-  const int best = lab::cheapest(picks);
+  const int best = advice.best;
   if (best < 0) {
     std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)
               << " s within its safe range\n";
@@ -104,11 +103,14 @@ Command addAdviseCommand(CLI::App& app) {
       ->required();
   command->add_option("--horizon", options->horizon, "T: simulated seconds the error is measured over")->required();
   command->add_option("--integrator", options->integrators,
-                      "consider only these integrators (repeatable; default: every one)");
+                      "consider only these integrators (repeatable; default: every one)")
+      ->check(options::integratorName());
   command->add_option("--repeats", options->repeats, "timed repeats of each pick; the median is reported")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, 1000000));
   command->add_option("--max-steps", options->maxSteps, "the smallest dt scanned is T / max-steps")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, 1000000000));
   command->add_option("--reference-tolerance", options->referenceTolerance,
                       "odeint's error tolerance per step for the reference (checked at 100x it)")
       ->capture_default_str();

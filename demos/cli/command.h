@@ -3,25 +3,23 @@
 // to the application through one add function listed in main.cpp; it returns
 // the action main runs when that subcommand was given.
 #include <functional>
-#include <stdexcept>
 
 #include <CLI/CLI.hpp>
+
+#include "options/usage.h"
 
 namespace cli {
 
 enum ExitCode : int {
   kSuccess = 0,
-  kBadInput = 2,  // a bad option value, a missing or malformed scene file
+  kBadInput = options::kBadUsageExit,  // a bad option value, a missing or malformed scene file
   kDiverged = 3,  // the state or its diagnostics became non-finite during a run
   kWriteFailed = 4,  // an output file could not be written (disk full, I/O error)
   kInterrupted = 130,  // SIGINT or SIGTERM: stopped at a step boundary, outputs complete
 };
 
 // A bad option value or combination found after parsing; exits kBadInput.
-class UsageError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
+using options::UsageError;
 
 struct Command {
   CLI::App* app;                // the subcommand

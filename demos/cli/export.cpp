@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/scene_source.h"
+#include "options/scene_source.h"
 #include "output_file.h"
 #include "scene_file/scene_file.h"
 
@@ -11,7 +11,7 @@ namespace cli {
 
 namespace {
 struct ExportOptions {
-  SceneSource source;
+  options::SceneSource source;
   std::string output;  // empty: stdout
 };
 

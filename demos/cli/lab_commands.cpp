@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/option_checks.h"
 #include "lab/experiments.h"
 #include "lab/render.h"
+#include "options/option_checks.h"
 #include "output_file.h"
 #include "particles/check.h"
 
@@ -19,10 +19,11 @@ std::shared_ptr<lab::LabOptions> addLabOptions(CLI::App* command) {
   command->add_option("--out", options->outDir, "directory for the CSVs and tables")->capture_default_str();
   command->add_flag("--quick", options->quick, "small grids and short runs (what CI runs)");
   command->add_option("--integrator", options->integrators,
-                      "restrict to these integrators (repeatable; default: every one)");
+                      "restrict to these integrators (repeatable; default: every one)")
+      ->check(options::integratorName());
   command->add_option("--jobs", options->jobs, "threads for independent runs (results identical for any N)")
       ->capture_default_str()
-      ->check(decimalInteger(1, 256));
+      ->check(options::decimalInteger(1, 256));
   command->add_option("--max-stretch", options->criterion.maxRelativeConstraintError,
                       "failure threshold on the relative constraint error max |C|/r")
       ->capture_default_str();
@@ -32,9 +33,9 @@ std::shared_ptr<lab::LabOptions> addLabOptions(CLI::App* command) {
   return options;
 }
 
-// Ranges of the options every experiment takes (one line and exit 2 outside them).
+// Ranges of the options every experiment takes (one line and exit 2 outside
+// them; --jobs is checked as it is read).
 void validate(const lab::LabOptions& options) {
-  particles::requireInRange("--jobs", options.jobs, 1, 256);
   particles::requireInRange("--max-stretch", options.criterion.maxRelativeConstraintError, 1e-6, 10.0);
   particles::requireInRange("--energy-rise", options.criterion.energyRiseFraction, 1e-6, 1e3);
 }
@@ -75,10 +76,10 @@ Command addTimingCommand(CLI::App& app) {
   auto timing = std::make_shared<lab::TimingOptions>();
   command->add_option("--repeats", timing->repeats, "timed repeats; the median is reported")
       ->capture_default_str()
-      ->check(decimalInteger(1, 1000000));
+      ->check(options::decimalInteger(1, 1000000));
   command->add_option("--steps", timing->steps, "steps per timed repeat")
       ->capture_default_str()
-      ->check(decimalInteger(1, 1000000000));
+      ->check(options::decimalInteger(1, 1000000000));
   return {command, [=] {
             validate(*options);
             return experiment([&] { return lab::runTiming(*options, *timing); });
@@ -138,7 +139,7 @@ Command addRenderReportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render-report", "fill a Markdown template with the tables and values the experiments wrote");
   auto render = std::make_shared<lab::RenderOptions>();
-  command->add_option("--template", render->templatePath, "template file")->required()->check(regularFile());
+  command->add_option("--template", render->templatePath, "template file")->required()->check(options::regularFile());
   command->add_option("--data", render->dataDir, "directory the experiments wrote")
       ->required()
       ->check(CLI::ExistingDirectory);

@@ -7,7 +7,6 @@
 
 #include "cli/command.h"
 #include "output_file.h"
-#include "printable.h"
 #include "scene_file/json_node.h"
 
 namespace {
@@ -31,7 +30,7 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
 
 // One line on stderr (control characters escaped), and the exit code.
 int fail(const std::string& message, int code = cli::kBadInput) {
-  std::cerr << "particle-lab: " << scenes::printable(message) << '\n';
+  options::printErrorLine("particle-lab", message);
   return code;
 }
 

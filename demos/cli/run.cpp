@@ -1,19 +1,20 @@
 // particle-lab run: steps a scene without a window, with per-step diagnostics.
-#include <chrono>
 #include <iostream>
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/option_checks.h"
-#include "cli/scene_source.h"
+#include "cli/run_loop.h"
 #include "cli/step_output.h"
 #include "join_names.h"
 #include "lab/lab.h"
+#include "options/option_checks.h"
+#include "options/scene_source.h"
 #include "output_file.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
 #include "printable.h"
+#include "format_number.h"
 
 namespace cli {
 
@@ -23,7 +24,7 @@ namespace {
 constexpr long long kMaxSteps = 1000000000000LL;
 
 struct RunOptions {
-  SceneSource source;
+  options::SceneSource source;
   std::string integrator;  // empty: the scene's own
   // --tolerance, --substeps, --iterations: each given one overrides the scene's.
   particles::IntegratorSettings integratorSettings;
@@ -63,8 +64,7 @@ int run(const RunOptions& o) {
   const std::unique_ptr<scenes::OutputFile> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryHeader);
 
   particles::ParticleSystem& s = *scene.system;
-  const particles::DivergenceLimits limits = runnerDivergenceLimits();
-  const double initialEnergy = s.totalEnergy();
+  RunLoop loop(s, *integrator, dt, {csv ? &csv->stream() : nullptr, trajectory ? &trajectory->stream() : nullptr, o.every});
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };
@@ -74,38 +74,18 @@ int run(const RunOptions& o) {
     if (trajectory) trajectory->close();
     return code;
   };
-  const Diagnostics initial = measureDiagnostics(0, s);
-  if (const std::string reason = nonFiniteDiagnostics(initial); !reason.empty()) {
+  if (const std::string reason = loop.start(); !reason.empty()) {
     diverge(0, reason);
     return finish(kDiverged);
   }
-  if (csv) writeDiagnostics(csv->stream(), initial, 0.0);
-  if (trajectory) writeTrajectory(trajectory->stream(), 0, s);
-  using Clock = std::chrono::steady_clock;
-  Clock::duration simulated{};
   long long done = 0;
   for (long long step = 1; step <= o.steps && !lab::interrupted(); ++step) {
-    const Clock::time_point start = Clock::now();
-    const particles::StepStats stats = s.step(*integrator, dt);
-    const Clock::duration elapsed = Clock::now() - start;
-    simulated += elapsed;
-    if (const particles::Divergence d = particles::checkDivergence(s, limits, initialEnergy, stats)) {
-      diverge(step, d.message());
-      return finish(kDiverged);
-    }
-    const Diagnostics row = measureDiagnostics(step, s);
-    if (const std::string reason = nonFiniteDiagnostics(row); !reason.empty()) {
+    if (const std::string reason = loop.step(); !reason.empty()) {
       diverge(step, reason);
       return finish(kDiverged);
     }
-    if (csv) {
-      writeDiagnostics(csv->stream(), row, std::chrono::duration<double, std::micro>(elapsed).count());
-      csv->check();
-    }
-    if (trajectory && step % o.every == 0) {
-      writeTrajectory(trajectory->stream(), step, s);
-      trajectory->check();
-    }
+    if (csv) csv->check();
+    if (trajectory) trajectory->check();
     done = step;
   }
   if (lab::interrupted()) {
@@ -114,9 +94,9 @@ int run(const RunOptions& o) {
     return finish(kInterrupted);
   }
   finish(kSuccess);
-  const double seconds = std::chrono::duration<double>(simulated).count();
-  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": " << o.steps
-            << " steps to t = " << s.time() << " in " << seconds << " s of simulation ("
+  const double seconds = loop.simulatedSeconds();
+  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": "
+            << scenes::plural(o.steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
             << (seconds > 0.0 ? o.steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
             << ", max |C| " << s.maxConstraintError() << '\n';
   return kSuccess;
@@ -129,11 +109,12 @@ Command addRunCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
-                  "integrator: " + scenes::joinNames(particles::integratorTable()) + " (default: the scene's, rk4 for built-ins)");
+                  "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)");
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
                       "local error tolerance of the adaptive schemes (dopri5, adaptive-rk4), >= 1e-13; ignored by "
-                      "fixed-step integrators (default: the scene's, 1e-6)");
+                      "fixed-step integrators (default: the scene's, 1e-6)")
+          ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,
                       "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)");
@@ -143,7 +124,7 @@ Command addRunCommand(CLI::App& app) {
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
       ->required()
-      ->check(decimalInteger(0, kMaxSteps));
+      ->check(options::decimalInteger(0, kMaxSteps));
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
                   "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
@@ -155,7 +136,7 @@ Command addRunCommand(CLI::App& app) {
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
       ->capture_default_str()
-      ->check(decimalInteger(1, kMaxSteps));
+      ->check(options::decimalInteger(1, kMaxSteps));
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"

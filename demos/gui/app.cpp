@@ -40,12 +40,9 @@ constexpr ComparePreset comparePresets[] = {
     {"midpoint", 4.0},
 };
 
+// The table position of the integrator named `name`; throws for an unknown one.
 int integratorIndexByName(const std::string& name) {
-  const auto& table = particles::integratorTable();
-  for (std::size_t k = 0; k < table.size(); ++k)
-    if (name == table[k].name) return static_cast<int>(k);
-  particles::makeIntegrator(name);  // throws, listing the valid names
-  return 0;
+  return static_cast<int>(&particles::requireIntegrator(name) - particles::integratorTable().data());
 }
 
 // The scene table's "try this" line, on a table that has one (SceneInfo::hint).
@@ -85,16 +82,17 @@ App::App(DemoOptions options)
   if (!options_.script.empty()) script_ = readScript(options_.script);
 
   SceneChoice first;
+  const options::SceneSource& source = options_.source;
   if (options_.sceneKey) {
     for (const SceneKey& k : sceneKeys())
       if (k.key == static_cast<unsigned char>(*options_.sceneKey)) first = k.choice;
-  } else if (!options_.sceneFile.empty()) {
-    first.file = options_.sceneFile;
-    first.label = options_.sceneFile.substr(options_.sceneFile.find_last_of('/') + 1);
+  } else if (!source.sceneFile.empty()) {
+    first.file = source.sceneFile;
+    first.label = source.sceneFile.substr(source.sceneFile.find_last_of('/') + 1);
   } else {
-    first.name = first.label = options_.scene;
-    first.params = options_.params;
-    first.preset = options_.preset;
+    first.name = first.label = source.scene;
+    first.params = source.overrides();
+    first.preset = source.preset;
     // The first key's variant that agrees with the given parameters names it.
     for (const SceneKey& k : sceneKeys()) {
       if (k.choice.name != first.name) continue;
@@ -117,23 +115,11 @@ App::App(DemoOptions options)
   integratorSettings.tolerance = options_.tolerance;
   panes_.front()->setIntegratorSettings(integratorSettings);
   if (!options_.compare.empty()) {
-    // Each entry is an integrator, optionally with its own dt: "rk4" or "rk4:0.02".
-    std::vector<std::pair<int, double>> settings;
-    for (const std::string& entry : options_.compare) {
-      const auto colon = entry.find(':');
-      double paneDt = dt;
-      if (colon != std::string::npos) {
-        char* end = nullptr;
-        paneDt = std::strtod(entry.c_str() + colon + 1, &end);
-        if (end == entry.c_str() + colon + 1 || *end != '\0' || !(paneDt > 0.0) || !std::isfinite(paneDt))
-          throw std::invalid_argument("--compare: dt in '" + entry + "' must be a finite number > 0");
-      }
-      settings.emplace_back(integratorIndexByName(entry.substr(0, colon)), paneDt);
-    }
-    setPaneCount(static_cast<int>(settings.size()));
-    for (std::size_t k = 0; k < settings.size(); ++k) {
-      panes_[k]->setIntegrator(settings[k].first);
-      panes_[k]->setDt(settings[k].second);
+    // Each pane an integrator, with its own dt or the first pane's.
+    setPaneCount(static_cast<int>(options_.compare.size()));
+    for (std::size_t k = 0; k < options_.compare.size(); ++k) {
+      panes_[k]->setIntegrator(integratorIndexByName(options_.compare[k].integrator));
+      panes_[k]->setDt(options_.compare[k].dt.value_or(dt));
     }
   }
   if (const scenes::SceneInfo* info = findSceneInfo(scene_.name)) sceneHint_ = hintOf(*info);
@@ -179,6 +165,7 @@ void App::display() {
   }
   frameDue_ = false;
   const auto start = std::chrono::steady_clock::now();
+  guarded([&] { pollAdvice(); });
   guarded([&] { playScript(); });
   guarded([&] { advance(); });
   guarded([&] { draw(); });
@@ -195,8 +182,13 @@ void App::playScript() {
   // Keys a script pressed last frame are released now, after ImGui saw them down.
   for (unsigned char key : scriptKeysDown_) inputKeyUp(key);
   scriptKeysDown_.clear();
-  while (nextScriptEvent_ < script_.size() && script_[nextScriptEvent_].frame <= frame_) {
+  while (nextScriptEvent_ < script_.size() && script_[nextScriptEvent_].frame + scriptHeldFrames_ <= frame_) {
+    if (script_[nextScriptEvent_].action == ScriptAction::WaitAdvice && advice_.running()) {
+      ++scriptHeldFrames_;  // the script's clock stands still this frame
+      return;
+    }
     const ScriptEvent& e = script_[nextScriptEvent_++];
+    if (e.action == ScriptAction::WaitAdvice) continue;
     if (e.action == ScriptAction::Key || e.action == ScriptAction::KeyDown) {
       inputKey(e.key);
       if (e.action == ScriptAction::Key) scriptKeysDown_.push_back(e.key);
@@ -301,6 +293,16 @@ bool App::writeStateLog() const {
   StateExtras extras;
   extras.overlays = overlays_;
   extras.widgets = widgets_;
+  extras.advice.state = adviceStateName(advice_.state());
+  extras.advice.progress = advice_.progress();
+  if (advice_.state() == AdviceState::Done && advice_.advice().best >= 0) {
+    const lab::Candidate& pick = advice_.advice().picks[advice_.advice().best].candidate;
+    extras.advice.integrator = pick.integrator;
+    extras.advice.dt = pick.dt;
+    extras.advice.tolerance = pick.tolerance;
+  }
+  extras.advice.framesWhileRunning = adviceFramesWhileRunning_;
+  extras.advice.applied = adviceApplied_;
   extras.sceneDrawMs = sceneDrawMs_;
   extras.overlayDrawMs = overlayDrawMs_;
   extras.panelShown = showPanel_;
@@ -341,6 +343,54 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   setStatus("scene: " + choice.label);
   statusFrames_ = 0;  // the top bar shows the scene's summary and hint instead
   hintUntilFrame_ = frame_ + hintFramesShown;
+}
+
+// --- advice (advice_job.h; drawn by advice_panel.cpp) -----------------------
+
+void App::startAdvice() {
+  advice_.start(scene_, adviceRequest_);
+  adviceFramesWhileRunning_ = 0;
+  setStatus("advice: surveying a copy of " + scene_.label + " over " + lab::general(adviceRequest_.horizon) + " s");
+}
+
+void App::pollAdvice() {
+  if (advice_.running()) ++adviceFramesWhileRunning_;
+  if (!advice_.poll()) return;
+  switch (advice_.state()) {
+    case AdviceState::Done:
+      if (advice_.advice().best >= 0)
+        setStatus("advice: " + lab::pickArguments(advice_.advice().picks[advice_.advice().best].candidate) +
+                  " (Apply sets it)");
+      else
+        setStatus("advice: no integrator meets E = " + lab::general(advice_.request().error) + " over " +
+                  lab::general(advice_.request().horizon) + " s within its safe range");
+      break;
+    case AdviceState::Cancelled: setStatus("advice cancelled"); break;
+    case AdviceState::Failed: setError("advice failed: " + advice_.message()); break;
+    default: break;
+  }
+}
+
+bool App::adviceIsForThisScene() const {
+  const SceneChoice& a = advice_.scene();
+  return a.name == scene_.name && a.file == scene_.file && a.params == scene_.params && a.preset == scene_.preset;
+}
+
+// The cheapest pick's integrator, dt and tolerance, on the first pane (the
+// one the advice names; compare panes keep theirs). The state runs on.
+void App::applyAdvice() {
+  if (advice_.state() != AdviceState::Done || advice_.advice().best < 0)
+    throw std::invalid_argument("advice: nothing to apply");
+  if (!adviceIsForThisScene()) throw std::invalid_argument("advice: computed for another scene; advise again");
+  const lab::Candidate& pick = advice_.advice().picks[advice_.advice().best].candidate;
+  Simulation& pane = *panes_.front();
+  particles::IntegratorSettings settings = pane.integratorSettings();
+  if (pick.tolerance > 0.0) settings.tolerance = pick.tolerance;
+  pane.setIntegratorSettings(settings);
+  pane.setIntegrator(integratorIndexByName(pick.integrator));
+  pane.setDt(pick.dt);
+  adviceApplied_ = lab::pickArguments(pick);
+  setStatus("applied " + adviceApplied_ + (panes_.size() > 1 ? " to pane 1" : ""));
 }
 
 void App::resetScene() {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "advice_job.h"
 #include "camera.h"
 #include "exact_motion.h"
 #include "layout.h"
@@ -81,6 +82,7 @@ class App {
   void drawOutOfViewIndicators();
   void drawHelp();
   void drawPanel();
+  void drawAdvicePanel();
   void recordWidget(const char* name);  // the last ImGui item, for scripted clicks
   void finishFrame();
 
@@ -100,6 +102,10 @@ class App {
   void setStatus(const std::string& text);
   void setError(const std::string& text);
   void frameAll();
+  void startAdvice();
+  void pollAdvice();
+  void applyAdvice();
+  bool adviceIsForThisScene() const;
   std::string paneStateLine(const Simulation& sim) const;
   // The rest of the keys' actions, one each.
   void doubleDt() { scaleDt(2.0); }
@@ -158,6 +164,7 @@ class App {
   bool grabbedOnce_ = false;     // the first-run hint shows until a particle is dragged
   bool closePopups_ = false;     // Esc closes an open combo instead of quitting
   std::vector<unsigned char> scriptKeysDown_;  // scripted keys, released the next frame
+  long long scriptHeldFrames_ = 0;  // frames a `wait` held the script: later events come this much later
 
   int windowWidth_, windowHeight_;
   long long frame_ = 0;
@@ -175,6 +182,11 @@ class App {
   ExactMotion exact_;              // the scene's closed form, drawn as a ghost; empty if none
   std::string sceneHint_;          // the scene's "try this", shown when it opens
   long long hintUntilFrame_ = 360;  // frames: the hint shows for 6 s after a scene opens
+  // The panel's advice (advice_job.h): what it asks, the job, and what was applied.
+  AdviceRequest adviceRequest_;
+  AdviceJob advice_;
+  long long adviceFramesWhileRunning_ = 0;  // frames drawn while a survey ran (the loop never waits for it)
+  std::string adviceApplied_;               // the options last applied ("" before any)
   bool quit_ = false;
   mutable bool outputFailed_ = false;
   bool frameDue_ = false;

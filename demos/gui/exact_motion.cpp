@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "particles/constants.h"
 #include "scenes/oscillator.h"
 #include "scenes/param_fields.h"
 #include "scenes/pendulum.h"
@@ -21,7 +22,7 @@ double jacobiSn(double u, double k) {
   }
   if (u > K) u = 2.0 * K - u;
   // F(φ, k) increases from 0 to K on [0, π/2]: bisection to the last bit.
-  double lo = 0.0, hi = 0.5 * M_PI;
+  double lo = 0.0, hi = 0.5 * particles::kPi;
   for (int i = 0; i < 64 && hi - lo > 1e-16; ++i) {
     const double mid = 0.5 * (lo + hi);
     (std::ellint_1(k, mid) < u ? lo : hi) = mid;
@@ -58,7 +59,7 @@ ExactMotion oscillator(const SceneChoice& choice) {
 ExactMotion pendulum(const SceneChoice& choice) {
   const scenes::PendulumParams p = paramsOf<scenes::PendulumParams>(choice);
   return [p](double t) {
-    const double theta0 = p.angle * M_PI / 180.0, k = std::sin(0.5 * std::abs(theta0));
+    const double theta0 = p.angle * particles::kPi / 180.0, k = std::sin(0.5 * std::abs(theta0));
     const double omega0 = std::sqrt(p.gravity / p.length);
     const double s = k * jacobiSn(std::comp_ellint_1(k) - omega0 * t, k);
     // θ swings through zero to −θ₀: its sign is sn's, mirrored for a release at a negative angle.

@@ -1,24 +1,31 @@
 #pragma once
 // Command-line options of particle-demo.
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include "options/scene_source.h"
+#include "options/usage.h"
 
 namespace demo {
 
+// One pane of --compare: an integrator, with its own dt or the first pane's
+// ("rk4" or "rk4:0.02").
+struct ComparePane {
+  std::string integrator;
+  std::optional<double> dt;
+};
+
+// Reads one --compare entry; throws std::invalid_argument naming it.
+ComparePane parseComparePane(const std::string& entry);
+
 struct DemoOptions {
-  std::string scene = "cloth";
-  std::string sceneFile;                        // overrides scene when set
-  std::optional<char> sceneKey;                 // --key K: the scene of number key K (scene_keys.h)
-  std::map<std::string, std::string> params;    // --param key=value
-  std::string preset = scenes::kDefaultPreset;              // --preset NAME: parameter preset of the built-in scenes
+  options::SceneSource source;                  // --scene (default cloth), --scene-file, --param, --preset
+  std::optional<char> sceneKey;                 // --key K: the scene of number key K instead (scene_keys.h)
   std::optional<std::string> integrator;        // default: the scene's
   std::optional<double> dt;                     // default: the scene's
   double tolerance = 1e-6;                      // --tolerance: adaptive-rk4's local error tolerance
-  std::vector<std::string> compare;             // --compare euler,rk4: start in compare mode
+  std::vector<ComparePane> compare;             // --compare euler,rk4: start in compare mode, 2 to 4 panes
   bool lockstep = false;
   bool hidePanel = false;
   bool startPaused = false;
@@ -32,11 +39,11 @@ struct DemoOptions {
 
 // Exit codes: 0 success, 2 a bad command line (one line on stderr), 1 an
 // output (--screenshot, --log-state) that could not be written at the end.
-constexpr int exitBadUsage = 2;
+constexpr int exitBadUsage = options::kBadUsageExit;
 constexpr int exitOutputFailed = 1;
 
 // Writes "particle-demo: <message>" as one line on stderr, as particle-lab does.
-void reportBadUsage(const std::string& message);
+inline void reportBadUsage(const std::string& message) { options::printErrorLine("particle-demo", message); }
 
 // Parses argv; on --help prints the help and exits 0; on a bad value prints
 // one line "particle-demo: …" and exits 2. Checks values that need no

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "app.h"
+#include "format_number.h"
 
 namespace demo {
 
@@ -101,7 +102,7 @@ std::vector<std::string> wrap(const std::string& text, float width, std::size_t 
   return lines;
 }
 
-std::string plural(int n, const char* word) { return format("%d %s%s", n, word, n == 1 ? "" : "s"); }
+using scenes::plural;
 }  // namespace
 
 // Why a pane shows what it shows, beyond its numbers: stopped, slow motion,

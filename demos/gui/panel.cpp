@@ -186,6 +186,9 @@ void App::drawPanel() {
     if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) guarded([&] { setPaneCount(paneCount); });
   }
 
+  // --- advice: the cheapest integrator and dt within an error over a horizon ---
+  drawAdvicePanel();
+
   // --- live plots -------------------------------------------------------------
   if (ImGui::CollapsingHeader("Energy and constraint error", ImGuiTreeNodeFlags_DefaultOpen)) {
     const float height = panes_.size() > 1 ? 36.0f : 60.0f;

@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstring>
 
+#include "particles/constants.h"
+#include "particles/constraints/circular_wire.h"
+#include "particles/forces/spring.h"
+
 namespace demo {
 
 namespace {
@@ -137,14 +141,14 @@ static std::vector<Eigen::Vector2d> colliderOutline(const particles::Collider& c
   std::vector<Eigen::Vector2d> outline;
   for (std::size_t k = 0; k < count; ++k) {
     const Eigen::Vector2d& p = c.points[k];
-    double from = 0.0, to = 2.0 * M_PI;
+    double from = 0.0, to = 2.0 * particles::kPi;
     if (count > 1) {
       const Eigen::Vector2d in = p - c.points[(k + count - 1) % count], out = c.points[(k + 1) % count] - p;
       from = std::atan2(-in.x(), in.y());  // outward normal (e.y, −e.x) of the edge arriving
       to = std::atan2(-out.x(), out.y());   // and of the edge leaving
-      while (to < from) to += 2.0 * M_PI;
+      while (to < from) to += 2.0 * particles::kPi;
     }
-    const int segments = std::max(1, static_cast<int>(std::ceil((to - from) / (2.0 * M_PI) * circleSegments)));
+    const int segments = std::max(1, static_cast<int>(std::ceil((to - from) / (2.0 * particles::kPi) * circleSegments)));
     for (int s = 0; s <= segments; ++s) {
       const double angle = from + (to - from) * s / segments;
       outline.push_back(p + c.radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
@@ -186,14 +190,15 @@ void Renderer::collectSketches(const particles::ParticleSystem& system, const Dr
                                double pixelsPerUnit, bool surface) {
   const particles::Phase phase = system.phase();
   int springs = 0;
-  for (const auto& force : system.forceObjects()) springs += std::strcmp(force->type(), "spring") == 0;
+  for (const auto& force : system.forceObjects())
+    springs += dynamic_cast<const particles::SpringForce*>(force.get()) != nullptr;
   const bool coils = springs <= coilSpringLimit;
   for (const auto& force : system.forceObjects()) {
     sketch_.lines.clear();
     sketch_.circles.clear();
     force->sketch(phase, sketch_);
-    const bool mouse = std::strcmp(force->type(), "mouse-spring") == 0;
-    const bool spring = std::strcmp(force->type(), "spring") == 0;
+    const bool mouse = dynamic_cast<const particles::MouseSpringForce*>(force.get()) != nullptr;
+    const bool spring = dynamic_cast<const particles::SpringForce*>(force.get()) != nullptr;
     const Rgb colour = mouse ? palette::mouseSpring : palette::spring;
     for (const auto& l : sketch_.lines)
       addSpring(springs_, l.a, l.b, colour, mouse ? 255 : surface ? 70 : 220, spring && coils, pixelsPerUnit);
@@ -207,7 +212,7 @@ void Renderer::collectSketches(const particles::ParticleSystem& system, const Dr
     for (const auto& l : sketch_.lines) constraints_.line(l.a, l.b, palette::constraint);
     for (const auto& c : sketch_.circles) addCircle(constraints_, c.centre, c.radius, palette::constraint);
     // A bead on a circular wire is a pendulum: its rod to the centre, faintly.
-    if (std::strcmp(constraint->type(), "circular-wire") == 0 && !sketch_.circles.empty())
+    if (dynamic_cast<const particles::CircularWireConstraint*>(constraint.get()) && !sketch_.circles.empty())
       for (int i : constraint->particles())
         constraints_.line(sketch_.circles.front().centre, system.position(i), palette::constraint);
   }
@@ -246,7 +251,7 @@ void Renderer::collectGhost(const GhostFrame& ghost, const ViewTransform& view, 
 
 void Renderer::addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour) {
   for (int k = 0; k < circleSegments; ++k) {
-    const double a0 = 2 * M_PI * k / circleSegments, a1 = 2 * M_PI * (k + 1) / circleSegments;
+    const double a0 = 2 * particles::kPi * k / circleSegments, a1 = 2 * particles::kPi * (k + 1) / circleSegments;
     batch.line(centre + radius * Eigen::Vector2d(std::cos(a0), std::sin(a0)),
                centre + radius * Eigen::Vector2d(std::cos(a1), std::sin(a1)), colour);
   }

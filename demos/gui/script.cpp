@@ -45,12 +45,16 @@ std::vector<ScriptEvent> readScript(const std::string& path) {
     }
     try {
       if (in.fail() || e.frame < 0) throw std::invalid_argument("expected a frame number >= 0 first");
-      if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up or resize after the frame");
+      if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up, resize or wait after the frame");
       if (action == "key" || action == "keydown" || action == "keyup") {
         std::string key;
         if (!(in >> key)) throw std::invalid_argument("expected a key after '" + action + "'");
         e.action = action == "key" ? ScriptAction::Key : action == "keydown" ? ScriptAction::KeyDown : ScriptAction::KeyUp;
         e.key = parseKey(key);
+      } else if (action == "wait") {
+        std::string what;
+        if (!(in >> what) || what != "advice") throw std::invalid_argument("expected 'advice' after 'wait'");
+        e.action = ScriptAction::WaitAdvice;
       } else if (action == "resize") {
         e.action = ScriptAction::Resize;
         if (!(in >> e.x >> e.y) || e.x < 100 || e.y < 100 || e.x > 8192 || e.y > 8192)
@@ -60,7 +64,7 @@ std::vector<ScriptEvent> readScript(const std::string& path) {
         else if (action == "move") e.action = ScriptAction::MouseMove;
         else if (action == "up") e.action = ScriptAction::MouseUp;
         else if (action == "wheel") e.action = ScriptAction::Wheel;
-        else throw std::invalid_argument("expected key, keydown, keyup, down, move, up, wheel or resize, got '" + action + "'");
+        else throw std::invalid_argument("expected key, keydown, keyup, down, move, up, wheel, resize or wait, got '" + action + "'");
         std::string space, button;
         if (!(in >> space >> e.x >> e.y)) throw std::invalid_argument("expected world|window x y after '" + action + "'");
         if (!std::isfinite(e.x) || !std::isfinite(e.y)) throw std::invalid_argument("expected finite coordinates");

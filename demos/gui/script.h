@@ -8,15 +8,17 @@
 //   <frame> down|move|up world|window <x> <y> [left|right|middle|shift-left]
 //   <frame> wheel world|window <x> <y> <clicks>   clicks > 0 zoom in, < 0 out
 //   <frame> resize <width> <height>          asks the window system for a new size
+//   <frame> wait advice                      holds the script while the panel's advice runs
 // <frame> counts frames from 0; events of frame k are handled before frame k
-// steps and draws. world coordinates are mapped to pixels through the first
+// steps and draws. While a wait holds, the script's clock stands still (the
+// demo keeps drawing): every later event comes that many frames later. world coordinates are mapped to pixels through the first
 // pane's view at that frame; window coordinates are pixels, origin top-left.
 #include <string>
 #include <vector>
 
 namespace demo {
 
-enum class ScriptAction { Key, KeyDown, KeyUp, MouseDown, MouseMove, MouseUp, Wheel, Resize };
+enum class ScriptAction { Key, KeyDown, KeyUp, MouseDown, MouseMove, MouseUp, Wheel, Resize, WaitAdvice };
 enum class ScriptSpace { World, Window };
 enum class ScriptButton { Left, Right, Middle, ShiftLeft };
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "particles/check.h"
+#include "particles/constants.h"
 
 namespace demo {
 
@@ -168,7 +169,7 @@ void Simulation::grab(int particle, const Eigen::Vector2d& target, const particl
   // An explicit step follows the joint's oscillation stably only while ω dt is
   // small (explicit Euler's |1 + λ dt| < 1 at ζ = 0.7 needs ω dt < 1): keep ω dt ≤ 0.5.
   particles::MouseJointSettings stable = joint;
-  stable.frequency = std::min(joint.frequency, 0.5 / (2.0 * M_PI * dt_));
+  stable.frequency = std::min(joint.frequency, 0.5 / (2.0 * particles::kPi * dt_));
   const particles::MouseSpringGains gains = particles::mouseSpringGains(system().masses()[particle], stable);
   release();
   auto spring = std::make_unique<particles::MouseSpringForce>(particle, target, gains.stiffness, gains.damping);

@@ -1,7 +1,6 @@
 #include "state_log.h"
 
 #include <algorithm>
-#include <cstring>
 #include <fstream>
 
 namespace demo {
@@ -17,7 +16,7 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
     const Simulation& sim = *panes[k].simulation;
     const particles::ParticleSystem& s = sim.system();
     int springs = 0;
-    for (const auto& f : s.forceObjects()) springs += std::strcmp(f->type(), "mouse-spring") == 0;
+    for (const auto& f : s.forceObjects()) springs += dynamic_cast<const particles::MouseSpringForce*>(f.get()) != nullptr;
     out << "pane," << k << "," << panes[k].sceneLabel << "," << sim.integratorName() << "," << sim.dt() << ","
         << s.time() << "," << sim.steps() << "," << (sim.divergedAt() ? 1 : 0) << "," << springs << ","
         << sim.sceneEnergy() << "," << s.maxConstraintError() << "," << sim.mouseSpringEnergy() << ","
@@ -58,6 +57,9 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
                                      extras.frameSimulationMs.end());
   out << "frame-times," << ms.size() << "," << quantile(ms, 0.5) << "," << quantile(ms, 0.1) << "," << quantile(ms, 0.9)
       << "," << quantile(stepping, 0.5) << "\n";
+  const AdviceRecord& a = extras.advice;
+  out << "advice," << a.state << "," << a.progress << "," << a.integrator << "," << a.dt << "," << a.tolerance << ","
+      << a.framesWhileRunning << "," << a.applied << "\n";
   out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
   out.close();
   return out ? "" : "error writing state log '" + path + "'";

@@ -15,7 +15,11 @@
 //     (text and panels drawn in the last frame: top-bar, hud (the bottom bar),
 //     pane-hud, indicator, help, panel; text's line breaks written as " | ")
 //   widget,<name>,<pixel x>,<pixel y>,<pixel width>,<pixel height>
-//     (the panel's controls, for scripted clicks: scene, reset, pause, step, rewind)
+//     (the panel's controls, for scripted clicks: scene, reset, pause, step, rewind,
+//     advice (its section's header), advise-error, advise-horizon, advise, advise-cancel, advise-apply)
+//   advice,<state>,<progress 0..1>,<integrator>,<dt>,<tolerance>,<frames drawn while it ran>,<applied>
+//     (the panel's advice: idle, running, done, cancelled or failed; the
+//     cheapest pick when done, else empty and 0; the options last applied, if any)
 //   timing,<scene draw ms>,<text and panel draw ms>,<panel shown 0|1>
 //   frame-times,<frames>,<median ms>,<10th percentile>,<90th percentile>,<median stepping ms>
 //     (wall time per frame after the first 10: input, stepping, drawing and the buffer swap)
@@ -37,8 +41,18 @@ struct Overlay {
   std::string text;
 };
 
+struct AdviceRecord {
+  std::string state = "idle";
+  double progress = 0.0;
+  std::string integrator;  // the cheapest pick; empty unless done with one
+  double dt = 0.0, tolerance = 0.0;
+  long long framesWhileRunning = 0;
+  std::string applied;     // "--integrator NAME --dt X [--tolerance Y]" last applied
+};
+
 struct StateExtras {
   std::vector<Overlay> overlays, widgets;
+  AdviceRecord advice;
   double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
   bool panelShown = false;
   std::vector<double> frameMs, frameSimulationMs;  // every frame's wall time and its stepping part

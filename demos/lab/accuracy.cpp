@@ -12,6 +12,7 @@
 #include "lab/advise.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -26,12 +27,6 @@ struct Problem {
   bool closedForm = false;    // the oscillator: the closed form is the reference
   double referenceTolerance = 1e-11;
 };
-
-bool usesTolerance(const std::string& integrator) {
-  for (const auto& info : particles::integratorTable())
-    if (integrator == info.name) return info.usesTolerance;
-  return false;
-}
 
 }  // namespace
 
@@ -59,7 +54,7 @@ int runAccuracy(const LabOptions& options) {
   const std::vector<double> tolerances = q ? std::vector<double>{1e-5, 1e-9} : logSpace(1e-12, 1e-3, 10);
   long total = 0;
   for (const auto& p : problems)
-    for (const auto& name : integrators) total += usesTolerance(name) ? tolerances.size() : p.steps.size();
+    for (const auto& name : integrators) total += particles::requireIntegrator(name).usesTolerance ? tolerances.size() : p.steps.size();
   Progress progress("accuracy", total);
   recordValue(options, "accuracy.repeats", std::to_string(repeats));
   recordValue(options, "accuracy.output_interval", general(outputInterval));
@@ -85,11 +80,11 @@ int runAccuracy(const LabOptions& options) {
     recordValue(options, "accuracy.reference_agreement." + p.label, general(reference.agreement, 2));
     recordValue(options, "accuracy.horizon." + p.label, general(p.horizon));
 
-    std::vector<std::string> row{p.label + " (" + std::to_string(particles) + " particles, T = " + general(p.horizon) +
+    std::vector<std::string> row{p.label + " (" + scenes::plural(particles, "particle") + ", T = " + general(p.horizon) +
                                  " s)"};
     for (const auto& name : integrators) {
       std::vector<double> knobs, errors;
-      const bool adaptive = usesTolerance(name);
+      const bool adaptive = particles::requireIntegrator(name).usesTolerance;
       for (double knob : adaptive ? tolerances : p.steps) {
         if (interrupted()) break;
         // dt divides T, so the error at T is taken at T.

@@ -14,12 +14,6 @@ namespace {
 
 bool cancelled(const SurveySettings& s) { return interrupted() || (s.cancel && s.cancel->load()); }
 
-bool usesTolerance(const std::string& integrator) {
-  for (const auto& info : particles::integratorTable())
-    if (integrator == info.name) return info.usesTolerance;
-  return false;
-}
-
 void validate(const SurveySettings& s) {
   particles::requirePositive("horizon", s.horizon);
   particles::requirePositive("error", s.targetError);
@@ -29,10 +23,11 @@ void validate(const SurveySettings& s) {
   particles::requirePositive("adaptive interval", s.adaptiveInterval);
   particles::requirePositive("reference tolerance", s.referenceTolerance);
   particles::requireInRange("safe fraction", s.safeFraction, 1e-3, 1.0);
-  if (!(s.gridRatio > 1.0)) throw std::invalid_argument("grid ratio must be > 1, got " + general(s.gridRatio));
+  particles::requirePositive("grid resolution", s.gridResolution);
+  if (s.members < 1) throw std::invalid_argument("members must be >= 1, got " + std::to_string(s.members));
   if (s.maxSteps < 1) throw std::invalid_argument("max steps must be >= 1, got " + std::to_string(s.maxSteps));
   if (s.repeats < 1) throw std::invalid_argument("repeats must be >= 1, got " + std::to_string(s.repeats));
-  for (const auto& name : s.integrators) particles::makeIntegrator(name);  // rejects unknown names
+  for (const auto& name : s.integrators) particles::requireIntegrator(name);  // rejects unknown names
 }
 
 struct Measurer {
@@ -47,46 +42,62 @@ struct Measurer {
   }
 };
 
-// Fixed-step schemes: dt descends a log grid from dtMax. Runs are complete
-// (so survival is known) until the safe boundary is established: nothing
-// failed yet, or survivorsBelowFailure grid points survived below the lowest
-// failure. Below safeFraction × boundary a run stops once its error exceeds
-// abortError (it could meet no budget). The scan ends at the first point
-// there that survives within targetError.
+// Fixed-step schemes: dt descends the lab's grid (scan.h) from dtMax. At each
+// dt the unperturbed start is measured against the reference; while the safe
+// boundary is being established (nothing failed yet, or fewer than
+// survivorsBelowFailure grid points survived below the lowest failure) runs
+// are complete and, where it survives, the ensemble's other members run too,
+// so the boundary is the lab's (boundaryOf over every member). Below
+// safeFraction × the established boundary a run stops once its error exceeds
+// abortError (it could meet no budget), and the ensemble is not rerun; a
+// failure there still counts. The scan ends at the first point there that
+// survives within targetError.
 void scanSteps(const Measurer& m, const SurveySettings& s, IntegratorSurvey& out,
                const std::function<void(double)>& progress) {
   const double dtMax = s.dtMax > 0.0 ? s.dtMax : std::min(s.horizon / 20.0, 0.5);
   const double dtMin = s.horizon / static_cast<double>(s.maxSteps);
-  const int points = std::max(1, static_cast<int>(std::floor(std::log(dtMax / dtMin) / std::log(s.gridRatio))) + 1);
-  double lowestFailure = std::numeric_limits<double>::infinity(), top = 0.0;
-  int survivorsBelow = 0;
-  long previousSteps = 0;
-  for (int j = 0; j < points && !cancelled(s); ++j) {
-    // dt divides T into whole steps, so the run ends exactly at T.
-    const long steps = std::max(1L, std::lround(s.horizon / (dtMax / std::pow(s.gridRatio, j))));
-    if (steps == previousSteps) continue;
-    previousSteps = steps;
-    const double dt = s.horizon / steps;
-    const bool established = std::isinf(lowestFailure) || survivorsBelow >= s.survivorsBelowFailure;
-    const bool belowSafe = top > 0.0 && dt <= s.safeFraction * top * (1 + 1e-12);
-    Candidate c = m.run(out.integrator, dt, 0.0, established && belowSafe);
+  const std::vector<double> grid = stepGridDividing(s.horizon, std::min(dtMin, dtMax), dtMax, s.gridResolution);
+  std::vector<ScanRun> runs;  // complete runs at each boundary dt, every member that was run
+  Boundary boundary;
+  int supporting = 0;
+  const auto update = [&] {
+    std::vector<ScanRun> ascending = runs;
+    std::stable_sort(ascending.begin(), ascending.end(), [](const ScanRun& a, const ScanRun& b) { return a.dt < b.dt; });
+    const std::vector<GridSurvival> survival = survivalAt(ascending, s.horizon, s.members);
+    boundary = boundaryOf(survival);
+    supporting = survivorsBelowFirstFailure(survival);
+  };
+  const auto established = [&] { return boundary.aboveGrid() || supporting >= s.survivorsBelowFailure; };
+  const auto belowSafe = [&](double dt) {
+    return boundary.safeDt > 0.0 && dt <= s.safeFraction * boundary.safeDt * (1 + 1e-12);
+  };
+  for (std::size_t j = 0; j < grid.size() && !cancelled(s); ++j) {
+    const double dt = grid[grid.size() - 1 - j];
+    const bool abortable = established() && belowSafe(dt);
+    Candidate c = m.run(out.integrator, dt, 0.0, abortable);
     if (cancelled(s)) break;
     out.scanned.push_back(c);
-    if (progress) progress(static_cast<double>(j + 1) / points);
-    if (!c.survived && !c.aborted) {
-      lowestFailure = dt, top = 0.0, survivorsBelow = 0;
-      continue;
+    if (progress) progress(static_cast<double>(j + 1) / grid.size());
+    if (!c.aborted && (!abortable || !c.survived)) {
+      runs.push_back({dt, 0, c.probe});
+      // A dt one member fails fails; the others only run where it survived.
+      bool survived = c.survived;
+      for (int member = 1; member < s.members && survived && !abortable; ++member) {
+        const std::optional<Probe> probe =
+            runMember(m.build, out.integrator, dt, member, s.horizon, s.failure, s.cancel);
+        if (!probe) break;  // cancelled: the scan ends below
+        ++out.ensembleRuns;
+        runs.push_back({dt, member, *probe});
+        survived = probe->survives(s.horizon, dt);
+      }
+      update();
     }
-    if (c.survived) {
-      if (top == 0.0) top = dt;
-      ++survivorsBelow;
-    }
-    const bool nowEstablished = std::isinf(lowestFailure) || survivorsBelow >= s.survivorsBelowFailure;
-    if (nowEstablished && belowSafe && c.survived && c.maxError <= s.targetError) break;
+    if (established() && belowSafe(dt) && c.survived && c.maxError <= s.targetError) break;
   }
-  out.safeDt = top;
-  out.safeAtTop = std::isinf(lowestFailure) && top > 0.0;
-  out.firstFailureDt = std::isinf(lowestFailure) ? 0.0 : lowestFailure;
+  update();
+  out.safeDt = boundary.safeDt;
+  out.firstFailureDt = boundary.firstFailureDt;
+  out.safeAtTop = boundary.aboveGrid() && boundary.safeDt > 0.0;
 }
 
 // Adaptive schemes: the tolerance descends at a fixed call interval.
@@ -136,6 +147,11 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
   });
   c.failure = r.reason;
   c.survived = !r.failed && !r.stopped && !r.cutShort && !stop();
+  c.probe.failed = r.failed;
+  c.probe.failure = r.failure;
+  c.probe.time = r.time;
+  c.probe.maxRelativeStretch = r.maxRelativeStretch;
+  c.probe.maxEnergyRise = r.maxEnergyRise;
   if (r.failed) c.maxError = std::numeric_limits<double>::infinity();
   c.errorAtT = c.survived ? error : std::numeric_limits<double>::infinity();
   c.seconds = r.seconds;
@@ -143,10 +159,11 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
 }
 
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
-                        double tolerance, const ClosedForm& closedForm) {
+                        double tolerance, const ClosedForm& closedForm, const std::atomic<bool>* cancel) {
   ReferenceSettings tight;
   tight.tolerance = tolerance;
   tight.interval = interval;
+  tight.cancel = cancel;
   // The check integrates again at 100× the tolerance, observed only about once
   // a second so that odeint chooses its own steps (observed every interval,
   // both runs would be held to the same short steps and agree trivially).
@@ -185,7 +202,7 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   if (s.progress) s.progress(0.0);  // valid: the reference starts
   const double scale = releasableEnergy(*first.system);
 
-  const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm);
+  const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm, s.cancel);
   survey.referenceAgreement = reference.agreement;
   survey.reference = reference.description;
   survey.size = reference.trajectory.size();
@@ -200,7 +217,7 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   for (std::size_t i = 0; i < names.size() && !cancelled(s); ++i) {
     IntegratorSurvey out;
     out.integrator = names[i];
-    out.adaptive = usesTolerance(names[i]);
+    out.adaptive = particles::requireIntegrator(names[i]).usesTolerance;
     auto progress = [&](double f) {
       if (s.progress) s.progress((i + f) / names.size());
     };
@@ -226,7 +243,11 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
 std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
                                     const SurveySettings& settings, double error) {
   std::vector<Pick> picks;
+  // A cancellable run checks the flag every step; the others are timed without an observer.
+  std::function<bool(const particles::ParticleSystem&)> carryOn;
+  if (settings.cancel) carryOn = [&](const particles::ParticleSystem&) { return !settings.cancel->load(); };
   for (const auto& scan : survey.integrators) {
+    if (settings.progress) settings.progress(static_cast<double>(picks.size()) / survey.integrators.size());
     Pick pick;
     for (const auto& c : scan.scanned) {
       const bool safe = scan.adaptive || c.dt <= settings.safeFraction * scan.safeDt * (1 + 1e-12);
@@ -242,8 +263,9 @@ std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build,
         particles::IntegratorSettings integratorSettings;
         if (pick.candidate.tolerance > 0.0) integratorSettings.tolerance = pick.candidate.tolerance;
         auto stepper = particles::makeIntegrator(pick.candidate.integrator, integratorSettings);
-        perSecond.push_back(simulate(scene, *stepper, pick.candidate.dt, survey.horizon, settings.failure).seconds /
-                            survey.horizon);
+        const RunResult run = simulate(scene, *stepper, pick.candidate.dt, survey.horizon, settings.failure, carryOn);
+        if (run.stopped || run.cutShort) break;
+        perSecond.push_back(run.seconds / survey.horizon);
       }
       if (perSecond.empty()) perSecond.push_back(pick.candidate.seconds / survey.horizon);
       pick.cpuPerSimulatedSecond = median(perSecond);
@@ -253,6 +275,31 @@ std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build,
     picks.push_back(pick);
   }
   return picks;
+}
+
+Advice advise(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
+              const ClosedForm& closedForm) {
+  Advice out;
+  SurveySettings s = settings;
+  const auto share = [&](double from, double width) {
+    return settings.progress ? std::function<void(double)>([=, &settings](double f) { settings.progress(from + width * f); })
+                             : std::function<void(double)>();
+  };
+  s.progress = share(0.0, 0.9);
+  try {
+    out.survey = surveyScene(build, s, closedForm);
+  } catch (const Cancelled&) {
+    return out;
+  }
+  if (cancelled(s)) return out;
+  s.progress = share(0.9, 0.1);
+  const double budget = s.relativeToSize ? s.targetError * out.survey.size : s.targetError;
+  out.picks = pickPerIntegrator(build, out.survey, s, budget);
+  if (cancelled(s)) return out;
+  out.best = cheapest(out.picks);
+  out.complete = true;
+  if (settings.progress) settings.progress(1.0);
+  return out;
 }
 
 int cheapest(const std::vector<Pick>& picks) {

@@ -24,7 +24,8 @@ struct SurveySettings {
   std::vector<std::string> integrators;  // empty: every integrator in the engine's table
   double dtMax = 0.0;               // largest dt scanned; 0: min(T/20, 0.5)
   long maxSteps = 100000;           // smallest dt scanned is T / maxSteps
-  double gridRatio = 1.1225;        // 2^(1/6): neighbouring grid steps differ by 12%
+  double gridResolution = 0.1225;   // the lab's dt grid (scan.h stepGridDividing) at 6 steps per octave
+  int members = ScanSettings{}.members;  // starts whose survival sets the safe boundary (the lab's ensemble)
   double safeFraction = 0.8;        // a pick's dt is at most this × the safe boundary
   int survivorsBelowFailure = 3;    // grid points that must survive below the lowest failure
   std::vector<double> tolerances;   // adaptive schemes; empty: 1e-2 … 1e-12, factor √10
@@ -34,8 +35,8 @@ struct SurveySettings {
   int repeats = 5;                  // timed repeats of each pick; the median is reported
   FailureCriterion failure;         // the failure criterion (lab/failure.h)
   double referenceTolerance = 1e-11;  // odeint's; the check run uses 100× this
-  std::function<void(double)> progress;        // fraction of the scan done, 0..1 (any thread)
-  const std::atomic<bool>* cancel = nullptr;   // set to stop early
+  std::function<void(double)> progress;        // fraction done, 0..1, on the calling thread
+  const std::atomic<bool>* cancel = nullptr;   // set (from any thread) to stop early
 };
 
 // One measured configuration.
@@ -51,6 +52,7 @@ struct Candidate {
   double energyError = 0.0;   // max |E − E_ref| over the steps / E_s (releasableEnergy)
   double constraintDrift = 0.0;  // max |C|/r over the run
   double seconds = 0.0;       // wall time of the scan run's steps
+  Probe probe;                // the run as the safe-boundary scan sees it (scan.h)
 };
 
 // One run of a freshly built scene against the reference, sampled at every
@@ -65,10 +67,13 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
 struct IntegratorSurvey {
   std::string integrator;
   bool adaptive = false;
+  // The safe boundary (scan.h boundaryOf) over every member of the ensemble at
+  // each dt run to T while it was being established.
   double safeDt = 0.0;        // largest scanned dt below which every scanned dt survived (0: none)
   double firstFailureDt = 0.0;  // lowest failing dt scanned above safeDt (0: none failed)
   bool safeAtTop = false;     // nothing failed: safeDt is the top of the grid, a lower bound
-  std::vector<Candidate> scanned;  // in scan order (dt or tolerance descending)
+  std::vector<Candidate> scanned;  // the unperturbed start, in scan order (dt or tolerance descending)
+  long ensembleRuns = 0;           // runs of the perturbed members (survival only)
   std::string refused;             // why the integrator refuses this scene ("" if it takes it)
 };
 
@@ -93,13 +98,17 @@ struct Reference {
   double agreement = 0.0;
   std::string description;
 };
+// Throws Cancelled once `cancel` is set.
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
-                        double tolerance, const ClosedForm& closedForm = {});
+                        double tolerance, const ClosedForm& closedForm = {},
+                        const std::atomic<bool>* cancel = nullptr);
 
 // Runs the reference and scans every integrator. `build` makes a fresh scene
 // each call. The reference is the closed form when one is given (checked
 // against odeint), otherwise odeint at referenceTolerance (checked against
-// odeint at 100× that). Throws std::invalid_argument for bad settings.
+// odeint at 100× that). Throws std::invalid_argument for bad settings and
+// Cancelled when settings.cancel is set while the reference is computed (a
+// scan cancelled later returns the points measured so far).
 Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
                    const ClosedForm& closedForm = {});
 
@@ -110,12 +119,27 @@ struct Pick {
 };
 
 // Per integrator, the largest scanned safe dt (fixed-step: dt ≤ safeFraction ×
-// safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`.
+// safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`
+// (settings.progress: the fraction of integrators timed).
 std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
                                     const SurveySettings& settings, double error);
 
 // Index of the cheapest found pick by median CPU time, −1 if none is found.
 int cheapest(const std::vector<Pick>& picks);
+
+// The whole advice for one scene, as `particle-lab advise` and the demo's
+// panel give it: surveyScene with the budget settings.targetError (the scan's
+// share of settings.progress 0..0.9), then pickPerIntegrator at that budget
+// (0.9..1), then the cheapest. `complete` is false when settings.cancel (or an
+// interrupt) stopped it: a partial survey names no pick.
+struct Advice {
+  Survey survey;
+  std::vector<Pick> picks;  // one per survey.integrators
+  int best = -1;            // index of the cheapest pick, −1 if none meets the budget
+  bool complete = false;
+};
+Advice advise(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
+              const ClosedForm& closedForm = {});
 
 // The command line that reproduces a pick: "--integrator NAME --dt X [--tolerance Y]".
 std::string pickArguments(const Candidate& c);

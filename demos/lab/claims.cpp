@@ -4,11 +4,13 @@
 #include <iostream>
 #include <limits>
 
+#include "particles/constants.h"
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
 #include "lab/parallel.h"
 #include "particles/forces/mouse_spring.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -24,7 +26,7 @@ std::pair<double, double> cellShear(const particles::ParticleSystem& s, int widt
       const int i = r * width + c;
       const Eigen::Vector2d a = s.position(i + 1) - s.position(i), b = s.position(i + width) - s.position(i);
       const double cosine = a.dot(b) / (a.norm() * b.norm());
-      const double shear = std::abs(std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI - 90.0);
+      const double shear = std::abs(std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / particles::kPi - 90.0);
       sum += shear, worst = std::max(worst, shear), ++cells;
     }
   return {cells ? sum / cells : 0.0, worst};
@@ -97,7 +99,7 @@ int runClaims(const LabOptions& options) {
     table.push_back({"RK4 costs about twice midpoint per step",
                      "RK4/midpoint step time: " + fixed(rk4 / mid, 2), verdict(rk4 / mid > 1.5 && rk4 / mid < 2.5)});
     table.push_back({"RK4 allows more than twice midpoint's step",
-                     "safe dt (scan, " + std::to_string(scan.members) + " starts), " + std::to_string(cl) +
+                     "safe dt (scan, " + scenes::plural(scan.members, "start") + "), " + std::to_string(cl) +
                          "-chain, T = " + general(duration) + " s: RK4 " + safeStepText(boundaries[0]) +
                          ", midpoint " + safeStepText(boundaries[1]) + " (ratio " + fixed(dtRk4 / dtMid, 2) + ")",
                      dtMid > 0.0 && !boundaries[0].aboveGrid() ? verdict(dtRk4 > 2.0 * dtMid) : "undecided"});

@@ -9,6 +9,7 @@
 #include "lab/advise.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -48,7 +49,8 @@ int runCost(const LabOptions& options) {
   const std::vector<double> budgets = {1e-2, 1e-4, 1e-6};  // × the scene's size
   const SurveySettings defaults;
   recordValue(options, "cost.safe_fraction", general(defaults.safeFraction));
-  recordValue(options, "cost.grid_ratio", fixed(defaults.gridRatio, 3));
+  recordValue(options, "cost.grid_ratio", fixed(std::pow(2.0, 1.0 / stepsPerOctave(defaults.gridResolution)), 3));
+  recordValue(options, "cost.members", std::to_string(defaults.members));
   recordValue(options, "cost.reference_tolerance", general(defaults.referenceTolerance));
   recordValue(options, "cost.repeats", std::to_string(q ? 2 : defaults.repeats));
   recordValue(options, "cost.failure", describe(options.criterion));
@@ -58,7 +60,7 @@ int runCost(const LabOptions& options) {
                {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",
                 "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
   Csv safeCsv(options.outDir + "/cost_safe_dt.csv",
-              {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs"});
+              {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs", "ensemble_runs"});
   std::vector<std::vector<std::string>> table;
   for (const auto& cs : scenes) {
     if (interrupted()) break;
@@ -80,10 +82,10 @@ int runCost(const LabOptions& options) {
     if (interrupted()) break;
     for (const auto& scan : survey.integrators) {
       safeCsv << cs.label << cs.horizon << scan.integrator << (scan.adaptive ? std::nan("") : scan.safeDt)
-              << scan.firstFailureDt << static_cast<long>(scan.scanned.size());
+              << scan.firstFailureDt << static_cast<long>(scan.scanned.size()) << scan.ensembleRuns;
       safeCsv.endRow();
     }
-    const std::string label = cs.label + " (" + std::to_string(survey.particles) + " particles, T = " +
+    const std::string label = cs.label + " (" + scenes::plural(survey.particles, "particle") + ", T = " +
                               general(cs.horizon) + " s)";
     for (double relative : budgets) {
       const double budget = relative * survey.size;

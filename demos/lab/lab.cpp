@@ -82,12 +82,15 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
 }
 
 std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, const std::string& integrator,
-                               double dt, int member, double duration, const FailureCriterion& criterion) {
+                               double dt, int member, double duration, const FailureCriterion& criterion,
+                               const std::atomic<bool>* cancel) {
   scenes::Scene scene = build();
   perturbStart(scene, member);
   auto stepper = particles::makeIntegrator(integrator);
-  const RunResult r = simulate(scene, *stepper, dt, duration, criterion);
-  if (r.cutShort) return std::nullopt;
+  std::function<bool(const particles::ParticleSystem&)> carryOn;
+  if (cancel) carryOn = [cancel](const particles::ParticleSystem&) { return !cancel->load(); };
+  const RunResult r = simulate(scene, *stepper, dt, duration, criterion, carryOn);
+  if (r.cutShort || r.stopped) return std::nullopt;
   Probe p;
   p.failed = r.failed;
   p.failure = r.failure;
@@ -129,7 +132,7 @@ std::vector<std::string> selectedIntegrators(const LabOptions& options) {
         std::find(options.integrators.begin(), options.integrators.end(), info.name) !=
             options.integrators.end())
       names.push_back(info.name);
-  for (const auto& name : options.integrators) particles::makeIntegrator(name);  // rejects unknown
+  for (const auto& name : options.integrators) particles::requireIntegrator(name);  // rejects unknown
   return names;
 }
 

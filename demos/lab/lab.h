@@ -1,6 +1,7 @@
 #pragma once
 // The laboratory: experiments that measure the speed–accuracy trade and the
 // stability of each integrator, writing CSVs and readable tables.
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -57,9 +58,11 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
                    const std::function<bool(const particles::ParticleSystem&)>& observe = {});
 
 // One scan run: ensemble member `member` (perturbStart) of a freshly built
-// scene under the integrator for `duration`; nullopt when an interrupt cut it short.
+// scene under the integrator for `duration`; nullopt when an interrupt (or
+// `cancel`, checked every step) cut it short.
 std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, const std::string& integrator,
-                               double dt, int member, double duration, const FailureCriterion& criterion);
+                               double dt, int member, double duration, const FailureCriterion& criterion,
+                               const std::atomic<bool>* cancel = nullptr);
 
 // The safe boundary of one scene under one integrator at T = duration: a scan
 // (scanSteps) of `settings.grid` over `settings.members` starts; nullopt when

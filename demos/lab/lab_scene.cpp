@@ -3,6 +3,8 @@
 #include <cmath>
 #include <random>
 
+#include "particles/constants.h"
+
 namespace lab {
 
 scenes::Scene buildLabScene(const std::string& name, const std::map<std::string, std::string>& overrides) {
@@ -18,7 +20,7 @@ void perturbStart(scenes::Scene& scene, int member, double relativeSize) {
   for (int i = 0; i < n; ++i) lo = lo.cwiseMin(system.position(i)), hi = hi.cwiseMax(system.position(i));
   const double size = relativeSize * (hi - lo).norm();
   std::mt19937_64 random(0x9e3779b97f4a7c15ULL * static_cast<unsigned long long>(member));
-  std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * particles::kPi);
   Eigen::VectorXd& x = system.positions();
   for (int i = 0; i < n; ++i) {
     const double a = angle(random);

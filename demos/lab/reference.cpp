@@ -83,6 +83,7 @@ Trajectory odeintReference(scenes::Scene& scene, double duration, const Referenc
     Eigen::Map<Eigen::VectorXd>(derivative.data() + n2, n2) = a;
   };
   auto observe = [&](const State& state, double) {
+    if (settings.cancel && settings.cancel->load()) throw Cancelled();
     recordSample(system, Eigen::Map<const Eigen::VectorXd>(state.data(), n2),
                  Eigen::Map<const Eigen::VectorXd>(state.data() + n2, n2), out);
   };

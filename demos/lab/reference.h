@@ -2,6 +2,8 @@
 // Reference trajectories independent of the integrators under test: the
 // closed form where one exists, otherwise Boost.Odeint's controlled
 // Runge–Kutta–Fehlberg 7(8) driving ParticleSystem::acceleration.
+#include <atomic>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,11 +34,18 @@ struct ReferenceSettings {
   double tolerance = 1e-11;        // odeint absolute and relative error per step
   double solverTolerance = 1e-13;  // the constraint solve's, so it does not floor the reference
   double interval = 0.01;          // sample spacing h, simulated seconds
+  const std::atomic<bool>* cancel = nullptr;  // set to stop: odeintReference then throws Cancelled
+};
+
+// Thrown by a computation whose cancel flag was set.
+struct Cancelled : std::runtime_error {
+  Cancelled() : std::runtime_error("cancelled") {}
 };
 
 // Integrates a freshly built scene (collisions are not modelled: touchedWall
 // reports whether that mattered) over [0, duration] with odeint's
-// controlled runge_kutta_fehlberg78, observed at every sample (integrate_times).
+// controlled runge_kutta_fehlberg78, observed at every sample (integrate_times);
+// throws Cancelled at the first sample after settings.cancel was set.
 Trajectory odeintReference(scenes::Scene& scene, double duration, const ReferenceSettings& settings = {});
 
 // The oscillator scene's closed form (scenes::oscillatorDisplacement) on the

@@ -6,8 +6,10 @@
 
 namespace lab {
 
+int stepsPerOctave(double resolution) { return static_cast<int>(std::ceil(std::log(2.0) / std::log1p(resolution))); }
+
 std::vector<double> stepGrid(double lo, double hi, double resolution, double anchor) {
-  const int perOctave = static_cast<int>(std::ceil(std::log(2.0) / std::log1p(resolution)));
+  const int perOctave = stepsPerOctave(resolution);
   const int first = static_cast<int>(std::ceil(perOctave * std::log2(lo / anchor) - 1e-9));
   const int last = static_cast<int>(std::floor(perOctave * std::log2(hi / anchor) + 1e-9));
   std::vector<double> grid;
@@ -15,6 +17,19 @@ std::vector<double> stepGrid(double lo, double hi, double resolution, double anc
     // anchor·2^(k/m), exact at whole octaves
     const int octave = (k >= 0 ? k : k - perOctave + 1) / perOctave, rest = k - octave * perOctave;
     grid.push_back(std::ldexp(anchor * std::pow(2.0, static_cast<double>(rest) / perOctave), octave));
+  }
+  return grid;
+}
+
+std::vector<double> stepGridDividing(double duration, double lo, double hi, double resolution, double anchor) {
+  std::vector<double> grid;
+  long previous = 0;
+  const std::vector<double> fine = stepGrid(lo, hi, resolution, anchor);
+  for (auto dt = fine.rbegin(); dt != fine.rend(); ++dt) {  // descending: n ascending
+    const long steps = std::max(1L, std::lround(duration / *dt));
+    if (steps == previous) continue;
+    previous = steps;
+    grid.insert(grid.begin(), duration / steps);
   }
   return grid;
 }
@@ -75,6 +90,15 @@ Boundary boundaryOf(const std::vector<GridSurvival>& survival) {
       if (survival[j].survived) b.survivalAbove.push_back(survival[j].dt);
   }
   return b;
+}
+
+int survivorsBelowFirstFailure(const std::vector<GridSurvival>& survival) {
+  int count = 0;
+  for (const GridSurvival& g : survival) {
+    if (!g.survived) break;
+    ++count;
+  }
+  return count;
 }
 
 }  // namespace lab

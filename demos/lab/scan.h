@@ -17,6 +17,14 @@ namespace lab {
 // grid holds 0.05, 0.1, 0.2 exactly, the steps of Table 1.
 std::vector<double> stepGrid(double lo, double hi, double resolution = 0.05, double anchor = 0.05);
 
+// m, the grid's steps per octave for a resolution: ceil(ln 2 / ln(1 + resolution)).
+int stepsPerOctave(double resolution);
+
+// stepGrid with every dt moved to the nearest T/n (n whole, at least 1), so a
+// run of n steps ends exactly at T; points that fall together are kept once.
+std::vector<double> stepGridDividing(double duration, double lo, double hi, double resolution = 0.05,
+                                     double anchor = 0.05);
+
 // One run of one ensemble member at one dt, stopped at its first failure.
 struct Probe {
   bool failed = false;
@@ -71,5 +79,9 @@ struct Boundary {
   bool aboveGrid() const { return firstFailureDt == 0.0; }  // safeDt is then the grid's top: a lower bound
 };
 Boundary boundaryOf(const std::vector<GridSurvival>& survival);
+
+// Grid points that survived below the first failure (all of them if nothing failed):
+// how firmly the scanned part of the grid supports safeDt.
+int survivorsBelowFirstFailure(const std::vector<GridSurvival>& survival);
 
 }  // namespace lab

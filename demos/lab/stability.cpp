@@ -17,6 +17,7 @@
 #include "lab/experiments.h"
 #include "lab/lab.h"
 #include "lab/parallel.h"
+#include "format_number.h"
 
 namespace lab {
 
@@ -65,12 +66,6 @@ double fastestLinkRate(int length, double duration, const FailureCriterion& crit
   return fastest;
 }
 
-bool adaptive(const std::string& name) {
-  for (const auto& info : particles::integratorTable())
-    if (name == info.name) return info.usesTolerance;
-  return false;
-}
-
 }  // namespace
 
 int runStability(const LabOptions& options, const StabilityOptions& so) {
@@ -82,7 +77,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   // interval would measure nothing, so it is left out here.
   std::vector<std::string> integrators;
   for (const auto& name : selectedIntegrators(options))
-    if (!adaptive(name)) integrators.push_back(name);
+    if (!particles::requireIntegrator(name).usesTolerance) integrators.push_back(name);
     else std::cout << name << ": not scanned (its internal step is chosen by --tolerance, dt is only its call interval)\n";
 
   const bool q = options.quick;
@@ -112,8 +107,8 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
 
   std::cout << "grid: " << scan.grid.size() << " dt from " << general(scan.grid.front(), 3) << " to "
             << general(scan.grid.back(), 3) << " s, neighbours " << general(scan.grid[1] / scan.grid[0] - 1, 2)
-            << " apart; scanned up to " << scan.beyond << "x the first failure; " << scan.members
-            << " starts (perturbed by " << perturbation << " of the scene size); T = " << general(T) << " s\n";
+            << " apart; scanned up to " << scan.beyond << "x the first failure; " << scenes::plural(scan.members, "start")
+            << " (perturbed by " << perturbation << " of the scene size); T = " << general(T) << " s\n";
 
   // The whip's frequency per chain length, over the longest T each is scanned for.
   std::vector<int> whipLengths(lengths);
@@ -316,7 +311,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
                 ratios.empty() ? "–" : fixed(shift.back(), 2));
   }
 
-  const std::string at = "T = " + general(T) + " s, " + std::to_string(scan.members) + " starts, 5% dt grid";
+  const std::string at = "T = " + general(T) + " s, " + scenes::plural(scan.members, "start") + ", 5% dt grid";
   writeTable(options, "table1", "Table 1: longest chain (of " + std::to_string(ladder.size()) + " lengths " +
                                     std::to_string(ladder.front()) + "–" + std::to_string(ladder.back()) +
                                     ") such that it and every shorter one survive, " + at,
@@ -330,7 +325,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
              {"integrator", "chain length", "safe dt", "first failure", "survives again at"}, details);
   std::vector<std::string> header{"integrator", "chain length"};
   for (double d : durations) header.push_back("T = " + general(d) + " s");
-  writeTable(options, "stability_vs_duration", "Safe dt against T (" + std::to_string(scan.members) + " starts)",
+  writeTable(options, "stability_vs_duration", "Safe dt against T (" + scenes::plural(scan.members, "start") + ")",
              header, vsDuration);
   writeTable(options, "stability_feedback",
              "Short chains: safe dt at the feedback stiffness k_s = " + general(defaultStiffness) + " and " +

@@ -45,12 +45,11 @@ const Codec& codecFor(const JsonNode& node, const std::vector<Codec>& table, con
 
 void readIntegrator(const JsonNode& node, Scene& scene) {
   if (!node.present()) return;
-  for (const particles::IntegratorInfo& info : particles::integratorTable())
-    if (node.text() == info.name) {
-      scene.integrator = info.name;
-      return;
-    }
-  node.expected("an integrator (" + joinNames(particles::integratorTable()) + ")");
+  if (const particles::IntegratorInfo* info = particles::findIntegrator(node.text())) {
+    scene.integrator = info->name;
+    return;
+  }
+  node.expected("an integrator (" + particles::integratorNames() + ")");
 }
 
 void readIntegratorSettings(const JsonNode& node, particles::IntegratorSettings& s) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "particles/check.h"
+#include "particles/constants.h"
 #include "particles/constraints/line.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/drag.h"
@@ -77,7 +78,7 @@ Scene buildHair(const HairParams& p) {
   // A zigzag starts at its rest shape: consecutive links turn by π − θ₀
   // alternately right and left of straight down. A ringlet starts straight
   // down and curls up.
-  const double tilt = p.shape == "zigzag" ? 0.5 * (kPi - radians(p.bendAngle)) : 0.0;
+  const double tilt = p.shape == "zigzag" ? 0.5 * (particles::kPi - radians(p.bendAngle)) : 0.0;
   const Eigen::Vector2d right(p.rest * std::sin(tilt), -p.rest * std::cos(tilt));
   const Eigen::Vector2d left(-right.x(), right.y());
 

@@ -5,31 +5,18 @@
 
 #include "particles/check.h"
 #include "particles/constraints/circular_wire.h"
-#include "scene_limits.h"
-#include "scenes/param_fields.h"
-#include "scenes/world.h"
 
 namespace scenes {
 
 void RodChainParams::validate() const {
-  requireAtLeast("links", links, 1);
-  requireWithinLimit("links+1 particles", links + 1LL, SceneLimits::particles);
+  validateShared(links);
   particles::requirePositive("length", length);
   particles::requirePositive("radius", radius);
-  particles::requirePositive("mass", mass);
-  particles::parseRodForm(rod);
-  particles::requireFinite("gravity", gravity);
 }
 
 RodChainParams RodChainParams::seed() {
-  RodChainParams p;
-  p.links = 6;
-  p.length = 0.12;
-  p.radius = 0.25;
-  p.mass = 1.0;
-  p.rod = "squared";
-  p.gravity = kSeedGravity;
-  p.dt = 0.01;
+  RodChainParams p;  // the seed's chain: 6 rods of 0.12 on a wire of radius 0.25
+  p.useSeedValues();
   return p;
 }
 
@@ -44,9 +31,8 @@ Scene buildRodChain(const RodChainParams& p) {
   const Eigen::Vector2d centre(0.0, 0.4);
   const Eigen::Vector2d start = centre + Eigen::Vector2d(p.radius, 0.0);
   const Eigen::Vector2d end = start + Eigen::Vector2d(p.links * p.length, 0.0);
-  const int bead = addRodChain(s, start, end, p.links, p.mass, particles::parseRodForm(p.rod));
+  const int bead = p.addChain(s, start, end, p.links);
   s.addConstraint(std::make_unique<particles::CircularWireConstraint>(bead, centre, p.radius));
-  addGravity(s, p.gravity);
 
   // The chain can swing to any side of the wire.
   const double reach = p.radius + p.links * p.length;

@@ -5,6 +5,7 @@
 // k_d = 10 (particles::SolverSettings defaults).
 #include <Eigen/Core>
 
+#include "particles/constants.h"
 #include "particles/constraints/rod.h"
 #include "particles/particle_system.h"
 
@@ -17,8 +18,7 @@ constexpr double kEarthGravity = 9.81;
 // slowed every motion by √(9.81/0.05) ≈ 14.
 constexpr double kSeedGravity = 0.05;
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double radians(double degrees) { return degrees * kPi / 180.0; }
+constexpr double radians(double degrees) { return degrees * particles::kPi / 180.0; }
 
 // Adds uniform gravity g downward (world units / s²); nothing when g = 0, so
 // a weightless scene carries no gravity force.

@@ -11,6 +11,7 @@
 // exact. A contact that would close again within the step is resting: it
 // holds the particle on the surface for the rest of the step with the normal
 // impulse that cancels its approach (weight × dt for a particle at rest).
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -29,16 +30,13 @@ struct ContactSettings {
 };
 
 // The state at the start of the step, from which continuous detection sweeps.
-// acceleration: each particle's mean acceleration (v₁ − v₀)/dt over the step
-// as the integrator left it, measured before any contact changed v₁, so that
-// one contact's impulse does not bend the path a later contact sees; when
-// null, it is measured from the current state.
+// Each particle's path through the step runs from (x, v) here to its state as
+// the integrator left it (contact_path.h); every contact pass reads it before
+// any contact has changed that particle.
 struct StepStart {
   const Eigen::VectorXd& x;  // 2n positions
   const Eigen::VectorXd& v;  // 2n velocities
   double dt;
-  const Eigen::VectorXd* acceleration = nullptr;  // 2n
-  const Eigen::VectorXd* lead = nullptr;          // 2n: v₁ − path velocity at the end (contact_path.h)
 };
 
 // Particles (discs of radius[i], 0 for a point) against colliders: each
@@ -47,23 +45,23 @@ struct StepStart {
 // the tangential impulse is Coulomb's (at most μ times the normal impulse);
 // the rest of the path is swept again from there, so touching colliders act
 // as one closed boundary. Pinned particles (inverse mass 0) are never moved.
-// Each particle's sweep starts from its last event (eventX at time eventT:
-// the step's start, or its last impact, which every impact updates), so the
-// pass can run again after disc impacts have changed some paths.
-// `lastFree` receives each particle's end position (known to be outside every
-// collider), from which pushOutOfColliders sweeps later. Returns the contacts.
-struct ContactEvents {
-  Eigen::VectorXd x;  // 2n: position of each particle's last impact (or its start)
-  Eigen::VectorXd t;  // n: its time within the step
-  void reset(const Eigen::VectorXd& start) {
-    x = start;
-    t.setZero(start.size() / 2);
-  }
-};
+// `only` (null: all) marks the particles to resolve, the others are left
+// alone. `lastFree` (2n) receives each resolved particle's end position (known
+// to be outside every collider), from which pushOutOfColliders sweeps later.
+// Returns the contacts.
 int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            ContactEvents& events, Eigen::VectorXd& lastFree);
+                            Eigen::VectorXd& lastFree, const std::vector<char>* only = nullptr);
+
+// Broad phase against colliders, once a step: near[i] is set when particle
+// i's path over the step (the box of x0 → x1) grown by `margin` meets a
+// collider's bounding box or comes within margin of a half-plane. A particle
+// not marked meets no collider if margin ≥ its radius (+ slop), and no edge
+// with both ends unmarked meets a corner if margin ≥ edgeReach(). Linear in
+// the number of particles, times the number of colliders.
+void markNearColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
+                       double margin, std::vector<char>& near);
 
 // A resting pass for particles that another contact pushed into a collider
 // after resolveColliderContacts: the path lastFree → x finds the face entered,
@@ -74,35 +72,50 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::Vect
                        Eigen::VectorXd& v, Eigen::VectorXd& lastFree);
 
 // Disc–disc contact between collidable particles, with a uniform-grid broad
-// phase so the cost stays linear in the number of particles. A pair that
-// meets during the step exchanges the impulse j = −(1 + e) u_n / (w_i + w_j)
+// phase so the cost stays linear in the number of particles. With impacts,
+// the discs' impacts on each other and on the colliders are taken in the
+// order of their times within the step (each on the paths the discs follow
+// then): a pair that meets exchanges the impulse j = −(1 + e) u_n / (w_i + w_j)
 // at the time of impact (u_n the approach speed along the line of centres
-// then); a pair that was already touching is resting: its approach is
-// removed and its overlap split in proportion to inverse mass, which keeps
-// momentum and the centre of mass.
+// then), a collider impact is resolveColliderContacts'. A pair touching or
+// overlapping at the step's end is resting: its approach is removed and its
+// overlap split in proportion to inverse mass, which keeps momentum and the
+// centre of mass.
 class ParticleContacts {
  public:
   double restitution = 0.5;  // e in [0, 1]
 
-  // impacts: the first pass of a step (continuous, restitution); later passes
-  // (impacts = false) only resolve the resting contacts at the step's end.
-  // Returns the number of contacts resolved.
-  // Each pass keeps the pairs it found in contact; resolveResting goes over
-  // them again (alternating the order, which carries a push through a stack
-  // in both directions) without a new broad phase. Returns the largest speed
+  ParticleContacts();
+  ~ParticleContacts();
+  ParticleContacts(ParticleContacts&&) noexcept;
+  ParticleContacts& operator=(ParticleContacts&&) noexcept;
+
+  // impacts: the continuous pass of a step, from `start` (the colliders may be
+  // empty); without, only the resting contacts at the step's end. lastFree
+  // (may be null) receives the discs' end positions after their impacts, as
+  // resolveColliderContacts' does. Returns the number of contacts resolved.
+  // The pairs found touching are kept; resolveResting goes over them again
+  // (alternating the order, which carries a push through a stack in both
+  // directions) without a new broad phase, and returns the largest speed
   // change it made.
-  // events (may be null) records each impact for a later collider pass.
-  int resolve(const std::vector<int>& collidable, const StepStart& start, const Eigen::VectorXd& inverseMass,
-              const Eigen::VectorXd& radius, const ContactSettings& settings, bool impacts, Eigen::VectorXd& x,
-              Eigen::VectorXd& v, ContactEvents* events = nullptr);
+  int resolve(const std::vector<int>& collidable, const std::vector<Collider>& colliders, const StepStart& start,
+              const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const ContactSettings& settings,
+              bool impacts, Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree = nullptr);
   double resolveResting(const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                         const ContactSettings& settings, bool reverse, Eigen::VectorXd& x, Eigen::VectorXd& v);
+  int touchingPairs() const { return static_cast<int>(touching_.size()); }
 
  private:
+  // Pairs of collidable discs near enough to meet this step, as indices into `collidable`.
+  void findCandidatePairs(const std::vector<int>& collidable, const Eigen::VectorXd& x, double cell);
+  int resolveImpacts(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
+                     const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                     const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                     Eigen::VectorXd* lastFree);
+
   std::vector<std::pair<int, int>> touching_;  // pairs found in contact by the last resolve
-  // Broad-phase scratch, kept between steps to avoid allocation.
-  std::vector<Eigen::Vector2i> cells_;
-  std::vector<int> bucket_, order_, bucketStart_, fill_;
+  struct Scratch;  // broad phase and event queue, kept between steps to avoid allocation
+  std::unique_ptr<Scratch> scratch_;
 };
 
 // A collision edge: the segment between two particles (a spring of a cloth),
@@ -117,8 +130,14 @@ struct CollisionEdge {
 // side, or nearer than its radius, at the end. The edge is pushed clear with
 // the weights of the point of the edge facing the corner, its approach
 // removed and Coulomb friction applied. Returns the contacts.
+// `near` (null: every edge is tested) skips the edges with neither end marked
+// by markNearColliders.
 int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
                         const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
-                        Eigen::VectorXd& v);
+                        Eigen::VectorXd& v, const std::vector<char>* near = nullptr);
+
+// The largest side of an edge's box over the step (its two ends at x0 and
+// x1): the margin markNearColliders needs for edges.
+double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1);
 
 }  // namespace particles

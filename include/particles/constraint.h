@@ -3,6 +3,7 @@
 // exposing C, Ċ and the sparse blocks of its rows of J = ∂C/∂q and J̇ —
 // one 2-vector block per particle involved.
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "particles/phase.h"
@@ -50,5 +51,7 @@ class Constraint {
  private:
   std::vector<int> particles_;
 };
+
+using ConstraintList = std::vector<std::unique_ptr<Constraint>>;
 
 }  // namespace particles

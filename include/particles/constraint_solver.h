@@ -14,12 +14,8 @@
 // μ = 1e-6·max diag, a bounded approximation of the least-squares λ (see
 // ConstraintSolver::directSolve in the source for its effect on accuracy).
 #include <memory>
-#include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 
 #include "particles/constraint.h"
 
@@ -62,10 +58,13 @@ struct SolveStats {
   bool regularized = false;
 };
 
-using ConstraintList = std::vector<std::unique_ptr<Constraint>>;
-
 class ConstraintSolver {
  public:
+  ConstraintSolver();
+  ~ConstraintSolver();
+  ConstraintSolver(ConstraintSolver&&) noexcept;
+  ConstraintSolver& operator=(ConstraintSolver&&) noexcept;
+
   SolverSettings settings;
 
   // Adds Jᵀλ to f, where f holds the accumulated forces Q on entry.
@@ -83,47 +82,19 @@ class ConstraintSolver {
   void applyOperator(const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
 
  private:
-  using SparseMatrix = Eigen::SparseMatrix<double>;
-  void gather(const Phase& s, const ConstraintList& constraints);
-  // Rows whose diagonal is at most `dead` are removed with λ = 0.
-  int conjugateGradient(double dead, double& relativeResidual);
-  // Upper triangle of P (J W Jᵀ) Pᵀ into assembled_ (P an AMD ordering), re-analysing the pattern only
-  // when the constraint structure changed; dead rows get a unit diagonal.
-  void assemble(double dead);
-  bool directSolve(double dead, double& relativeResidual);  // false: fall back to CG
-
-  // Rows in compressed form: entries rowStart_[k] .. rowStart_[k+1]−1 belong
-  // to constraint k; each entry is one particle with its J and J̇ blocks.
-  std::vector<int> rowStart_;
-  std::vector<int> entryParticle_;
-  std::vector<Eigen::Vector2d> J_, Jdot_;
-  Eigen::VectorXd C_, Cdot_, b_, lambda_, diagonal_;
-  const Eigen::VectorXd* inverseMass_ = nullptr;
-  // CG scratch, kept to avoid allocation in the step loop.
-  Eigen::VectorXd r_, z_, p_, Ap_;
-  mutable Eigen::VectorXd scatter_;  // W Jᵀ y inside applyOperator
+  // The rows, the assembled J W Jᵀ, its factorisations and the CG scratch
+  // (src/linear; defined in src/constraint_solver.cpp).
+  struct Workspace;
+  std::unique_ptr<Workspace> work_;
+  Eigen::VectorXd b_, lambda_;
   SolveStats stats_;
 
-  // Assembled P (J W Jᵀ) Pᵀ (upper triangle; constraint k at row order_[k])
-  // and its factorisations. Value s of the matrix is Σ w_p J_e1·J_e2 over the
-  // pairs pairStart_[s] .. pairStart_[s+1]−1.
-  SparseMatrix assembled_;
-  Eigen::VectorXi order_;
-  Eigen::VectorXd permuted_, permutedSolution_;
-  std::vector<int> pairStart_, pairFirst_, pairSecond_, diagonalSlot_;
-  bool patternValid_ = false, ldltAnalysed_ = false, incompleteCholeskyUsable_ = false;
-  // SimplicialLDLT whose numeric factorisation reads the (already permuted,
-  // upper-triangular) matrix directly: Eigen's factorize() builds an empty
-  // temporary matrix first, one heap allocation per solve.
-  struct InPlaceLdlt : Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> {
-    void factorizeInPlace(const SparseMatrix& upper) { this->template factorize_preordered<true>(upper); }
-    const Eigen::VectorXd& pivots() const { return this->m_diag; }  // D; vectorD() copies
-  };
-  using IncompleteCholesky = Eigen::IncompleteCholesky<double, Eigen::Upper, Eigen::NaturalOrdering<int>>;
-  // Eigen's solvers cannot be moved; held by pointer (made on first use) so
-  // that ConstraintSolver, and with it ParticleSystem, stays movable.
-  std::unique_ptr<InPlaceLdlt> ldlt_;
-  std::unique_ptr<IncompleteCholesky> incompleteCholesky_;
+  // Rows whose diagonal is at most `dead` are removed with λ = 0.
+  int conjugateGradient(double dead, double& relativeResidual);
+  // Fills the assembled P (J W Jᵀ) Pᵀ, rebuilding its pattern when the rows
+  // changed structure; dead rows get a unit diagonal.
+  void assemble(double dead);
+  bool directSolve(double dead, double& relativeResidual);  // false: fall back to CG
 };
 
 }  // namespace particles

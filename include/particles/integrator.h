@@ -80,8 +80,19 @@ struct IntegratorInfo {
 // Every integrator, in the order the demo cycles through them.
 const std::vector<IntegratorInfo>& integratorTable();
 
-// Throws std::invalid_argument listing the valid names for an unknown one.
-// The integrator is configured with the given settings.
+// The table's entry named `name`, or nullptr: the one lookup by name that the
+// runner, the demo, the laboratory and the scene reader share.
+const IntegratorInfo* findIntegrator(const std::string& name);
+
+// The table's entry named `name`; throws std::invalid_argument
+// "unknown integrator 'NAME' (valid: …)" for an unknown one.
+const IntegratorInfo& requireIntegrator(const std::string& name);
+
+// Every integrator's name, in table order, as "euler, symplectic-euler, …".
+std::string integratorNames();
+
+// The entry named `name` made and configured with the given settings; throws
+// as requireIntegrator for an unknown name.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name,
                                            const IntegratorSettings& settings = {});
 

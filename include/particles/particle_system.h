@@ -140,10 +140,9 @@ class ParticleSystem {
   ConstraintSolver solver_;
   ParticleContacts contacts_;
   ContactSettings contactSettings_;
-  // Collision scratch: the step's start, its paths, the last known free positions.
-  Eigen::VectorXd startX_, startV_, stepAcceleration_, stepLead_, lastFree_;
-  ContactEvents events_;
-  bool pathsMayReachColliders(const Eigen::VectorXd& x0) const;
+  // Collision scratch: the step's start and the last known free positions.
+  Eigen::VectorXd startX_, startV_, lastFree_;
+  std::vector<char> near_, wallsOnly_;  // near a collider; and of those, not discs (markNearColliders)
   int contactsLastStep_ = 0;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;

@@ -8,6 +8,7 @@
 
 #include "particles/check.h"
 #include "contact_path.h"
+#include "particles/constants.h"
 
 namespace particles {
 
@@ -131,9 +132,9 @@ void Collider::validate() const {
                                       "or goes straight at vertex " + std::to_string((k + 1) % n));
         winding += std::atan2(cross(e1, e2), e1.dot(e2));
       }
-      if (std::abs(winding - 2.0 * M_PI) > 1e-6)
+      if (std::abs(winding - 2.0 * kPi) > 1e-6)
         throw std::invalid_argument("polygon must be convex: its edges wind round " +
-                                    formatValue(winding / (2.0 * M_PI)) + " times");
+                                    formatValue(winding / (2.0 * kPi)) + " times");
       break;
     }
   }

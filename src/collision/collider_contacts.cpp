@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "contact_path.h"
+#include "contact_track.h"
 #include "particles/check.h"
 #include "particles/collision.h"
 
@@ -26,21 +26,8 @@ struct Hit {
   double s = std::numeric_limits<double>::infinity();  // fraction of the swept segment
 };
 
-// Each collider's bounding box (a half-plane's is everything), for a cheap
-// rejection of paths that pass nowhere near it.
-struct Boxes {
-  std::vector<Eigen::Vector2d> lo, hi;
-  explicit Boxes(const std::vector<Collider>& colliders) : lo(colliders.size()), hi(colliders.size()) {
-    for (std::size_t k = 0; k < colliders.size(); ++k)
-      if (!colliders[k].bounds(lo[k], hi[k])) {
-        lo[k].setConstant(-std::numeric_limits<double>::infinity());
-        hi[k].setConstant(std::numeric_limits<double>::infinity());
-      }
-  }
-};
-
 // The first collider the straight path a → b enters (grown by the particle's radius r).
-Hit firstHit(const std::vector<Collider>& colliders, const Boxes& boxes, const Eigen::Vector2d& a,
+Hit firstHit(const std::vector<Collider>& colliders, const contact::ColliderBoxes& boxes, const Eigen::Vector2d& a,
              const Eigen::Vector2d& b, double r, double slop) {
   const Eigen::Vector2d pathLo = a.cwiseMin(b).array() - (r + slop), pathHi = a.cwiseMax(b).array() + (r + slop);
   Hit hit;
@@ -77,68 +64,95 @@ Eigen::Vector2d ontoSurface(const Collider& c, const Eigen::Vector2d& p, double 
 
 }  // namespace
 
+namespace contact {
+
+ColliderBoxes::ColliderBoxes(const std::vector<Collider>& colliders) : lo(colliders.size()), hi(colliders.size()) {
+  for (std::size_t k = 0; k < colliders.size(); ++k)
+    if (!colliders[k].bounds(lo[k], hi[k])) {
+      lo[k].setConstant(-std::numeric_limits<double>::infinity());
+      hi[k].setConstant(std::numeric_limits<double>::infinity());
+    }
+}
+
+std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& colliders, const ColliderBoxes& boxes,
+                                                 const Track& track, double r, double slop, double dt) {
+  const double t = track.t();
+  const Hit hit = firstHit(colliders, boxes, track.from(), track.x1, r, slop);
+  if (hit.collider < 0) return std::nullopt;
+  const double chordTime = t + hit.s * (dt - t);
+  const double tau = hit.s > 0.0 ? impactTime(colliders[hit.collider], track.path, r, chordTime, t, dt) : t;
+  return ColliderImpact{hit.collider, hit.s, tau};
+}
+
+void applyColliderImpact(const Collider& c, const ColliderImpact& impact, double r, double dt, Track& track) {
+  const Eigen::Vector2d from = track.from();
+  contact::Path& path = track.path;
+  Eigen::Vector2d &x1 = track.x1, &v1 = track.v1;
+  const double tau = impact.tau;
+  // The face entered is the one under the chord's entry point; the contact
+  // point is the curved path's point at τ, put on that face's plane.
+  Eigen::Vector2d normal;
+  const Eigen::Vector2d entry = ontoSurface(c, from + impact.s * (x1 - from), r, &normal);
+  const Eigen::Vector2d q = path.position(tau), p = q - normal.dot(q - entry) * normal;
+  const Eigen::Vector2d u = path.velocity(tau);
+  const double un = u.dot(normal), remaining = dt - tau;
+  const NormalChange change = normalChange(un, path.a.dot(normal), remaining, c.restitution);
+  if (!change.resting) {
+    // An impulse at τ: the velocity jumps by Δv there and the rest of the
+    // path, and so the step's end, is displaced by Δv·(dt − τ).
+    const Eigen::Vector2d dv = change.dv * normal + coulomb(u - un * normal, change.dv, c.friction);
+    path = {p, u + dv, path.a, tau};
+    v1 += dv;
+    x1 = path.position(dt);
+  } else {
+    // Resting for the rest of the step: the normal impulse cancels the
+    // normal velocity at the end (for a particle at rest, its weight × dt);
+    // friction, spread evenly over the time left, moves the end by ½ Δv_t (dt − τ).
+    const double v1n = v1.dot(normal), dvn = std::max(0.0, -v1n);
+    const Eigen::Vector2d dvt = coulomb(v1 - v1n * normal, dvn, c.friction);
+    v1 += dvn * normal + dvt;
+    x1 += 0.5 * remaining * dvt;
+    if (c.distance(x1).distance < r) x1 = ontoSurface(c, x1, r, nullptr);
+    path = remaining > 0.0 ? Path{p, (x1 - p) / remaining - 0.5 * path.a * remaining, path.a, tau}
+                           : Path{p, v1, path.a, tau};
+  }
+  ++track.impacts;
+}
+
+void stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
+                         double slop, Track& track) {
+  if (firstHit(colliders, boxes, track.from(), track.x1, r, slop).collider >= 0) track.x1 = track.from();
+}
+
+}  // namespace contact
+
 int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            ContactEvents& events, Eigen::VectorXd& lastFree) {
+                            Eigen::VectorXd& lastFree, const std::vector<char>* only) {
   const double dt = start.dt;
   const int n = static_cast<int>(inverseMass.size());
-  const Boxes boxes(colliders);
-  lastFree = x;
+  const contact::ColliderBoxes boxes(colliders);
+  if (lastFree.size() != x.size()) lastFree = x;
   int contacts = 0;
   for (int i = 0; i < n; ++i) {
+    if (only && !(*only)[i]) continue;
+    lastFree.segment<2>(2 * i) = x.segment<2>(2 * i);
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];
-    Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
-    contact::Path path = contact::Path::of(start, i, x, v);
-    Eigen::Vector2d from = events.x.segment<2>(2 * i);
-    double t = events.t[i];  // the time at `from`
-    int impacts = 0;
-    for (; impacts < settings.maxImpacts; ++impacts) {
-      const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
-      if (hit.collider < 0) break;
-      const Collider& c = colliders[hit.collider];
-      const double chordTime = t + hit.s * (dt - t);
-      const double tau = hit.s > 0.0 ? impactTime(c, path, r, chordTime, t, dt) : t;
-      // The face entered is the one under the chord's entry point; the contact
-      // point is the curved path's point at τ, put on that face's plane.
-      Eigen::Vector2d normal;
-      const Eigen::Vector2d entry = ontoSurface(c, from + hit.s * (x1 - from), r, &normal);
-      const Eigen::Vector2d q = path.position(tau), p = q - normal.dot(q - entry) * normal;
-      const Eigen::Vector2d u = path.velocity(tau);
-      const double un = u.dot(normal), remaining = dt - tau;
-      const contact::NormalChange change = contact::normalChange(un, path.a.dot(normal), remaining, c.restitution);
-      if (!change.resting) {
-        // An impulse at τ: the velocity jumps by Δv there and the rest of the
-        // path, and so the step's end, is displaced by Δv·(dt − τ).
-        const Eigen::Vector2d dv = change.dv * normal + contact::coulomb(u - un * normal, change.dv, c.friction);
-        path = {p, u + dv, path.a, tau};
-        v1 += dv;
-        x1 = path.position(dt);
-      } else {
-        // Resting for the rest of the step: the normal impulse cancels the
-        // normal velocity at the end (for a particle at rest, its weight × dt);
-        // friction, spread evenly over the time left, moves the end by ½ Δv_t (dt − τ).
-        const double v1n = v1.dot(normal), dvn = std::max(0.0, -v1n);
-        const Eigen::Vector2d dvt = contact::coulomb(v1 - v1n * normal, dvn, c.friction);
-        v1 += dvn * normal + dvt;
-        x1 += 0.5 * remaining * dvt;
-        if (c.distance(x1).distance < r) x1 = ontoSurface(c, x1, r, nullptr);
-        path = remaining > 0.0 ? contact::Path{p, (x1 - p) / remaining - 0.5 * path.a * remaining, path.a, tau}
-                               : contact::Path{p, v1, path.a, tau};
-      }
-      from = p;
-      t = tau;
-      events.x.segment<2>(2 * i) = p;
-      events.t[i] = tau;
-      ++contacts;
+    if (!boxes.near(colliders, start.x.segment<2>(2 * i), x.segment<2>(2 * i), r + settings.slop)) continue;
+    contact::Track track = contact::Track::of(start, i, x, v);
+    while (track.impacts < settings.maxImpacts) {
+      const std::optional<contact::ColliderImpact> impact =
+          contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
+      if (!impact) break;
+      contact::applyColliderImpact(colliders[impact->collider], *impact, r, dt, track);
     }
-    // Out of impacts (a particle wedged in a narrow corner): stop at the last
-    // contact point, which is outside every collider.
-    if (impacts == settings.maxImpacts && firstHit(colliders, boxes, from, x1, r, settings.slop).collider >= 0) x1 = from;
-    x.segment<2>(2 * i) = x1;
-    v.segment<2>(2 * i) = v1;
-    lastFree.segment<2>(2 * i) = x1;
+    if (track.impacts == settings.maxImpacts) contact::stopIfStillEntering(colliders, boxes, r, settings.slop, track);
+    contacts += track.impacts;
+    x.segment<2>(2 * i) = track.x1;
+    v.segment<2>(2 * i) = track.v1;
+    lastFree.segment<2>(2 * i) = track.x1;
   }
   return contacts;
 }
@@ -147,13 +161,14 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::Vect
                        const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
                        Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
   const int n = static_cast<int>(inverseMass.size());
-  const Boxes boxes(colliders);
+  const contact::ColliderBoxes boxes(colliders);
   int contacts = 0;
   for (int i = 0; i < n; ++i) {
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];
     Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
     Eigen::Vector2d from = lastFree.segment<2>(2 * i);
+    if (from == x1) continue;  // not moved since it was known to be outside
     for (int pass = 0; pass < settings.maxImpacts; ++pass) {
       const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
       if (hit.collider < 0) break;

@@ -25,23 +25,10 @@ struct Path {
     const Eigen::Vector2d a = (v1 - v0) / dt;
     return {x0, (x1 - x0) / dt - 0.5 * a * dt, a, 0.0};
   }
-  // The path with the given acceleration that ends at (x1, v1) at dt, v1
-  // leading the path's velocity by `lead` (0 for RK4, ½ a dt for symplectic
-  // Euler): after an impulse Δv at τ, x1 and v1 have moved by Δv (dt − τ) and
-  // Δv, and this is the path after the impulse.
-  static Path ending(const Eigen::Vector2d& x1, const Eigen::Vector2d& v1, const Eigen::Vector2d& a,
-                     const Eigen::Vector2d& lead, double dt) {
-    const Eigen::Vector2d u1 = v1 - lead;
-    return {x1 - u1 * dt + 0.5 * a * dt * dt, u1 - a * dt, a, 0.0};
-  }
-  // Particle i's path in a step: measured once after integration when the
-  // start carries the accelerations, else through the current ends.
+  // Particle i's path in a step, through its start and its current end.
   static Path of(const StepStart& start, int i, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
-    if (start.acceleration && start.lead)
-      return ending(x.segment<2>(2 * i), v.segment<2>(2 * i), start.acceleration->segment<2>(2 * i),
-                    start.lead->segment<2>(2 * i), start.dt);
-    return through(start.x.segment<2>(2 * i), start.v.segment<2>(2 * i), x.segment<2>(2 * i),
-                   v.segment<2>(2 * i), start.dt);
+    return through(start.x.segment<2>(2 * i), start.v.segment<2>(2 * i), x.segment<2>(2 * i), v.segment<2>(2 * i),
+                   start.dt);
   }
   Eigen::Vector2d position(double t) const {
     const double s = t - t0;

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "contact_path.h"
+#include "contact_track.h"
 #include "particles/collision.h"
 
 namespace particles {
@@ -16,25 +16,27 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 
 int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
                         const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
-                        Eigen::VectorXd& v) {
+                        Eigen::VectorXd& v, const std::vector<char>* near) {
   int contacts = 0;
   // Broad phase: a collider is tested against an edge only when their boxes
-  // overlap (the edge's box spans its start and end, the collider's its corners).
-  std::vector<Eigen::Vector2d> lo(colliders.size()), hi(colliders.size());
-  std::vector<bool> cornered(colliders.size());
-  for (std::size_t k = 0; k < colliders.size(); ++k)
-    cornered[k] = colliders[k].shape != ColliderShape::HalfPlane && colliders[k].bounds(lo[k], hi[k]);
+  // overlap (the edge's box spans its start and end, the collider's its
+  // corners). A half-plane has no corner: its particles keep edges out.
+  const contact::ColliderBoxes boxes(colliders);
+  const int count = static_cast<int>(colliders.size());
+  const double* X = x.data();
+  const double* S = start.x.data();
   for (const CollisionEdge& edge : edges) {
     const int i = edge.a, j = edge.b;
+    if (near && !(*near)[i] && !(*near)[j]) continue;
     const double wi = inverseMass[i], wj = inverseMass[j];
     if (wi + wj == 0.0) continue;
-    const Eigen::Vector2d edgeLo = x.segment<2>(2 * i).cwiseMin(x.segment<2>(2 * j))
-                                       .cwiseMin(start.x.segment<2>(2 * i)).cwiseMin(start.x.segment<2>(2 * j));
-    const Eigen::Vector2d edgeHi = x.segment<2>(2 * i).cwiseMax(x.segment<2>(2 * j))
-                                       .cwiseMax(start.x.segment<2>(2 * i)).cwiseMax(start.x.segment<2>(2 * j));
-    for (std::size_t m = 0; m < colliders.size(); ++m) {
-      // A half-plane has no corner: its particles keep edges out.
-      if (!cornered[m] || (edgeLo.array() > hi[m].array()).any() || (edgeHi.array() < lo[m].array()).any()) continue;
+    const double loX = std::min(std::min(X[2 * i], X[2 * j]), std::min(S[2 * i], S[2 * j]));
+    const double hiX = std::max(std::max(X[2 * i], X[2 * j]), std::max(S[2 * i], S[2 * j]));
+    const double loY = std::min(std::min(X[2 * i + 1], X[2 * j + 1]), std::min(S[2 * i + 1], S[2 * j + 1]));
+    const double hiY = std::max(std::max(X[2 * i + 1], X[2 * j + 1]), std::max(S[2 * i + 1], S[2 * j + 1]));
+    for (int m = 0; m < count; ++m) {
+      if (colliders[m].shape == ColliderShape::HalfPlane) continue;
+      if (loX > boxes.hi[m].x() || hiX < boxes.lo[m].x() || loY > boxes.hi[m].y() || hiY < boxes.lo[m].y()) continue;
       const Collider& c = colliders[m];
       for (const Eigen::Vector2d& corner : c.points) {
         const Eigen::Vector2d xi = x.segment<2>(2 * i), xj = x.segment<2>(2 * j), e = xj - xi;
@@ -73,6 +75,19 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
     }
   }
   return contacts;
+}
+
+double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) {
+  // Each side of an edge's box is at most the edge's extent along it at the
+  // end plus the travel of its two ends: |x_i − x_j|∞ + 2 max_k |x1_k − x0_k|∞.
+  const double* X = x1.data();
+  double extent = 0.0;
+  for (const CollisionEdge& edge : edges) {
+    const int i = edge.a, j = edge.b;
+    extent = std::max(extent, std::max(std::abs(X[2 * i] - X[2 * j]), std::abs(X[2 * i + 1] - X[2 * j + 1])));
+  }
+  const double travel = x1.size() > 0 ? (x1 - x0).cwiseAbs().maxCoeff() : 0.0;
+  return extent + 2.0 * travel;
 }
 
 }  // namespace particles

@@ -1,9 +1,10 @@
-// Disc–disc contacts: a uniform-grid broad phase, impacts at the time of
-// impact with restitution, resting pairs split by inverse mass.
+// Disc–disc contacts: a uniform-grid broad phase, impacts against each other
+// and against colliders taken in the order of their times, resting pairs split
+// by inverse mass.
 #include <algorithm>
 #include <cmath>
 
-#include "contact_path.h"
+#include "contact_track.h"
 #include "particles/check.h"
 #include "particles/collision.h"
 
@@ -34,28 +35,128 @@ double restingPair(int i, int j, const Eigen::VectorXd& inverseMass, const Eigen
   return -vn;
 }
 
+// A pair impact: equal and opposite velocity changes along n at τ.
+struct PairImpact {
+  double tau = 0.0;
+  Eigen::Vector2d n = Eigen::Vector2d::Zero();
+  double dv = 0.0;  // change of the relative normal velocity
+};
+
+// The first impact of discs i and j on their tracks, if any. Both tracks hold
+// from the later of their last events, t0.
+std::optional<PairImpact> nextPairImpact(const contact::Track& ti, const contact::Track& tj, double reach,
+                                         double restitution, double slop, double dt) {
+  const double t0 = std::max(ti.t(), tj.t()), span = dt - t0;
+  const Eigen::Vector2d d0 = ti.path.position(t0) - tj.path.position(t0), d1 = ti.x1 - tj.x1;
+  // Apart at t0: the relative chord d0 → d1 (exact when both accelerate
+  // alike, as in a uniform field) meets |d| = reach at s, the time of impact
+  // t0 + s·(dt − t0). Touching or overlapping at t0 (a third disc pushed one
+  // into the other): s = 0.
+  std::optional<double> s = 0.0;
+  if (d0.norm() - reach > slop) s = contact::enterCircle(d0, d1 - d0, Eigen::Vector2d::Zero(), reach);
+  if (!s) return std::nullopt;
+  const double tau = t0 + *s * span, remaining = dt - tau;
+  const Eigen::Vector2d dTau = d0 + *s * (d1 - d0);
+  const Eigen::Vector2d n = dTau.norm() > 0.0 ? Eigen::Vector2d(dTau.normalized()) : Eigen::Vector2d(1, 0);
+  const double un = (ti.path.velocity(tau) - tj.path.velocity(tau)).dot(n);
+  const Eigen::Vector2d ai = ti.path.a, aj = tj.path.a;
+  const contact::NormalChange change = contact::normalChange(un, (ai - aj).dot(n), remaining, restitution);
+  // Touching at t0, an approach slower than the accelerations bring in a step
+  // is a resting contact pressed on (a stack), not an impact.
+  const double settled = slop / dt;
+  const double resting = *s > 0.0 ? settled : std::max(settled, (ai.norm() + aj.norm()) * dt);
+  if (!(un < -resting) || change.resting) return std::nullopt;
+  return PairImpact{tau, n, change.dv};
+}
+
+// Equal and opposite impulses P at τ: each disc's velocity jumps by Δv there
+// and the rest of its path, and so the step's end, is displaced by Δv (dt − τ).
+void applyPairImpact(const PairImpact& impact, double wi, double wj, double dt, contact::Track& ti,
+                     contact::Track& tj) {
+  const double impulse = impact.dv / (wi + wj);
+  auto kick = [&](contact::Track& t, const Eigen::Vector2d& dv) {
+    if (dv.isZero(0.0)) return;  // a pinned disc
+    t.path = {t.path.position(impact.tau), t.path.velocity(impact.tau) + dv, t.path.a, impact.tau};
+    t.v1 += dv;
+    t.x1 = t.path.position(dt);
+    ++t.impacts;
+  };
+  kick(ti, impulse * wi * impact.n);
+  kick(tj, -impulse * wj * impact.n);
+}
+
 }  // namespace
 
-int ParticleContacts::resolve(const std::vector<int>& collidable, const StepStart& start,
-                              const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
-                              const ContactSettings& settings, bool impacts, Eigen::VectorXd& x,
-                              Eigen::VectorXd& v, ContactEvents* events) {
+struct ParticleContacts::Scratch {
+  // Broad phase: each disc's cell and bucket, discs sorted by bucket, the candidate pairs.
+  std::vector<Eigen::Vector2i> cells;
+  std::vector<int> bucket, order, bucketStart, fill;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> pairsOfStart, pairsOf;  // each disc's candidate pairs (compressed rows)
+  // Impacts: each disc's track and stamp (its impacts so far), the predicted events.
+  struct Event {
+    double tau;
+    int a, b;  // discs (indices into collidable); b < 0 for a collider impact
+    int stampA, stampB;
+    contact::ColliderImpact wall;
+    PairImpact pair;
+  };
+  std::vector<contact::Track> tracks;
+  std::vector<int> stamp;
+  std::vector<Event> queue;  // a min-heap on tau
+};
+
+ParticleContacts::ParticleContacts() : scratch_(std::make_unique<Scratch>()) {}
+ParticleContacts::~ParticleContacts() = default;
+ParticleContacts::ParticleContacts(ParticleContacts&&) noexcept = default;
+ParticleContacts& ParticleContacts::operator=(ParticleContacts&&) noexcept = default;
+
+int ParticleContacts::resolve(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
+                              const StepStart& start, const Eigen::VectorXd& inverseMass,
+                              const Eigen::VectorXd& radius, const ContactSettings& settings, bool impacts,
+                              Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree) {
   // A public field rather than a constructor argument, so it is checked where it is used.
   requireInRange("particle contact restitution", restitution, 0.0, 1.0);
+  const Scratch& S = *scratch_;
   const int count = static_cast<int>(collidable.size());
-  if (count < 2) return 0;
-  const double dt = start.dt, settled = settings.slop / dt;  // speed that moves the slop in a step
+  touching_.clear();
+  if (count == 0) return 0;
   double maxRadius = 0.0, maxTravel = 0.0;
   for (int i : collidable) {
     maxRadius = std::max(maxRadius, radius[i]);
     if (impacts) maxTravel = std::max(maxTravel, (x.segment<2>(2 * i) - start.x.segment<2>(2 * i)).norm());
   }
-  // Any pair that touches during the step lies in neighbouring cells at its end.
-  const double cell = 2.0 * (maxRadius + maxTravel);
-  if (!(cell > 0.0) || !std::isfinite(cell)) return 0;
+  // Broad phase on the positions at the step's start (or its end without
+  // impacts). A disc stays within twice its free travel of its start (impacts
+  // turn it, and between comparable masses do not much speed it up), so any
+  // pair that touches during the step lies in neighbouring cells.
+  const Eigen::VectorXd& at = impacts ? start.x : x;
+  findCandidatePairs(collidable, at, 2.0 * (maxRadius + 2.0 * maxTravel));
 
-  // Broad phase: hash each disc's cell into a table of 2·count buckets, and
-  // sort particles by bucket (counting sort, linear time).
+  int contacts = 0;
+  if (impacts) contacts += resolveImpacts(collidable, colliders, start, inverseMass, radius, settings, x, v, lastFree);
+
+  // What is left touching or overlapping at the end is resting contact.
+  for (const auto& [a, b] : S.pairs) {
+    const int i = collidable[a], j = collidable[b];
+    const double reach = radius[i] + radius[j];
+    if (inverseMass[i] + inverseMass[j] == 0.0 ||
+        (x.segment<2>(2 * i) - x.segment<2>(2 * j)).squaredNorm() >= (reach + settings.slop) * (reach + settings.slop))
+      continue;
+    touching_.emplace_back(i, j);
+    if (restingPair(i, j, inverseMass, radius, settings, x, v) >= 0.0) ++contacts;
+  }
+  return contacts;
+}
+
+void ParticleContacts::findCandidatePairs(const std::vector<int>& collidable, const Eigen::VectorXd& x,
+                                          double cell) {
+  Scratch& S = *scratch_;
+  S.pairs.clear();
+  const int count = static_cast<int>(collidable.size());
+  if (count < 2 || !(cell > 0.0) || !std::isfinite(cell)) return;
+  // Hash each disc's cell into a table of 2·count buckets, and sort discs by
+  // bucket (counting sort, linear time).
   int buckets = 1;
   while (buckets < 2 * count) buckets <<= 1;
   // Cell coordinates are clamped so that a far-flung (or exploded) particle
@@ -64,83 +165,121 @@ int ParticleContacts::resolve(const std::vector<int>& collidable, const StepStar
     const double c = std::floor(coordinate / cell);
     return static_cast<int>(std::isfinite(c) ? std::clamp(c, -1e9, 1e9) : 1e9);
   };
-  auto cellOf = [&](int i) { return Eigen::Vector2i(toCell(x[2 * i]), toCell(x[2 * i + 1])); };
   auto bucketOf = [&](const Eigen::Vector2i& c) {
     const unsigned long long h = static_cast<unsigned long long>(c.x()) * 73856093ULL ^
                                  static_cast<unsigned long long>(c.y()) * 19349663ULL;
     return static_cast<int>(h & static_cast<unsigned long long>(buckets - 1));
   };
-  std::vector<Eigen::Vector2i>& cells = cells_;
-  cells.resize(count);
-  bucket_.resize(count);
-  bucketStart_.assign(buckets + 1, 0);
+  S.cells.resize(count);
+  S.bucket.resize(count);
+  S.bucketStart.assign(buckets + 1, 0);
   for (int a = 0; a < count; ++a) {
-    cells[a] = cellOf(collidable[a]);
-    bucket_[a] = bucketOf(cells[a]);
-    ++bucketStart_[bucket_[a] + 1];
+    const int i = collidable[a];
+    S.cells[a] = Eigen::Vector2i(toCell(x[2 * i]), toCell(x[2 * i + 1]));
+    S.bucket[a] = bucketOf(S.cells[a]);
+    ++S.bucketStart[S.bucket[a] + 1];
   }
-  for (int b = 0; b < buckets; ++b) bucketStart_[b + 1] += bucketStart_[b];
-  order_.resize(count);
-  fill_.assign(bucketStart_.begin(), bucketStart_.end() - 1);
-  for (int a = 0; a < count; ++a) order_[fill_[bucket_[a]]++] = a;
-
-  auto pairContact = [&](int i, int j) {
-    const double wi = inverseMass[i], wj = inverseMass[j], wsum = wi + wj;
-    if (wsum == 0.0) return false;
-    const double reach = radius[i] + radius[j];
-    const Eigen::Vector2d d1 = x.segment<2>(2 * i) - x.segment<2>(2 * j);
-    if (impacts) {
-      const Eigen::Vector2d d0 = start.x.segment<2>(2 * i) - start.x.segment<2>(2 * j);
-      // Apart at the start: the relative chord d0 → d1 (exact in a uniform
-      // field) meets |d| = reach at s, the time of impact s·dt. Touching or
-      // overlapping at the start (a third disc pushed one into the other): s = 0.
-      std::optional<double> s = 0.0;
-      if (d0.norm() - reach > settings.slop) s = contact::enterCircle(d0, d1 - d0, Eigen::Vector2d::Zero(), reach);
-      if (!s) return false;
-      const double tau = *s * dt, remaining = dt - tau;
-      const contact::Path pi = contact::Path::of(start, i, x, v), pj = contact::Path::of(start, j, x, v);
-      const Eigen::Vector2d dTau = d0 + *s * (d1 - d0);
-      const Eigen::Vector2d n = dTau.norm() > 0.0 ? Eigen::Vector2d(dTau.normalized()) : Eigen::Vector2d(1, 0);
-      const double un = (pi.velocity(tau) - pj.velocity(tau)).dot(n);
-      const contact::NormalChange change = contact::normalChange(un, (pi.a - pj.a).dot(n), remaining, restitution);
-      // Touching at the start, an approach slower than the accelerations bring
-      // in a step is a resting contact pressed on (a stack), not an impact.
-      const double resting = *s > 0.0 ? settled : std::max(settled, (pi.a.norm() + pj.a.norm()) * dt);
-      if (un < -resting && !change.resting) {
-        // Equal and opposite impulses P at τ, displacing each end by Δv (dt − τ).
-        const double impulse = change.dv / wsum;
-        const Eigen::Vector2d dvi = impulse * wi * n, dvj = -impulse * wj * n;
-        v.segment<2>(2 * i) += dvi;
-        v.segment<2>(2 * j) += dvj;
-        if (events) {
-          events->x.segment<2>(2 * i) = pi.position(tau);
-          events->x.segment<2>(2 * j) = pj.position(tau);
-          events->t[i] = events->t[j] = tau;
-        }
-        x.segment<2>(2 * i) += remaining * dvi;
-        x.segment<2>(2 * j) += remaining * dvj;
-        touching_.emplace_back(i, j);  // a later push may close them again
-        return true;
-      }
-    }
-    if (d1.squaredNorm() >= (reach + settings.slop) * (reach + settings.slop)) return false;
-    touching_.emplace_back(i, j);
-    return restingPair(i, j, inverseMass, radius, settings, x, v) >= 0.0;
-  };
-  touching_.clear();
-
-  int contacts = 0;
-  for (int a = 0; a < count; ++a) {
+  for (int b = 0; b < buckets; ++b) S.bucketStart[b + 1] += S.bucketStart[b];
+  S.order.resize(count);
+  S.fill.assign(S.bucketStart.begin(), S.bucketStart.end() - 1);
+  for (int a = 0; a < count; ++a) S.order[S.fill[S.bucket[a]]++] = a;
+  for (int a = 0; a < count; ++a)
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy) {
-        const Eigen::Vector2i c = cells[a] + Eigen::Vector2i(dx, dy);
+        const Eigen::Vector2i c = S.cells[a] + Eigen::Vector2i(dx, dy);
         const int bucket = bucketOf(c);
-        for (int s = bucketStart_[bucket]; s < bucketStart_[bucket + 1]; ++s) {
-          const int b = order_[s];
-          if (b <= a || cells[b] != c) continue;  // each pair once; skip hash collisions
-          if (pairContact(collidable[a], collidable[b])) ++contacts;
+        for (int s = S.bucketStart[bucket]; s < S.bucketStart[bucket + 1]; ++s) {
+          const int b = S.order[s];
+          if (b > a && S.cells[b] == c) S.pairs.emplace_back(a, b);  // each pair once; skip hash collisions
         }
       }
+}
+
+int ParticleContacts::resolveImpacts(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
+                                     const StepStart& start, const Eigen::VectorXd& inverseMass,
+                                     const Eigen::VectorXd& radius, const ContactSettings& settings,
+                                     Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree) {
+  Scratch& S = *scratch_;
+  // Event-driven over the step: every disc's next impact (against a collider
+  // or another disc) is predicted on its track, and the earliest is applied
+  // first, so each impact happens on the paths the discs really follow then.
+  // An impact changes the tracks of its discs only; the predictions that
+  // involve them are made again (older ones in the queue are recognised as
+  // stale by the discs' stamps). Each disc takes at most maxImpacts impacts.
+  const int count = static_cast<int>(collidable.size());
+  const double dt = start.dt;
+  const contact::ColliderBoxes boxes(colliders);
+  S.tracks.resize(count);
+  S.stamp.assign(count, 0);
+  for (int a = 0; a < count; ++a) S.tracks[a] = contact::Track::of(start, collidable[a], x, v);
+  // The candidate pairs of each disc, as offsets into S.pairs (compressed rows).
+  S.pairsOfStart.assign(count + 1, 0);
+  for (const auto& [a, b] : S.pairs) ++S.pairsOfStart[a + 1], ++S.pairsOfStart[b + 1];
+  for (int a = 0; a < count; ++a) S.pairsOfStart[a + 1] += S.pairsOfStart[a];
+  S.pairsOf.resize(S.pairsOfStart[count]);
+  S.fill.assign(S.pairsOfStart.begin(), S.pairsOfStart.end() - 1);
+  for (int p = 0; p < static_cast<int>(S.pairs.size()); ++p) {
+    S.pairsOf[S.fill[S.pairs[p].first]++] = p;
+    S.pairsOf[S.fill[S.pairs[p].second]++] = p;
+  }
+
+  S.queue.clear();
+  auto later = [](const Scratch::Event& e, const Scratch::Event& f) { return e.tau > f.tau; };
+  auto push = [&](const Scratch::Event& e) {
+    S.queue.push_back(e);
+    std::push_heap(S.queue.begin(), S.queue.end(), later);
+  };
+  auto movable = [&](int a) { return inverseMass[collidable[a]] > 0.0 && S.tracks[a].impacts < settings.maxImpacts; };
+  auto predictWall = [&](int a) {
+    if (colliders.empty() || !movable(a)) return;
+    const std::optional<contact::ColliderImpact> hit =
+        contact::nextColliderImpact(colliders, boxes, S.tracks[a], radius[collidable[a]], settings.slop, dt);
+    if (hit) push({hit->tau, a, -1, S.stamp[a], 0, *hit, {}});
+  };
+  auto predictPair = [&](int p) {
+    const auto [a, b] = S.pairs[p];
+    if (inverseMass[collidable[a]] + inverseMass[collidable[b]] == 0.0) return;
+    if (S.tracks[a].impacts >= settings.maxImpacts || S.tracks[b].impacts >= settings.maxImpacts) return;
+    const std::optional<PairImpact> hit =
+        nextPairImpact(S.tracks[a], S.tracks[b], radius[collidable[a]] + radius[collidable[b]], restitution,
+                       settings.slop, dt);
+    if (hit) push({hit->tau, a, b, S.stamp[a], S.stamp[b], {}, *hit});
+  };
+  auto predictAll = [&](int a) {
+    predictWall(a);
+    for (int k = S.pairsOfStart[a]; k < S.pairsOfStart[a + 1]; ++k) predictPair(S.pairsOf[k]);
+  };
+  for (int a = 0; a < count; ++a) predictWall(a);
+  for (int p = 0; p < static_cast<int>(S.pairs.size()); ++p) predictPair(p);
+
+  int contacts = 0;
+  while (!S.queue.empty()) {
+    std::pop_heap(S.queue.begin(), S.queue.end(), later);
+    const Scratch::Event e = S.queue.back();
+    S.queue.pop_back();
+    if (e.stampA != S.stamp[e.a] || (e.b >= 0 && e.stampB != S.stamp[e.b])) continue;  // stale
+    ++contacts;
+    ++S.stamp[e.a];
+    if (e.b < 0) {
+      contact::applyColliderImpact(colliders[e.wall.collider], e.wall, radius[collidable[e.a]], dt, S.tracks[e.a]);
+      predictAll(e.a);
+    } else {
+      ++S.stamp[e.b];
+      applyPairImpact(e.pair, inverseMass[collidable[e.a]], inverseMass[collidable[e.b]], dt, S.tracks[e.a],
+                      S.tracks[e.b]);
+      predictAll(e.a);
+      predictAll(e.b);
+    }
+  }
+
+  for (int a = 0; a < count; ++a) {
+    const int i = collidable[a];
+    contact::Track& track = S.tracks[a];
+    if (!colliders.empty() && track.impacts >= settings.maxImpacts)
+      contact::stopIfStillEntering(colliders, boxes, radius[i], settings.slop, track);
+    x.segment<2>(2 * i) = track.x1;
+    v.segment<2>(2 * i) = track.v1;
+    if (lastFree) lastFree->segment<2>(2 * i) = track.x1;
   }
   return contacts;
 }

@@ -3,12 +3,11 @@
 #include <cmath>
 
 #include "particles/check.h"
+#include "particles/constants.h"
 
 namespace particles {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "particles/forces/mouse_spring.h"
 
 #include "particles/check.h"
+#include "particles/constants.h"
 
 #include <cmath>
 #include <string>
@@ -11,7 +12,7 @@ MouseSpringGains mouseSpringGains(double mass, const MouseJointSettings& joint) 
   requirePositive("grabbed mass", mass);
   requirePositive("mouse joint frequency", joint.frequency);
   requireNonNegative("mouse joint damping ratio", joint.dampingRatio);
-  const double omega = 2.0 * M_PI * joint.frequency;
+  const double omega = 2.0 * kPi * joint.frequency;
   const MouseSpringGains gains{mass * omega * omega, 2.0 * mass * joint.dampingRatio * omega};
   if (!std::isfinite(gains.stiffness) || !std::isfinite(gains.damping))
     throw std::invalid_argument("mouse spring stiffness m (2 pi f)^2 overflows for mass " + formatValue(mass) +

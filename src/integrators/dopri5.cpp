@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "particles/particle_system.h"
 
@@ -22,6 +23,14 @@ constexpr double a[6][6] = {
 constexpr double b[6] = {35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0};
 constexpr double e[7] = {71.0 / 57600.0,      0.0,         -71.0 / 16695.0, 71.0 / 1920.0,
                          -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0};
+
+// Dense output (HNW II.6, the continuous extension of DOPRI5 by Shampine, of
+// order 4): y(t₀ + θh) = r₁ + θ (r₂ + (1−θ) (r₃ + θ (r₄ + (1−θ) r₅))) with
+//   r₁ = y₀,  r₂ = y₁ − y₀,  r₃ = h k₁ − r₂,  r₄ = r₂ − h k₇ − r₃,
+//   r₅ = h Σ dᵢ kᵢ  (the dᵢ below; d₂ = 0).
+constexpr double d[7] = {-12715105075.0 / 11282082432.0, 0.0, 87487479700.0 / 32700410799.0,
+                         -10690763975.0 / 1880347072.0,  701980252875.0 / 199316789632.0,
+                         -1453857185.0 / 822651844.0,    69997945.0 / 29380423.0};
 
 // PI controller constants (HNW II.4; DOPRI5's defaults).
 constexpr double kBeta = 0.04, kAlpha = 0.2 - 0.75 * kBeta, kSafety = 0.9;
@@ -101,14 +110,36 @@ double Dopri5Integrator::initialStep(ParticleSystem& system, double dt) {
   return std::isfinite(h) && h > 0.0 ? h : dt;
 }
 
+void Dopri5Integrator::prepareDenseOutput(double h) {
+  for (auto [y0, y1, k, r] : {std::tie(x0_, x1_, kx_, denseX_), std::tie(v0_, v1_, kv_, denseV_)}) {
+    r[0] = y0;
+    r[1] = y1 - y0;
+    r[2] = h * k[0] - r[1];
+    r[3] = r[1] - h * k[6] - r[2];
+    r[4] = (h * d[0]) * k[0];
+    for (int j = 2; j < 7; ++j) r[4] += (h * d[j]) * k[j];
+  }
+  denseStep_ = h;
+}
+
+void Dopri5Integrator::denseOutput(double theta, Eigen::VectorXd& x, Eigen::VectorXd& v) const {
+  const double u = 1.0 - theta;
+  x = denseX_[0] + theta * (denseX_[1] + u * (denseX_[2] + theta * (denseX_[3] + u * denseX_[4])));
+  v = denseV_[0] + theta * (denseV_[1] + u * (denseV_[2] + theta * (denseV_[3] + u * denseV_[4])));
+}
+
 StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
-  x0_ = x;
-  v0_ = v;
-  // FSAL: k₁ is the last accepted step's k₇ while the state is exactly where that step left it.
-  const bool reuse = cached_ && xCached_.size() == x.size() && xCached_ == x && vCached_ == v;
-  if (!reuse) {
+  // The internal solution (x0_, v0_, lead_ ahead of the output) and k₁ there
+  // (FSAL: the last accepted step's k₇) carry on only while the system holds
+  // exactly the state this integrator returned; anything else (a collision, a
+  // drag, a restore) restarts it from the system's state.
+  const bool resume = cached_ && xCached_.size() == x.size() && xCached_ == x && vCached_ == v;
+  if (!resume) {
+    x0_ = x;
+    v0_ = v;
+    lead_ = 0.0;
     kx_[0] = v0_;
     system.acceleration(x0_, v0_, kv_[0]);
   }
@@ -118,43 +149,41 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
 
   if (!adaptive) {
     trial(system, dt);
-    x = x1_;
-    v = v1_;
+    x0_.swap(x1_);
+    v0_.swap(v1_);
     std::swap(kx_[0], kx_[6]);
     std::swap(kv_[0], kv_[6]);
     stats.internalSteps = 1;
     lastStep_ = dt;
+    x = x0_;
+    v = v0_;
   } else {
     if (!(h_ > 0.0) || !std::isfinite(h_)) h_ = initialStep(system, dt);
     const double floor = settings_.minStepFraction * dt;
     bool rejectedLast = false;
     long attempts = 0;
-    double t = 0.0;
-    while (t < dt) {
+    // Internal steps of h_ until the internal solution reaches the output
+    // time; none is cut short to land on it (within rounding it lands anyway).
+    while (lead_ < dt * (1.0 - 1e-12)) {
       if (++attempts > settings_.maxStepsPerCall) {
         stats.failure = StepFailure::WorkCapReached;
         break;
       }
-      const double remaining = dt - t;
-      // Within rounding of the end, take the end: no sliver of a step is left over.
-      const bool last = h_ >= remaining * (1.0 - 1e-12);
-      const double h = last ? remaining : h_;
+      const double h = h_;
       const double err = trial(system, h);
       if (err <= 1.0) {
+        prepareDenseOutput(h);
         x0_.swap(x1_);
         v0_.swap(v1_);
         std::swap(kx_[0], kx_[6]);
         std::swap(kv_[0], kv_[6]);
-        t = last ? dt : t + h;
+        lead_ += h;
         ++stats.internalSteps;
         lastStep_ = std::max(lastStep_, h);
         double factor = kSafety * std::pow(std::max(err, 1e-10), -kAlpha) * std::pow(errPrevious_, kBeta);
         factor = std::clamp(factor, kShrinkLimit, rejectedLast ? 1.0 : kGrowLimit);
-        // A last step shortened to land on dt says nothing about how far h_ can go.
-        if (h == h_) {
-          h_ = h * factor;
-          errPrevious_ = std::max(err, 1e-4);
-        }
+        h_ = h * factor;
+        errPrevious_ = std::max(err, 1e-4);
         rejectedLast = false;
       } else {
         ++stats.rejectedSteps;
@@ -166,8 +195,17 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
         }
       }
     }
-    x = x0_;
-    v = v0_;
+    if (stats.failure != StepFailure::None || std::abs(lead_ - dt) <= 1e-12 * dt) {
+      // On the internal grid (or stopped short by a failure: the last accepted state).
+      x = x0_;
+      v = v0_;
+      lead_ = 0.0;
+    } else {
+      // The output time lies inside the last accepted step, lead_ − dt before its end.
+      denseOutput(1.0 - (lead_ - dt) / denseStep_, x, v);
+      lead_ -= dt;
+    }
+    if (stats.internalSteps == 0) lastStep_ = denseStep_;
   }
   xCached_ = x;
   vCached_ = v;

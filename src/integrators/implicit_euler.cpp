@@ -2,19 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include <Eigen/Core>
+
+#include "linear/linear.h"
 #include "particles/check.h"
 #include "particles/particle_system.h"
 
 namespace particles {
 
 void ImplicitEulerSettings::validate() const {
-  requireNonNegative("implicit stabilization beta", stabilization);
+  requireInRange("implicit stabilization beta", stabilization, 0.0, 1.0);
   if (constraintPasses < 1)
     throw std::invalid_argument("implicit constraint passes must be >= 1, got " +
                                 std::to_string(constraintPasses));
+  requirePositive("implicit constraint tolerance", constraintTolerance);
   requirePositive("implicit compliance", compliance);
   requirePositive("implicit CG tolerance", cgTolerance);
   if (cgMaxIterations < 1)
@@ -31,434 +37,452 @@ void ImplicitEulerIntegrator::requireJacobians(const ParticleSystem& system) {
                                   "') provides none");
 }
 
-// Rows of J and J̇ at (x, v), in the compressed layout of ConstraintSolver.
-void ImplicitEulerIntegrator::gatherConstraints(ParticleSystem& system, const Eigen::VectorXd& x,
-                                                const Eigen::VectorXd& v) {
-  const ConstraintList& constraints = system.constraints();
-  const Phase s = system.phase(x, v);
-  const int m = static_cast<int>(constraints.size());
-  rowStart_.resize(m + 1);
-  rowStart_[0] = 0;
-  for (int k = 0; k < m; ++k)
-    rowStart_[k + 1] = rowStart_[k] + static_cast<int>(constraints[k]->particles().size());
-  entryParticle_.resize(rowStart_[m]);
-  J_.resize(rowStart_[m]);
-  Jdot_.resize(rowStart_[m]);
-  C_.resize(m);
-  for (int k = 0; k < m; ++k) {
-    ConstraintRow row;
-    row.J = &J_[rowStart_[k]];
-    row.Jdot = &Jdot_[rowStart_[k]];
-    constraints[k]->evaluate(s, row);
-    C_[k] = row.C;
-    for (int e = rowStart_[k], i = 0; e < rowStart_[k + 1]; ++e, ++i)
-      entryParticle_[e] = constraints[k]->particles()[i];
+// Everything one step needs between its phases, and what is kept from one step
+// to the next (the sparsity pattern, the factorisation's analysis, the warm starts).
+struct ImplicitEulerIntegrator::Impl {
+  const ImplicitEulerSettings* settings = nullptr;
+
+  // --- the step's start and its iterate -----------------------------------
+  int n = 0, dofs = 0, m = 0;  // particles, velocity unknowns, constraints in the solve
+  bool coupled = false;
+  Eigen::VectorXd x0, v0;
+  Eigen::VectorXd vBar, nu;     // iterate v̄, ν̄ (ν kept as the next step's warm start)
+  Eigen::VectorXd xTilde, xMid; // x̃ = x₀ + h v̄, x_m = x₀ + h v̄/2
+
+  // --- forces at the linearisation point ----------------------------------
+  Eigen::VectorXd f;            // f at the iterate (pass 0: f₀ + h K₀ v₀)
+  Eigen::VectorXd acceleration; // the lagged scheme's explicit evaluation
+  Triplets dfdx, dfdv;
+
+  // --- constraint rows: C(x₀); C̃, J̃ at x̃; J at x_m; the discrete gradient Ḡ
+  linear::ConstraintRows start, iterate, mid;
+  std::vector<Eigen::Vector2d> Gbar, probeJ, probeJdot;
+  std::vector<char> fixedRow;   // nothing free in the row (all pinned, or J = 0): ν = 0
+
+  // --- residuals of the iterate --------------------------------------------
+  Eigen::VectorXd residual;     // (−R₁, −R₂/h): the right-hand side of a pass
+  double constraintResidual = 0.0, momentumResidual = 0.0;
+  int passes = 0;
+
+  // --- the linear system: pattern and value slots, LDLᵀ, CG ---------------
+  linear::SymmetricPattern pattern;
+  std::vector<int> xRow, xCol, vRow, vCol, xSlot, vSlot;
+  std::vector<int> diagonalSlot, jSlot, complianceSlot, gSlot;
+  std::uint64_t patternStamp = 0;
+  bool patternCoupled = false, patternDirect = false, analysed = false;
+  linear::Ldlt ldlt;
+  linear::CgScratch cg;
+  bool usedDirect = true;
+  Eigen::VectorXd storedRhs, solution, product, increment, inverseDiagonal, probe;
+
+  // Phases of the step.
+  void begin(ParticleSystem& system);
+  StepStats lineariseForcesAtStart(ParticleSystem& system, double h);
+  void evaluateForces(ParticleSystem& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  void lineariseForces(ParticleSystem& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  void gatherConstraintRows(ParticleSystem& system, double h);
+  void measureResiduals(ParticleSystem& system, double h);
+  bool converged() const;
+  void assemble(ParticleSystem& system, double h);
+  void solvePass(StepStats& stats);
+  void commit(ParticleSystem& system, double h) const;
+
+  // Pieces of assemble() and solvePass().
+  bool patternMatches(const ParticleSystem& system, bool direct) const;
+  void buildPattern(const ParticleSystem& system, bool direct);
+  template <class Visit>
+  void forEachGeometricStiffnessEntry(const Visit& visit) const;
+  void recordSlots(const Eigen::VectorXd& inverseMass);
+  bool fillValues(double h, const Eigen::VectorXd& mass, const Eigen::VectorXd& inverseMass);
+  void addGeometricStiffness(ParticleSystem& system, double h);
+};
+
+ImplicitEulerIntegrator::ImplicitEulerIntegrator() : impl_(std::make_unique<Impl>()) {}
+ImplicitEulerIntegrator::~ImplicitEulerIntegrator() = default;
+int ImplicitEulerIntegrator::lastPasses() const { return impl_->passes; }
+double ImplicitEulerIntegrator::lastConstraintResidual() const { return impl_->constraintResidual; }
+double ImplicitEulerIntegrator::lastMomentumResidual() const { return impl_->momentumResidual; }
+
+StepStats ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
+  settings.validate();
+  requireJacobians(system);
+  Impl& s = *impl_;
+  s.settings = &settings;
+  s.begin(system);
+  StepStats stats = s.lineariseForcesAtStart(system, h);
+  const int maxPasses = s.coupled ? settings.constraintPasses : 1;
+  for (s.passes = 0;; ++s.passes) {
+    if (s.coupled) {
+      s.gatherConstraintRows(system, h);
+      if (s.passes > 0) {
+        s.evaluateForces(system, s.xTilde, s.vBar);
+        ++stats.forceEvaluations;
+      }
+      s.measureResiduals(system, h);
+      if (s.passes > 0 && s.converged()) break;
+    } else {
+      s.measureResiduals(system, h);
+    }
+    if (s.passes == maxPasses) break;
+    if (s.passes > 0) s.lineariseForces(system, s.xTilde, s.vBar);
+    s.assemble(system, h);
+    s.solvePass(stats);
+    if (stats.failure != StepFailure::None) break;
+    if (!s.coupled) {  // one linearly implicit pass: nothing left to measure
+      s.passes = 1;
+      break;
+    }
   }
+  s.commit(system, h);
+  lastStep_ = h;
+  return stats;
 }
 
-double ImplicitEulerIntegrator::worstRelativeViolation(ParticleSystem& system,
-                                                      const Eigen::VectorXd& x,
-                                                      const Eigen::VectorXd& v) const {
-  const Phase s = system.phase(x, v);
+// --- phases ----------------------------------------------------------------
+
+void ImplicitEulerIntegrator::Impl::begin(ParticleSystem& system) {
+  n = system.size();
+  dofs = 2 * n;
+  coupled = settings->coupledConstraints && !system.constraints().empty();
+  m = coupled ? static_cast<int>(system.constraints().size()) : 0;
+  x0 = system.positions();
+  v0 = system.velocities();
+  vBar = v0;
+  // The last step's impulses start the iteration (their tension gives the first
+  // pass its geometric stiffness).
+  if (nu.size() != m) nu.setZero(m);
+  constraintResidual = momentumResidual = 0.0;
+  if (coupled) start.gather(system.phase(x0, v0), system.constraints());
+}
+
+// f₀ and its Jacobians at the start state; f then holds Baraff & Witkin's
+// f(x₀ + h v₀, v₀) ≈ f₀ + h K₀ v₀ for the first iterate. With lagged
+// constraints, f₀ includes the explicit solve's constraint forces.
+StepStats ImplicitEulerIntegrator::Impl::lineariseForcesAtStart(ParticleSystem& system, double h) {
+  const bool lagged = !settings->coupledConstraints && !system.constraints().empty();
+  if (lagged) {
+    system.acceleration(x0, v0, acceleration);
+    f = system.forces();
+  }
+  // The lagged scheme's explicit solve, or nothing, from the tally; then this
+  // scheme's own evaluation.
+  StepStats stats = system.takeEvaluationStats();
+  if (!lagged) {
+    evaluateForces(system, x0, v0);
+    ++stats.forceEvaluations;
+  }
+  lineariseForces(system, x0, v0);
+  for (const auto& t : dfdx) f[t.row()] += h * t.value() * v0[t.col()];
+  return stats;
+}
+
+void ImplicitEulerIntegrator::Impl::evaluateForces(ParticleSystem& system, const Eigen::VectorXd& x,
+                                                   const Eigen::VectorXd& v) {
+  const Phase phase = system.phase(x, v);
+  f.setZero(dofs);
+  for (const auto& force : system.forceObjects()) force->apply(phase, f);
+}
+
+void ImplicitEulerIntegrator::Impl::lineariseForces(ParticleSystem& system, const Eigen::VectorXd& x,
+                                                    const Eigen::VectorXd& v) {
+  const Phase phase = system.phase(x, v);
+  dfdx.clear();
+  dfdv.clear();
+  for (const auto& force : system.forceObjects()) force->addDefiniteJacobians(phase, dfdx, dfdv);
+}
+
+// At the iterate: C̃ = C(x̃) and J̃ = J(x̃) for the Newton matrix, and the
+// discrete gradient Ḡ between x₀ and x̃ (header) along which the impulses act.
+void ImplicitEulerIntegrator::Impl::gatherConstraintRows(ParticleSystem& system, double h) {
   const Eigen::VectorXd& w = system.inverseMasses();
-  double worst = 0.0;
-  for (const auto& c : system.constraints()) {
-    // A row whose particles are all pinned is −ν = 0 in the solve: no pass can
-    // change its violation, so it must not keep the passes going.
-    const std::vector<int>& ps = c->particles();
-    if (std::all_of(ps.begin(), ps.end(), [&](int p) { return w[p] == 0.0; })) continue;
-    const double scale = c->lengthScale();
-    worst = std::max(worst, c->violation(s) / (scale > 0.0 ? scale : 1.0));
+  const ConstraintList& constraints = system.constraints();
+  xTilde = x0 + h * vBar;
+  xMid = x0 + (0.5 * h) * vBar;
+  iterate.gather(system.phase(xTilde, vBar), constraints);
+  mid.gather(system.phase(xMid, vBar), constraints);
+  Gbar = mid.J;  // J(x_m), corrected below
+  fixedRow.assign(m, 0);
+  for (int k = 0; k < m; ++k) {
+    double jjFree = 0.0, dxSquared = 0.0, predicted = 0.0;
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e) {
+      const int p = iterate.entryParticle[e];
+      const Eigen::Vector2d dx = xTilde.segment<2>(2 * p) - x0.segment<2>(2 * p);
+      dxSquared += dx.squaredNorm();
+      predicted += Gbar[e].dot(dx);
+      if (w[p] != 0.0) jjFree += iterate.J[e].squaredNorm();
+    }
+    fixedRow[k] = jjFree == 0.0;
+    if (fixedRow[k]) nu[k] = 0.0;
+    // Gonzalez's correction makes Ḡ Δx = C(x̃) − C(x₀) exactly. It is O(|Δx|²)
+    // and zero for quadratic C; below a relative step of 1e-6 it would be
+    // rounding divided by |Δx|² and is left out (its effect is then O(|Δx|³)).
+    const double scale = constraints[k]->lengthScale() > 0.0 ? constraints[k]->lengthScale() : 1.0;
+    if (dxSquared <= 1e-12 * scale * scale) continue;
+    const double correction = (iterate.C[k] - start.C[k] - predicted) / dxSquared;
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e) {
+      const int p = iterate.entryParticle[e];
+      Gbar[e] += correction * (xTilde.segment<2>(2 * p) - x0.segment<2>(2 * p));
+    }
   }
-  return worst;
 }
 
-bool ImplicitEulerIntegrator::patternMatches(int n, const Eigen::VectorXd& inverseMass,
-                                             bool withConstraints, bool direct) const {
-  if (!analysed_ || withConstraints != cachedWithConstraints_ || direct != cachedDirect_) return false;
-  if (static_cast<int>(cachedPinned_.size()) != n) return false;
-  for (int i = 0; i < n; ++i)
-    if (cachedPinned_[i] != (inverseMass[i] == 0.0)) return false;
+// residual = (−R₁, −R₂/h) at the iterate, and the two relative measures of the
+// stopping test (header).
+void ImplicitEulerIntegrator::Impl::measureResiduals(ParticleSystem& system, double h) {
+  const Eigen::VectorXd& mass = system.masses();
+  const Eigen::VectorXd& w = system.inverseMasses();
+  const double beta = settings->stabilization;
+  residual.setZero(dofs + m);
+  Eigen::Ref<Eigen::VectorXd> r1 = residual.head(dofs);
+  for (int d = 0; d < dofs; ++d)
+    if (w[d / 2] != 0.0) r1[d] = h * f[d] - mass[d / 2] * (vBar[d] - v0[d]);
+  constraintResidual = momentumResidual = 0.0;
+  if (!coupled) return;
+  for (int k = 0; k < m; ++k) {
+    if (fixedRow[k]) continue;
+    double jj = 0.0;
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e) {
+      const int p = iterate.entryParticle[e];
+      if (w[p] == 0.0) continue;
+      r1.segment<2>(2 * p) -= nu[k] * Gbar[e];
+      jj += iterate.J[e].squaredNorm();
+    }
+    const double r2 = iterate.C[k] - (1.0 - beta) * start.C[k];
+    residual[dofs + k] = -r2 / h;
+    const double length = system.constraints()[k]->lengthScale();
+    constraintResidual = std::max(constraintResidual, std::abs(r2) / (std::sqrt(jj) * (length > 0.0 ? length : 1.0)));
+  }
+  // Velocity scale of R₁/m: the sizes of the terms it balances, |v̄|, h|W f|, |W Ḡᵀν̄|.
+  double velocityScale = 0.0, worst = 0.0;
+  for (int d = 0; d < dofs; ++d) {
+    const double wd = w[d / 2];
+    if (wd == 0.0) continue;
+    const double impulse = mass[d / 2] * (vBar[d] - v0[d]) - h * f[d] + r1[d];  // −(Ḡᵀν̄)_d
+    velocityScale = std::max(velocityScale, std::abs(vBar[d]) + h * wd * std::abs(f[d]) + wd * std::abs(impulse));
+    worst = std::max(worst, wd * std::abs(r1[d]));
+  }
+  momentumResidual = velocityScale > 0.0 ? worst / velocityScale : 0.0;
+}
+
+bool ImplicitEulerIntegrator::Impl::converged() const {
+  return constraintResidual <= settings->constraintTolerance && momentumResidual <= settings->constraintTolerance;
+}
+
+// The values of the pass's matrix, in the cached pattern (rebuilt when the
+// structure changed).
+void ImplicitEulerIntegrator::Impl::assemble(ParticleSystem& system, double h) {
+  usedDirect = coupled || settings->solver == ImplicitLinearSolver::Direct;
+  if (!patternMatches(system, usedDirect)) buildPattern(system, usedDirect);
+  if (!fillValues(h, system.masses(), system.inverseMasses())) {
+    buildPattern(system, usedDirect);
+    fillValues(h, system.masses(), system.inverseMasses());
+  }
+  if (coupled && settings->geometricStiffness) addGeometricStiffness(system, h);
+}
+
+// One Newton solve for (δv, δν) in the pattern's stored numbering, then the
+// iterate moves: v̄ += δv, ν̄ += δν.
+void ImplicitEulerIntegrator::Impl::solvePass(StepStats& stats) {
+  pattern.toStored(residual, storedRhs);
+  if (usedDirect) {
+    ++stats.factorizations;
+    // A failed factorisation (only a blown-up, non-finite state gets here:
+    // the matrix is quasi-definite) is reported as a failed solve.
+    if (!ldlt.factorize(pattern.matrix())) {
+      solution.setConstant(storedRhs.size(), NAN);
+    } else {
+      ldlt.solve(storedRhs, solution);
+      const double bNorm = storedRhs.norm();
+      pattern.multiplyStored(solution, product);
+      stats.maxResidual = std::max(stats.maxResidual, bNorm > 0.0 ? (storedRhs - product).norm() / bNorm : 0.0);
+    }
+  } else {
+    // Jacobi-preconditioned CG on A alone (no constraints, natural order: the
+    // stored numbering is the DOF numbering), warm-started from the last
+    // step's Δv, which solution still holds. Pinned rows are the identity with
+    // a zero right-hand side, so they stay 0.
+    if (solution.size() != dofs || !solution.allFinite()) solution.setZero(dofs);
+    inverseDiagonal.resize(dofs);
+    for (int d = 0; d < dofs; ++d) {
+      const double a = pattern.values()[diagonalSlot[d]];
+      inverseDiagonal[d] = a > 0.0 ? 1.0 / a : 1.0;
+    }
+    linear::CgSettings cgSettings;
+    cgSettings.tolerance = settings->cgTolerance;
+    cgSettings.maxIterations = settings->cgMaxIterations;
+    const linear::CgResult result = linear::conjugateGradient(
+        [&](const Eigen::VectorXd& y, Eigen::VectorXd& out) { pattern.multiplyStored(y, out); },
+        [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = inverseDiagonal.cwiseProduct(r); }, storedRhs,
+        solution, cgSettings, cg);
+    stats.cgIterations += result.iterations;
+    stats.maxResidual = std::max(stats.maxResidual, result.relativeResidual);
+  }
+  ++stats.solves;
+  if (!solution.allFinite()) {
+    stats.failure = StepFailure::SolveFailed;
+    return;
+  }
+  pattern.fromStored(solution, increment);
+  vBar += increment.head(dofs);
+  for (int k = 0; k < m; ++k)
+    if (!fixedRow[k]) nu[k] += increment[dofs + k];
+}
+
+void ImplicitEulerIntegrator::Impl::commit(ParticleSystem& system, double h) const {
+  system.velocities() = vBar;  // a failed solve leaves the last finite iterate
+  system.positions() = x0 + h * vBar;
+}
+
+// --- the linear system -------------------------------------------------------
+
+bool ImplicitEulerIntegrator::Impl::patternMatches(const ParticleSystem& system, bool direct) const {
   // Each triplet's position is checked while fillValues() scatters it.
-  if (dfdx_.size() != xRow_.size() || dfdv_.size() != vRow_.size()) return false;
-  if (withConstraints && (rowStart_ != cachedRowStart_ || entryParticle_ != cachedEntryParticle_))
-    return false;
-  return true;
+  return analysed && system.structureStamp() == patternStamp && coupled == patternCoupled &&
+         direct == patternDirect && dfdx.size() == xRow.size() && dfdv.size() == vRow.size();
+}
+
+// Calls visit(row, col) for every DOF pair of G, in the loop order of
+// addGeometricStiffness: constraint k, then column (particle b, axis c), then row (a, r).
+template <class Visit>
+void ImplicitEulerIntegrator::Impl::forEachGeometricStiffnessEntry(const Visit& visit) const {
+  for (int k = 0; k < m; ++k)
+    for (int eb = iterate.rowStart[k]; eb < iterate.rowStart[k + 1]; ++eb)
+      for (int c = 0; c < 2; ++c)
+        for (int ea = iterate.rowStart[k]; ea < iterate.rowStart[k + 1]; ++ea)
+          for (int r = 0; r < 2; ++r) visit(2 * iterate.entryParticle[ea] + r, 2 * iterate.entryParticle[eb] + c);
 }
 
 // The KKT matrix: A on the 2n velocity unknowns, then one row per constraint,
-// stored as the upper triangle in a permuted numbering (unknown i at order_[i]):
-// an AMD fill-reducing order for the direct solve, so that the LDLᵀ
-// factorises the stored matrix in place without a per-step permuted copy, and
-// the identity for CG, whose products are faster in the mesh's own order.
-// Every value's destination in matrix_.valuePtr() is recorded so that
-// fillValues() is a scatter, with no search and no allocation.
-void ImplicitEulerIntegrator::buildPattern(ParticleSystem& system, bool withConstraints, bool direct) {
+// in a SymmetricPattern: AMD-ordered for the direct solve, natural for CG,
+// whose products are faster in the mesh's own order. Every value's slot is
+// recorded so that fillValues() is a scatter, with no search and no allocation.
+void ImplicitEulerIntegrator::Impl::buildPattern(const ParticleSystem& system, bool direct) {
   const Eigen::VectorXd& inverseMass = system.inverseMasses();
-  const int n = system.size(), dofs = 2 * n;
-  const int m = withConstraints ? static_cast<int>(rowStart_.size()) - 1 : 0;
   auto free = [&](int dof) { return inverseMass[dof / 2] != 0.0; };
-
-  // Every (row, column) of the symmetric matrix, in the original numbering.
-  Triplets pattern;
-  pattern.reserve(dofs + dfdx_.size() + dfdv_.size() + 2 * J_.size() + m);
-  for (int d = 0; d < dofs; ++d) pattern.emplace_back(d, d, 1.0);
-  for (const Triplets* list : {&dfdx_, &dfdv_})
+  pattern.reset(dofs + m);
+  for (const Triplets* list : {&dfdx, &dfdv})
     for (const auto& t : *list)
-      if (free(t.row()) && free(t.col())) pattern.emplace_back(t.row(), t.col(), 1.0);
+      if (free(t.row()) && free(t.col())) pattern.add(t.row(), t.col());
   for (int k = 0; k < m; ++k) {
-    for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e)
-      if (inverseMass[entryParticle_[e]] != 0.0)
-        for (int r = 0; r < 2; ++r) pattern.emplace_back(dofs + k, 2 * entryParticle_[e] + r, 1.0);
-    pattern.emplace_back(dofs + k, dofs + k, 1.0);
-    // Geometric stiffness couples every pair of free particles of the constraint.
-    for (int eb = rowStart_[k]; eb < rowStart_[k + 1]; ++eb)
-      for (int ea = rowStart_[k]; ea < rowStart_[k + 1]; ++ea)
-        for (int c = 0; c < 2; ++c)
-          for (int r = 0; r < 2; ++r) {
-            const int row = 2 * entryParticle_[ea] + r, col = 2 * entryParticle_[eb] + c;
-            if (free(row) && free(col)) pattern.emplace_back(row, col, 1.0);
-          }
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e)
+      if (inverseMass[iterate.entryParticle[e]] != 0.0)
+        for (int r = 0; r < 2; ++r) pattern.add(dofs + k, 2 * iterate.entryParticle[e] + r);
   }
-  const int size = dofs + m;
-  order_.resize(size);
-  if (direct) {
-    const std::size_t oneSided = pattern.size();
-    for (std::size_t i = 0; i < oneSided; ++i)
-      pattern.emplace_back(pattern[i].col(), pattern[i].row(), 1.0);
-    SparseMatrix symmetric(size, size);
-    symmetric.setFromTriplets(pattern.begin(), pattern.end());
-    pattern.resize(oneSided);
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
-    Eigen::AMDOrdering<int>()(symmetric, inverse);
-    for (int i = 0; i < size; ++i) order_[inverse.indices()[i]] = i;
-  } else {
-    for (int i = 0; i < size; ++i) order_[i] = i;
-  }
-  // (r, c) in the original numbering → (row, column) of the stored upper triangle.
-  auto upper = [&](int r, int c) {
-    const int a = order_[r], b = order_[c];
-    return std::make_pair(std::min(a, b), std::max(a, b));
-  };
-  for (auto& t : pattern) {
-    const auto rc = upper(t.row(), t.col());
-    t = Eigen::Triplet<double>(rc.first, rc.second, 1.0);
-  }
-  matrix_.resize(size, size);
-  matrix_.setFromTriplets(pattern.begin(), pattern.end());
-  matrix_.makeCompressed();
+  // Geometric stiffness couples every pair of free particles of a constraint.
+  forEachGeometricStiffnessEntry([&](int row, int col) {
+    if (free(row) && free(col)) pattern.add(row, col);
+  });
+  pattern.finish(direct ? linear::SymmetricPattern::Ordering::Amd : linear::SymmetricPattern::Ordering::Natural);
+  recordSlots(inverseMass);
+  patternStamp = system.structureStamp();
+  patternCoupled = coupled;
+  patternDirect = direct;
+  ldlt.forgetAnalysis();  // analysed on the first factorisation
+  analysed = true;
+}
 
-  auto slot = [&](int r, int c) {
-    const auto rc = upper(r, c);
-    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[rc.second];
-    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[rc.second + 1];
-    return static_cast<int>(std::lower_bound(begin, end, rc.first) - matrix_.innerIndexPtr());
-  };
-  diagonalSlot_.resize(dofs);
-  for (int d = 0; d < dofs; ++d) diagonalSlot_[d] = slot(d, d);
-  auto record = [&](const Triplets& list, std::vector<int>& rows, std::vector<int>& cols,
-                    std::vector<int>& slots) {
+// Where each value of the matrix goes: the diagonal of A, every force
+// triplet, every free block of J̃, each row's compliance, every entry of G
+// (−1: a pinned DOF, dropped).
+void ImplicitEulerIntegrator::Impl::recordSlots(const Eigen::VectorXd& inverseMass) {
+  auto free = [&](int dof) { return inverseMass[dof / 2] != 0.0; };
+  diagonalSlot.resize(dofs);
+  for (int d = 0; d < dofs; ++d) diagonalSlot[d] = pattern.slot(d, d);
+  auto record = [&](const Triplets& list, std::vector<int>& rows, std::vector<int>& cols, std::vector<int>& slots) {
     rows.resize(list.size());
     cols.resize(list.size());
     slots.resize(list.size());
     for (std::size_t k = 0; k < list.size(); ++k) {
       rows[k] = list[k].row();
       cols[k] = list[k].col();
-      slots[k] = free(rows[k]) && free(cols[k]) ? slot(rows[k], cols[k]) : -1;
+      slots[k] = free(rows[k]) && free(cols[k]) ? pattern.slot(rows[k], cols[k]) : -1;
     }
   };
-  record(dfdx_, xRow_, xCol_, xSlot_);
-  record(dfdv_, vRow_, vCol_, vSlot_);
-  jSlot_.assign(2 * J_.size(), -1);
-  complianceSlot_.resize(m);
+  record(dfdx, xRow, xCol, xSlot);
+  record(dfdv, vRow, vCol, vSlot);
+  jSlot.assign(2 * (coupled ? iterate.entries() : 0), -1);
+  complianceSlot.resize(m);
   for (int k = 0; k < m; ++k) {
-    for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e)
-      if (inverseMass[entryParticle_[e]] != 0.0)
-        for (int r = 0; r < 2; ++r) jSlot_[2 * e + r] = slot(dofs + k, 2 * entryParticle_[e] + r);
-    complianceSlot_[k] = slot(dofs + k, dofs + k);
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e)
+      if (inverseMass[iterate.entryParticle[e]] != 0.0)
+        for (int r = 0; r < 2; ++r) jSlot[2 * e + r] = pattern.slot(dofs + k, 2 * iterate.entryParticle[e] + r);
+    complianceSlot[k] = pattern.slot(dofs + k, dofs + k);
   }
-  // In the loop order of addGeometricStiffness: k, then column (b, c), then row (a, r).
-  gSlot_.clear();
-  for (int k = 0; k < m; ++k)
-    for (int eb = rowStart_[k]; eb < rowStart_[k + 1]; ++eb)
-      for (int c = 0; c < 2; ++c)
-        for (int ea = rowStart_[k]; ea < rowStart_[k + 1]; ++ea)
-          for (int r = 0; r < 2; ++r) {
-            const int row = 2 * entryParticle_[ea] + r, col = 2 * entryParticle_[eb] + c;
-            gSlot_.push_back(free(row) && free(col) ? slot(row, col) : -1);
-          }
-
-  cachedPinned_.resize(n);
-  for (int i = 0; i < n; ++i) cachedPinned_[i] = inverseMass[i] == 0.0;
-  cachedWithConstraints_ = withConstraints;
-  cachedDirect_ = direct;
-  cachedRowStart_ = withConstraints ? rowStart_ : std::vector<int>{};
-  cachedEntryParticle_ = withConstraints ? entryParticle_ : std::vector<int>{};
-  ldltAnalysed_ = false;  // analysed on first use, by whichever solver is chosen
-  analysed_ = true;
+  gSlot.clear();
+  forEachGeometricStiffnessEntry([&](int row, int col) {
+    gSlot.push_back(free(row) && free(col) ? pattern.slot(row, col) : -1);
+  });
 }
 
-// Values of the stored KKT triangle. A triplet (r, c, a) of K or D lands in the
-// slot of (r, c) — shared with (c, r) — with weight ½ off the diagonal, so the matrix is the
-// symmetric part of what the forces report (the definite Jacobians already are).
-// With Kv given, K v₀ is summed in the same pass. Returns false, having written
-// only part of the values, when a triplet is not where the pattern has it.
-bool ImplicitEulerIntegrator::fillValues(int n, double h, const Eigen::VectorXd& mass,
-                                         const Eigen::VectorXd& inverseMass, bool withConstraints,
-                                         Eigen::VectorXd* Kv) {
-  double* value = matrix_.valuePtr();
-  std::fill(value, value + matrix_.nonZeros(), 0.0);
-  for (int d = 0; d < 2 * n; ++d)
-    value[diagonalSlot_[d]] = inverseMass[d / 2] == 0.0 ? 1.0 : mass[d / 2];
+// Values of the stored KKT triangle: A = M − h D − h² K, J̃ and −E. A triplet
+// (r, c, a) of K or D lands in the slot of (r, c) — shared with (c, r) — with
+// weight ½ off the diagonal, so the matrix is the symmetric part of what the
+// forces report (the definite Jacobians already are). Returns false, having
+// written only part of the values, when a triplet is not where the pattern has it.
+bool ImplicitEulerIntegrator::Impl::fillValues(double h, const Eigen::VectorXd& mass,
+                                               const Eigen::VectorXd& inverseMass) {
+  double* value = pattern.values();
+  std::fill(value, value + pattern.nonZeros(), 0.0);
+  for (int d = 0; d < dofs; ++d) value[diagonalSlot[d]] = inverseMass[d / 2] == 0.0 ? 1.0 : mass[d / 2];
   const double hx = -h * h, hv = -h;
-  for (std::size_t k = 0; k < dfdx_.size(); ++k) {
-    const Eigen::Triplet<double>& t = dfdx_[k];
-    if (t.row() != xRow_[k] || t.col() != xCol_[k]) return false;
-    if (Kv) (*Kv)[t.row()] += t.value() * v0_[t.col()];
-    if (xSlot_[k] >= 0) value[xSlot_[k]] += (t.row() == t.col() ? hx : 0.5 * hx) * t.value();
+  for (std::size_t k = 0; k < dfdx.size(); ++k) {
+    const Eigen::Triplet<double>& t = dfdx[k];
+    if (t.row() != xRow[k] || t.col() != xCol[k]) return false;
+    if (xSlot[k] >= 0) value[xSlot[k]] += (t.row() == t.col() ? hx : 0.5 * hx) * t.value();
   }
-  for (std::size_t k = 0; k < dfdv_.size(); ++k) {
-    const Eigen::Triplet<double>& t = dfdv_[k];
-    if (t.row() != vRow_[k] || t.col() != vCol_[k]) return false;
-    if (vSlot_[k] >= 0) value[vSlot_[k]] += (t.row() == t.col() ? hv : 0.5 * hv) * t.value();
+  for (std::size_t k = 0; k < dfdv.size(); ++k) {
+    const Eigen::Triplet<double>& t = dfdv[k];
+    if (t.row() != vRow[k] || t.col() != vCol[k]) return false;
+    if (vSlot[k] >= 0) value[vSlot[k]] += (t.row() == t.col() ? hv : 0.5 * hv) * t.value();
   }
-  if (!withConstraints) return true;
-  const int m = static_cast<int>(rowStart_.size()) - 1;
   for (int k = 0; k < m; ++k) {
-    double diagonal = 0.0;  // row k of diag(J W Jᵀ)
-    for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e) {
-      const double w = inverseMass[entryParticle_[e]];
+    double diagonal = 0.0;  // row k of diag(J̃ W J̃ᵀ)
+    for (int e = iterate.rowStart[k]; e < iterate.rowStart[k + 1]; ++e) {
+      const double w = inverseMass[iterate.entryParticle[e]];
       if (w == 0.0) continue;
-      diagonal += w * J_[e].squaredNorm();
-      for (int r = 0; r < 2; ++r) value[jSlot_[2 * e + r]] = J_[e][r];
+      diagonal += w * iterate.J[e].squaredNorm();
+      for (int r = 0; r < 2; ++r) value[jSlot[2 * e + r]] = fixedRow[k] ? 0.0 : iterate.J[e][r];
     }
-    // A row with nothing free (all pinned, or a degenerate J) becomes −ν = 0.
-    value[complianceSlot_[k]] = diagonal > 0.0 ? -settings.compliance * diagonal : -1.0;
+    // A fixed row (nothing free) becomes −δν = 0.
+    value[complianceSlot[k]] = fixedRow[k] || diagonal == 0.0 ? -1.0 : -settings->compliance * diagonal;
   }
   return true;
 }
 
-// Adds G = h Σ_k max(ν_k, 0) ∂²C_k/∂q² at x to the matrix. The Hessian of C_k
-// is read column by column through the constraint interface: J̇ = (∂J/∂q) q̇ is
-// linear in q̇, so J̇ at a unit velocity e_j is column j of ∂²C_k/∂q².
-void ImplicitEulerIntegrator::addGeometricStiffness(ParticleSystem& system, const Eigen::VectorXd& x,
-                                                    double h) {
+// Adds G = (h/2) Σ_k max(ν̄_k, 0) ∇²C_k(x_m), the derivative of Ḡᵀν̄ with
+// respect to v (Ḡ = J(x₀ + h v/2) for quadratic C). The Hessian of C_k is read
+// column by column through the constraint interface: J̇ = (∂J/∂q) q̇ is linear
+// in q̇, so J̇ at a unit velocity e_j is column j of ∇²C_k.
+void ImplicitEulerIntegrator::Impl::addGeometricStiffness(ParticleSystem& system, double h) {
   const ConstraintList& constraints = system.constraints();
   const Eigen::VectorXd& w = system.inverseMasses();
-  double* value = matrix_.valuePtr();
-  probe_.setZero(x.size());
+  double* value = pattern.values();
+  const double weight = 0.5 * h;
+  probe.setZero(dofs);
   std::size_t g = 0;
-  for (std::size_t k = 0; k < constraints.size(); ++k) {
+  for (int k = 0; k < m; ++k) {
     const std::vector<int>& ps = constraints[k]->particles();
     const std::size_t count = ps.size();
-    const double tension = static_cast<Eigen::Index>(k) < nuOld_.size() ? std::max(nuOld_[k], 0.0) : 0.0;
-    if (probeJ_.size() < count) probeJ_.resize(count), probeJdot_.resize(count);
+    const double tension = fixedRow[k] ? 0.0 : std::max(nu[k], 0.0);
+    if (probeJ.size() < count) probeJ.resize(count), probeJdot.resize(count);
     ConstraintRow row;
-    row.J = probeJ_.data();
-    row.Jdot = probeJdot_.data();
+    row.J = probeJ.data();
+    row.Jdot = probeJdot.data();
     for (std::size_t b = 0; b < count; ++b)
       for (int c = 0; c < 2; ++c) {
         if (tension > 0.0 && w[ps[b]] != 0.0) {
-          probe_[2 * ps[b] + c] = 1.0;
-          constraints[k]->evaluate(system.phase(x, probe_), row);
-          probe_[2 * ps[b] + c] = 0.0;
+          probe[2 * ps[b] + c] = 1.0;
+          constraints[k]->evaluate(system.phase(xMid, probe), row);
+          probe[2 * ps[b] + c] = 0.0;
         }
         for (std::size_t a = 0; a < count; ++a)
           for (int r = 0; r < 2; ++r, ++g) {
-            if (tension == 0.0 || gSlot_[g] < 0) continue;
+            if (tension == 0.0 || gSlot[g] < 0) continue;
             const bool diagonal = a == b && r == c;
-            value[gSlot_[g]] += (diagonal ? h : 0.5 * h) * tension * probeJdot_[a][r];
+            value[gSlot[g]] += (diagonal ? weight : 0.5 * weight) * tension * probeJdot[a][r];
           }
       }
   }
-}
-
-// out += G dv = h Σ_k max(ν_k, 0) ∂²C_k/∂q² dv, read as J̇ at velocity dv.
-void ImplicitEulerIntegrator::addGeometricStiffnessTimes(ParticleSystem& system,
-                                                         const Eigen::VectorXd& x,
-                                                         const Eigen::VectorXd& dv, double h,
-                                                         Eigen::VectorXd& out) {
-  const ConstraintList& constraints = system.constraints();
-  const Eigen::VectorXd& w = system.inverseMasses();
-  for (std::size_t k = 0; k < constraints.size(); ++k) {
-    const double tension = static_cast<Eigen::Index>(k) < nuOld_.size() ? std::max(nuOld_[k], 0.0) : 0.0;
-    if (tension == 0.0) continue;
-    const std::vector<int>& ps = constraints[k]->particles();
-    if (probeJ_.size() < ps.size()) probeJ_.resize(ps.size()), probeJdot_.resize(ps.size());
-    ConstraintRow row;
-    row.J = probeJ_.data();
-    row.Jdot = probeJdot_.data();
-    constraints[k]->evaluate(system.phase(x, dv), row);
-    for (std::size_t a = 0; a < ps.size(); ++a)
-      if (w[ps[a]] != 0.0) out.segment<2>(2 * ps[a]) += h * tension * probeJdot_[a];
-  }
-}
-
-// Jacobi-preconditioned CG on the stored (symmetric, upper) A, from the guess
-// in solution_ (the last step's Δv), with scratch kept between steps (Eigen's ConjugateGradient
-// allocates four vectors per solve). Pinned rows are the identity with a zero
-// right-hand side, so they stay 0.
-void ImplicitEulerIntegrator::jacobiConjugateGradient(const Eigen::VectorXd& b) {
-  Eigen::VectorXd& x = solution_;
-  const Eigen::Index size = b.size();
-  inverseDiagonal_.resize(size);
-  for (Eigen::Index i = 0; i < size; ++i) {  // CG runs unconstrained and unpermuted: i is a DOF
-    const double d = matrix_.valuePtr()[diagonalSlot_[i]];
-    inverseDiagonal_[i] = d > 0.0 ? 1.0 / d : 1.0;
-  }
-  const double bNorm = b.norm();
-  iterations_ = 0;
-  cgResidual_ = 0.0;
-  if (bNorm == 0.0) {
-    x.setZero(size);
-    return;
-  }
-  cgAp_.noalias() = matrix_.selfadjointView<Eigen::Upper>() * x;
-  cgR_ = b - cgAp_;
-  cgZ_ = inverseDiagonal_.cwiseProduct(cgR_);
-  cgP_ = cgZ_;
-  double rz = cgR_.dot(cgZ_);
-  const double target = settings.cgTolerance * bNorm;
-  while (iterations_ < settings.cgMaxIterations && cgR_.norm() > target) {
-    cgAp_.noalias() = matrix_.selfadjointView<Eigen::Upper>() * cgP_;
-    const double alpha = rz / cgP_.dot(cgAp_);
-    x += alpha * cgP_;
-    cgR_ -= alpha * cgAp_;
-    cgZ_ = inverseDiagonal_.cwiseProduct(cgR_);
-    const double rzNext = cgR_.dot(cgZ_);
-    cgP_ = cgZ_ + (rzNext / rz) * cgP_;
-    rz = rzNext;
-    ++iterations_;
-  }
-  cgResidual_ = cgR_.norm() / bNorm;
-}
-
-StepStats ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
-  settings.validate();
-  requireJacobians(system);
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
-  const Eigen::VectorXd& mass = system.masses();
-  const Eigen::VectorXd& w = system.inverseMasses();
-  const int n = system.size(), dofs = 2 * n;
-  x0_ = x;
-  v0_ = v;
-  const bool coupled = settings.coupledConstraints && !system.constraints().empty();
-  const int m = coupled ? static_cast<int>(system.constraints().size()) : 0;
-
-  // f₀: the forces alone when the constraints are in the solve, forces plus
-  // the explicit constraint forces Jᵀλ when they are lagged.
-  const Phase s = system.phase(x0_, v0_);
-  if (!coupled && !system.constraints().empty()) {
-    system.acceleration(x0_, v0_, a_);
-    f0_ = system.forces();
-  } else {
-    f0_.setZero(dofs);
-    for (const auto& force : system.forceObjects()) force->apply(s, f0_);
-  }
-  // The lagged scheme's explicit solve, or nothing, from the tally; then this
-  // scheme's own force evaluation and solves.
-  StepStats stats = system.takeEvaluationStats();
-  if (!(!coupled && !system.constraints().empty())) ++stats.forceEvaluations;
-  dfdx_.clear();
-  dfdv_.clear();
-  for (const auto& force : system.forceObjects()) force->addDefiniteJacobians(s, dfdx_, dfdv_);
-  if (coupled) gatherConstraints(system, x0_, v0_);
-  usedDirect_ = coupled || settings.solver == ImplicitLinearSolver::Direct;
-  if (!patternMatches(n, w, coupled, usedDirect_)) buildPattern(system, coupled, usedDirect_);
-  Kv_.setZero(dofs);
-  if (!fillValues(n, h, mass, w, coupled, &Kv_)) {
-    buildPattern(system, coupled, usedDirect_);
-    Kv_.setZero(dofs);
-    fillValues(n, h, mass, w, coupled, &Kv_);
-  }
-
-  // Right-hand side h (f₀ + h K v₀) on the free degrees of freedom.
-  rhsForces_.resize(dofs);
-  for (int d = 0; d < dofs; ++d) rhsForces_[d] = w[d / 2] == 0.0 ? 0.0 : h * (f0_[d] + h * Kv_[d]);
-  rhs_.resize(dofs + m);
-
-  iterations_ = 0;
-  // The impulses of the last step start the Newton iteration (their tension
-  // gives the first pass its geometric stiffness).
-  if (nuOld_.size() != m) nuOld_.setZero(m);
-
-  // Newton on the constraints (see the header). Pass 0 starts from Δv = 0,
-  // linearised at x₀ with the curvature term; pass p > 0 from the last
-  // (Δv, ν), linearised at x̃ = x₀ + h v̄:
-  //   [A + G  J̃ᵀ] [Δv]   [r₁ + G Δv_old     ]
-  //   [J̃     −E ] [ν ] = [J̃ Δv_old − β C̃/h ]
-  const int passes = coupled ? settings.constraintPasses : 1;
-  for (passes_ = 0; passes_ < passes; ++passes_) {
-    const Eigen::VectorXd* xLin = &x0_;
-    if (passes_ > 0) {
-      xTrial_ = x0_ + h * vBar_;
-      if (worstRelativeViolation(system, xTrial_, vBar_) <= settings.constraintTolerance) break;
-      gatherConstraints(system, xTrial_, vBar_);
-      xLin = &xTrial_;
-    }
-    if (passes_ > 0) fillValues(n, h, mass, w, coupled, nullptr);
-    if (coupled && settings.geometricStiffness) addGeometricStiffness(system, *xLin, h);
-    rhs_.head(dofs) = rhsForces_;
-    if (passes_ > 0 && settings.geometricStiffness) {
-      dvOld_ = vBar_ - v0_;
-      addGeometricStiffnessTimes(system, xTrial_, dvOld_, h, rhs_);  // writes rows < 2n only
-    }
-    for (int k = 0; k < m; ++k) {
-      // Row k: J v⁺ = c, written for the unknown Δv = v⁺ − v₀.
-      double jv0 = 0.0, jvbar = 0.0, curvature = 0.0;
-      bool anyFree = false;
-      for (int e = rowStart_[k]; e < rowStart_[k + 1]; ++e) {
-        const int p = entryParticle_[e];
-        if (passes_ == 0) curvature += Jdot_[e].dot(v0_.segment<2>(2 * p));
-        if (w[p] == 0.0) continue;
-        anyFree = true;
-        jv0 += J_[e].dot(v0_.segment<2>(2 * p));
-        if (passes_ > 0) jvbar += J_[e].dot(vBar_.segment<2>(2 * p));
-      }
-      const double c = passes_ == 0 ? -settings.stabilization * C_[k] / h - 0.5 * h * curvature
-                                    : jvbar - settings.stabilization * C_[k] / h;
-      rhs_[dofs + k] = anyFree ? c - jv0 : 0.0;
-    }
-    // Solve in the stored numbering: unknown i sits at order_[i].
-    permutedRhs_.resize(dofs + m);
-    for (int i = 0; i < dofs + m; ++i) permutedRhs_[order_[i]] = rhs_[i];
-    if (usedDirect_) {
-      if (!ldltAnalysed_) {
-        ldlt_.analyzePattern(matrix_);
-        ldltAnalysed_ = true;
-      }
-      ldlt_.factorizeInPlace(matrix_);
-      ++stats.factorizations;
-      // A failed factorisation (only a blown-up, non-finite state gets here:
-      // the matrix is quasi-definite) leaves NaN, reported as a failed solve.
-      if (ldlt_.info() != Eigen::Success) {
-        solution_.setConstant(dofs + m, NAN);
-      } else {
-        solution_ = ldlt_.solve(permutedRhs_);
-        const double bNorm = permutedRhs_.norm();
-        cgAp_.noalias() = matrix_.selfadjointView<Eigen::Upper>() * solution_;
-        stats.maxResidual = std::max(stats.maxResidual, bNorm > 0.0 ? (permutedRhs_ - cgAp_).norm() / bNorm : 0.0);
-      }
-    } else {
-      // Warm start from the last step's Δv (solution_ still holds it).
-      if (solution_.size() != dofs || !solution_.allFinite()) solution_.setZero(dofs);
-      jacobiConjugateGradient(permutedRhs_);
-      stats.cgIterations += iterations_;
-      stats.maxResidual = std::max(stats.maxResidual, cgResidual_);
-    }
-    ++stats.solves;
-    if (!solution_.allFinite()) stats.failure = StepFailure::SolveFailed;
-    z_.resize(dofs + m);
-    for (int i = 0; i < dofs + m; ++i) z_[i] = solution_[order_[i]];
-    vBar_ = v0_ + z_.head(dofs);
-    nuOld_ = z_.tail(m);
-  }
-
-  v = vBar_;
-  x = x0_ + h * v;
-  lastStep_ = h;
-  return stats;
 }
 
 }  // namespace particles

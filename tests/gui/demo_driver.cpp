@@ -42,8 +42,10 @@ std::string outputDirectory(const std::string& testName) {
   return dir;
 }
 
-RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script) {
-  std::string command = std::string("cd '") + directory + "' && '" + PARTICLE_DEMO + "' " + args;
+namespace {
+RunResult runProgram(const char* program, const std::string& directory, const std::string& args,
+                     const std::string& script) {
+  std::string command = std::string("cd '") + directory + "' && '" + program + "' " + args;
   if (!script.empty()) {
     std::ofstream(directory + "/script.txt") << script;
     command += " --script script.txt";
@@ -55,6 +57,15 @@ RunResult runDemo(const std::string& directory, const std::string& args, const s
   result.out = readFile(directory + "/stdout.txt");
   result.err = readFile(directory + "/stderr.txt");
   return result;
+}
+}  // namespace
+
+RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script) {
+  return runProgram(PARTICLE_DEMO, directory, args, script);
+}
+
+RunResult runParticleLab(const std::string& directory, const std::string& args) {
+  return runProgram(PARTICLE_LAB, directory, args, "");
 }
 
 demo::Rgb Image::at(int x, int y) const {
@@ -148,6 +159,15 @@ StateLog readStateLog(const std::string& path) {
     } else if (record == "frame-times") {
       log.measuredFrames = std::stoll(f.at(1));
       log.medianFrameMs = number(2);
+    } else if (record == "advice") {
+      auto field = [&](std::size_t k) { return k < f.size() ? f[k] : std::string(); };
+      log.advice.state = f.at(1);
+      log.advice.progress = number(2);
+      log.advice.integrator = field(3);
+      log.advice.dt = number(4);
+      log.advice.tolerance = number(5);
+      log.advice.framesWhileRunning = std::stoll(f.at(6));
+      log.advice.applied = field(7);
     } else if (record == "timing") {
       log.sceneDrawMs = number(1);
       log.overlayDrawMs = number(2);

@@ -20,6 +20,10 @@ struct RunResult {
 // empty it is written to directory/script.txt and passed with --script.
 RunResult runDemo(const std::string& directory, const std::string& args, const std::string& script = "");
 
+// Runs the headless runner particle-lab with `args` in `directory`, to hold
+// the demo's options against it.
+RunResult runParticleLab(const std::string& directory, const std::string& args);
+
 // A fresh directory for one test's files, kept after the run for inspection.
 std::string outputDirectory(const std::string& testName);
 
@@ -68,8 +72,15 @@ struct LoggedOverlay {
            pixel.y() < y + height + margin;
   }
 };
+// The panel's advice: its state, the cheapest pick when done, what was applied.
+struct LoggedAdvice {
+  std::string state, integrator, applied;
+  double progress = 0.0, dt = 0.0, tolerance = 0.0;
+  long long framesWhileRunning = 0;
+};
 struct StateLog {
   long long frames = 0;
+  LoggedAdvice advice;
   bool paused = false;
   std::vector<LoggedPane> panes;
   std::vector<LoggedOverlay> overlays, widgets;

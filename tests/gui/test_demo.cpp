@@ -11,6 +11,7 @@
 #include "demo_driver.h"
 #include "particles/integrator.h"
 #include "scene.h"
+#include "scene_file/scene_file.h"
 #include "scene_keys.h"
 #include "scenes/cloth.h"
 
@@ -133,6 +134,114 @@ TEST(DemoCommandLine, SceneFileRuns) {
   EXPECT_EQ(log.panes.at(0).scene, "rod.json");
   EXPECT_GT(log.panes.at(0).steps, 0);
   EXPECT_FALSE(log.panes.at(0).particles.empty());
+}
+
+// The demo's --scene, --preset, --param and --scene-file are particle-lab's:
+// each scene given so starts as the runner builds it (particle-lab export
+// writes that scene, read back here), particle by particle, with its dt and
+// integrator.
+TEST(DemoCommandLine, SceneOptionsBuildTheScenesParticleLabBuilds) {
+  const std::string dir = outputDirectory("SceneOptionsAsRunner");
+  const std::vector<std::string> cases = {
+      "--scene pendulum --preset seed",
+      "--scene test-chain --param cl=5 --param length=0.8",
+      "--scene test-chain --preset seed --param cl=7",
+      "--scene cloth --param links=8 --param width=5 --param height=4",
+      "--scene-file " SCENES_DIR "/rod.json",
+  };
+  for (const std::string& args : cases) {
+    SCOPED_TRACE(args);
+    const RunResult lab = runParticleLab(dir, "export " + args + " -o scene.json");
+    ASSERT_EQ(lab.exitCode, 0) << lab.err;
+    const scenes::Scene scene = scenes::loadSceneFile(dir + "/scene.json");
+    const RunResult r = runDemo(dir, args + " --paused --frames 1 --no-panel --log-state state.txt");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const StateLog log = readStateLog(dir + "/state.txt");
+    const LoggedPane& pane = log.panes.at(0);
+    EXPECT_EQ(pane.steps, 0);
+    EXPECT_EQ(pane.integrator, scene.integrator);
+    EXPECT_DOUBLE_EQ(pane.dt, scene.dt);
+    const particles::ParticleSystem& s = *scene.system;
+    ASSERT_EQ(pane.particles.size(), static_cast<std::size_t>(s.size()));
+    for (int i = 0; i < s.size(); ++i) {
+      EXPECT_LT((pane.particles[i].x - s.position(i)).norm(), 1e-12) << "particle " << i;
+      EXPECT_LT((pane.particles[i].v - s.velocity(i)).norm(), 1e-12) << "particle " << i;
+      EXPECT_DOUBLE_EQ(pane.particles[i].mass, s.masses()[i]) << "particle " << i;
+      EXPECT_EQ(pane.particles[i].pinned, s.pinned(i)) << "particle " << i;
+    }
+  }
+}
+
+// A bad scene option is refused by the demo with particle-lab's own line.
+TEST(DemoCommandLine, BadSceneOptionsGetParticleLabsMessages) {
+  const std::string dir = outputDirectory("SceneOptionMessages");
+  const std::string rod = SCENES_DIR "/rod.json";
+  const std::vector<std::string> cases = {
+      "--scene clot",
+      "--scene cloth --preset slow",
+      "--scene cloth --param links",
+      "--scene cloth --param =4",
+      "--scene cloth --param colour=red",
+      "--scene cloth --param links=6",
+      "--scene test-chain --param cl=many",
+      "--scene cloth --scene-file " + rod,
+      "--scene-file " + rod + " --preset seed",
+      "--scene-file " + rod + " --param links=8",
+      "--scene-file missing.json",
+      "--scene-file " MALFORMED_DIR "/nan.json",
+      "--scene-file /dev/zero",
+  };
+  for (const std::string& args : cases) {
+    SCOPED_TRACE(args);
+    const RunResult lab = runParticleLab(dir, "export " + args + " -o scene.json");
+    const RunResult demo = runDemo(dir, args + " --frames 1");
+    EXPECT_EQ(lab.exitCode, 2);
+    EXPECT_EQ(demo.exitCode, 2);
+    ASSERT_EQ(lab.errLines().size(), 1u) << lab.err;
+    ASSERT_EQ(demo.errLines().size(), 1u) << demo.err;
+    const std::string labPrefix = "particle-lab: ", demoPrefix = "particle-demo: ";
+    ASSERT_EQ(lab.err.rfind(labPrefix, 0), 0u) << lab.err;
+    ASSERT_EQ(demo.err.rfind(demoPrefix, 0), 0u) << demo.err;
+    EXPECT_EQ(demo.err.substr(demoPrefix.size()), lab.err.substr(labPrefix.size()));
+  }
+}
+
+// --compare is read by CLI11: 2 to 4 comma-separated entries, each an
+// integrator of the table with an optional dt that is a finite number > 0.
+TEST(DemoCommandLine, BadCompareValuesAreNamedInOneLine) {
+  const std::string dir = outputDirectory("BadCompare");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"rk4:x,euler", "--compare: dt in 'rk4:x' must be a finite number > 0"},
+      {"rk4:0.01s,euler", "--compare: dt in 'rk4:0.01s' must be a finite number > 0"},
+      {"rk4:-0.01,euler", "--compare: dt in 'rk4:-0.01' must be a finite number > 0"},
+      {"rk4:inf,euler", "--compare: dt in 'rk4:inf' must be a finite number > 0"},
+      {"rk4:nan,euler", "--compare: dt in 'rk4:nan' must be a finite number > 0"},
+      {"rk4:,euler", "--compare: dt in 'rk4:' must be a finite number > 0"},
+      {"euler,rk5", "--compare: unknown integrator 'rk5' (valid: euler, "},
+      {":0.01,euler", "--compare: unknown integrator '' (valid: euler, "},
+      {"euler", "--compare: "},
+      {"euler,rk4,midpoint,verlet,dopri5", "--compare: "},
+  };
+  for (const auto& [value, message] : cases) {
+    SCOPED_TRACE(value);
+    const RunResult r = runDemo(dir, "--compare '" + value + "' --frames 1");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("particle-demo: " + message, 0), 0u) << r.err;
+  }
+  // The same entries, well formed, start one pane each with that integrator and dt.
+  const RunResult r = runDemo(dir, "--scene pendulum --compare rk4:0.004,euler,midpoint:0.02 --paused --frames 1 "
+                                   "--no-panel --log-state state.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const StateLog log = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(log.panes.size(), 3u);
+  EXPECT_EQ(log.panes[0].integrator, "rk4");
+  EXPECT_DOUBLE_EQ(log.panes[0].dt, 0.004);
+  EXPECT_EQ(log.panes[1].integrator, "euler");
+  EXPECT_DOUBLE_EQ(log.panes[1].dt, scenes::buildScene("pendulum").dt);
+  EXPECT_EQ(log.panes[2].integrator, "midpoint");
+  EXPECT_DOUBLE_EQ(log.panes[2].dt, 0.02);
 }
 
 // ---------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 #include <regex>
 #include <sstream>
 
+#include "particles/constants.h"
 #include "demo_driver.h"
 #include "exact_motion.h"
 #include "scene.h"
@@ -303,7 +304,7 @@ TEST(DemoDrawing, OscillatorSpringAndPendulumRodAreDrawn) {
 TEST(DemoDrawing, ClosedFormGhostMatchesTheExactSolution) {
   // The pendulum's ghost from the inverted elliptic integral has the period
   // 4 K(k) / ω₀ and returns to its start; RK4 at the scene's dt stays on it.
-  const double k = std::sin(0.5 * 60.0 * M_PI / 180.0);
+  const double k = std::sin(0.5 * 60.0 * particles::kPi / 180.0);
   const double K = std::comp_ellint_1(k);
   for (double u : {0.1, 0.7, 1.3}) {
     // sn is the inverse of F: F(asin(sn(u)), k) = u on the first quarter period.

@@ -22,9 +22,15 @@ namespace particles {
 // step does not grow.
 //
 // step(system, dt) covers the output interval dt with as many internal steps
-// as the tolerance needs; the internal step is carried from call to call (the
-// last step of a call is shortened to land on dt without changing it). The
-// first call picks its step with HNW's starting-step estimate (II.4). A step
+// as the tolerance needs; the internal step is carried from call to call and
+// never cut at an output time. The internal solution runs ahead of the output
+// and the state at the output time is read from its dense output (HNW II.6,
+// the fourth-order continuous extension of DOPRI5), so a call whose output
+// time falls inside the last accepted step takes no step and evaluates
+// nothing. The internal solution carries on between calls only while the
+// system holds the state the last call returned (a collision, a drag or a
+// restore restarts it there). The first call picks its step with HNW's
+// starting-step estimate (II.4). A step
 // the controller would cut below settings.minStepFraction·dt, or more than
 // settings.maxStepsPerCall attempts in one call, ends the call early with
 // StepFailure::StepBelowFloor or WorkCapReached; the state is then that of
@@ -45,12 +51,21 @@ class Dopri5Integrator : public Integrator {
   // (x1_, v1_) and k₇ in kx_[6], kv_[6], and returns err (the norm above).
   double trial(ParticleSystem& system, double h);
   double initialStep(ParticleSystem& system, double dt);
+  // Dense-output coefficients r₁…r₅ of the step of h just accepted (from
+  // (x0_, v0_) to (x1_, v1_), stages in kx_, kv_), and their value at θ ∈ [0, 1].
+  void prepareDenseOutput(double h);
+  void denseOutput(double theta, Eigen::VectorXd& x, Eigen::VectorXd& v) const;
 
   IntegratorSettings settings_;
   double h_ = 0.0, errPrevious_ = 1e-4;
   std::array<Eigen::VectorXd, 7> kx_, kv_;  // stage derivatives of x and v
+  // (x0_, v0_): the internal solution, lead_ (s) ahead of the output state.
   Eigen::VectorXd x0_, v0_, x1_, v1_, xs_, vs_, a_;
-  // The state k₁ belongs to: reused (FSAL) only while the state is untouched.
+  double lead_ = 0.0;
+  std::array<Eigen::VectorXd, 5> denseX_, denseV_;  // r₁…r₅ of the last accepted step
+  double denseStep_ = 0.0;                         // its length h
+  // The output state last returned: the internal solution (and its k₁) is
+  // continued only while the system still holds it.
   Eigen::VectorXd xCached_, vCached_;
   bool cached_ = false;
 };

@@ -1,10 +1,12 @@
-#include "cli/option_checks.h"
+#include "options/option_checks.h"
 
 #include <charconv>
 
 #include <sys/stat.h>
 
-namespace cli {
+#include "particles/integrator.h"
+
+namespace options {
 
 CLI::Validator decimalInteger(long long lo, long long hi) {
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
@@ -35,4 +37,33 @@ CLI::Validator regularFile() {
       "FILE");
 }
 
-}  // namespace cli
+CLI::Validator integratorTolerance() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        particles::IntegratorSettings settings;
+        // Text that is no number is left to the conversion, which names it.
+        if (!CLI::detail::lexical_cast(text, settings.tolerance)) return {};
+        try {
+          settings.validate();
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "TOLERANCE");
+}
+
+CLI::Validator integratorName() {
+  return CLI::Validator(
+      [](std::string& name) -> std::string {
+        try {
+          particles::requireIntegrator(name);
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "INTEGRATOR");
+}
+
+}  // namespace options

@@ -1,14 +1,15 @@
-#include "cli/scene_source.h"
+#include "options/scene_source.h"
 
-#include "cli/command.h"
 #include "join_names.h"
+#include "options/usage.h"
 #include "scene_file/scene_file.h"
 
-namespace cli {
+namespace options {
 
 void SceneSource::addOptions(CLI::App& app) {
   auto* byName = app.add_option("--scene", scene, "built-in scene: " + scenes::joinNames(scenes::sceneTable()) +
                                                       " (parameters: particle-lab list)");
+  if (!scene.empty()) byName->capture_default_str();
   auto* byFile = app.add_option("--scene-file", sceneFile, "JSON scene file (format: demos/scenes/FORMAT.md)");
   byName->excludes(byFile);
   app.add_option("--param", params,
@@ -21,17 +22,28 @@ void SceneSource::addOptions(CLI::App& app) {
       ->excludes(byFile);
 }
 
-scenes::Scene SceneSource::load() const {
-  if (!sceneFile.empty()) return scenes::loadSceneFile(sceneFile);
-  if (scene.empty()) throw UsageError("choose a scene with --scene NAME or --scene-file PATH");
-  std::map<std::string, std::string> overrides;
+std::map<std::string, std::string> SceneSource::overrides() const {
+  std::map<std::string, std::string> result;
   for (const std::string& param : params) {
     const auto eq = param.find('=');
     if (eq == std::string::npos || eq == 0)
       throw UsageError("--param expects key=value, got '" + param + "'");
-    overrides[param.substr(0, eq)] = param.substr(eq + 1);
+    result[param.substr(0, eq)] = param.substr(eq + 1);
   }
-  return scenes::buildScene(scene, overrides, preset);
+  return result;
 }
 
-}  // namespace cli
+void SceneSource::validate() const {
+  if (!sceneFile.empty()) return;
+  if (scene.empty()) throw UsageError("choose a scene with --scene NAME or --scene-file PATH");
+  overrides();
+  scenes::presetIndex(preset);
+}
+
+scenes::Scene SceneSource::load() const {
+  if (!sceneFile.empty()) return scenes::loadSceneFile(sceneFile);
+  validate();
+  return scenes::buildScene(scene, overrides(), preset);
+}
+
+}  // namespace options

@@ -1,5 +1,5 @@
 #pragma once
-// Validators for particle-lab's options, shared by every subcommand.
+// CLI11 validators shared by particle-lab's subcommands and particle-demo.
 //
 // CLI11 reads integers with strtoll(…, 0), so "010" is octal 8, "0x10" is 16
 // and a value beyond the type is clamped; these validators run on the text
@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace cli {
+namespace options {
 
 // "[-]digits" with a value in [lo, hi]; anything else is rejected with a
 // message naming the accepted range.
@@ -18,4 +18,11 @@ CLI::Validator decimalInteger(long long lo, long long hi);
 // (/dev/zero would be read forever, a FIFO waited on).
 CLI::Validator regularFile();
 
-}  // namespace cli
+// A tolerance the adaptive integrators accept (IntegratorSettings::validate):
+// "--tolerance: integrator tolerance must be > 0, got 0".
+CLI::Validator integratorTolerance();
+
+// An integrator of the table, by name: "unknown integrator 'rk5' (valid: …)".
+CLI::Validator integratorName();
+
+}  // namespace options

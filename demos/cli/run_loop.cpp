@@ -1,0 +1,41 @@
+#include "cli/run_loop.h"
+
+#include "cli/step_output.h"
+
+namespace cli {
+
+RunLoop::RunLoop(particles::ParticleSystem& system, particles::Integrator& integrator, double dt, RunOutputs outputs)
+    : system_(system),
+      integrator_(integrator),
+      dt_(dt),
+      outputs_(outputs),
+      limits_(runnerDivergenceLimits()),
+      initialEnergy_(system.totalEnergy()) {}
+
+std::string RunLoop::start() {
+  const Diagnostics initial = measureDiagnostics(0, system_);
+  if (std::string reason = nonFiniteDiagnostics(initial); !reason.empty()) return reason;
+  if (outputs_.csv) writeDiagnostics(*outputs_.csv, initial, 0.0);
+  if (outputs_.trajectory) writeTrajectory(*outputs_.trajectory, 0, system_);
+  return {};
+}
+
+std::string RunLoop::step() {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  const particles::StepStats stats = system_.step(integrator_, dt_);
+  const Clock::duration elapsed = Clock::now() - start;
+  simulated_ += elapsed;
+  const long long step = steps_ + 1;
+  if (const particles::Divergence d = particles::checkDivergence(system_, limits_, initialEnergy_, stats))
+    return d.message();
+  const Diagnostics row = measureDiagnostics(step, system_);
+  if (std::string reason = nonFiniteDiagnostics(row); !reason.empty()) return reason;
+  if (outputs_.csv)
+    writeDiagnostics(*outputs_.csv, row, std::chrono::duration<double, std::micro>(elapsed).count());
+  if (outputs_.trajectory && step % outputs_.every == 0) writeTrajectory(*outputs_.trajectory, step, system_);
+  steps_ = step;
+  return {};
+}
+
+}  // namespace cli

@@ -1,0 +1,48 @@
+#pragma once
+// The runner's step loop (particle-lab run), one step at a time, so that
+// the tests drive exactly the code the runner does:
+//   step → divergence check → diagnostics (once) → CSV row → trajectory rows.
+#include <chrono>
+#include <ostream>
+#include <string>
+
+#include "particles/divergence.h"
+#include "particles/integrator.h"
+#include "particles/particle_system.h"
+
+namespace cli {
+
+struct RunOutputs {
+  std::ostream* csv = nullptr;         // rows of kDiagnosticsHeader (header written by the caller)
+  std::ostream* trajectory = nullptr;  // rows of kTrajectoryHeader
+  long long every = 1;                 // trajectory rows every `every` steps (and at step 0)
+};
+
+class RunLoop {
+ public:
+  RunLoop(particles::ParticleSystem& system, particles::Integrator& integrator, double dt, RunOutputs outputs);
+
+  // Row 0, the initial state. Returns why the run cannot go on (a
+  // non-finite diagnostic), empty when it can.
+  std::string start();
+  // One step and its rows. Returns the divergence reason (the step diverged
+  // or failed, or a diagnostic is not finite; nothing is written then), empty
+  // when the run goes on.
+  std::string step();
+
+  long long steps() const { return steps_; }  // steps completed
+  // Wall time spent in ParticleSystem::step, output excluded.
+  double simulatedSeconds() const { return std::chrono::duration<double>(simulated_).count(); }
+
+ private:
+  particles::ParticleSystem& system_;
+  particles::Integrator& integrator_;
+  double dt_;
+  RunOutputs outputs_;
+  particles::DivergenceLimits limits_;
+  double initialEnergy_;
+  long long steps_ = 0;
+  std::chrono::steady_clock::duration simulated_{};
+};
+
+}  // namespace cli

@@ -1,0 +1,109 @@
+// The control panel's Advice section: `particle-lab advise` for the current
+// scene (advice_job.h), its progress, the table of picks and one-click Apply.
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "app.h"
+#include "format_number.h"
+
+namespace demo {
+
+namespace {
+std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "-"; }
+}  // namespace
+
+void App::drawAdvicePanel() {
+  const bool open = ImGui::CollapsingHeader("Advice: cheapest integrator within an error");
+  recordWidget("advice");
+  if (!open) return;
+  ImGui::TextWrapped("Measures a copy of this scene as particle-lab advise --max-steps %ld --repeats %d does: a "
+                     "reference, then per integrator the largest safe dt within E over [0, T], timed.",
+                     adviceRequest_.maxSteps, adviceRequest_.repeats);
+  ImGui::InputDouble("E (world units)", &adviceRequest_.error, 0.0, 0.0, "%.3g");
+  recordWidget("advise-error");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("largest particle position error allowed over [0, T]");
+  ImGui::InputDouble("T (s)", &adviceRequest_.horizon, 0.0, 0.0, "%.3g");
+  recordWidget("advise-horizon");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("simulated seconds the error is measured over");
+
+  // The three buttons keep their places whatever the job's state (scripts click them).
+  const bool running = advice_.running();
+  ImGui::BeginDisabled(running);
+  if (ImGui::Button("Advise")) guarded([&] { startAdvice(); });
+  ImGui::EndDisabled();
+  recordWidget("advise");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!running || advice_.cancelling());
+  if (ImGui::Button("Cancel")) advice_.cancel();
+  ImGui::EndDisabled();
+  recordWidget("advise-cancel");
+  ImGui::SameLine();
+  const bool applicable = advice_.state() == AdviceState::Done && advice_.advice().best >= 0 && adviceIsForThisScene();
+  ImGui::BeginDisabled(!applicable);
+  if (ImGui::Button("Apply")) guarded([&] { applyAdvice(); });
+  ImGui::EndDisabled();
+  recordWidget("advise-apply");
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("sets pane 1's integrator, dt and tolerance to the cheapest pick");
+
+  if (running) {
+    char label[64];
+    std::snprintf(label, sizeof label, advice_.cancelling() ? "cancelling" : "%.0f%%", 100.0 * advice_.progress());
+    ImGui::ProgressBar(static_cast<float>(advice_.progress()), ImVec2(-1.0f, 0.0f), label);
+    return;
+  }
+  if (advice_.state() == AdviceState::Cancelled) ImGui::TextDisabled("cancelled");
+  if (advice_.state() == AdviceState::Failed) ImGui::TextWrapped("failed: %s", advice_.message().c_str());
+  if (advice_.state() != AdviceState::Done) return;
+
+  const lab::Advice& a = advice_.advice();
+  ImGui::TextWrapped("%s, %s, T = %s s, E = %s; reference: %s%s", advice_.scene().label.c_str(),
+                     scenes::plural(a.survey.particles, "particle").c_str(), lab::general(advice_.request().horizon).c_str(),
+                     lab::general(advice_.request().error).c_str(), a.survey.reference.c_str(),
+                     adviceIsForThisScene() ? "" : " (another scene: advise again to apply)");
+  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
+  if (ImGui::BeginTable("picks", 4, flags)) {
+    for (const char* column : {"integrator", "dt / tol", "max error", "CPU s/sim s"}) ImGui::TableSetupColumn(column);
+    ImGui::TableHeadersRow();
+    for (std::size_t k = 0; k < a.picks.size(); ++k) {
+      const lab::IntegratorSurvey& scan = a.survey.integrators[k];
+      const lab::Pick& p = a.picks[k];
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      if (static_cast<int>(k) == a.best) ImGui::TextColored(ImVec4(0.4f, 1.0f, 0.4f, 1.0f), "%s", scan.integrator.c_str());
+      else ImGui::TextUnformatted(scan.integrator.c_str());
+      ImGui::TableNextColumn();
+      if (!scan.refused.empty()) {
+        ImGui::TextDisabled("refuses");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", scan.refused.c_str());
+        continue;
+      }
+      if (!p.found) {
+        ImGui::TextDisabled("none");
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("nothing within E on the scanned grid (%s)",
+                            scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str());
+        continue;
+      }
+      // An adaptive scheme's dt is its call interval; its tolerance sets the steps.
+      ImGui::TextUnformatted(scan.adaptive ? ("tol " + cell(p.candidate.tolerance)).c_str() : cell(p.candidate.dt).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(scan.adaptive ? "called every %s s" : "safe boundary %s s",
+                          cell(scan.adaptive ? p.candidate.dt : scan.safeDt).c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(cell(p.candidate.maxError).c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(cell(p.cpuPerSimulatedSecond).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("median of %s, %s to %s", scenes::plural(advice_.request().repeats, "repeat").c_str(),
+                          cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
+    }
+    ImGui::EndTable();
+  }
+  if (a.best < 0) ImGui::TextWrapped("no integrator meets E over T within its safe range");
+  else ImGui::TextWrapped("cheapest: %s", lab::pickArguments(a.picks[a.best].candidate).c_str());
+}
+
+}  // namespace demo

@@ -1,0 +1,13 @@
+#include "options/usage.h"
+
+#include <cstdio>
+
+#include "printable.h"
+
+namespace options {
+
+void printErrorLine(const char* program, const std::string& message) {
+  std::fprintf(stderr, "%s: %s\n", program, scenes::printable(message).c_str());
+}
+
+}  // namespace options

@@ -1,0 +1,72 @@
+#pragma once
+// One particle's motion through the contact pass of a step, and its impacts
+// against colliders found and applied one at a time, so that a pass that
+// orders disc and collider impacts by time (particle_contacts.cpp) and the
+// pass over colliders alone (collider_contacts.cpp) share one definition.
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "contact_path.h"
+
+namespace particles::contact {
+
+// The particle's path since its last event (path.t0, at path.x0: the step's
+// start or its last impact) and the step's end it leads to.
+struct Track {
+  Path path;
+  Eigen::Vector2d x1, v1;  // end of the step
+  int impacts = 0;         // events so far in this step
+
+  static Track of(const StepStart& start, int i, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+    return {Path::of(start, i, x, v), x.segment<2>(2 * i), v.segment<2>(2 * i), 0};
+  }
+  Eigen::Vector2d from() const { return path.x0; }
+  double t() const { return path.t0; }
+};
+
+// Each collider's bounding box (a half-plane's is everything), for a cheap
+// rejection of paths that pass nowhere near it.
+struct ColliderBoxes {
+  std::vector<Eigen::Vector2d> lo, hi;
+  explicit ColliderBoxes(const std::vector<Collider>& colliders);
+
+  // Whether the straight path a → b, grown by `margin`, meets any collider's
+  // box, or comes within margin of a half-plane: false means it hits nothing.
+  bool near(const std::vector<Collider>& colliders, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+            double margin) const {
+    const double loX = std::min(a.x(), b.x()) - margin, hiX = std::max(a.x(), b.x()) + margin;
+    const double loY = std::min(a.y(), b.y()) - margin, hiY = std::max(a.y(), b.y()) + margin;
+    for (std::size_t k = 0; k < lo.size(); ++k) {
+      const Collider& c = colliders[k];
+      if (c.shape == ColliderShape::HalfPlane) {
+        const double offset = c.normal.dot(c.points[0]);
+        if (std::min(c.normal.dot(a), c.normal.dot(b)) - offset <= margin) return true;
+      } else if (loX <= hi[k].x() && hiX >= lo[k].x() && loY <= hi[k].y() && hiY >= lo[k].y()) {
+        return true;
+      }
+    }
+    return false;
+  }
+};
+
+// The next impact of a particle of radius r on its track: the collider, the
+// fraction s of the chord from → x1 at which it enters, and the time τ.
+struct ColliderImpact {
+  int collider = -1;
+  double s = std::numeric_limits<double>::infinity();
+  double tau = std::numeric_limits<double>::infinity();
+};
+std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& colliders, const ColliderBoxes& boxes,
+                                                 const Track& track, double r, double slop, double dt);
+// Applies it: a bounce (−e times the normal velocity, Coulomb friction) or a
+// resting contact for the rest of the step; the track then starts at τ.
+void applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double dt,
+                         Track& track);
+// Out of impacts (a particle wedged in a narrow corner): the track's end is
+// put back to its last event, which is outside every collider.
+void stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
+                         double slop, Track& track);
+
+}  // namespace particles::contact

@@ -1,0 +1,226 @@
+// The runner's CSV counts what the step did: driven through the runner's own
+// step loop (demos/cli/run_loop.h), each row's force_evaluations, solves,
+// cg_iterations and internal_steps are compared with what a counting force
+// and a counting constraint saw during that step.
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cli/run_loop.h"
+#include "cli/step_output.h"
+#include "particles/constraints/rod.h"
+#include "particles/forces/gravity.h"
+#include "particles/forces/spring.h"
+#include "particles/integrators/implicit_euler.h"
+#include "particles/particle_system.h"
+
+using namespace particles;
+using Eigen::Vector2d;
+
+namespace {
+
+// Counts its evaluations and sums the CG iterations of the solves it sees:
+// the force accumulator is evaluated at the start of each derivative
+// evaluation, when the solver still reports the previous evaluation's solve.
+// Adds no force; its Jacobians are exactly zero.
+class CountingForce : public Force {
+ public:
+  explicit CountingForce(const ConstraintSolver& solver) : solver_(solver) {}
+  const char* type() const override { return "counting"; }
+  void apply(const Phase&, Eigen::VectorXd&) const override {
+    ++evaluations;
+    if (evaluations > 1) iterationsSeen += solver_.stats().iterations;
+  }
+  bool hasJacobians() const override { return true; }
+  void addJacobians(const Phase&, Triplets&, Triplets&) const override {}
+  void reset() const { evaluations = 0, iterationsSeen = 0; }
+
+  mutable int evaluations = 0;
+  mutable int iterationsSeen = 0;  // iterations of every solve but the last one of the step
+
+ private:
+  const ConstraintSolver& solver_;
+};
+
+// A rod that counts how often its rows are gathered (once per constraint solve).
+class CountingRod : public RodConstraint {
+ public:
+  using RodConstraint::RodConstraint;
+  void evaluate(const Phase& s, ConstraintRow& row) const override {
+    ++gathers;
+    RodConstraint::evaluate(s, row);
+  }
+  mutable int gathers = 0;
+};
+
+struct Row {
+  int cgIterations, solves, forceEvaluations, internalSteps;
+};
+
+// The count columns of every CSV row, by the header's names.
+std::vector<Row> countColumns(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, cli::kDiagnosticsHeader);
+  std::vector<std::string> names;
+  for (std::istringstream header(line); std::getline(header, line, ',');) names.push_back(line);
+  auto column = [&](const char* name) {
+    for (std::size_t k = 0; k < names.size(); ++k)
+      if (names[k] == name) return k;
+    ADD_FAILURE() << "no column " << name;
+    return std::size_t{0};
+  };
+  const std::size_t cg = column("cg_iterations"), solves = column("solves"),
+                    evaluations = column("force_evaluations"), steps = column("internal_steps");
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    for (std::istringstream fields(line); std::getline(fields, line, ',');) cells.push_back(line);
+    EXPECT_EQ(cells.size(), names.size());
+    if (cells.size() != names.size()) break;
+    rows.push_back({std::stoi(cells[cg]), std::stoi(cells[solves]), std::stoi(cells[evaluations]),
+                    std::stoi(cells[steps])});
+  }
+  return rows;
+}
+
+// Four rods from a pinned particle, released sideways, one of them counting its
+// gathers, plus the counting force; the solve by CG from a cold start, so that
+// every solve iterates.
+struct CountedChain {
+  ParticleSystem system;
+  const CountingForce* force = nullptr;
+  const CountingRod* rod = nullptr;
+};
+
+CountedChain countedChain() {
+  CountedChain c;
+  ParticleSystem& s = c.system;
+  for (int i = 0; i < 5; ++i) s.addParticle(Vector2d(0.1 * i, 0.0), 1.0);
+  s.setPinned(0, true);
+  c.rod = &static_cast<CountingRod&>(s.addConstraint(std::make_unique<CountingRod>(0, 1, 0.1)));
+  for (int i = 1; i < 4; ++i) s.addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1));
+  s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
+  c.force = &static_cast<CountingForce&>(s.addForce(std::make_unique<CountingForce>(s.solver())));
+  s.solver().settings.method = SolveMethod::ConjugateGradient;
+  s.solver().settings.warmStart = false;
+  return c;
+}
+
+// What the counting objects saw in each step, beside the step's own statistics.
+struct Seen {
+  int evaluations, gathers, iterations;
+  StepStats stats;
+};
+
+// Runs `steps` steps through the runner's loop; returns the CSV rows (row 0 first) and what was seen.
+std::vector<Row> runCounted(CountedChain& c, Integrator& integrator, double dt, int steps, std::vector<Seen>& seen) {
+  std::ostringstream csv;
+  csv << cli::kDiagnosticsHeader << '\n';
+  cli::RunLoop loop(c.system, integrator, dt, {&csv, nullptr, 1});
+  EXPECT_EQ(loop.start(), "");
+  for (int k = 0; k < steps; ++k) {
+    c.force->reset();
+    c.rod->gathers = 0;
+    EXPECT_EQ(loop.step(), "") << "step " << k + 1;
+    // The last solve of the step is still the solver's.
+    const int last = c.system.lastSolve().iterations;
+    seen.push_back({c.force->evaluations, c.rod->gathers, c.force->iterationsSeen + last, c.system.lastStepStats()});
+  }
+  return countColumns(csv.str());
+}
+
+}  // namespace
+
+TEST(RunnerCounts, FixedStepRowsCountEveryEvaluationSolveAndCgIteration) {
+  CountedChain c = countedChain();
+  auto rk4 = makeIntegrator("rk4");
+  std::vector<Seen> seen;
+  const std::vector<Row> rows = runCounted(c, *rk4, 0.005, 20, seen);
+  ASSERT_EQ(rows.size(), seen.size() + 1);
+  EXPECT_EQ(rows[0].solves + rows[0].forceEvaluations + rows[0].cgIterations + rows[0].internalSteps, 0);
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    const Row& row = rows[k + 1];
+    EXPECT_EQ(row.forceEvaluations, seen[k].evaluations) << "step " << k + 1;
+    EXPECT_EQ(row.forceEvaluations, 4) << "step " << k + 1;
+    EXPECT_EQ(row.solves, seen[k].gathers) << "step " << k + 1;
+    EXPECT_EQ(row.cgIterations, seen[k].iterations) << "step " << k + 1;
+    EXPECT_GT(row.cgIterations, row.solves) << "step " << k + 1;  // cold CG iterates in every solve
+    EXPECT_EQ(row.internalSteps, 1) << "step " << k + 1;
+  }
+}
+
+// dopri5 at output intervals shorter than its internal step: some rows take
+// no step (the output comes from the dense output) and count nothing; the
+// others count six evaluations, six solves per accepted or rejected step
+// (FSAL), and the first also k₁ and the starting-step probe.
+TEST(RunnerCounts, Dopri5RowsCountItsInternalStepsAndTheirEvaluations) {
+  CountedChain c = countedChain();
+  IntegratorSettings settings;
+  settings.tolerance = 1e-5;
+  auto dopri5 = makeIntegrator("dopri5", settings);
+  std::vector<Seen> seen;
+  const std::vector<Row> rows = runCounted(c, *dopri5, 0.002, 100, seen);
+  ASSERT_EQ(rows.size(), seen.size() + 1);
+  int emptyRows = 0, steppedRows = 0;
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    const Row& row = rows[k + 1];
+    const int attempts = row.internalSteps + seen[k].stats.rejectedSteps;
+    EXPECT_EQ(row.forceEvaluations, seen[k].evaluations) << "step " << k + 1;
+    EXPECT_EQ(row.forceEvaluations, 6 * attempts + (k == 0 ? 2 : 0)) << "step " << k + 1;
+    EXPECT_EQ(row.solves, seen[k].gathers) << "step " << k + 1;
+    EXPECT_EQ(row.cgIterations, row.solves ? seen[k].iterations : 0) << "step " << k + 1;
+    (row.internalSteps == 0 ? emptyRows : steppedRows) += 1;
+  }
+  EXPECT_GT(emptyRows, 0);
+  EXPECT_GT(steppedRows, 0);
+}
+
+// Implicit Euler evaluates the forces once per step and solves its own
+// systems (Newton passes on the constraints; CG on the cloth-like spring
+// net): the CSV carries the step's solves and CG iterations.
+TEST(RunnerCounts, ImplicitEulerRowsCountItsEvaluationAndSolves) {
+  {
+    CountedChain c = countedChain();
+    auto implicit = makeIntegrator("implicit-euler");
+    std::vector<Seen> seen;
+    const std::vector<Row> rows = runCounted(c, *implicit, 0.05, 20, seen);
+    ASSERT_EQ(rows.size(), seen.size() + 1);
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+      const Row& row = rows[k + 1];
+      EXPECT_EQ(row.forceEvaluations, seen[k].evaluations) << "step " << k + 1;
+      EXPECT_EQ(row.forceEvaluations, 1) << "step " << k + 1;
+      EXPECT_EQ(row.solves, seen[k].stats.solves) << "step " << k + 1;
+      EXPECT_GE(row.solves, 1) << "step " << k + 1;
+      EXPECT_EQ(row.cgIterations, seen[k].stats.cgIterations) << "step " << k + 1;
+      EXPECT_EQ(row.internalSteps, 1) << "step " << k + 1;
+    }
+  }
+  {
+    // Springs only: the CG solve, whose iterations the row sums.
+    CountedChain c;
+    ParticleSystem& s = c.system;
+    for (int i = 0; i < 6; ++i) s.addParticle(Vector2d(0.1 * i, 0.0), 1.0);
+    s.setPinned(0, true);
+    for (int i = 0; i < 5; ++i) s.addForce(std::make_unique<SpringForce>(i, i + 1, 0.1, 200.0, 0.5));
+    s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
+    c.force = &static_cast<CountingForce&>(s.addForce(std::make_unique<CountingForce>(s.solver())));
+    CountingRod unused(0, 1, 0.1);
+    c.rod = &unused;
+    ImplicitEulerIntegrator implicit;
+    implicit.settings.solver = ImplicitLinearSolver::ConjugateGradient;
+    std::vector<Seen> seen;
+    const std::vector<Row> rows = runCounted(c, implicit, 0.02, 20, seen);
+    ASSERT_EQ(rows.size(), seen.size() + 1);
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+      const Row& row = rows[k + 1];
+      EXPECT_EQ(row.forceEvaluations, seen[k].evaluations) << "step " << k + 1;
+      EXPECT_EQ(row.solves, 1) << "step " << k + 1;
+      EXPECT_EQ(row.cgIterations, seen[k].stats.cgIterations) << "step " << k + 1;
+      EXPECT_GT(row.cgIterations, 0) << "step " << k + 1;
+    }
+  }
+}
