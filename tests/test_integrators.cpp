@@ -197,11 +197,24 @@ TEST(Integrators, FixedStepSchemesReportDtAsTheirInternalStep) {
     system.addParticle(Vector2d::Zero(), 1.0);
     system.step(*integrator, 0.02);
     // Substepping schemes report their substep.
-    bool substepping = false;
-    for (const IntegratorInfo& info : integratorTable())
-      if (c.name == std::string(info.name)) substepping = info.usesSubsteps;
+    const bool substepping = requireIntegrator(c.name).usesSubsteps;
     const double expected = substepping ? 0.02 / IntegratorSettings{}.substeps : 0.02;
     EXPECT_DOUBLE_EQ(integrator->lastInternalStep(), expected) << c.name;
+  }
+}
+
+TEST(Integrators, LookupByNameFindsEveryTableEntryAndNothingElse) {
+  std::string names;
+  for (const IntegratorInfo& info : integratorTable()) {
+    EXPECT_EQ(findIntegrator(info.name), &info) << info.name;
+    EXPECT_EQ(&requireIntegrator(info.name), &info) << info.name;
+    names += (names.empty() ? "" : ", ") + std::string(info.name);
+  }
+  EXPECT_EQ(integratorNames(), names);
+  for (const char* unknown : {"leapfrog", "", "RK4", "rk4 ", "euler,rk4"}) {
+    EXPECT_EQ(findIntegrator(unknown), nullptr) << unknown;
+    test_support::expectRejected([&] { requireIntegrator(unknown); },
+                                 "unknown integrator '" + std::string(unknown) + "' (valid: " + names + ")");
   }
 }
 
