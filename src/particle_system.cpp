@@ -171,7 +171,32 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   return stats;
 }
 
+namespace {
+// Every straight path a contact sweeps (particle or edge, from x0 to x) lies
+// in the box around all of x0 and x grown by `grow`: when that box meets no
+// collider's bounds (a half-plane has none), no sweep can hit, and a substep's
+// collision pass over a cloth far from the walls costs one pass over the positions.
+bool pathsMayReachColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0,
+                            const Eigen::VectorXd& x, double grow) {
+  const auto n = static_cast<Eigen::Index>(x.size() / 2);
+  if (n == 0) return false;
+  const Eigen::Map<const Eigen::Array2Xd> start(x0.data(), 2, n), end(x.data(), 2, n);
+  const Eigen::Array2d lo = start.rowwise().minCoeff().min(end.rowwise().minCoeff()) - grow;
+  const Eigen::Array2d hi = start.rowwise().maxCoeff().max(end.rowwise().maxCoeff()) + grow;
+  if (!lo.allFinite() || !hi.allFinite()) return true;  // the per-particle passes deal with it
+  for (const Collider& c : colliders) {
+    Eigen::Vector2d cLo, cHi;
+    if (!c.bounds(cLo, cHi)) return true;
+    if ((lo <= cHi.array()).all() && (hi >= cLo.array()).all()) return true;
+  }
+  return false;
+}
+}  // namespace
+
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
+  if (collidable_.size() < 2 && edges_.empty() &&
+      !pathsMayReachColliders(colliders_, x0, x_, radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0))
+    return 0;
   // Each particle's path over the interval runs from (x0, v0) to its state as
   // the integrator left it (contact_path.h).
   const StepStart start{x0, v0, dt};
