@@ -225,7 +225,7 @@ plot f using 1:(positive($2)) title 'plain CG, cold start', f using 1:(positive(
      [*:*] x with lines dt 2 lc 'gray' title 'iterations = m'
 
 # --- small steps (XPBD) -----------------------------------------------------
-# small_steps.csv: scene,family,split,budget,substeps,iterations,dt,cpu,constraint_error,energy_loss,position_error,exploded
+# small_steps.csv: scene,family,split,budget,substeps,iterations,dt,cpu,constraint_error,energy_loss,position_error,failure
 f = data.'/small_steps.csv'
 set logscale xy
 set xlabel 'budget n = substeps × iterations per 1/60 s step'
@@ -248,7 +248,7 @@ set ylabel 'position error / diagonal'
 set key inside bottom left
 do for [scene in "chain80 stiff-cloth hair"] {
   set title scene
-  plot for [fam in "xpbd implicit-euler rk4"] f using (strcol(1) eq scene && strcol(2) eq fam && $12 == 0 ? positive($8) : NaN):(positive($11)) with points pt 7 title fam
+  plot for [fam in "xpbd implicit-euler rk4"] f using (strcol(1) eq scene && strcol(2) eq fam && strcol(12) eq 'none' ? positive($8) : NaN):(positive($11)) with points pt 7 title fam
 }
 unset multiplot
 unset title

@@ -150,28 +150,56 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   // Settings are public fields: check them before anything moves, so a bad
   // value never leaves a step half done.
   solver_.settings.validate();
-  const bool colliding = !colliders_.empty() || collidable_.size() > 1;
-  if (colliding) {
+  const bool collideAfter = colliding() && !integrator.collidesInSubsteps();
+  if (colliding()) {
     contactSettings_.validate();
     if (collidable_.size() > 1)
       requireInRange("particle contact restitution", contacts_.restitution, 0.0, 1.0);
+  }
+  if (collideAfter) {
     startX_ = x_;
     startV_ = v_;
   }
+  contactsLastStep_ = 0;
   StepStats stats = integrator.step(*this, dt);
   StepStats untaken = takeEvaluationStats();  // evaluations the integrator left in the tally
   untaken.internalSteps = 0;
   stats += untaken;
-  contactsLastStep_ = colliding ? collide(dt) : 0;
+  if (collideAfter) collideOver(startX_, startV_, dt);
   time_ += dt;
   lastStepStats_ = stats;
   return stats;
 }
 
-int ParticleSystem::collide(double dt) {
-  // Each particle's path over the step runs from its start to its state as the
-  // integrator left it (contact_path.h).
-  const StepStart start{startX_, startV_, dt};
+namespace {
+// Every straight path a contact sweeps (particle or edge, from x0 to x) lies
+// in the box around all of x0 and x grown by `grow`: when that box meets no
+// collider's bounds (a half-plane has none), no sweep can hit, and a substep's
+// collision pass over a cloth far from the walls costs one pass over the positions.
+bool pathsMayReachColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0,
+                            const Eigen::VectorXd& x, double grow) {
+  const auto n = static_cast<Eigen::Index>(x.size() / 2);
+  if (n == 0) return false;
+  const Eigen::Map<const Eigen::Array2Xd> start(x0.data(), 2, n), end(x.data(), 2, n);
+  const Eigen::Array2d lo = start.rowwise().minCoeff().min(end.rowwise().minCoeff()) - grow;
+  const Eigen::Array2d hi = start.rowwise().maxCoeff().max(end.rowwise().maxCoeff()) + grow;
+  if (!lo.allFinite() || !hi.allFinite()) return true;  // the per-particle passes deal with it
+  for (const Collider& c : colliders) {
+    Eigen::Vector2d cLo, cHi;
+    if (!c.bounds(cLo, cHi)) return true;
+    if ((lo <= cHi.array()).all() && (hi >= cLo.array()).all()) return true;
+  }
+  return false;
+}
+}  // namespace
+
+int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
+  if (collidable_.size() < 2 && edges_.empty() &&
+      !pathsMayReachColliders(colliders_, x0, x_, radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0))
+    return 0;
+  // Each particle's path over the interval runs from (x0, v0) to its state as
+  // the integrator left it (contact_path.h).
+  const StepStart start{x0, v0, dt};
   const bool discs = collidable_.size() > 1, walls = !colliders_.empty(), edges = walls && !edges_.empty();
   lastFree_ = x_;
   int contacts = 0;
@@ -183,8 +211,8 @@ int ParticleSystem::collide(double dt) {
   // its path comes near one (as does an edge, only if one of its ends does).
   if (walls) {
     double margin = radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0;
-    if (edges) margin = std::max(margin, edgeReach(edges_, startX_, x_));
-    markNearColliders(colliders_, startX_, x_, margin, near_);
+    if (edges) margin = std::max(margin, edgeReach(edges_, x0, x_));
+    markNearColliders(colliders_, x0, x_, margin, near_);
     wallsOnly_ = near_;
     if (discs) {
       for (int i : collidable_) wallsOnly_[i] = 0;  // resolved with the discs
@@ -212,6 +240,7 @@ int ParticleSystem::collide(double dt) {
     if (walls) resolved += pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
     if (largest <= settled && resolved == 0) break;
   }
+  contactsLastStep_ += contacts;
   return contacts;
 }
 

@@ -83,7 +83,10 @@ App::App(DemoOptions options)
 
   SceneChoice first;
   const options::SceneSource& source = options_.source;
-  if (!source.sceneFile.empty()) {
+  if (options_.sceneKey) {
+    for (const SceneKey& k : sceneKeys())
+      if (k.key == static_cast<unsigned char>(*options_.sceneKey)) first = k.choice;
+  } else if (!source.sceneFile.empty()) {
     first.file = source.sceneFile;
     first.label = source.sceneFile.substr(source.sceneFile.find_last_of('/') + 1);
   } else {

@@ -11,6 +11,7 @@
 #include "options/option_checks.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
+#include "scene_keys.h"
 
 namespace demo {
 
@@ -79,6 +80,11 @@ DemoOptions parseOptions(int argc, char** argv) {
   std::string integrator;
   o.source.scene = "cloth";
   o.source.addOptions(cli);
+  std::string key;
+  auto* keyOption = cli.add_option("--key", key,
+                                   "start with the scene of a number key, 1-9 or 0, as pressing it (0: the stiff "
+                                   "64x64 cloth with xpbd at 60 Hz; press h in the window for the list)");
+  for (const char* other : {"--scene", "--scene-file", "--param", "--preset"}) keyOption->excludes(cli.get_option(other));
   auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
   auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
   auto* compareOption =
@@ -123,6 +129,14 @@ DemoOptions parseOptions(int argc, char** argv) {
     }
   } catch (const std::invalid_argument& e) {
     badUsage(e.what());
+  }
+  if (*keyOption) {
+    std::string keys;
+    for (const SceneKey& k : sceneKeys()) {
+      if (key.size() == 1 && static_cast<unsigned char>(key[0]) == k.key) o.sceneKey = key[0];
+      keys += std::string(keys.empty() ? "" : ", ") + static_cast<char>(k.key);
+    }
+    if (!o.sceneKey) badUsage("--key expects one of " + keys + ", got '" + key + "'");
   }
   if (*framesOption) o.frames = frames;
   if (*compareOption)

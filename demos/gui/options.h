@@ -21,6 +21,7 @@ ComparePane parseComparePane(const std::string& entry);
 
 struct DemoOptions {
   options::SceneSource source;                  // --scene (default cloth), --scene-file, --param, --preset
+  std::optional<char> sceneKey;                 // --key K: the scene of number key K instead (scene_keys.h)
   std::optional<std::string> integrator;        // default: the scene's
   std::optional<double> dt;                     // default: the scene's
   double tolerance = particles::IntegratorSettings{}.tolerance;  // --tolerance: dopri5's local error tolerance

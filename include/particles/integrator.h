@@ -57,6 +57,11 @@ class Integrator {
   // scheme's own solves, internal and rejected steps, and any failure.
   virtual StepStats step(ParticleSystem& system, double dt) = 0;
 
+  // True for a scheme that resolves contacts inside its own substeps, calling
+  // ParticleSystem::collideOver after each; the step's collision pass over the
+  // whole step (ParticleSystem::step) is then skipped.
+  virtual bool collidesInSubsteps() const { return false; }
+
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }
 

@@ -100,11 +100,22 @@ class ParticleSystem {
   StepStats takeEvaluationStats();
 
   // One step: keep the start state → integrate by dt → collide (continuous,
-  // from the start state; skipped without colliders or collidable discs) →
-  // advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
+  // from the start state; skipped without colliders or collidable discs, and
+  // left to the integrator when it collides inside its substeps) → advance
+  // the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
   StepStats step(Integrator& integrator, double dt);
   const StepStats& lastStepStats() const { return lastStepStats_; }
+
+  // Colliders or at least two collidable discs: step() has a collision phase.
+  bool colliding() const { return !colliders_.empty() || collidable_.size() > 1; }
+  // The collision phase over an interval dt that began at (x0, v0) and ends at
+  // the present state: colliders (continuous, along each particle's path from
+  // x0) → disc impacts → edges → resting passes over discs and colliders.
+  // step() runs it once over the whole step after the integrator, or an
+  // integrator that collides inside its substeps (Integrator::collidesInSubsteps)
+  // runs it after each substep. Returns the contacts, which contactsLastStep() sums.
+  int collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt);
 
   // --- diagnostics --------------------------------------------------------
   double kineticEnergy() const;
@@ -132,11 +143,6 @@ class ParticleSystem {
   // Collision scratch: the step's start and the last known free positions.
   Eigen::VectorXd startX_, startV_, lastFree_;
   std::vector<char> near_, wallsOnly_;  // near a collider; and of those, not discs (markNearColliders)
-
-  // The collision phase of step(): discs against each other and the colliders
-  // (continuous, in time order) → other particles against the colliders →
-  // edges → resting passes over discs, edges and colliders. Returns the contacts.
-  int collide(double dt);
   int contactsLastStep_ = 0;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;

@@ -3,9 +3,9 @@
 // xpbd at several substep counts, beside one plain RK4 step of the same cloth
 // in the same run (the issue's yardstick: 16 ms ≈ five RK4 steps). Each xpbd
 // benchmark first runs one simulated second so the cloth hangs loaded, then
-// reports the worst spring strain | |d|/r − 1 | seen over the warm-up and the
-// timed frames (the issue asks for ≤ 3 %; test_integrators_xpbd checks it for
-// the 40-substep configuration).
+// reports the worst spring strain | |d|/r − 1 | seen over the warm-up and ten
+// frames after the timed ones (the issue asks for ≤ 3 % in ≤ 16 ms; 30 substeps of one pass
+// meet both here, and test_integrators_xpbd checks the strain of that setting).
 //
 //   build/tests/bench_stiff_cloth --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
@@ -39,13 +39,18 @@ void BM_StiffClothXpbdFrame(benchmark::State& state) {
   auto xpbd = particles::makeIntegrator("xpbd", settings);
   particles::ParticleSystem& system = *scene.system;
   const double frame = 1.0 / 60.0;
-  for (int k = 0; k < 60; ++k) system.step(*xpbd, frame);
-  double worst = worstSpringStrain(system);
-  for (auto _ : state) {
+  double worst = 0.0;
+  for (int k = 0; k < 60; ++k) {
     system.step(*xpbd, frame);
-    state.PauseTiming();
     worst = std::max(worst, worstSpringStrain(system));
-    state.ResumeTiming();
+  }
+  // The timed frames run back to back: the strain walks every spring object
+  // and would leave the caches cold for the next frame, so it is taken over
+  // ten frames after them (the loaded cloth's strain is steady by then).
+  for (auto _ : state) system.step(*xpbd, frame);
+  for (int k = 0; k < 10; ++k) {
+    system.step(*xpbd, frame);
+    worst = std::max(worst, worstSpringStrain(system));
   }
   state.counters["max_strain"] = worst;
   if (!system.finite()) state.SkipWithError("the cloth blew up");
@@ -54,9 +59,11 @@ void BM_StiffClothXpbdFrame(benchmark::State& state) {
 void BM_StiffClothRk4Step(benchmark::State& state) {
   scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(static_cast<int>(state.range(0))));
   auto rk4 = particles::makeIntegrator("rk4");
-  // RK4's stable step on this cloth is below 1/1000 s; the time of a step
-  // does not depend on its size.
-  for (auto _ : state) scene.system->step(*rk4, 2e-4);
+  // RK4's stable step on this cloth is about 1e-4 s (|λ| dt ≤ 2.8 with the
+  // stiffest mode near 3e4 /s; 2e-4 blows up within a few hundred steps); the
+  // time of a step does not depend on its size, so 5e-5 keeps it finite for
+  // any number of repeats.
+  for (auto _ : state) scene.system->step(*rk4, 5e-5);
   if (!scene.system->finite()) state.SkipWithError("the cloth blew up");
 }
 
@@ -66,6 +73,7 @@ BENCHMARK(BM_StiffClothRk4Step)->ArgNames({"n"})->Arg(128)->Unit(benchmark::kMil
 BENCHMARK(BM_StiffClothXpbdFrame)
     ->ArgNames({"n", "substeps", "iterations"})
     ->Args({128, 20, 1})
+    ->Args({128, 28, 1})
     ->Args({128, 30, 1})
     ->Args({128, 40, 1})
     ->Args({128, 10, 2})

@@ -13,6 +13,7 @@
 #include "scene.h"
 #include "scene_file/scene_file.h"
 #include "scene_keys.h"
+#include "scenes/cloth.h"
 
 using namespace demotest;
 
@@ -272,6 +273,51 @@ TEST(DemoKeys, EveryScenePlusEveryIntegratorByKeyThenQuitExitsZero) {
     ASSERT_NE(log.overlay("hud"), nullptr);     // f adds the force legend to the bottom bar
     EXPECT_NE(log.overlay("hud")->text.find("arrows: --> "), std::string::npos) << log.overlay("hud")->text;
   }
+}
+
+// The stiff 64×64 cloth (k_s = 4e5, 8-way springs, scenes::stiffClothParams)
+// paired with xpbd at 1/60 s, started by --key 0 as pressing 0 would: after a
+// simulated second of hanging loaded, every spring of the grid is within 3 %
+// of its rest length (frame times: scripts/demo-frame-times.sh).
+TEST(DemoKeys, KeyZeroRunsTheStiffClothWithXpbdAt60HzWithinItsStrainBound) {
+  const std::string dir = outputDirectory("StiffCloth");
+  const RunResult r = runDemo(dir, "--key 0 --frames 60 --log-state state.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const StateLog log = readStateLog(dir + "/state.txt");
+  ASSERT_EQ(log.panes.size(), 1u);
+  const LoggedPane& pane = log.panes[0];
+  EXPECT_EQ(pane.integrator, "xpbd");
+  EXPECT_DOUBLE_EQ(pane.dt, 1.0 / 60.0);
+  EXPECT_GE(pane.time, 0.9);  // about one simulated second
+  EXPECT_FALSE(pane.diverged);
+  const int n = 64;
+  ASSERT_EQ(pane.particles.size(), static_cast<std::size_t>(n * n));
+  const double rest = scenes::stiffClothParams(n).rest;
+  double worst = 0.0;
+  auto spring = [&](int a, int b, double r) {
+    const double length = (pane.particles[a].x - pane.particles[b].x).norm();
+    worst = std::max(worst, std::abs(length / r - 1.0));
+  };
+  for (int row = 0; row < n; ++row)
+    for (int col = 0; col < n; ++col) {
+      const int id = row * n + col;
+      if (col + 1 < n) spring(id, id + 1, rest);
+      if (row + 1 < n) spring(id, id + n, rest);
+      if (row + 1 < n && col + 1 < n) {
+        spring(id, id + n + 1, std::sqrt(2.0) * rest);
+        spring(id + 1, id + n, std::sqrt(2.0) * rest);
+      }
+    }
+  EXPECT_LE(worst, 0.03);
+  EXPECT_GT(worst, 0.002);  // loaded: the bound is not met by standing still
+}
+
+TEST(DemoKeys, AnUnknownSceneKeyIsRefusedInOneLine) {
+  const RunResult r = runDemo(outputDirectory("BadKey"), "--key x --frames 1");
+  EXPECT_EQ(r.exitCode, 2);
+  ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("--key expects one of"), std::string::npos) << r.err;
 }
 
 TEST(DemoKeys, IntegratorKeyKeepsTheState) {

@@ -19,14 +19,15 @@ class Constraint;
 //   applies the forces without a position form (gravity, drag, the mouse spring,
 //     springs of zero stiffness) at (x, v):   v ← v + h W f,  xⁿ ← x,  x ← x + h v;
 //   projects, `iterations` times in Gauss–Seidel order, the damped springs as
-//     compliant distance constraints (α = 1/k_s, β = k_d; xpbd/distance.h), the
+//     compliant distance constraints (α = 1/k_s, β = k_d; xpbd/distance.h, in
+//     colour order), the
 //     angle springs as compliant angle constraints (xpbd/angle.h), then the rods,
 //     wires and lines as hard constraints through their C and J kernels
 //     (xpbd/constraint_projection.h), the multipliers λ starting at 0;
-//   sets v ← (x − xⁿ)/h.
-// Contacts are resolved once after the whole step by ParticleSystem::step's
-// continuous collision pass, swept along each particle's path over dt, as for
-// every other integrator.
+//   sets v ← (x − xⁿ)/h;
+//   resolves contacts over the substep (ParticleSystem::collideOver, swept
+//     along each particle's path from xⁿ), so that a contact's impulse enters
+//     the next substep's prediction and constraints.
 // The position error is first order in h. A force type the table in xpbd.cpp
 // does not know is refused with an exception naming it.
 class XpbdIntegrator : public Integrator {
@@ -35,6 +36,7 @@ class XpbdIntegrator : public Integrator {
   int iterations = IntegratorSettings{}.iterations;
 
   const char* name() const override { return "xpbd"; }
+  bool collidesInSubsteps() const override { return true; }
   StepStats step(ParticleSystem& system, double dt) override;
   void configure(const IntegratorSettings& settings) override;
 
@@ -51,15 +53,17 @@ class XpbdIntegrator : public Integrator {
   void prepare(const ParticleSystem& system, double h);
   void applyForces(ParticleSystem& system);
   void predict(ParticleSystem& system, double h);
-  void project(ParticleSystem& system);
+  void collide(ParticleSystem& system, double h);
+  void project(ParticleSystem& system, int pass);
   void updateVelocities(ParticleSystem& system, double h);
 
   Forms forms_;
   std::uint64_t preparedStamp_ = 0;  // ParticleSystem::structureStamp() forms_ was built for
   double preparedStep_ = 0.0;        // and the substep h
-  std::vector<double> distanceLambda_, angleLambda_;
+  DistanceBatch distances_;
+  std::vector<double> angleLambda_;
   std::vector<Eigen::Vector2d> blocks_;
-  Eigen::VectorXd force_, xn_;
+  Eigen::VectorXd force_, xn_, vn_;  // f; x and v at the substep's start
 };
 
 }  // namespace particles

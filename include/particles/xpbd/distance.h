@@ -1,6 +1,11 @@
 #pragma once
-// Compliant distance constraint: a damped spring in position form.
-#include <cmath>
+// Compliant distance constraints: damped springs in position form, laid out
+// flat for the substep loop.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "particles/xpbd/multiplier.h"
 
@@ -10,39 +15,55 @@ namespace particles {
 //   C = |d| − r,   ∇_i C = u,   ∇_j C = −u,   ∇C W ∇Cᵀ = w_i + w_j,
 // and with compliance α = 1/k_s and damping β = k_d it is the spring
 // f_i = −[k_s(|d| − r) + k_d ḋ·u] u of forces/spring.h.
-// ∇C W ∇Cᵀ does not depend on x, so the denominator of Δλ is set once per
-// step by prepareDistance.
 struct CompliantDistance {
   int i = 0, j = 0;
   double rest = 0.0;  // r, world units
   Compliance compliance;
-  double inverseDenominator = 0.0;  // 1/((1 + γ)(w_i + w_j) + α̃)
 };
 
-inline void prepareDistance(CompliantDistance& c, const double* w) {
-  c.inverseDenominator = inverseDenominator(w[c.i] + w[c.j], c.compliance);
-}
+// The distance constraints of a scene as structure-of-arrays, built once per
+// structure and substep h: particle offsets and an entry of rest length,
+// inverse masses, compliance and, since ∇C W ∇Cᵀ = w_i + w_j does not depend
+// on x, the denominator of Δλ. The constraints are reordered by a greedy
+// colouring: within a colour no two share a particle, so a colour is
+// projected in blocks whose square roots and divisions are packed and whose
+// projections the processor overlaps. It is Gauss–Seidel over
+// the colour order; constraints at a particle that already has 63 colours are
+// projected one by one at the end.
+class DistanceBatch {
+ public:
+  void build(const std::vector<CompliantDistance>& constraints, const Eigen::VectorXd& inverseMass);
+  std::size_t size() const { return first_.size(); }
+  std::size_t colours() const { return colourEnd_.size(); }
 
-// One projection of the constraint on the flat position array x (x0, y0, x1, ...),
-// given the positions xn at the start of the substep, the inverse masses w and the
-// constraint's multiplier λ (updated in place); prepareDistance first.
-inline void projectDistance(const CompliantDistance& c, const double* w, const double* xn,
-                            double* x, double& lambda) {
-  const int a = 2 * c.i, b = 2 * c.j;
-  const double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1];
-  const double length = std::sqrt(dx * dx + dy * dy);
-  if (length == 0.0) return;  // no direction
-  const double inverseLength = 1.0 / length;
-  const double ux = dx * inverseLength, uy = dy * inverseLength;
-  // ∇C·(x − xⁿ) = u·((x_i − xⁿ_i) − (x_j − xⁿ_j))
-  const double displacement =
-      ux * ((x[a] - xn[a]) - (x[b] - xn[b])) + uy * ((x[a + 1] - xn[a + 1]) - (x[b + 1] - xn[b + 1]));
-  const double dl = multiplierStep(length - c.rest, displacement, c.compliance, lambda, c.inverseDenominator);
-  lambda += dl;
-  x[a] += w[c.i] * dl * ux;
-  x[a + 1] += w[c.i] * dl * uy;
-  x[b] -= w[c.j] * dl * ux;
-  x[b + 1] -= w[c.j] * dl * uy;
-}
+  // Pass number `pass` of `passes` over every constraint, Gauss–Seidel at the
+  // flat positions x (x0, y0, x1, ...), with xⁿ the positions at the start of
+  // the substep. The multipliers start at 0 on pass 0 and are kept between
+  // passes (not stored when there is one pass).
+  void project(const double* xn, double* x, int pass, int passes);
+  // λ of the k-th constraint in the batch's order after a pass of several.
+  double multiplier(std::size_t k) const { return lambda_[k]; }
+
+ private:
+  enum class Multipliers { None, Start, Accumulate };
+  template <bool kDamped, Multipliers kLambda>
+  void projectRange(std::size_t begin, std::size_t end, std::size_t block, const double* xn, double* x);
+
+  // A constraint's parameters; equal ones are shared (a regular cloth has
+  // two), so a pass streams 12 bytes per constraint from memory.
+  struct Entry {
+    double rest = 0.0;                // r
+    double wi = 0.0, wj = 0.0;        // w_i, w_j
+    Compliance compliance;            // α̃ = α/h², γ = αβ/h
+    double inverseDenominator = 0.0;  // 1/((1 + γ)(w_i + w_j) + α̃)
+  };
+  std::vector<std::int32_t> first_, second_;  // 2i and 2j: offsets into x
+  std::vector<std::int32_t> entry_;           // into entries_
+  std::vector<Entry> entries_;
+  std::vector<double> lambda_;
+  std::vector<std::size_t> colourEnd_;        // colour c is [colourEnd_[c−1], colourEnd_[c])
+  std::size_t serialBegin_ = 0;               // [serialBegin_, size()) one by one
+  bool damped_ = false;                       // some γ ≠ 0
+};
 
 }  // namespace particles
