@@ -161,7 +161,7 @@ TEST(RunnerCounts, Dopri5RowsCountItsInternalStepsAndTheirEvaluations) {
   EXPECT_GT(steppedRows, 0);
 }
 
-// Implicit Euler evaluates the forces once per step and solves its own
+// Implicit Euler evaluates the forces in each Newton pass and solves its own
 // systems (Newton passes on the constraints; CG on the cloth-like spring
 // net): the CSV carries the step's solves and CG iterations.
 TEST(RunnerCounts, ImplicitEulerRowsCountItsEvaluationAndSolves) {
@@ -174,7 +174,7 @@ TEST(RunnerCounts, ImplicitEulerRowsCountItsEvaluationAndSolves) {
     for (std::size_t k = 0; k < seen.size(); ++k) {
       const Row& row = rows[k + 1];
       EXPECT_EQ(row.forceEvaluations, seen[k].evaluations) << "step " << k + 1;
-      EXPECT_EQ(row.forceEvaluations, 1) << "step " << k + 1;
+      EXPECT_GE(row.forceEvaluations, 1) << "step " << k + 1;
       EXPECT_EQ(row.solves, seen[k].stats.solves) << "step " << k + 1;
       EXPECT_GE(row.solves, 1) << "step " << k + 1;
       EXPECT_EQ(row.cgIterations, seen[k].stats.cgIterations) << "step " << k + 1;
