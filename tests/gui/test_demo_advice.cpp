@@ -37,7 +37,8 @@ std::string typeInto(long long frame, const LoggedOverlay& w, const std::string&
 StateLog adviceLayout(const std::string& dir, const std::string& scene) {
   const std::string window = " --window 1180x900";
   EXPECT_EQ(runDemo(dir, "--scene " + scene + window + " --frames 2 --log-state closed.txt").exitCode, 0);
-  const LoggedOverlay* header = readStateLog(dir + "/closed.txt").widget("advice");
+  const StateLog closed = readStateLog(dir + "/closed.txt");
+  const LoggedOverlay* header = closed.widget("advice");
   EXPECT_NE(header, nullptr) << "the panel has an advice section";
   if (!header) return {};
   EXPECT_EQ(runDemo(dir, "--scene " + scene + window + " --frames 8 --log-state open.txt", clickAt(2, *header)).exitCode, 0);

@@ -332,7 +332,8 @@ TEST(DemoDrawing, ClosedFormGhostMatchesTheExactSolution) {
 TEST(DemoBugs, B01_EscClosesAnOpenComboInsteadOfQuitting) {
   const std::string dir = outputDirectory("EscCombo");
   ASSERT_EQ(runDemo(dir, "--frames 2 --log-state layout.txt").exitCode, 0);
-  const LoggedOverlay* combo = readStateLog(dir + "/layout.txt").widget("scene");
+  const StateLog layout = readStateLog(dir + "/layout.txt");
+  const LoggedOverlay* combo = layout.widget("scene");
   ASSERT_NE(combo, nullptr);
   const std::string open = clickAt(2, *combo);
   ASSERT_EQ(runDemo(dir, "--frames 8 --log-state opened.txt", open).exitCode, 0);
