@@ -31,10 +31,6 @@ struct AdviseOptions {
 std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "–"; }
 
 int advise(const AdviseOptions& o) {
-  if (!(std::isfinite(o.error) && o.error > 0.0)) throw UsageError("--error must be > 0, got " + cell(o.error));
-  particles::requirePositive("--horizon", o.horizon);
-  particles::requirePositive("--reference-tolerance", o.referenceTolerance);
-  if (!std::isfinite(o.horizon)) throw UsageError("--horizon must be finite, got " + cell(o.horizon));
   o.source.load();  // bad scene input fails here, before any measurement
 
   lab::SurveySettings settings;
@@ -100,8 +96,11 @@ Command addAdviseCommand(CLI::App& app) {
   auto options = std::make_shared<AdviseOptions>();
   options->source.addOptions(*command);
   command->add_option("--error", options->error, "E: largest particle position error allowed, world units")
-      ->required();
-  command->add_option("--horizon", options->horizon, "T: simulated seconds the error is measured over")->required();
+      ->required()
+      ->check(options::positiveNumber());
+  command->add_option("--horizon", options->horizon, "T: simulated seconds the error is measured over")
+      ->required()
+      ->check(options::positiveNumber());
   command->add_option("--integrator", options->integrators,
                       "consider only these integrators (repeatable; default: every one)")
       ->check(options::integratorName());
@@ -113,7 +112,8 @@ Command addAdviseCommand(CLI::App& app) {
       ->check(options::decimalInteger(1, 1000000000));
   command->add_option("--reference-tolerance", options->referenceTolerance,
                       "odeint's error tolerance per step for the reference (checked at 100x it)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::positiveNumber());
   return {command, [=] { return advise(*options); }};
 }
 

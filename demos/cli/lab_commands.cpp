@@ -35,21 +35,16 @@ std::shared_ptr<ExperimentOptions> addLabOptions(CLI::App* command) {
       ->check(options::decimalInteger(1, 256));
   command->add_option("--max-stretch", options->criterion.maxRelativeConstraintError,
                       "failure threshold on the relative constraint error max |C|/r")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::numberInRange(1e-6, 10.0));
   command->add_option("--energy-rise", options->criterion.energyRiseFraction,
                       "failure threshold on E(t) - E(0), as a fraction of the scene's releasable energy")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::numberInRange(1e-6, 1e3));
   command->add_option("--shard", options->shard,
                       "K/N: run only shard K of N of the sweep's cells (index % N == K-1) into --out; "
                       "particle-lab merge combines the N shards");
   return options;
-}
-
-// Ranges of the options every experiment takes (one line and exit 2 outside
-// them; --jobs is checked as it is read).
-void validate(const lab::LabOptions& options) {
-  particles::requireInRange("--max-stretch", options.criterion.maxRelativeConstraintError, 1e-6, 10.0);
-  particles::requireInRange("--energy-rise", options.criterion.energyRiseFraction, 1e-6, 1e3);
 }
 
 // The experiment's command line without the options that do not change its
@@ -102,11 +97,9 @@ Command addStabilityCommand(CLI::App& app) {
   auto stability = std::make_shared<lab::StabilityOptions>();
   command->add_option("--duration", stability->duration,
                       "T of Tables 1 and 2: simulated seconds a run must survive")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(options::numberInRange(lab::StabilityOptions::minDuration, lab::StabilityOptions::maxDuration));
   return {command, [=] {
-            validate(*options);
-            particles::requireInRange("--duration", stability->duration, lab::StabilityOptions::minDuration,
-                                      lab::StabilityOptions::maxDuration);
             return experiment(command, *options, [&] { return lab::runStability(*options, *stability); });
           }};
 }
@@ -122,7 +115,6 @@ Command addTimingCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(options::decimalInteger(1, 1000000000));
   return {command, [=] {
-            validate(*options);
             return experiment(command, *options, [&] { return lab::runTiming(*options, *timing); });
           }};
 }
@@ -131,7 +123,6 @@ Command addAccuracyCommand(CLI::App& app) {
   auto* command = app.add_subcommand("accuracy", "work-precision: error at T against CPU time, per integrator and dt");
   auto options = addLabOptions(command);
   return {command, [=] {
-            validate(*options);
             return experiment(command, *options, [&] { return lab::runAccuracy(*options); });
           }};
 }
@@ -141,7 +132,6 @@ Command addExtremesCommand(CLI::App& app) {
       "extremes", "stiff springs, mass ratios, feedback gains, CG budget, rod forms, the taut chain");
   auto options = addLabOptions(command);
   return {command, [=] {
-            validate(*options);
             return experiment(command, *options, [&] { return lab::runExtremes(*options); });
           }};
 }
@@ -150,7 +140,6 @@ Command addClaimsCommand(CLI::App& app) {
   auto* command = app.add_subcommand("claims", "the seed report's claims, each confirmed or refuted by a measurement");
   auto options = addLabOptions(command);
   return {command, [=] {
-            validate(*options);
             return experiment(command, *options, [&] { return lab::runClaims(*options); });
           }};
 }

@@ -54,8 +54,7 @@ int run(const RunOptions& o) {
   if (o.substepsOption->count()) settings.substeps = o.integratorSettings.substeps;
   if (o.iterationsOption->count()) settings.iterations = o.integratorSettings.iterations;
   const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName, settings);
-  const double dt = o.dtOption->count() ? o.dt : scene.dt;
-  particles::requirePositive("--dt", dt);
+  const double dt = o.dtOption->count() ? o.dt : scene.dt;  // both checked > 0 as read
   // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
   // step boundary and the files are closed with complete rows.
   lab::installInterruptHandler();
@@ -106,7 +105,8 @@ Command addRunCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
   options->source.addOptions(*sub);
   sub->add_option("--integrator", options->integrator,
-                  "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)");
+                  "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)")
+      ->check(options::integratorName());
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
                       "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
@@ -118,7 +118,8 @@ Command addRunCommand(CLI::App& app) {
   options->iterationsOption =
       sub->add_option("--iterations", options->integratorSettings.iterations,
                       "xpbd: constraint passes per substep, in [1, 10000] (default: the scene's, 1)");
-  options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)");
+  options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)")
+                          ->check(options::positiveNumber());
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
       ->required()
       ->check(options::decimalInteger(0, kMaxSteps));

@@ -85,8 +85,10 @@ DemoOptions parseOptions(int argc, char** argv) {
                                    "start with the scene of a number key, 1-9 or 0, as pressing it (0: the stiff "
                                    "64x64 cloth with xpbd at 60 Hz; press h in the window for the list)");
   for (const char* other : {"--scene", "--scene-file", "--param", "--preset"}) keyOption->excludes(cli.get_option(other));
-  auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)");
-  auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)");
+  auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)")
+                               ->check(options::integratorName());
+  auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)")
+                      ->check(options::positiveNumber());
   auto* compareOption =
       cli.add_option("--compare", compare,
                      "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or "
@@ -119,14 +121,11 @@ DemoOptions parseOptions(int argc, char** argv) {
     badUsage(e.what());
   }
 
-  // The checks CLI11 cannot make with particle-lab's messages, in its words.
+  // The scene source (shared with particle-lab) and the integrator by its table name.
   try {
     o.source.validate();
     if (*integratorOption) o.integrator = particles::requireIntegrator(integrator).name;
-    if (*dtOption) {
-      particles::requirePositive("--dt", dt);
-      o.dt = dt;
-    }
+    if (*dtOption) o.dt = dt;
   } catch (const std::invalid_argument& e) {
     badUsage(e.what());
   }

@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 
+#include "particles/check.h"
 #include "particles/integrator.h"
 
 namespace options {
@@ -51,6 +52,37 @@ CLI::Validator integratorTolerance() {
         return {};
       },
       "TOLERANCE");
+}
+
+namespace {
+
+// A validator that converts the text to a double and runs `check` on it,
+// returning the message of the std::invalid_argument it throws.
+template <class Check>
+CLI::Validator numberCheck(Check check, std::string description) {
+  return CLI::Validator(
+      [check](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value)) return {};
+        try {
+          check(value);
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      std::move(description));
+}
+
+}  // namespace
+
+CLI::Validator positiveNumber() {
+  return numberCheck([](double value) { particles::requirePositive("value", value); }, "NUMBER > 0");
+}
+
+CLI::Validator numberInRange(double lo, double hi) {
+  return numberCheck([lo, hi](double value) { particles::requireInRange("value", value, lo, hi); },
+                     "NUMBER in [" + particles::formatValue(lo) + ", " + particles::formatValue(hi) + "]");
 }
 
 CLI::Validator integratorName() {

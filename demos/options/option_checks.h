@@ -22,6 +22,12 @@ CLI::Validator regularFile();
 // "--tolerance: integrator tolerance must be > 0, got 0".
 CLI::Validator integratorTolerance();
 
+// A number > 0 and finite, or one in [lo, hi], in the engine's words (checks
+// in particles/check.h): "--dt: value must be > 0, got nan". Text that is no
+// number is left to the conversion, which names it.
+CLI::Validator positiveNumber();
+CLI::Validator numberInRange(double lo, double hi);
+
 // An integrator of the table, by name: "unknown integrator 'rk5' (valid: …)".
 CLI::Validator integratorName();
 

@@ -105,8 +105,8 @@ TEST(DemoCommandLine, BadValuesExitTwoWithOneLine) {
 
 TEST(DemoCommandLine, MessagesMatchParticleLabs) {
   const std::string dir = outputDirectory("Messages");
-  EXPECT_EQ(runDemo(dir, "--dt nan").err, "particle-demo: --dt must be > 0, got nan\n");
-  EXPECT_EQ(runDemo(dir, "--dt 0").err, "particle-demo: --dt must be > 0, got 0\n");
+  EXPECT_EQ(runDemo(dir, "--dt nan").err, "particle-demo: --dt: value must be > 0, got nan\n");
+  EXPECT_EQ(runDemo(dir, "--dt 0").err, "particle-demo: --dt: value must be > 0, got 0\n");
   EXPECT_EQ(runDemo(dir, "--tolerance 0").err, "particle-demo: --tolerance: integrator tolerance must be > 0, got 0\n");
   EXPECT_NE(runDemo(dir, "--scene clot").err.find("particle-demo: unknown scene 'clot' (valid: cloth, hair"),
             std::string::npos);
@@ -114,7 +114,7 @@ TEST(DemoCommandLine, MessagesMatchParticleLabs) {
   std::string names;
   for (const particles::IntegratorInfo& info : particles::integratorTable())
     names += (names.empty() ? "" : ", ") + std::string(info.name);
-  EXPECT_EQ(runDemo(dir, "--integrator rk5").err, "particle-demo: unknown integrator 'rk5' (valid: " + names + ")\n");
+  EXPECT_EQ(runDemo(dir, "--integrator rk5").err, "particle-demo: --integrator: unknown integrator 'rk5' (valid: " + names + ")\n");
 }
 
 TEST(DemoCommandLine, MalformedSceneFileNamesTheFileAndTheJsonPath) {

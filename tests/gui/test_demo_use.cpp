@@ -50,7 +50,9 @@ void expectNoOverlayOnAParticle(const StateLog& log) {
       const Eigen::Vector2d px = pane.toPixel(q.x);
       if (!pane.inWorldRect(px)) continue;
       for (const LoggedOverlay& o : log.overlays)
-        if (o.kind != "help") EXPECT_FALSE(o.covers(px, 0)) << o.kind << " covers a particle at " << px.transpose();
+        if (o.kind != "help") {
+          EXPECT_FALSE(o.covers(px, 0)) << o.kind << " covers a particle at " << px.transpose();
+        }
     }
 }
 }  // namespace
