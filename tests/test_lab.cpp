@@ -8,6 +8,8 @@
 #include <map>
 #include <sstream>
 
+#include <mutex>
+
 #include <gtest/gtest.h>
 
 #include "particles/constants.h"
@@ -222,6 +224,29 @@ TEST(Parallel, DeliversEveryCellInOrderForAnyNumberOfJobs) {
         });
     ASSERT_EQ(order.size(), 40u) << jobs;
     for (std::size_t k = 0; k < order.size(); ++k) EXPECT_EQ(order[k], k);
+  }
+  // With costs, the cells start in decreasing cost (one job: in exactly that
+  // order), and are still delivered in index order with the same results.
+  for (int jobs : {1, 2}) {
+    std::vector<std::size_t> started, delivered;
+    std::mutex mutex;
+    parallelMap<std::size_t>(
+        jobs, 12,
+        [&](std::size_t k) -> std::optional<std::size_t> {
+          std::lock_guard<std::mutex> lock(mutex);
+          started.push_back(k);
+          return k * k;
+        },
+        [&](std::size_t k, std::size_t& v) {
+          EXPECT_EQ(v, k * k);
+          delivered.push_back(k);
+        },
+        [](std::size_t k) { return static_cast<double>((k * 7) % 12); });
+    ASSERT_EQ(delivered.size(), 12u);
+    for (std::size_t k = 0; k < delivered.size(); ++k) EXPECT_EQ(delivered[k], k);
+    if (jobs == 1) {
+      for (std::size_t k = 0; k < started.size(); ++k) EXPECT_EQ((started[k] * 7) % 12, 11 - k) << k;
+    }
   }
   EXPECT_THROW(parallelMap<int>(
                    2, 10,

@@ -103,16 +103,18 @@ std::optional<Result> cell(const LabOptions& options, const std::function<std::o
 }
 
 // `count` cells on options.jobs threads (parallelMap): deliver(k, result) in
-// increasing k on this thread, for every cell that has a result here.
+// increasing k on this thread, for every cell that has a result here. `cost`,
+// an estimate of each cell's run time, only orders their start.
 template <class Result>
 void sweep(const LabOptions& options, std::size_t count,
            const std::function<std::optional<Result>(std::size_t)>& compute,
-           const std::function<void(std::size_t, Result&)>& deliver) {
+           const std::function<void(std::size_t, Result&)>& deliver,
+           const std::function<double(std::size_t)>& cost = {}) {
   const std::size_t base = options.cells->reserve(count);
   parallelMap<Result>(
       options.jobs, count,
       [&](std::size_t k) { return cellResult<Result>(*options.cells, base + k, [&] { return compute(k); }); },
-      deliver);
+      deliver, cost);
 }
 
 // `particle-lab merge`: reads the shards' manifests and cells and checks that

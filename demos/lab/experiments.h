@@ -44,4 +44,8 @@ void fields(Io& io, StepCost& c) {
 StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, double dt,
                          const TimingOptions& timing);
 
+// A rough CPU time of a run of `duration` at `dt` (from a few timed steps; 0
+// when they fail): what a sweep orders its cells' start by (parallel.h).
+double estimatedRunSeconds(scenes::Scene scene, const std::string& integrator, double dt, double duration);
+
 }  // namespace lab

@@ -58,6 +58,10 @@ int runExtremes(const LabOptions& options) {
     std::vector<std::pair<std::string, double>> cells;
     for (const auto& name : scanned)
       for (double ks : stiffness) cells.push_back({name, ks});
+    auto cloth = [q](double ks) {
+      return buildLabScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
+                                     {"links", "8"}, {"stiffness", general(ks, 6)}});
+    };
     std::map<std::string, std::vector<std::string>> rows;
     sweep<Boundary>(
         options, cells.size(),
@@ -66,10 +70,7 @@ int runExtremes(const LabOptions& options) {
           ScanSettings window = scan;
           window.grid = stepGrid(0.3 / std::sqrt(ks), std::min(0.5, 10.0 / std::sqrt(ks)));
           window.extendDecades = 1;
-          auto build = [&, ks = ks] {
-            return buildLabScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
-                                           {"links", "8"}, {"stiffness", general(ks, 6)}});
-          };
+          auto build = [&, ks = ks] { return cloth(ks); };
           auto b = scanSafeStep(build, name, duration, window, criterion);
           progress.tick();
           return b;
@@ -79,6 +80,10 @@ int runExtremes(const LabOptions& options) {
           csv << name << ks << b.safeDt << b.firstFailureDt << failureName(b.firstFailure) << b.lowest << b.highest;
           csv.endRow();
           rows[name].push_back(safeStepText(b));
+        },
+        [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
+          const auto& [name, ks] = cells[k];
+          return estimatedRunSeconds(cloth(ks), name, 0.3 / std::sqrt(ks), duration);
         });
     if (interrupted()) return 130;
     const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
@@ -125,6 +130,12 @@ int runExtremes(const LabOptions& options) {
           csv << name << ratio << b.safeDt << b.firstFailureDt << failureName(b.firstFailure) << r.second;
           csv.endRow();
           rows[name].push_back(safeStepText(b) + " (" + general(r.second, 3) + " it)");
+        },
+        [&](std::size_t k) {
+          const auto& [name, ratio] = cells[k];
+          ChainSpec spec{length};
+          spec.extra["tip-mass-ratio"] = general(ratio, 6);
+          return estimatedRunSeconds(buildChain(spec), name, window.grid.front(), duration);
         });
     if (interrupted()) return 130;
     const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
@@ -243,7 +254,11 @@ int runExtremes(const LabOptions& options) {
           progress.tick();
           return b;
         },
-        [&](std::size_t k, Boundary& b) { boundaries[k] = b; });
+        [&](std::size_t k, Boundary& b) { boundaries[k] = b; },
+        [&](std::size_t k) {
+          const auto& [name, form] = cells[k];
+          return estimatedRunSeconds(buildChain(ChainSpec{q ? 6 : 24, form}), name, window.grid.front(), duration);
+        });
     if (interrupted()) return 130;
     for (std::size_t k = 0; k < cells.size(); ++k) {
       const auto& [name, form] = cells[k];

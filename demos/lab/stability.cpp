@@ -181,6 +181,11 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
           if (c.stiffness == defaultStiffness) safe[duration][c.integrator][c.length] = b;
           else stiffSafe[c.integrator][c.length] = b;
         }
+      },
+      [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
+        const Cell& c = cells[k];
+        return estimatedRunSeconds(buildCell(c.length, c.stiffness), c.integrator, scan.grid.front(),
+                                   c.durations.back());
       });
   if (interrupted()) return 130;  // the rows written are complete scans; no table from a partial set
 

@@ -46,6 +46,11 @@ StepCost measureStepCost(scenes::Scene& scene, const std::string& integrator, do
   return {median(perRepeat), iterations / steps, solves / steps};
 }
 
+double estimatedRunSeconds(scenes::Scene scene, const std::string& integrator, double dt, double duration) {
+  const double seconds = measureStepCost(scene, integrator, dt, {1, 3}).seconds;
+  return std::isfinite(seconds) ? seconds * duration / dt : 0.0;
+}
+
 namespace {
 
 // One timed scene: its step cost and what it holds.
