@@ -223,14 +223,9 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
                                         lastFree_, &nearList_);
     if (edges) {
       edgeIncidence_.update(edges_, size());
-      edgeIncidence_.edgesAt(nearList_, nearEdges_);
-      if (discs) {
-        edgeIncidence_.edgesAt(collidable_, discEdges_);
-        const std::size_t mid = nearEdges_.size();
-        nearEdges_.insert(nearEdges_.end(), discEdges_.begin(), discEdges_.end());
-        std::inplace_merge(nearEdges_.begin(), nearEdges_.begin() + mid, nearEdges_.end());
-        nearEdges_.erase(std::unique(nearEdges_.begin(), nearEdges_.end()), nearEdges_.end());
-      }
+      edgeIncidence_.mark(nearList_);
+      if (discs) edgeIncidence_.mark(collidable_);
+      edgeIncidence_.takeMarked(nearEdges_);
     }
   }
   const int edgeContacts =

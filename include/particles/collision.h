@@ -144,16 +144,17 @@ class EdgeIncidence {
  public:
   // Rebuilds the table when the edges or the number of particles changed.
   void update(const std::vector<CollisionEdge>& edges, int particles);
-  // The edges with an end in `particles`, as ascending indices into the
-  // edges, each once.
-  void edgesAt(const std::vector<int>& particles, std::vector<int>& out);
+  // Marks the edges with an end in `particles`.
+  void mark(const std::vector<int>& particles);
+  // The marked edges, as ascending indices into the edges; clears the marks.
+  void takeMarked(std::vector<int>& out);
 
  private:
   std::size_t edgeCount_ = 0;
   int particleCount_ = -1;
   std::vector<int> first_;     // particle p's edges: ids_[first_[p] .. first_[p + 1])
   std::vector<int> ids_;
-  std::vector<char> taken_;    // per edge, all 0 between calls
+  std::vector<char> marked_;   // per edge
 };
 
 // The largest side of an edge's box over the step (its two ends at x0 and

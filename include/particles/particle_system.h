@@ -144,7 +144,7 @@ class ParticleSystem {
   Eigen::VectorXd startX_, startV_, lastFree_;
   std::vector<char> near_;          // near a collider (markNearColliders), or a disc
   std::vector<int> nearList_;       // the particles near a collider that are not discs, ascending
-  std::vector<int> nearEdges_, discEdges_;  // edges with an end near a collider or at a disc, ascending
+  std::vector<int> nearEdges_;      // edges with an end near a collider or at a disc, ascending
   EdgeIncidence edgeIncidence_;
   int contactsLastStep_ = 0;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used

@@ -2,13 +2,12 @@
 // near any collider at all.
 #include <algorithm>
 #include <array>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <optional>
 #include <vector>
 
 #include "particles/collision.h"
+#include "set_flags.h"
 
 namespace particles {
 
@@ -97,17 +96,7 @@ void markNearColliders(const std::vector<Collider>& colliders, const Eigen::Vect
       }
     }
   }
-  // Eight flags at a time: most are 0.
-  for (int word = 0; word < n; word += 8) {
-    const int end = std::min(n, word + 8);
-    if (end - word == 8) {
-      std::uint64_t flags;
-      std::memcpy(&flags, near.data() + word, 8);
-      if (flags == 0) continue;
-    }
-    for (int i = word; i < end; ++i)
-      if (near[i]) nearList.push_back(i);
-  }
+  contact::appendSetFlags(near, nearList);
 }
 
 }  // namespace particles

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "contact_track.h"
+#include "set_flags.h"
 #include "particles/collision.h"
 
 namespace particles {
@@ -94,20 +95,19 @@ void EdgeIncidence::update(const std::vector<CollisionEdge>& edges, int particle
     ids_[fill[edges[k].a]++] = k;
     ids_[fill[edges[k].b]++] = k;
   }
-  taken_.assign(edges.size(), 0);
+  marked_.assign(edges.size(), 0);
 }
 
-void EdgeIncidence::edgesAt(const std::vector<int>& particles, std::vector<int>& out) {
-  out.clear();
+void EdgeIncidence::mark(const std::vector<int>& particles) {
   for (int p : particles)
-    for (int k = first_[p]; k < first_[p + 1]; ++k)
-      if (!taken_[ids_[k]]) {
-        taken_[ids_[k]] = 1;
-        out.push_back(ids_[k]);
-      }
-  for (int e : out) taken_[e] = 0;
+    for (int k = first_[p]; k < first_[p + 1]; ++k) marked_[ids_[k]] = 1;
+}
+
+void EdgeIncidence::takeMarked(std::vector<int>& out) {
   // Edge contacts move particles one edge after another: the edge order is kept.
-  std::sort(out.begin(), out.end());
+  out.clear();
+  contact::appendSetFlags(marked_, out);
+  for (int e : out) marked_[e] = 0;
 }
 
 double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) {
