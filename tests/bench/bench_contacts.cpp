@@ -9,8 +9,8 @@
 //   contacts64x64/rk4/without   the same cloth and step with no colliders
 //   .../cycle                   the same, exactly one 200-step cycle (for callgrind)
 // The pass's share of a step is (with − without) / without, from medians:
-//   ./build/tests/bench_contacts --benchmark_filter='rk4/with(out)?$' \
-//       --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
+//   ./build/tests/bench_contacts --benchmark_filter='rk4/with(out)?$' --benchmark_repetitions=9 \
+//       --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true
 // and as instructions, the collision pass (ParticleSystem::collideOver,
 // inclusive) against the RK4 integration (Rk4Integrator::step, inclusive)
 // over the 200 timed steps of one cycle:
@@ -23,9 +23,12 @@
 //   particles tested one by one against the colliders' boxes, 0.574 M = 13.7 %
 //   with blocks of 16 particles tested first and only the near particles and
 //   their edges visited (the whole step with/without colliders: +22.4 % → +14.7 %).
-// Wall clock on a shared 2-core AMD EPYC (load 6 on 2 cores, medians of 9,
-// with/without in the same run): 0.333/0.276 ms (+21 %) → 0.322/0.305 ms
-// (+6 %), each ±0.01–0.02 ms (s.d.): the gap is within the machine's noise.
+// Wall clock on a shared 2-core AMD EPYC (load 8–9 on its 2 cores; medians of
+// 9 with --benchmark_enable_random_interleaving=true, with/without in the same
+// run, ± the s.d.; two runs of each build): with/without 0.328 ± 0.011 /
+// 0.286 ± 0.011 ms (+15 %) and 0.339 ± 0.012 / 0.278 ± 0.006 ms (+22 %)
+// before; 0.319 ± 0.005 / 0.286 ± 0.012 ms (+12 %) and 0.318 ± 0.014 /
+// 0.282 ± 0.012 ms (+13 %) after.
 #include <benchmark/benchmark.h>
 
 #include <memory>
