@@ -384,9 +384,13 @@ TEST(ClaimsQuick, EveryClaimGetsAVerdict) {
   ASSERT_EQ(thresholds.size(), 5u);
   for (const char* start : {"cold", "warm", "cold_non_finite_only", "warm_non_finite_only"})
     for (std::size_t k = 1; k < thresholds.size(); ++k)
-      if (thresholds[k - 1].at(start) == "confirmed") EXPECT_EQ(thresholds[k].at(start), "confirmed") << start;
+      if (thresholds[k - 1].at(start) == "confirmed") {
+        EXPECT_EQ(thresholds[k].at(start), "confirmed") << start;
+      }
   // Counting energy growth as exploding can only refute more.
   for (const auto& row : thresholds)
     for (const char* start : {"cold", "warm"})
-      if (row.at(start) == "confirmed") EXPECT_EQ(row.at(std::string(start) + "_non_finite_only"), "confirmed");
+      if (row.at(start) == "confirmed") {
+        EXPECT_EQ(row.at(std::string(start) + "_non_finite_only"), "confirmed");
+      }
 }

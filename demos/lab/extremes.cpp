@@ -14,6 +14,22 @@
 
 namespace lab {
 
+namespace {
+
+// A table's body: one row per integrator, its name and then its cells.
+std::vector<std::vector<std::string>> integratorRows(const std::vector<std::string>& integrators,
+                                                     std::map<std::string, std::vector<std::string>>& cells) {
+  std::vector<std::vector<std::string>> table;
+  for (const auto& name : integrators) {
+    std::vector<std::string> row{name};
+    row.insert(row.end(), cells[name].begin(), cells[name].end());
+    table.push_back(row);
+  }
+  return table;
+}
+
+}  // namespace
+
 int runExtremes(const LabOptions& options) {
   prepareOutput(options);
   const auto integrators = selectedIntegrators(options);
@@ -65,12 +81,7 @@ int runExtremes(const LabOptions& options) {
           rows[name].push_back(safeStepText(b));
         });
     if (interrupted()) return 130;
-    std::vector<std::vector<std::string>> table;
-    for (const auto& name : scanned) {
-      std::vector<std::string> row{name};
-      row.insert(row.end(), rows[name].begin(), rows[name].end());
-      table.push_back(row);
-    }
+    const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
     std::vector<std::string> header{"integrator"};
     for (double ks : stiffness) header.push_back("k_s " + general(ks));
     writeTable(options, "extremes_stiffness",
@@ -116,12 +127,7 @@ int runExtremes(const LabOptions& options) {
           rows[name].push_back(safeStepText(b) + " (" + general(r.second, 3) + " it)");
         });
     if (interrupted()) return 130;
-    std::vector<std::vector<std::string>> table;
-    for (const auto& name : scanned) {
-      std::vector<std::string> row{name};
-      row.insert(row.end(), rows[name].begin(), rows[name].end());
-      table.push_back(row);
-    }
+    const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
     std::vector<std::string> header{"integrator"};
     for (double r : ratios) header.push_back("tip/link mass " + general(r));
     writeTable(options, "extremes_mass_ratio",
@@ -262,12 +268,7 @@ int runExtremes(const LabOptions& options) {
       rows[name].push_back(general(cost.seconds * 1e6, 3));
       rows[name].push_back(general(stretch, 2));
     }
-    std::vector<std::vector<std::string>> table;
-    for (const auto& name : scanned) {
-      std::vector<std::string> row{name};
-      row.insert(row.end(), rows[name].begin(), rows[name].end());
-      table.push_back(row);
-    }
+    const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
     writeTable(options, "extremes_rod_form",
                "Squared against root rods: safe dt (" + std::to_string(q ? 6 : 24) + "-chain, T = " +
                    general(duration) + " s, " + starts + "), µs per step and max stretch at the scene's dt (" +
