@@ -212,16 +212,24 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
   if (walls) {
     double margin = radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0;
     if (edges) margin = std::max(margin, edgeReach(edges_, x0, x_));
-    markNearColliders(colliders_, x0, x_, margin, near_);
-    wallsOnly_ = near_;
+    markNearColliders(colliders_, x0, x_, margin, near_, nearList_);
     if (discs) {
-      for (int i : collidable_) wallsOnly_[i] = 0;  // resolved with the discs
-      for (int i : collidable_) near_[i] = 1;       // moved by disc impacts: edges test them
+      // Discs are resolved with each other; moved by their impacts, their edges are tested.
+      for (int i : collidable_) near_[i] = 2;
+      nearList_.erase(std::remove_if(nearList_.begin(), nearList_.end(), [&](int i) { return near_[i] == 2; }),
+                      nearList_.end());
     }
     contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
-                                        lastFree_, &wallsOnly_);
+                                        lastFree_, &nearList_);
+    if (edges) {
+      edgeIncidence_.update(edges_, size());
+      edgeIncidence_.mark(nearList_);
+      if (discs) edgeIncidence_.mark(collidable_);
+      edgeIncidence_.takeMarked(nearEdges_);
+    }
   }
-  const int edgeContacts = edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &near_) : 0;
+  const int edgeContacts =
+      edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &nearEdges_) : 0;
   contacts += edgeContacts;
   // Resting contacts push on each other (a stack on a floor, a rope over a
   // nail): Gauss–Seidel passes until none is left, colliders last, as the
@@ -236,7 +244,7 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
     double largest = 0.0;
     int resolved = 0;
     if (discs) largest = contacts_.resolveResting(inverseMass_, radius_, contactSettings_, pass % 2 == 0, x_, v_);
-    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &near_);
+    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &nearEdges_);
     if (walls) resolved += pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
     if (largest <= settled && resolved == 0) break;
   }

@@ -2,9 +2,11 @@
 // contact against colliders (energy of an elastic bounce, Coulomb sliding and
 // slopes, closed boxes, tunnelling); disc–disc contacts (momentum, a box of
 // elastic discs, resting stacks); collision edges against a small collider;
-// pinned particles; and the grid broad phase against a brute-force count.
+// pinned particles; the grid broad phase against a brute-force count; and the
+// broad phase against colliders against its per-particle definition.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -538,6 +540,99 @@ TEST(ParticleContacts, FarFlungAndNonFiniteParticlesDoNotBreakTheBroadPhase) {
   ParticleContacts contacts;
   EXPECT_EQ(contacts.resolve({0, 1, 2, 3}, {}, StepStart{x0, v0, 0.01}, w, r, ContactSettings{}, false, x, v), 1);
   EXPECT_NEAR((x.segment<2>(0) - x.segment<2>(2)).norm(), 0.2, 1e-12);
+}
+
+// --- broad phase against colliders -------------------------------------------------
+
+// markNearColliders tests blocks of consecutive particles by their common box
+// before each particle: it must mark exactly the particles that the
+// per-particle definition (collision.h) marks, whether the particles lie in
+// index order along a sheet (most blocks apart from every collider) or at
+// random, at huge or non-finite positions included.
+TEST(ColliderBroadPhase, BlocksMarkExactlyThePathsThatComeNearAColliderOneByOne) {
+  std::vector<Collider> colliders = {Collider::box(Vector2d(-3.0, -2.5), Vector2d(3.0, -2.1)),
+                                     Collider::capsule(Vector2d(-1.0, 1.0), Vector2d(0.5, 1.6), 0.05),
+                                     Collider::disc(Vector2d(1.2, -0.4), 0.1),
+                                     Collider::halfPlane(Vector2d(2.5, 1.0), Vector2d(-0.6, -0.8))};
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> place(-3.0, 3.0), step(-0.05, 0.05);
+  // A sheet in rows, one in columns across the half-plane's edge, then scattered points.
+  const int side = 40, column = 20, scattered = 400, n = side * side + column * column + scattered;
+  VectorXd x0(2 * n), x1(2 * n);
+  for (int i = 0; i < n; ++i) {
+    const int k = i - side * side;
+    const Vector2d a = i < side * side             ? Vector2d(-2.0 + 0.1 * (i % side), 1.9 - 0.1 * (i / side))
+                       : k < column * column ? Vector2d(1.0 + 0.1 * (k / column), 0.1 * (k % column))
+                                             : Vector2d(place(rng), place(rng));
+    x0.segment<2>(2 * i) = a;
+    x1.segment<2>(2 * i) = a + Vector2d(step(rng), step(rng));
+  }
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+  for (const auto& [index, value] : {std::pair{2 * 7, nan}, std::pair{2 * 300 + 1, inf}, std::pair{2 * 1000, -inf},
+                                     std::pair{2 * 1700 + 1, nan}, std::pair{2 * 1800, 1e300}})
+    x1[index] = value;
+  x0[2 * 1750] = nan;
+  const double margin = 0.07;
+  std::vector<char> near;
+  std::vector<int> nearList;
+  markNearColliders(colliders, x0, x1, margin, near, nearList);
+
+  std::vector<int> expected;
+  for (int i = 0; i < n; ++i) {
+    const Vector2d a = x0.segment<2>(2 * i), b = x1.segment<2>(2 * i);
+    const double loX = std::min(a.x(), b.x()), hiX = std::max(a.x(), b.x());
+    const double loY = std::min(a.y(), b.y()), hiY = std::max(a.y(), b.y());
+    bool hit = false;
+    for (const Collider& c : colliders) {
+      Vector2d lo, hi;
+      if (c.bounds(lo, hi))
+        hit = hit || (loY <= hi.y() + margin && hiY >= lo.y() - margin && loX <= hi.x() + margin &&
+                      hiX >= lo.x() - margin);
+      else
+        hit = hit || std::min(c.normal.dot(a), c.normal.dot(b)) <= c.normal.dot(c.points[0]) + margin;
+    }
+    ASSERT_EQ(near[i] != 0, hit) << "particle " << i;
+    if (hit) expected.push_back(i);
+  }
+  EXPECT_EQ(nearList, expected);
+  // Both kinds occur: a test that marks everything or nothing would pass the loop.
+  EXPECT_GT(expected.size(), 100u);
+  EXPECT_LT(expected.size(), static_cast<std::size_t>(n) / 2);
+}
+
+// EdgeIncidence gives the edges with an end among the marked particles, each
+// once and in edge order (edge contacts are applied in that order).
+TEST(ColliderBroadPhase, EdgesAtMarkedParticlesComeOnceInEdgeOrder) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> particle(0, 199);
+  std::vector<CollisionEdge> edges;
+  while (edges.size() < 700) {
+    const int a = particle(rng), b = particle(rng);
+    if (a != b) edges.push_back({a, b});
+  }
+  EdgeIncidence incidence;
+  for (int round = 0; round < 3; ++round) {
+    if (round == 2) edges.push_back({3, 199});  // a new edge: the table is rebuilt
+    incidence.update(edges, 200);
+    std::vector<int> first, second;
+    for (int p = 0; p < 200; ++p) {
+      if (particle(rng) < 20) first.push_back(p);
+      if (particle(rng) < 10 || p == 3) second.push_back(p);
+    }
+    incidence.mark(first);
+    incidence.mark(second);
+    std::vector<int> taken, expected;
+    incidence.takeMarked(taken);
+    auto among = [](const std::vector<int>& list, int p) { return std::binary_search(list.begin(), list.end(), p); };
+    for (int e = 0; e < static_cast<int>(edges.size()); ++e)
+      if (among(first, edges[e].a) || among(first, edges[e].b) || among(second, edges[e].a) ||
+          among(second, edges[e].b))
+        expected.push_back(e);
+    EXPECT_EQ(taken, expected) << "round " << round;
+    EXPECT_FALSE(expected.empty());
+    incidence.takeMarked(taken);  // the marks were cleared
+    EXPECT_TRUE(taken.empty());
+  }
 }
 
 // --- edges ------------------------------------------------------------------------

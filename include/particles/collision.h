@@ -45,23 +45,25 @@ struct StepStart {
 // the tangential impulse is Coulomb's (at most μ times the normal impulse);
 // the rest of the path is swept again from there, so touching colliders act
 // as one closed boundary. Pinned particles (inverse mass 0) are never moved.
-// `only` (null: all) marks the particles to resolve, the others are left
+// `only` (null: all) lists the particles to resolve, the others are left
 // alone. `lastFree` (2n) receives each resolved particle's end position (known
 // to be outside every collider), from which pushOutOfColliders sweeps later.
 // Returns the contacts.
 int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            Eigen::VectorXd& lastFree, const std::vector<char>* only = nullptr);
+                            Eigen::VectorXd& lastFree, const std::vector<int>* only = nullptr);
 
 // Broad phase against colliders, once a step: near[i] is set when particle
 // i's path over the step (the box of x0 → x1) grown by `margin` meets a
 // collider's bounding box or comes within margin of a half-plane. A particle
 // not marked meets no collider if margin ≥ its radius (+ slop), and no edge
 // with both ends unmarked meets a corner if margin ≥ edgeReach(). Linear in
-// the number of particles, times the number of colliders.
+// the number of particles, times the number of colliders; blocks of
+// consecutive particles whose common box is apart from every collider are
+// passed over with one test. nearList receives the marked particles, ascending.
 void markNearColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
-                       double margin, std::vector<char>& near);
+                       double margin, std::vector<char>& near, std::vector<int>& nearList);
 
 // A resting pass for particles that another contact pushed into a collider
 // after resolveColliderContacts: the path lastFree → x finds the face entered,
@@ -130,11 +132,30 @@ struct CollisionEdge {
 // side, or nearer than its radius, at the end. The edge is pushed clear with
 // the weights of the point of the edge facing the corner, its approach
 // removed and Coulomb friction applied. Returns the contacts.
-// `near` (null: every edge is tested) skips the edges with neither end marked
-// by markNearColliders.
+// `candidates` (null: every edge is tested) lists the indices into `edges` to
+// test, ascending: those with an end marked by markNearColliders (EdgeIncidence).
 int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
                         const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
-                        Eigen::VectorXd& v, const std::vector<char>* near = nullptr);
+                        Eigen::VectorXd& v, const std::vector<int>* candidates = nullptr);
+
+// The collision edges at each particle, so that the edges with an end among
+// a few marked particles are found without a pass over every edge.
+class EdgeIncidence {
+ public:
+  // Rebuilds the table when the edges or the number of particles changed.
+  void update(const std::vector<CollisionEdge>& edges, int particles);
+  // Marks the edges with an end in `particles`.
+  void mark(const std::vector<int>& particles);
+  // The marked edges, as ascending indices into the edges; clears the marks.
+  void takeMarked(std::vector<int>& out);
+
+ private:
+  std::size_t edgeCount_ = 0;
+  int particleCount_ = -1;
+  std::vector<int> first_;     // particle p's edges: ids_[first_[p] .. first_[p + 1])
+  std::vector<int> ids_;
+  std::vector<char> marked_;   // per edge
+};
 
 // The largest side of an edge's box over the step (its two ends at x0 and
 // x1): the margin markNearColliders needs for edges.

@@ -142,7 +142,10 @@ class ParticleSystem {
   ContactSettings contactSettings_;
   // Collision scratch: the step's start and the last known free positions.
   Eigen::VectorXd startX_, startV_, lastFree_;
-  std::vector<char> near_, wallsOnly_;  // near a collider; and of those, not discs (markNearColliders)
+  std::vector<char> near_;          // near a collider (markNearColliders), or a disc
+  std::vector<int> nearList_;       // the particles near a collider that are not discs, ascending
+  std::vector<int> nearEdges_;      // edges with an end near a collider or at a disc, ascending
+  EdgeIncidence edgeIncidence_;
   int contactsLastStep_ = 0;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;

@@ -2,16 +2,46 @@
 // near any collider at all.
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "particles/collision.h"
+#include "set_flags.h"
 
 namespace particles {
 
+namespace {
+
+// Consecutive particles tested together first: a cloth's or a chain's
+// neighbours are neighbours in index order, so a block's box is small and
+// most blocks of a large system meet no collider.
+constexpr int kBlock = 16;
+
+// The box (lo x, lo y, hi x, hi y) of the paths of particles [first, last),
+// or nothing when a coordinate is not finite (a NaN would make min and max
+// drop values, so such a block is tested particle by particle).
+std::optional<std::array<double, 4>> pathBox(const double* S, const double* X, int first, int last) {
+  using Point = Eigen::Map<const Eigen::Array2d>;
+  Eigen::Array2d lo = Eigen::Array2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  Eigen::Array2d sum = Eigen::Array2d::Zero();  // finite only if every coordinate is
+  for (int i = first; i < last; ++i) {
+    const Point s(S + 2 * i), x(X + 2 * i);
+    lo = lo.min(s).min(x);
+    hi = hi.max(s).max(x);
+    sum += s + x;
+  }
+  if (!sum.allFinite()) return std::nullopt;
+  return std::array<double, 4>{lo.x(), lo.y(), hi.x(), hi.y()};
+}
+
+}  // namespace
+
 void markNearColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
-                       double margin, std::vector<char>& near) {
+                       double margin, std::vector<char>& near, std::vector<int>& nearList) {
   const int n = static_cast<int>(x1.size() / 2);
   near.assign(n, 0);
+  nearList.clear();
   const double* S = x0.data();
   const double* X = x1.data();
   // Colliders in chunks whose grown boxes (lo x, lo y, hi x, hi y) or
@@ -30,23 +60,43 @@ void markNearColliders(const std::vector<Collider>& colliders, const Eigen::Vect
       else
         planes[planeCount++] = {c.normal.x(), c.normal.y(), c.normal.dot(c.points[0]) + margin, 0.0};
     }
-    for (int i = 0; i < n; ++i) {
-      if (near[i]) continue;
-      const double ax = S[2 * i], ay = S[2 * i + 1], bx = X[2 * i], by = X[2 * i + 1];
-      const double loX = std::min(ax, bx), hiX = std::max(ax, bx), loY = std::min(ay, by), hiY = std::max(ay, by);
-      bool hit = false;
-      for (std::size_t k = 0; k < boxCount && !hit; ++k) {
+    for (int block = 0; block < n; block += kBlock) {
+      const int end = std::min(n, block + kBlock);
+      // The block is skipped when its box is apart from every collider. For
+      // a half-plane the least n·x over the box is at its corner against n;
+      // n·x is monotone in each coordinate in floating point too, so each
+      // particle's n·a and n·b are at least that corner's.
+      const std::optional<std::array<double, 4>> box = pathBox(S, X, block, end);
+      bool apart = box.has_value();
+      const std::array<double, 4> B = box.value_or(std::array<double, 4>{});
+      for (std::size_t k = 0; k < boxCount && apart; ++k) {
         const std::array<double, 4>& b = boxes[k];
-        hit = loY <= b[3] && hiY >= b[1] && loX <= b[2] && hiX >= b[0];
+        apart = B[1] > b[3] || B[3] < b[1] || B[0] > b[2] || B[2] < b[0];
       }
-      // A half-plane n·(x − p) ≤ 0: near when either end is within margin of it.
-      for (std::size_t k = 0; k < planeCount && !hit; ++k) {
+      for (std::size_t k = 0; k < planeCount && apart; ++k) {
         const std::array<double, 4>& p = planes[k];
-        hit = std::min(p[0] * ax + p[1] * ay, p[0] * bx + p[1] * by) <= p[2];
+        apart = p[0] * (p[0] >= 0.0 ? B[0] : B[2]) + p[1] * (p[1] >= 0.0 ? B[1] : B[3]) > p[2];
       }
-      near[i] = hit;
+      if (apart) continue;
+      for (int i = block; i < end; ++i) {
+        if (near[i]) continue;
+        const double ax = S[2 * i], ay = S[2 * i + 1], bx = X[2 * i], by = X[2 * i + 1];
+        const double loX = std::min(ax, bx), hiX = std::max(ax, bx), loY = std::min(ay, by), hiY = std::max(ay, by);
+        bool hit = false;
+        for (std::size_t k = 0; k < boxCount && !hit; ++k) {
+          const std::array<double, 4>& b = boxes[k];
+          hit = loY <= b[3] && hiY >= b[1] && loX <= b[2] && hiX >= b[0];
+        }
+        // A half-plane n·(x − p) ≤ 0: near when either end is within margin of it.
+        for (std::size_t k = 0; k < planeCount && !hit; ++k) {
+          const std::array<double, 4>& p = planes[k];
+          hit = std::min(p[0] * ax + p[1] * ay, p[0] * bx + p[1] * by) <= p[2];
+        }
+        near[i] = hit;
+      }
     }
   }
+  contact::appendSetFlags(near, nearList);
 }
 
 }  // namespace particles

@@ -129,14 +129,15 @@ void stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderB
 int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            Eigen::VectorXd& lastFree, const std::vector<char>* only) {
+                            Eigen::VectorXd& lastFree, const std::vector<int>* only) {
   const double dt = start.dt;
   const int n = static_cast<int>(inverseMass.size());
   const contact::ColliderBoxes boxes(colliders);
   if (lastFree.size() != x.size()) lastFree = x;
   int contacts = 0;
-  for (int i = 0; i < n; ++i) {
-    if (only && !(*only)[i]) continue;
+  const int count = only ? static_cast<int>(only->size()) : n;
+  for (int k = 0; k < count; ++k) {
+    const int i = only ? (*only)[k] : k;
     lastFree.segment<2>(2 * i) = x.segment<2>(2 * i);
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "contact_track.h"
+#include "set_flags.h"
 #include "particles/collision.h"
 
 namespace particles {
@@ -16,7 +17,7 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 
 int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
                         const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
-                        Eigen::VectorXd& v, const std::vector<char>* near) {
+                        Eigen::VectorXd& v, const std::vector<int>* candidates) {
   int contacts = 0;
   // Broad phase: a collider is tested against an edge only when their boxes
   // overlap (the edge's box spans its start and end, the collider's its
@@ -25,9 +26,10 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
   const int count = static_cast<int>(colliders.size());
   const double* X = x.data();
   const double* S = start.x.data();
-  for (const CollisionEdge& edge : edges) {
+  const int tested = candidates ? static_cast<int>(candidates->size()) : static_cast<int>(edges.size());
+  for (int t = 0; t < tested; ++t) {
+    const CollisionEdge& edge = edges[candidates ? (*candidates)[t] : t];
     const int i = edge.a, j = edge.b;
-    if (near && !(*near)[i] && !(*near)[j]) continue;
     const double wi = inverseMass[i], wj = inverseMass[j];
     if (wi + wj == 0.0) continue;
     const double loX = std::min(std::min(X[2 * i], X[2 * j]), std::min(S[2 * i], S[2 * j]));
@@ -77,17 +79,47 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
   return contacts;
 }
 
+void EdgeIncidence::update(const std::vector<CollisionEdge>& edges, int particles) {
+  if (edges.size() == edgeCount_ && particles == particleCount_) return;
+  edgeCount_ = edges.size();
+  particleCount_ = particles;
+  first_.assign(particles + 1, 0);
+  for (const CollisionEdge& e : edges) {
+    ++first_[e.a + 1];
+    ++first_[e.b + 1];
+  }
+  for (int p = 0; p < particles; ++p) first_[p + 1] += first_[p];
+  ids_.resize(first_[particles]);
+  std::vector<int> fill(first_.begin(), first_.end() - 1);
+  for (int k = 0; k < static_cast<int>(edges.size()); ++k) {
+    ids_[fill[edges[k].a]++] = k;
+    ids_[fill[edges[k].b]++] = k;
+  }
+  marked_.assign(edges.size(), 0);
+}
+
+void EdgeIncidence::mark(const std::vector<int>& particles) {
+  for (int p : particles)
+    for (int k = first_[p]; k < first_[p + 1]; ++k) marked_[ids_[k]] = 1;
+}
+
+void EdgeIncidence::takeMarked(std::vector<int>& out) {
+  // Edge contacts move particles one edge after another: the edge order is kept.
+  out.clear();
+  contact::appendSetFlags(marked_, out);
+  for (int e : out) marked_[e] = 0;
+}
+
 double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) {
   // Each side of an edge's box is at most the edge's extent along it at the
   // end plus the travel of its two ends: |x_i − x_j|∞ + 2 max_k |x1_k − x0_k|∞.
+  // (Both axes at once; with a coordinate not finite the reach may be any value.)
+  using Point = Eigen::Map<const Eigen::Array2d>;
   const double* X = x1.data();
-  double extent = 0.0;
-  for (const CollisionEdge& edge : edges) {
-    const int i = edge.a, j = edge.b;
-    extent = std::max(extent, std::max(std::abs(X[2 * i] - X[2 * j]), std::abs(X[2 * i + 1] - X[2 * j + 1])));
-  }
+  Eigen::Array2d extent = Eigen::Array2d::Zero();
+  for (const CollisionEdge& edge : edges) extent = extent.max((Point(X + 2 * edge.a) - Point(X + 2 * edge.b)).abs());
   const double travel = x1.size() > 0 ? (x1 - x0).cwiseAbs().maxCoeff() : 0.0;
-  return extent + 2.0 * travel;
+  return extent.maxCoeff() + 2.0 * travel;
 }
 
 }  // namespace particles
