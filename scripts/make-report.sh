@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates every CSV, table and figure of report/ and renders report/README.md.
-#   bash scripts/make-report.sh          full experiments (about 15 minutes on 2 cores)
+#   bash scripts/make-report.sh          full experiments (the time of each is in report/README.md)
 #   bash scripts/make-report.sh --quick  the CI-sized versions, to check the pipeline
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,10 +22,15 @@ value machine.load "$(cut -d' ' -f1-3 /proc/loadavg)"
 value machine.compiler "$(c++ --version | head -n 1)"
 value machine.date "$(date -u +%Y-%m-%d)"
 
+# Each experiment's wall-clock time goes into values.csv (report.seconds.*).
+started=$(date +%s)
 for experiment in stability timing accuracy cost longtime extremes claims small-steps; do
   echo "== particle-lab $experiment ${mode[*]}" >&2
+  begin=$(date +%s)
   "$lab" "$experiment" "${mode[@]}" --jobs "$(nproc)" --out "$data" > "$data/$experiment.log"
+  value "report.seconds.$experiment" "$(( $(date +%s) - begin ))"
 done
+value report.seconds.total "$(( $(date +%s) - started ))"
 
 # Every figure plots.gp draws is redrawn from this run's data; none is left stale.
 find report/figures -name '*.png' ! -name 'demo-*' -delete

@@ -61,6 +61,7 @@ struct ImplicitEulerIntegrator::Impl {
 
   // --- residuals of the iterate --------------------------------------------
   Eigen::VectorXd residual;     // (−R₁, −R₂/h): the right-hand side of a pass
+  Eigen::VectorXd termScale;    // Σ_c |K_dc| |Δx|: the size of f's cancelling terms
   double constraintResidual = 0.0, momentumResidual = 0.0;
   int passes = 0;
 
@@ -244,13 +245,23 @@ void ImplicitEulerIntegrator::Impl::measureResiduals(ParticleSystem& system, dou
     const double length = system.constraints()[k]->lengthScale();
     constraintResidual = std::max(constraintResidual, std::abs(r2) / (std::sqrt(jj) * (length > 0.0 ? length : 1.0)));
   }
-  // Velocity scale of R₁/m: the sizes of the terms it balances, |v̄|, h|W f|, |W Ḡᵀν̄|.
+  // The size of the force terms that cancel in f near equilibrium: Σ_c |K_dc|
+  // |x_p(d) − x_p(c)| over entries coupling two particles (a spring's k times
+  // its length). f's round-off is about ε times it, so it belongs in the scale.
+  termScale.setZero(dofs);
+  for (const auto& t : dfdx) {
+    const int p = t.row() / 2, q = t.col() / 2;
+    if (p != q) termScale[t.row()] += std::abs(t.value()) * (x0.segment<2>(2 * p) - x0.segment<2>(2 * q)).norm();
+  }
+  // Velocity scale of R₁/m: the sizes of the terms it balances, |v̄|, h|W f|,
+  // h|W| Σ|K||Δx|, |W Ḡᵀν̄|.
   double velocityScale = 0.0, worst = 0.0;
   for (int d = 0; d < dofs; ++d) {
     const double wd = w[d / 2];
     if (wd == 0.0) continue;
     const double impulse = mass[d / 2] * (vBar[d] - v0[d]) - h * f[d] + r1[d];  // −(Ḡᵀν̄)_d
-    velocityScale = std::max(velocityScale, std::abs(vBar[d]) + h * wd * std::abs(f[d]) + wd * std::abs(impulse));
+    velocityScale = std::max(velocityScale, std::abs(vBar[d]) + h * wd * (std::abs(f[d]) + termScale[d]) +
+                                                wd * std::abs(impulse));
     worst = std::max(worst, wd * std::abs(r1[d]));
   }
   momentumResidual = velocityScale > 0.0 ? worst / velocityScale : 0.0;

@@ -47,7 +47,11 @@ namespace particles {
 // forces, K, D, C and J at the iterate. The passes stop when, over every
 // constraint with a free particle,
 //   max |C(x̃) − (1 − β) C(x₀)| / (|J̃| r) ≤ constraintTolerance   and
-//   max |W R₁| ≤ constraintTolerance · max(|v̄| + h|W f| + |W Ḡᵀν̄|)   (free DOFs),
+//   max |W R₁| ≤ constraintTolerance · max(|v̄| + h|W|(|f| + Σ_c|K_dc||Δx_dc|) + |W Ḡᵀν̄|)
+// over the free DOFs; Σ_c|K_dc||Δx_dc| (a spring's k times its length) is the
+// size of the force terms that cancel in f near equilibrium, which sets the
+// round-off floor of R₁ (without it a stiff cloth hanging still could not get
+// below ~1e-9 and ran every pass),
 // or after constraintPasses solves (the step is then committed as it stands
 // and lastConstraintResidual() says how far it got). A constraint whose
 // particles are all pinned (or whose J vanishes) is left out: its impulse is 0,
