@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <tuple>
 
 #include "particles/particle_system.h"
 
@@ -47,41 +46,52 @@ void Dopri5Integrator::configure(const IntegratorSettings& settings) {
 
 namespace {
 
-// out = y₀ + h Σ_{j<count} c_j k_j in one pass over the vectors (Eigen fuses
-// the sum of a fixed number of terms into one loop, with no temporaries).
+// out = y₀ + Σ_{j<count} (h c_j) k_j in one pass over the vectors (Eigen fuses
+// the sum of a fixed number of terms into one loop, with no temporaries; the
+// step is folded into the coefficients, so the pass is one multiply-add per term).
 void combine(const Eigen::VectorXd& y0, double h, const double* c, const std::array<Eigen::VectorXd, 7>& k,
              int count, Eigen::VectorXd& out) {
+  double w[6];
+  for (int j = 0; j < count; ++j) w[j] = h * c[j];
   switch (count) {
-    case 1: out = y0 + (h * c[0]) * k[0]; break;
-    case 2: out = y0 + h * (c[0] * k[0] + c[1] * k[1]); break;
-    case 3: out = y0 + h * (c[0] * k[0] + c[1] * k[1] + c[2] * k[2]); break;
-    case 4: out = y0 + h * (c[0] * k[0] + c[1] * k[1] + c[2] * k[2] + c[3] * k[3]); break;
-    case 5: out = y0 + h * (c[0] * k[0] + c[1] * k[1] + c[2] * k[2] + c[3] * k[3] + c[4] * k[4]); break;
-    default: out = y0 + h * (c[0] * k[0] + c[2] * k[2] + c[3] * k[3] + c[4] * k[4] + c[5] * k[5]); break;  // b, b₂ = 0
+    case 1: out = y0 + w[0] * k[0]; break;
+    case 2: out = y0 + w[0] * k[0] + w[1] * k[1]; break;
+    case 3: out = y0 + w[0] * k[0] + w[1] * k[1] + w[2] * k[2]; break;
+    case 4: out = y0 + w[0] * k[0] + w[1] * k[1] + w[2] * k[2] + w[3] * k[3]; break;
+    case 5: out = y0 + w[0] * k[0] + w[1] * k[1] + w[2] * k[2] + w[3] * k[3] + w[4] * k[4]; break;
+    default: out = y0 + w[0] * k[0] + w[2] * k[2] + w[3] * k[3] + w[4] * k[4] + w[5] * k[5]; break;  // b, b₂ = 0
   }
+}
+
+// Σ_i (e_i / sc_i)² over one half of y (x or v), e = h Σ eⱼ kⱼ (e₂ = 0) and
+// sc_i = 1 + max(|y₀_i|, |y₁_i|), in one pass (the tolerance is applied by the caller).
+double squaredScaledError(const std::array<Eigen::VectorXd, 7>& k, const Eigen::VectorXd& y0,
+                          const Eigen::VectorXd& y1, double h) {
+  const double w0 = h * e[0], w2 = h * e[2], w3 = h * e[3], w4 = h * e[4], w5 = h * e[5], w6 = h * e[6];
+  return ((w0 * k[0] + w2 * k[2] + w3 * k[3] + w4 * k[4] + w5 * k[5] + w6 * k[6]).array() /
+          (1.0 + y0.array().abs().max(y1.array().abs())))
+      .square()
+      .sum();
 }
 
 }  // namespace
 
+// The velocity is x's derivative, so the velocity of stage s is kx_[s]: v₀ is
+// kx_[0], the stage velocities are formed in place and y₁'s velocity is kx_[6].
 double Dopri5Integrator::trial(ParticleSystem& system, double h) {
   for (int s = 1; s < 6; ++s) {
     combine(x0_, h, a[s], kx_, s, xs_);
-    combine(v0_, h, a[s], kv_, s, kx_[s]);  // k of x at stage s is that stage's velocity
+    combine(kx_[0], h, a[s], kv_, s, kx_[s]);
     system.acceleration(xs_, kx_[s], kv_[s]);
   }
   combine(x0_, h, b, kx_, 6, x1_);
-  combine(v0_, h, b, kv_, 6, v1_);
-  kx_[6] = v1_;
-  system.acceleration(x1_, v1_, kv_[6]);
+  combine(kx_[0], h, b, kv_, 6, kx_[6]);
+  system.acceleration(x1_, kx_[6], kv_[6]);
 
-  // err = sqrt(mean((e_i / sc_i)²)) over the 2N components of (x, v), e = h Σ eⱼ kⱼ (e₂ = 0).
+  // err = sqrt(mean((e_i / sc_i)²)) over the 2N components of (x, v).
   const Eigen::Index n = x0_.size();
   if (n == 0) return 0.0;
-  double sum = 0.0;
-  for (auto [k, y0, y1] : {std::tie(kx_, x0_, x1_), std::tie(kv_, v0_, v1_)}) {
-    error_ = h * (e[0] * k[0] + e[2] * k[2] + e[3] * k[3] + e[4] * k[4] + e[5] * k[5] + e[6] * k[6]);
-    sum += (error_.array() / (1.0 + y0.array().abs().max(y1.array().abs()))).square().sum();
-  }
+  const double sum = squaredScaledError(kx_, x0_, x1_, h) + squaredScaledError(kv_, kx_[0], kx_[6], h);
   const double err = std::sqrt(sum / (2.0 * n)) / settings_.tolerance;
   return std::isfinite(err) ? err : kRejected;
 }
@@ -90,20 +100,21 @@ double Dopri5Integrator::trial(ParticleSystem& system, double h) {
 // Euler probe to estimate |f'|, then h = min(100 h₀, (0.01 / max(|f₀|, |f'|))^(1/5)).
 double Dopri5Integrator::initialStep(ParticleSystem& system, double dt) {
   const Eigen::Index n = x0_.size();
+  const Eigen::VectorXd& v0 = kx_[0];
   auto scaledRms = [&](const Eigen::VectorXd& px, const Eigen::VectorXd& pv) {
     double sum = 0.0;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double sx = settings_.tolerance * (1.0 + std::abs(x0_[i]));
-      const double sv = settings_.tolerance * (1.0 + std::abs(v0_[i]));
+      const double sv = settings_.tolerance * (1.0 + std::abs(v0[i]));
       sum += (px[i] / sx) * (px[i] / sx) + (pv[i] / sv) * (pv[i] / sv);
     }
     return n > 0 ? std::sqrt(sum / (2.0 * n)) : 0.0;
   };
-  const double d0 = scaledRms(x0_, v0_), d1 = scaledRms(kx_[0], kv_[0]);
+  const double d0 = scaledRms(x0_, v0), d1 = scaledRms(kx_[0], kv_[0]);
   double h0 = d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1;
   h0 = std::min(h0, dt);
   xs_ = x0_ + h0 * kx_[0];
-  vs_ = v0_ + h0 * kv_[0];
+  vs_ = v0 + h0 * kv_[0];
   system.acceleration(xs_, vs_, a_);
   const double d2 = scaledRms(vs_ - kx_[0], a_ - kv_[0]) / h0;
   const double dMax = std::max(d1, d2);
@@ -115,7 +126,7 @@ double Dopri5Integrator::initialStep(ParticleSystem& system, double dt) {
 // The continuous extension above, collected per stage:
 //   y(θ) = y₀ + (c₂ − c₃ + 2c₄)(y₁ − y₀) + h [(c₃ − c₄) k₁ − c₄ k₇ + c₅ Σ dᵢ kᵢ],
 //   c₂ = θ, c₃ = θ(1−θ), c₄ = θ²(1−θ), c₅ = θ²(1−θ)².
-// After the swaps that accept a step, y₀ is in (x1_, v1_), y₁ in (x0_, v0_),
+// After the swaps that accept a step, y₀ is in (x1_, kx_[6]), y₁ in (x0_, kx_[0]),
 // k₁ in kx_[6], kv_[6], k₇ in kx_[0], kv_[0], and k₂…k₆ in place: intact
 // until the next trial.
 void Dopri5Integrator::denseOutput(double theta, Eigen::VectorXd& x, Eigen::VectorXd& v) const {
@@ -124,23 +135,22 @@ void Dopri5Integrator::denseOutput(double theta, Eigen::VectorXd& x, Eigen::Vect
   const double w1 = h * (c3 - c4 + c5 * d[0]), w7 = h * (c5 * d[6] - c4);
   const double w3 = h * c5 * d[2], w4 = h * c5 * d[3], w5 = h * c5 * d[4], w6 = h * c5 * d[5];
   x = x1_ + alpha * (x0_ - x1_) + w1 * kx_[6] + w3 * kx_[2] + w4 * kx_[3] + w5 * kx_[4] + w6 * kx_[5] + w7 * kx_[0];
-  v = v1_ + alpha * (v0_ - v1_) + w1 * kv_[6] + w3 * kv_[2] + w4 * kv_[3] + w5 * kv_[4] + w6 * kv_[5] + w7 * kv_[0];
+  v = kx_[6] + alpha * (kx_[0] - kx_[6]) + w1 * kv_[6] + w3 * kv_[2] + w4 * kv_[3] + w5 * kv_[4] + w6 * kv_[5] + w7 * kv_[0];
 }
 
 StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = system.positions();
   Eigen::VectorXd& v = system.velocities();
-  // The internal solution (x0_, v0_, lead_ ahead of the output) and k₁ there
+  // The internal solution (x0_, kx_[0], lead_ ahead of the output) and k₁ there
   // (FSAL: the last accepted step's k₇) carry on only while the system holds
   // exactly the state this integrator returned; anything else (a collision, a
   // drag, a restore) restarts it from the system's state.
   const bool resume = cached_ && xCached_.size() == x.size() && xCached_ == x && vCached_ == v;
   if (!resume) {
     x0_ = x;
-    v0_ = v;
+    kx_[0] = v;
     lead_ = 0.0;
-    kx_[0] = v0_;
-    system.acceleration(x0_, v0_, kv_[0]);
+    system.acceleration(x0_, kx_[0], kv_[0]);
   }
   StepStats stats;
   stats.internalSteps = 0;
@@ -149,13 +159,12 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
   if (!adaptive) {
     trial(system, dt);
     x0_.swap(x1_);
-    v0_.swap(v1_);
-    std::swap(kx_[0], kx_[6]);
-    std::swap(kv_[0], kv_[6]);
+    kx_[0].swap(kx_[6]);
+    kv_[0].swap(kv_[6]);
     stats.internalSteps = 1;
     lastStep_ = dt;
     x = x0_;
-    v = v0_;
+    v = kx_[0];
   } else {
     if (!(h_ > 0.0) || !std::isfinite(h_)) h_ = initialStep(system, dt);
     const double floor = settings_.minStepFraction * dt;
@@ -172,9 +181,8 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
       const double err = trial(system, h);
       if (err <= 1.0) {
         x0_.swap(x1_);
-        v0_.swap(v1_);
-        std::swap(kx_[0], kx_[6]);
-        std::swap(kv_[0], kv_[6]);
+        kx_[0].swap(kx_[6]);
+        kv_[0].swap(kv_[6]);
         lead_ += h;
         denseStep_ = h;
         ++stats.internalSteps;
@@ -197,7 +205,7 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
     if (stats.failure != StepFailure::None || std::abs(lead_ - dt) <= 1e-12 * dt) {
       // On the internal grid (or stopped short by a failure: the last accepted state).
       x = x0_;
-      v = v0_;
+      v = kx_[0];
       lead_ = 0.0;
     } else {
       // The output time lies inside the last accepted step, lead_ − dt before

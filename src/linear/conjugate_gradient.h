@@ -50,20 +50,24 @@ CgResult conjugateGradient(const Apply& apply, const Precondition& precondition,
   p = z;
   double rz = r.dot(z);
   const double target = settings.tolerance * bNorm;
-  while (result.iterations < settings.maxIterations && r.norm() > target) {
+  double rNorm = r.norm();
+  while (result.iterations < settings.maxIterations && rNorm > target) {
     apply(p, Ap);
     const double pAp = p.dot(Ap);
-    if (!(pAp > settings.curvatureFloor * p.squaredNorm())) break;
+    // |p|² is needed only against a positive floor (0·|p|² = 0 otherwise).
+    const double floor = settings.curvatureFloor > 0.0 ? settings.curvatureFloor * p.squaredNorm() : 0.0;
+    if (!(pAp > floor)) break;
     const double alpha = rz / pAp;
     x += alpha * p;
     r -= alpha * Ap;
+    rNorm = r.norm();
     precondition(r, z);
     const double rzNext = r.dot(z);
     p = z + (rzNext / rz) * p;
     rz = rzNext;
     ++result.iterations;
   }
-  result.relativeResidual = r.norm() / bNorm;
+  result.relativeResidual = rNorm / bNorm;
   return result;
 }
 

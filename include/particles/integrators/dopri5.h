@@ -47,8 +47,9 @@ class Dopri5Integrator : public Integrator {
   double internalStep() const { return h_; }  // the step the next attempt starts from (0: not chosen yet)
 
  private:
-  // One trial step of h from (x0_, v0_) with k₁ in kx_[0], kv_[0]; leaves y₁ in
-  // (x1_, v1_) and k₇ in kx_[6], kv_[6], and returns err (the norm above).
+  // One trial step of h from (x0_, kx_[0]) with k₁ in kx_[0], kv_[0] (x's
+  // derivative is the velocity, so kx_[j] is stage j's velocity); leaves y₁ in
+  // (x1_, kx_[6]) and k₇ in kx_[6], kv_[6], and returns err (the norm above).
   double trial(ParticleSystem& system, double h);
   double initialStep(ParticleSystem& system, double dt);
   // The state at t₀ + θh, θ ∈ [0, 1], inside the last accepted step (from
@@ -57,12 +58,12 @@ class Dopri5Integrator : public Integrator {
 
   IntegratorSettings settings_;
   double h_ = 0.0, errPrevious_ = 1e-4;
-  std::array<Eigen::VectorXd, 7> kx_, kv_;  // stage derivatives of x and v
-  // (x0_, v0_): the internal solution, lead_ (s) ahead of the output state.
-  Eigen::VectorXd x0_, v0_, x1_, v1_, xs_, vs_, a_;
+  std::array<Eigen::VectorXd, 7> kx_, kv_;  // stage derivatives of x (the stage velocities) and v
+  // (x0_, kx_[0]): the internal solution, lead_ (s) ahead of the output state;
+  // x1_ a trial's end positions, xs_ a stage's; vs_, a_ the starting step's probe.
+  Eigen::VectorXd x0_, x1_, xs_, vs_, a_;
   double lead_ = 0.0;
   double denseStep_ = 0.0;  // length of the last accepted step
-  Eigen::VectorXd error_;   // the embedded error estimate of one component
   // The output state last returned: the internal solution (and its k₁) is
   // continued only while the system still holds it.
   Eigen::VectorXd xCached_, vCached_;
