@@ -17,17 +17,36 @@ Eigen::Vector2d springForce(const Eigen::Vector2d& l, const Eigen::Vector2d& ldo
 // With u = l/|l|, P = I − u uᵀ and s = k_s(|l| − r) + k_d l̇·u:
 //   f = −s u,  ∂u/∂l = P/|l|,  ∂(l̇·u)/∂l = P l̇/|l|,
 //   ∂f/∂l = −k_s u uᵀ − s P/|l| − k_d u (P l̇)ᵀ/|l|,   ∂f/∂l̇ = −k_d u uᵀ.
+namespace {
+
+// The spring's axis: |l|, u = l/|l| and u uᵀ. Without one (l = 0, direction
+// undefined) both Jacobians are set to 0 and it returns false.
+struct Axis {
+  double length;
+  Eigen::Vector2d u;
+  Eigen::Matrix2d uu;
+};
+
+bool axisOf(const Eigen::Vector2d& l, Axis& axis, Eigen::Matrix2d& dfdl, Eigen::Matrix2d& dfdldot) {
+  axis.length = l.norm();
+  if (axis.length == 0.0) {
+    dfdl.setZero();
+    dfdldot.setZero();
+    return false;
+  }
+  axis.u = l / axis.length;
+  axis.uu = axis.u * axis.u.transpose();
+  return true;
+}
+
+}  // namespace
+
 void springJacobian(const Eigen::Vector2d& l, const Eigen::Vector2d& ldot, double rest,
                     double stiffness, double damping, Eigen::Matrix2d& dfdl,
                     Eigen::Matrix2d& dfdldot) {
-  const double length = l.norm();
-  if (length == 0.0) {
-    dfdl.setZero();
-    dfdldot.setZero();
-    return;
-  }
-  const Eigen::Vector2d u = l / length;
-  const Eigen::Matrix2d uu = u * u.transpose();
+  Axis axis;
+  if (!axisOf(l, axis, dfdl, dfdldot)) return;
+  const auto& [length, u, uu] = axis;
   const Eigen::Matrix2d P = Eigen::Matrix2d::Identity() - uu;
   const double s = stiffness * (length - rest) + damping * ldot.dot(u);
   dfdl = -stiffness * uu - (s / length) * P - (damping / length) * u * (P * ldot).transpose();
@@ -56,14 +75,9 @@ double SpringForce::potential(const Phase& s) const {
 
 void springDefiniteJacobian(const Eigen::Vector2d& l, double rest, double stiffness,
                             double damping, Eigen::Matrix2d& dfdl, Eigen::Matrix2d& dfdldot) {
-  const double length = l.norm();
-  if (length == 0.0) {
-    dfdl.setZero();
-    dfdldot.setZero();
-    return;
-  }
-  const Eigen::Vector2d u = l / length;
-  const Eigen::Matrix2d uu = u * u.transpose();
+  Axis axis;
+  if (!axisOf(l, axis, dfdl, dfdldot)) return;
+  const auto& [length, u, uu] = axis;
   const double transverse = stiffness * std::max(0.0, 1.0 - rest / length);
   dfdl = -stiffness * uu - transverse * (Eigen::Matrix2d::Identity() - uu);
   dfdldot = -damping * uu;
