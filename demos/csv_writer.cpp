@@ -13,9 +13,26 @@ CsvWriter::CsvWriter(const std::string& path, const std::string& what, const std
   endRow();
 }
 
+std::string csvField(const std::string& cell) {
+  if (cell.find_first_of(",\"\n\r") == std::string::npos) return cell;
+  std::string quoted = "\"";
+  for (char c : cell) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + '"';
+}
+
+std::string csvUnquote(const std::string& field) {
+  if (field.size() < 2 || field.front() != '"' || field.back() != '"') return field;
+  std::string text;
+  for (std::size_t k = 1; k + 1 < field.size(); ++k) {
+    text += field[k];
+    if (field[k] == '"' && field[k + 1] == '"') ++k;
+  }
+  return text;
+}
+
 CsvWriter& CsvWriter::operator<<(const std::string& cell) {
   if (cell_++) row_ += ',';
-  row_ += cell;
+  row_ += csvField(cell);
   return *this;
 }
 

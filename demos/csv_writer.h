@@ -1,6 +1,7 @@
 #pragma once
 // The one CSV writer of the tools (the runner's --csv and --trajectory, the
-// laboratory's files): a header, then rows of cells separated by commas, every
+// laboratory's files): a header, then rows of cells separated by commas (RFC
+// 4180 quoting where a cell needs it: csvField), every
 // write checked through OutputFile (a full disk is one line, exit 4) and each
 // row's cell count checked against the header.
 #include <string>
@@ -9,6 +10,12 @@
 #include "output_file.h"
 
 namespace scenes {
+
+// A cell as RFC 4180 writes it: as it is, or in double quotes (inner quotes
+// doubled) when it holds a comma, a quote or a line break.
+std::string csvField(const std::string& cell);
+// The text of one field as csvField wrote it, quoted or not.
+std::string csvUnquote(const std::string& field);
 
 struct CsvFormat {
   int digits = 0;           // significant digits of a number; 0: the shortest text that reads back exactly

@@ -14,7 +14,8 @@ data=report/data
 mkdir -p "$data" report/figures
 rm -f "$data"/*.csv "$data"/*.md
 
-value() { printf '%s,%s\n' "$1" "$2" >> "$data/values.csv"; }
+# key,value rows, the value quoted as RFC 4180 does (lab/values.cpp reads it back).
+value() { printf '%s,"%s"\n' "$1" "${2//\"/\"\"}" >> "$data/values.csv"; }
 printf 'key,value\n' > "$data/values.csv"
 value machine.cpu "$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
 value machine.cores "$(lscpu | sed -n 's/^CPU(s): *//p' | head -n 1) ($(nproc) usable)"

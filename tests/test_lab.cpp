@@ -6,9 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
-
 #include <mutex>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -19,7 +18,9 @@
 #include "lab/parallel.h"
 #include "lab/scan.h"
 #include "particles/constraints/circular_wire.h"
+#include "csv_writer.h"
 #include "lab/render.h"
+#include "lab/values.h"
 
 using namespace lab;
 
@@ -272,6 +273,29 @@ TEST(RenderTemplate, FillsTablesAndValuesAndRejectsMissingOnes) {
 std::string fileText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// A cell with a comma, a quote or a line break is quoted as RFC 4180 does, in
+// the CSVs and in values.csv, and reads back as written.
+TEST(Csv, CellsWithCommasAndQuotesAreQuotedAndReadBack) {
+  const std::string dir = quickOptions("csv-quoting").outDir;
+  std::filesystem::create_directories(dir);
+  {
+    scenes::CsvWriter csv(dir + "/t.csv", "the CSV", {"solver", "n"});
+    csv << "plain CG, cold start" << 80L;
+    csv.endRow();
+    csv << "say \"hi\"" << 1L;
+    csv.endRow();
+    csv.close();
+  }
+  EXPECT_EQ(fileText(dir + "/t.csv"), "solver,n\n\"plain CG, cold start\",80\n\"say \"\"hi\"\"\",1\n");
+  for (const std::string text : {"plain", "a, b", "\"", "x \"y\", z", "", "line\nbreak"})
+    EXPECT_EQ(scenes::csvUnquote(scenes::csvField(text)), text) << text;
+  writeValue(dir, "durations", "30, 60, 120");
+  writeValue(dir, "quote", "a \"b\", c");
+  EXPECT_EQ(readValues(dir).at("durations"), "30, 60, 120");
+  EXPECT_EQ(readValues(dir).at("quote"), "a \"b\", c");
+  EXPECT_EQ(fileText(dir + "/values.csv"), "key,value\ndurations,\"30, 60, 120\"\nquote,\"a \"\"b\"\", c\"\n");
 }
 
 TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {

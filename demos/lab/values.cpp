@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "csv_writer.h"
 #include "output_file.h"
 
 namespace lab {
@@ -13,7 +14,7 @@ std::map<std::string, std::string> readValues(const std::string& dir) {
   while (std::getline(in, row)) {
     const auto comma = row.find(',');
     if (comma != std::string::npos && row.substr(0, comma) != "key")  // not the header
-      values[row.substr(0, comma)] = row.substr(comma + 1);
+      values[row.substr(0, comma)] = scenes::csvUnquote(row.substr(comma + 1));
   }
   return values;
 }
@@ -23,7 +24,7 @@ void writeValue(const std::string& dir, const std::string& key, const std::strin
   values[key] = value;
   scenes::OutputFile out(dir + "/values.csv", "the values");
   out.stream() << "key,value\n";
-  for (const auto& [k, v] : values) out.stream() << k << ',' << v << '\n';
+  for (const auto& [k, v] : values) out.stream() << k << ',' << scenes::csvField(v) << '\n';
   out.close();
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // DIR/values.csv: the values the report quotes, one `key,value` row each
-// under the header `key,value` (the value is the rest of the row, commas and
-// all). The experiments record them (recordValue), scripts/make-report.sh
+// under the header `key,value` (the value quoted as RFC 4180 does where it
+// holds a comma or a quote: csv_writer.h). The experiments record them (recordValue), scripts/make-report.sh
 // appends the ones it measures itself, and render-report reads them back:
 // this is the one reader and the one writer.
 #include <map>
