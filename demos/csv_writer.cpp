@@ -30,17 +30,20 @@ std::string csvUnquote(const std::string& field) {
   return text;
 }
 
-CsvWriter& CsvWriter::operator<<(const std::string& cell) {
+CsvWriter& CsvWriter::operator<<(const std::string& cell) { return append(csvField(cell)); }
+
+// Numbers never need quoting.
+CsvWriter& CsvWriter::operator<<(double value) {
+  return append(format_.digits > 0 ? particles::formatGeneral(value, format_.digits) : particles::formatNumber(value));
+}
+
+CsvWriter& CsvWriter::operator<<(long long value) { return append(std::to_string(value)); }
+
+CsvWriter& CsvWriter::append(const std::string& field) {
   if (cell_++) row_ += ',';
-  row_ += csvField(cell);
+  row_ += field;
   return *this;
 }
-
-CsvWriter& CsvWriter::operator<<(double value) {
-  return *this << (format_.digits > 0 ? particles::formatGeneral(value, format_.digits) : particles::formatNumber(value));
-}
-
-CsvWriter& CsvWriter::operator<<(long long value) { return *this << std::to_string(value); }
 
 void CsvWriter::endRow() {
   if (cell_ != columns_)

@@ -42,6 +42,8 @@ class CsvWriter {
   const std::string& path() const { return path_; }
 
  private:
+  CsvWriter& append(const std::string& field);  // a field as written (quoted already if it must be)
+
   std::string path_;
   OutputFile file_;
   CsvFormat format_;
