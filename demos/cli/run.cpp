@@ -110,7 +110,8 @@ Command addRunCommand(CLI::App& app) {
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
                       "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
-                      "fixed-step integrators (default: the scene's, 1e-5)")
+                      "fixed-step integrators (default: the scene's, " +
+                          particles::formatNumber(particles::IntegratorSettings{}.tolerance) + ")")
           ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,

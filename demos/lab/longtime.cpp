@@ -57,6 +57,7 @@ int runLongtime(const LabOptions& options) {
   Progress progress("longtime", static_cast<long>(runs.size() * integrators.size() + implicitSteps.size()));
   recordValue(options, "longtime.horizon", general(horizon));
   recordValue(options, "longtime.pendulum_period", fixed(period, 2));
+  recordValue(options, "longtime.adaptive_tolerance", general(particles::IntegratorSettings{}.tolerance));
 
   // Only non-finite states end a run: the drift itself is what is shown.
   FailureCriterion drift;

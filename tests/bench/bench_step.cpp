@@ -19,20 +19,18 @@
 // solve, solves and force evaluations per step.
 //
 // chain80-dt10ms/{rk4,dopri5}: the chain at dt 10 ms, 40 whole episodes of 30
-// steps (see chainStepAt10ms). Measured 2026-12-02 on the 2-core AMD EPYC
-// (shared, load average ~7): instructions per timed step by callgrind
-// (scripts/callgrind-step.sh, repeatable): rk4 257,728, dopri5 436,837, ratio
-// 1.695 (439,192 and 1.704 before the stage velocities were stored once and
-// the error norm fused). CPU-time medians of 9 repetitions, three runs:
-// rk4 13.7–14.2 µs, dopri5 23.8–25.5 µs (ratio 1.73–1.80); wall-clock medians
-// 14.1–22.4 µs and 24.5–36.8 µs under that load. The ratio stays above 1.6 at
-// dopri5's default tolerance 1e-5: it takes 33 accepted internal steps per 30
-// outputs (none rejected), 6.6 evaluations per step against RK4's 4, and an
-// evaluation (gravity and the direct constraint solve, ~62,000 instructions)
-// is 96% of an RK4 step: the evaluations alone cost 6.6·62k / 258k = 1.58 RK4
-// steps, which leaves dopri5 ~4,300 instructions a step of its own, while its
-// stage sums and error estimate (52 multiply-add passes over 160-vectors a
-// trial) take ~19,000 and the dense output ~4,300.
+// steps (see chainStepAt10ms), dopri5 at its default tolerance 2e-5.
+// Measured 2026-12-02 on the 2-core AMD EPYC (shared, load average 0.5–0.8):
+// instructions per timed step by callgrind (scripts/callgrind-step.sh,
+// repeatable): rk4 257,728, dopri5 397,814, ratio 1.544. dopri5 takes 29
+// accepted and 1 rejected internal step per 30 outputs (6.0 evaluations per
+// step against RK4's 4); its evaluations cost 1.50 RK4 steps' evaluations and
+// its own stage sums, error norm and dense output ~27,000 instructions a step
+// (RK4's ~10,000). CPU-time medians of 9 interleaved repetitions
+// (--benchmark_enable_random_interleaving=true), three runs: rk4 13.6–13.8 µs
+// (spread 0.3–1.1 µs), dopri5 21.5–21.9 µs (spread 0.2–1.1 µs), ratio
+// 1.56–1.61. At the earlier default 1e-5 dopri5 took 33 internal steps per 30
+// outputs: 436,837 instructions, 1.695 RK4 steps.
 //
 //   ./build/tests/bench_step --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
