@@ -71,35 +71,23 @@ void DistanceBatch::build(const std::vector<CompliantDistance>& constraints, con
 }
 
 void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
-  const auto range = [&](auto run) {
-    std::size_t begin = 0;
-    for (std::size_t end : colourEnd_) {
-      run(begin, end, kBlock);
-      begin = end;
-    }
-    run(serialBegin_, size(), 1);
+  // The loop's six variants (damped or not × how the multipliers are kept),
+  // one table row per damping, chosen once per pass.
+  using Range = void (DistanceBatch::*)(std::size_t, std::size_t, std::size_t, const double*, double*);
+  static constexpr Range variants[2][3] = {
+      {&DistanceBatch::projectRange<false, Multipliers::None>, &DistanceBatch::projectRange<false, Multipliers::Start>,
+       &DistanceBatch::projectRange<false, Multipliers::Accumulate>},
+      {&DistanceBatch::projectRange<true, Multipliers::None>, &DistanceBatch::projectRange<true, Multipliers::Start>,
+       &DistanceBatch::projectRange<true, Multipliers::Accumulate>},
   };
   const Multipliers lambda = passes == 1 ? Multipliers::None : pass == 0 ? Multipliers::Start : Multipliers::Accumulate;
-  // The four variants of the loop, chosen once per pass.
-  if (damped_) {
-    if (lambda == Multipliers::None)
-      range([&](std::size_t b, std::size_t e, std::size_t s) { projectRange<true, Multipliers::None>(b, e, s, xn, x); });
-    else if (lambda == Multipliers::Start)
-      range([&](std::size_t b, std::size_t e, std::size_t s) { projectRange<true, Multipliers::Start>(b, e, s, xn, x); });
-    else
-      range([&](std::size_t b, std::size_t e, std::size_t s) {
-        projectRange<true, Multipliers::Accumulate>(b, e, s, xn, x);
-      });
-  } else {
-    if (lambda == Multipliers::None)
-      range([&](std::size_t b, std::size_t e, std::size_t s) { projectRange<false, Multipliers::None>(b, e, s, xn, x); });
-    else if (lambda == Multipliers::Start)
-      range([&](std::size_t b, std::size_t e, std::size_t s) { projectRange<false, Multipliers::Start>(b, e, s, xn, x); });
-    else
-      range([&](std::size_t b, std::size_t e, std::size_t s) {
-        projectRange<false, Multipliers::Accumulate>(b, e, s, xn, x);
-      });
+  const Range run = variants[damped_ ? 1 : 0][static_cast<int>(lambda)];
+  std::size_t begin = 0;
+  for (std::size_t end : colourEnd_) {
+    (this->*run)(begin, end, kBlock, xn, x);
+    begin = end;
   }
+  (this->*run)(serialBegin_, size(), 1, xn, x);
 }
 
 // Per block of independent constraints: gather d = x_i − x_j, take 1/|d| for
