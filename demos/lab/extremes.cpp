@@ -62,13 +62,14 @@ int runExtremes(const LabOptions& options) {
       return buildLabScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
                                      {"links", "8"}, {"stiffness", general(ks, 6)}});
     };
+    auto bottom = [](double ks) { return 0.3 / std::sqrt(ks); };  // the window's smallest dt
     std::map<std::string, std::vector<std::string>> rows;
     sweep<Boundary>(
         options, cells.size(),
         [&](std::size_t k) {
           const auto& [name, ks] = cells[k];
           ScanSettings window = scan;
-          window.grid = stepGrid(0.3 / std::sqrt(ks), std::min(0.5, 10.0 / std::sqrt(ks)));
+          window.grid = stepGrid(bottom(ks), std::min(0.5, 10.0 / std::sqrt(ks)));
           window.extendDecades = 1;
           auto build = [&, ks = ks] { return cloth(ks); };
           auto b = scanSafeStep(build, name, duration, window, criterion);
@@ -83,7 +84,7 @@ int runExtremes(const LabOptions& options) {
         },
         [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
           const auto& [name, ks] = cells[k];
-          return estimatedRunSeconds(cloth(ks), name, 0.3 / std::sqrt(ks), duration);
+          return estimatedRunSeconds(cloth(ks), name, bottom(ks), duration);
         });
     if (interrupted()) return 130;
     const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
@@ -108,13 +109,17 @@ int runExtremes(const LabOptions& options) {
     for (const auto& name : scanned)
       for (double ratio : ratios) cells.push_back({name, ratio});
     std::map<std::string, std::vector<std::string>> rows;
+    auto cellChain = [&](std::size_t k) {  // the chain of cell k, for its scan and its cost estimate
+      ChainSpec spec{length};
+      spec.extra["tip-mass-ratio"] = general(cells[k].second, 6);
+      return spec;
+    };
     using Result = std::pair<Boundary, double>;
     sweep<Result>(
         options, cells.size(),
         [&](std::size_t k) -> std::optional<Result> {
-          const auto& [name, ratio] = cells[k];
-          ChainSpec spec{length};
-          spec.extra["tip-mass-ratio"] = general(ratio, 6);
+          const std::string& name = cells[k].first;
+          const ChainSpec spec = cellChain(k);
           auto b = scanSafeStep([&] { return buildChain(spec); }, name, duration, window, criterion);
           progress.tick();
           if (!b) return std::nullopt;
@@ -132,10 +137,7 @@ int runExtremes(const LabOptions& options) {
           rows[name].push_back(safeStepText(b) + " (" + general(r.second, 3) + " it)");
         },
         [&](std::size_t k) {
-          const auto& [name, ratio] = cells[k];
-          ChainSpec spec{length};
-          spec.extra["tip-mass-ratio"] = general(ratio, 6);
-          return estimatedRunSeconds(buildChain(spec), name, window.grid.front(), duration);
+          return estimatedRunSeconds(buildChain(cellChain(k)), cells[k].first, window.grid.front(), duration);
         });
     if (interrupted()) return 130;
     const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
@@ -245,19 +247,18 @@ int runExtremes(const LabOptions& options) {
     // The step cost is timed on this thread after the scans, so the timings
     // never share the machine with another cell.
     std::vector<Boundary> boundaries(cells.size());
+    auto cellChain = [&](std::size_t k) { return ChainSpec{q ? 6 : 24, cells[k].second}; };
     sweep<Boundary>(
         options, cells.size(),
         [&](std::size_t k) {
-          const auto& [name, form] = cells[k];
-          ChainSpec spec{q ? 6 : 24, form};
-          auto b = scanSafeStep([&] { return buildChain(spec); }, name, duration, window, criterion);
+          const ChainSpec spec = cellChain(k);
+          auto b = scanSafeStep([&] { return buildChain(spec); }, cells[k].first, duration, window, criterion);
           progress.tick();
           return b;
         },
         [&](std::size_t k, Boundary& b) { boundaries[k] = b; },
         [&](std::size_t k) {
-          const auto& [name, form] = cells[k];
-          return estimatedRunSeconds(buildChain(ChainSpec{q ? 6 : 24, form}), name, window.grid.front(), duration);
+          return estimatedRunSeconds(buildChain(cellChain(k)), cells[k].first, window.grid.front(), duration);
         });
     if (interrupted()) return 130;
     for (std::size_t k = 0; k < cells.size(); ++k) {
