@@ -20,16 +20,20 @@
 //
 // chain80-dt10ms/{rk4,dopri5}: the chain at dt 10 ms, 40 whole episodes of 30
 // steps (see chainStepAt10ms), dopri5 at its default tolerance 2e-5.
-// Measured 2026-12-02 on the 2-core AMD EPYC (shared, load average 0.5–0.8):
+// Measured 2026-12-02 on the 2-core AMD EPYC (shared):
 // instructions per timed step by callgrind (scripts/callgrind-step.sh,
 // repeatable): rk4 257,728, dopri5 397,814, ratio 1.544. dopri5 takes 29
 // accepted and 1 rejected internal step per 30 outputs (6.0 evaluations per
 // step against RK4's 4); its evaluations cost 1.50 RK4 steps' evaluations and
 // its own stage sums, error norm and dense output ~27,000 instructions a step
-// (RK4's ~10,000). CPU-time medians of 9 interleaved repetitions
-// (--benchmark_enable_random_interleaving=true), three runs: rk4 13.6–13.8 µs
-// (spread 0.3–1.1 µs), dopri5 21.5–21.9 µs (spread 0.2–1.1 µs), ratio
-// 1.56–1.61. At the earlier default 1e-5 dopri5 took 33 internal steps per 30
+// (RK4's ~10,000). CPU time, by scripts/bench-ratio.sh (runs of 9
+// interleaved repetitions, the two medians of a run in the same run): at load
+// 0.4, 7 runs, rk4 13.7–14.4 µs, dopri5 21.4–22.5 µs, ratio median 1.563
+// (1.525–1.592); at load 0.5–1.5 the ratio spread to 1.51–1.69 over 13 runs
+// (median 1.59): per step dopri5 misses the first-level cache about four times
+// as often as an RK4 step (callgrind --cache-sim=yes), so its CPU ratio sits
+// above the instruction ratio and is the more load-sensitive. At the earlier
+// default 1e-5 dopri5 took 33 internal steps per 30
 // outputs: 436,837 instructions, 1.695 RK4 steps.
 //
 //   ./build/tests/bench_step --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
