@@ -97,6 +97,7 @@ void ParticleSystem::addCollisionEdge(int a, int b) {
   requireIndex("collision edge", b, size());
   if (a == b) throw std::invalid_argument("collision edge joins particle " + std::to_string(a) + " to itself");
   edges_.push_back({a, b});
+  structureStamp_ = nextStructureStamp();
 }
 
 void ParticleSystem::removeForce(const Force* force) {
@@ -214,15 +215,15 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
     if (edges) margin = std::max(margin, edgeReach(edges_, x0, x_));
     markNearColliders(colliders_, x0, x_, margin, near_, nearList_);
     if (discs) {
-      // Discs are resolved with each other; moved by their impacts, their edges are tested.
-      for (int i : collidable_) near_[i] = 2;
-      nearList_.erase(std::remove_if(nearList_.begin(), nearList_.end(), [&](int i) { return near_[i] == 2; }),
+      // Discs are resolved with each other, not here (their edges are tested below).
+      for (int i : collidable_) near_[i] = 0;
+      nearList_.erase(std::remove_if(nearList_.begin(), nearList_.end(), [&](int i) { return !near_[i]; }),
                       nearList_.end());
     }
     contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
                                         lastFree_, &nearList_);
     if (edges) {
-      edgeIncidence_.update(edges_, size());
+      edgeIncidence_.update(edges_, size(), structureStamp_);
       edgeIncidence_.mark(nearList_);
       if (discs) edgeIncidence_.mark(collidable_);
       edgeIncidence_.takeMarked(nearEdges_);

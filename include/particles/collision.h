@@ -11,7 +11,9 @@
 // exact. A contact that would close again within the step is resting: it
 // holds the particle on the surface for the rest of the step with the normal
 // impulse that cancels its approach (weight × dt for a particle at rest).
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -142,16 +144,17 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
 // a few marked particles are found without a pass over every edge.
 class EdgeIncidence {
  public:
-  // Rebuilds the table when the edges or the number of particles changed.
-  void update(const std::vector<CollisionEdge>& edges, int particles);
+  // Rebuilds the table when `structure` differs from the last call's: a
+  // ParticleSystem passes its structureStamp(), which changes with its
+  // particles and its collision edges.
+  void update(const std::vector<CollisionEdge>& edges, int particles, std::uint64_t structure);
   // Marks the edges with an end in `particles`.
   void mark(const std::vector<int>& particles);
   // The marked edges, as ascending indices into the edges; clears the marks.
   void takeMarked(std::vector<int>& out);
 
  private:
-  std::size_t edgeCount_ = 0;
-  int particleCount_ = -1;
+  std::optional<std::uint64_t> structure_;  // of the table as built
   std::vector<int> first_;     // particle p's edges: ids_[first_[p] .. first_[p + 1])
   std::vector<int> ids_;
   std::vector<char> marked_;   // per edge

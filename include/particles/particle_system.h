@@ -73,8 +73,9 @@ class ParticleSystem {
   void restore(const Snapshot& s);
 
   const std::vector<std::unique_ptr<Force>>& forceObjects() const { return forces_; }
-  // Changes whenever particles, forces, constraints or pins change, and differs
-  // between systems: integrators that prepare per-structure data key it on this.
+  // Changes whenever particles, forces, constraints, pins or collision edges
+  // change, and differs between systems: integrators and the contact pass
+  // that prepare per-structure data key it on this.
   std::uint64_t structureStamp() const { return structureStamp_; }
   const ConstraintList& constraints() const { return constraints_; }
   const std::vector<Collider>& colliders() const { return colliders_; }
@@ -142,8 +143,8 @@ class ParticleSystem {
   ContactSettings contactSettings_;
   // Collision scratch: the step's start and the last known free positions.
   Eigen::VectorXd startX_, startV_, lastFree_;
-  std::vector<char> near_;          // near a collider (markNearColliders), or a disc
-  std::vector<int> nearList_;       // the particles near a collider that are not discs, ascending
+  std::vector<char> near_;          // near a collider (markNearColliders) and not a disc
+  std::vector<int> nearList_;       // the same particles, ascending
   std::vector<int> nearEdges_;      // edges with an end near a collider or at a disc, ascending
   EdgeIncidence edgeIncidence_;
   int contactsLastStep_ = 0;

@@ -79,10 +79,9 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
   return contacts;
 }
 
-void EdgeIncidence::update(const std::vector<CollisionEdge>& edges, int particles) {
-  if (edges.size() == edgeCount_ && particles == particleCount_) return;
-  edgeCount_ = edges.size();
-  particleCount_ = particles;
+void EdgeIncidence::update(const std::vector<CollisionEdge>& edges, int particles, std::uint64_t structure) {
+  if (structure_ == structure) return;
+  structure_ = structure;
   first_.assign(particles + 1, 0);
   for (const CollisionEdge& e : edges) {
     ++first_[e.a + 1];
