@@ -11,11 +11,11 @@
 #include <gtest/gtest.h>
 
 #include "particles/constraints/circular_wire.h"
-#include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/integrators/dopri5.h"
 #include "particles/particle_system.h"
+#include "bench/rod_chain.h"
 #include "test_support.h"
 
 using namespace particles;
@@ -139,18 +139,9 @@ TEST(Dopri5, SixEvaluationsPerStepAndTheInternalStepCarriesOverCalls) {
 // hardly a rejected step and about one internal step per call once started (the
 // first 0.05 s include the starting step's search).
 TEST(Dopri5, TheDefaultToleranceBeatsRk4AtTheScenesStep) {
-  auto chain = [] {
-    ParticleSystem system;
-    for (int i = 0; i < 80; ++i) system.addParticle(Vector2d(0.05 * i, 0.0), 1.0);
-    system.setPinned(0, true);
-    for (int i = 0; i + 1 < 80; ++i)
-      system.addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.05, RodForm::Squared));
-    system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
-    return system;
-  };
   const double T = 0.35;
   auto endPositions = [&](const std::string& name, double dt, StepStats* work) {
-    ParticleSystem system = chain();
+    ParticleSystem system = bench::horizontalRodChain(80, 0.05);
     auto integrator = makeIntegrator(name);
     const int steps = static_cast<int>(std::lround(T / dt));
     for (int k = 0; k < steps; ++k) {

@@ -42,11 +42,11 @@
 #include <cmath>
 #include <string>
 
-#include "particles/constraints/rod.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
 #include "particles/particle_system.h"
+#include "rod_chain.h"
 
 using namespace particles;
 using Eigen::Vector2d;
@@ -57,18 +57,6 @@ constexpr double kDt = 0.001;          // s
 constexpr int kWarmupSteps = 5;
 constexpr int kEpisodeSteps = 300;     // 0.3 simulated seconds
 constexpr double kMaxRelativeRodError = 0.01;
-
-// count particles of mass 1 spaced `link` apart along +x from the origin,
-// joined by squared-form rods, the first pinned; gravity −9.81 along y.
-ParticleSystem buildChain(int count, double link) {
-  ParticleSystem system;
-  for (int i = 0; i < count; ++i) system.addParticle(Vector2d(i * link, 0.0), 1.0);
-  system.setPinned(0, true);
-  for (int i = 0; i + 1 < count; ++i)
-    system.addConstraint(std::make_unique<RodConstraint>(i, i + 1, link, RodForm::Squared));
-  system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
-  return system;
-}
 
 // width × height particles of mass 0.2 at `spacing`, row 0 on top and pinned;
 // springs to the right and down neighbours (rest spacing) and to both lower
@@ -138,7 +126,7 @@ void runSteps(benchmark::State& state, ParticleSystem& system, const std::string
 }
 
 void chainStep(benchmark::State& state, std::string integratorName) {
-  ParticleSystem system = buildChain(80, 0.05);
+  ParticleSystem system = bench::horizontalRodChain(80, 0.05);
   runSteps(state, system, integratorName);
   state.counters["cg_tolerance"] = system.solver().settings.tolerance;
 }
@@ -148,7 +136,7 @@ void chainStep(benchmark::State& state, std::string integratorName) {
 // against a dopri5 call covering the same interval with its own steps.
 constexpr int kEpisodeSteps10ms = 30, kEpisodes10ms = 40;
 void chainStepAt10ms(benchmark::State& state, std::string integratorName) {
-  ParticleSystem system = buildChain(80, 0.05);
+  ParticleSystem system = bench::horizontalRodChain(80, 0.05);
   runSteps(state, system, integratorName, 0.01, kEpisodeSteps10ms);
 }
 
