@@ -7,6 +7,7 @@
 #include "particles/integrators/explicit_euler.h"
 #include "particles/integrators/implicit_euler.h"
 #include "particles/integrators/midpoint.h"
+#include "particles/integrators/rattle.h"
 #include "particles/integrators/rk4.h"
 #include "particles/integrators/symplectic_euler.h"
 #include "particles/integrators/verlet.h"
@@ -30,6 +31,8 @@ const std::vector<IntegratorInfo>& integratorTable() {
       {"rk4", "classic fourth-order Runge-Kutta", 4, make<Rk4Integrator>},
       {"verlet", "velocity Verlet, velocity-dependent forces at a predicted velocity", 2,
        make<VerletIntegrator>},
+      {"rattle", "RATTLE: velocity Verlet with positions and velocities projected onto the constraints; no drift", 2,
+       make<RattleIntegrator>},
       {"implicit-euler", "backward Euler, constraints in the solve, Newton passes to convergence; never gains energy", 1,
        make<ImplicitEulerIntegrator>},
       {"dopri5", "Dormand-Prince 5(4), FSAL, PI step control: internal step chosen to meet --tolerance", 5,

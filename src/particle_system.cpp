@@ -118,10 +118,8 @@ void ParticleSystem::restore(const Snapshot& s) {
 
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                   Eigen::VectorXd& a) {
+  appliedForces(x, v, f_);
   const Phase s = phase(x, v);
-  f_.setZero(x.size());
-  for (const auto& force : forces_) force->apply(s, f_);
-  ++evaluations_.forceEvaluations;
   if (!constraints_.empty()) {
     solver_.addConstraintForces(s, constraints_, f_);
     const SolveStats& solve = solver_.stats();
@@ -136,6 +134,13 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
   }
   a.resize(x.size());
   for (int i = 0; i < size(); ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
+}
+
+void ParticleSystem::appliedForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
+  const Phase s = phase(x, v);
+  f.setZero(x.size());
+  for (const auto& force : forces_) force->apply(s, f);
+  ++evaluations_.forceEvaluations;
 }
 
 StepStats ParticleSystem::takeEvaluationStats() {

@@ -72,6 +72,7 @@ const OrderCase kOrderCases[] = {
     {"symplectic-euler", 1, {4000, 8000, 16000, 32000}},
     {"midpoint", 2, {200, 400, 800, 1600}},
     {"rk4", 4, {20, 40, 80, 160}},
+    {"rattle", 2, {200, 400, 800, 1600}},  // velocity Verlet without constraints
     {"xpbd", 1, {200, 400, 800, 1600}},  // 20 substeps each: h as euler's
 };
 

@@ -93,6 +93,10 @@ class ParticleSystem {
   // The constraint solve is skipped when there are no constraints. Each call
   // is tallied (one force evaluation, the solve's statistics) for takeEvaluationStats().
   void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a);
+  // The applied forces Q at (x, v) alone (every force object, no constraint
+  // forces) into f: the first two phases of acceleration(), for schemes that
+  // impose the constraints themselves (RATTLE). Tallied as one force evaluation.
+  void appliedForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f);
 
   // The force evaluations and constraint solves made through acceleration()
   // since the last call (or the start of the step), as the statistics of one
