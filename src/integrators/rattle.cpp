@@ -13,8 +13,14 @@ struct RattleIntegrator::Impl {
   linear::CgScratch cg;
   Eigen::VectorXd f, xStart, rhs, multiplier, diagonal, scatter;
 
-  // Solves (J W Jᵀ) y = rhs for the rows' J by Jacobi-preconditioned CG from
-  // y = 0; rows with a zero diagonal (every particle pinned) keep y = 0.
+  // Solves (J W Jᵀ + μ I) y = rhs for the rows' J by Jacobi-preconditioned
+  // CG from y = 0, μ = kShift·max diag; rows with a zero diagonal (every
+  // particle pinned) keep y = 0. The shift is the damped least squares of the
+  // constraint solve's rank-loss branch (constraint_solver.cpp): where J W Jᵀ
+  // has (nearly) lost rank, a wire and its tangent line, y stays within |rhs|/μ
+  // instead of growing without bound; elsewhere each pass is off by μ/σ
+  // relative, which the repeated passes of both projections remove.
+  static constexpr double kShift = 1e-6;
   void solve(const linear::ConstraintRows& rows, const Eigen::VectorXd& w, StepStats& stats);
   // x += W Jᵀ y for the rows' J.
   void move(const linear::ConstraintRows& rows, const Eigen::VectorXd& w, const Eigen::VectorXd& y,
@@ -29,12 +35,16 @@ void RattleIntegrator::Impl::solve(const linear::ConstraintRows& rows, const Eig
   diagonal.resize(m);
   for (int k = 0; k < m; ++k) diagonal[k] = rows.diagonalOfJWJt(k, w);
   const double dead = 1e-14 * std::max(diagonal.maxCoeff(), 0.0);
+  const double shift = kShift * diagonal.maxCoeff();
   for (int k = 0; k < m; ++k)
     if (diagonal[k] <= dead) rhs[k] = 0.0;
-  auto apply = [&](const Eigen::VectorXd& y, Eigen::VectorXd& out) { rows.applyJWJt(w, y, out, scatter); };
+  auto apply = [&](const Eigen::VectorXd& y, Eigen::VectorXd& out) {
+    rows.applyJWJt(w, y, out, scatter);
+    for (int k = 0; k < m; ++k) out[k] = diagonal[k] <= dead ? 0.0 : out[k] + shift * y[k];
+  };
   auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
     z.resize(m);
-    for (int k = 0; k < m; ++k) z[k] = diagonal[k] <= dead ? 0.0 : r[k] / diagonal[k];
+    for (int k = 0; k < m; ++k) z[k] = diagonal[k] <= dead ? 0.0 : r[k] / (diagonal[k] + shift);
   };
   linear::CgSettings settings;
   settings.tolerance = 1e-12;
@@ -71,6 +81,11 @@ double RattleIntegrator::Impl::worstViolation(const ParticleSystem& system, cons
   return worst;
 }
 
+namespace {
+constexpr int kVelocityPasses = 3;
+constexpr double kVelocityTolerance = 1e-12;  // |J v⁺|∞ against |v⁺|∞
+}  // namespace
+
 RattleIntegrator::RattleIntegrator() : impl_(std::make_unique<Impl>()) {}
 RattleIntegrator::~RattleIntegrator() = default;
 
@@ -93,12 +108,18 @@ StepStats RattleIntegrator::step(ParticleSystem& system, double dt) {
   x += dt * v;
 
   // SHAKE: C(x̃ + W J(x)ᵀ Λ) = 0, Newton passes with J(x) for the unknown J(x⁺).
+  // A pass that no longer shrinks the violation ends them: a constraint set
+  // that has lost rank (a wire and its tangent line) meets C = 0 only to
+  // second order, and the step is accepted if what is left is small.
+  double previous = INFINITY;
   for (int pass = 0; !constraints.empty(); ++pass) {
-    if (Impl::worstViolation(system, x, v) <= positionTolerance) break;
-    if (pass == maxPositionPasses) {
-      if (stats.failure == StepFailure::None) stats.failure = StepFailure::SolveFailed;
+    const double worst = Impl::worstViolation(system, x, v);
+    if (worst <= positionTolerance) break;
+    if (pass == maxPositionPasses || worst > 0.9 * previous) {
+      if (worst > failureTolerance && stats.failure == StepFailure::None) stats.failure = StepFailure::SolveFailed;
       break;
     }
+    previous = worst;
     s.now.gather(system.phase(x, v), constraints);
     s.rhs = -s.now.C;
     s.solve(s.start, w, stats);
@@ -108,12 +129,15 @@ StepStats RattleIntegrator::step(ParticleSystem& system, double dt) {
 
   system.appliedForces(x, v, s.f);
   kick(0.5 * dt);
-  if (!constraints.empty()) {  // J(x⁺) v⁺ = 0 along W J(x⁺)ᵀ
+  if (!constraints.empty()) {  // J(x⁺) v⁺ = 0 along W J(x⁺)ᵀ: passes until the shift's share is gone
     s.now.gather(system.phase(x, v), constraints);
     s.rhs.resize(s.now.size());
-    for (int k = 0; k < s.now.size(); ++k) s.rhs[k] = -s.now.rowTimes(k, v);
-    s.solve(s.now, w, stats);
-    s.move(s.now, w, s.multiplier, v);
+    for (int pass = 0; pass < kVelocityPasses; ++pass) {
+      for (int k = 0; k < s.now.size(); ++k) s.rhs[k] = -s.now.rowTimes(k, v);
+      if (s.rhs.lpNorm<Eigen::Infinity>() <= kVelocityTolerance * v.lpNorm<Eigen::Infinity>()) break;
+      s.solve(s.now, w, stats);
+      s.move(s.now, w, s.multiplier, v);
+    }
   }
   lastStep_ = dt;
   StepStats evaluations = system.takeEvaluationStats();
