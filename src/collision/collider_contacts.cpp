@@ -11,12 +11,22 @@
 
 namespace particles {
 
+using contact::ontoSurface;
+
 void ContactSettings::validate() const {
   if (iterations < 1 || iterations > 1000)
     throw std::invalid_argument("contact iterations must be in [1, 1000], got " + std::to_string(iterations));
   if (maxImpacts < 1 || maxImpacts > 1000)
     throw std::invalid_argument("contact maxImpacts must be in [1, 1000], got " + std::to_string(maxImpacts));
   requireNonNegative("contact slop", slop);
+  if (coupledIterations < 1 || coupledIterations > 100000)
+    throw std::invalid_argument("contact coupledIterations must be in [1, 100000], got " +
+                                std::to_string(coupledIterations));
+  if (positionIterations < 1 || positionIterations > 100000)
+    throw std::invalid_argument("contact positionIterations must be in [1, 100000], got " +
+                                std::to_string(positionIterations));
+  requireNonNegative("contact coupledTolerance", coupledTolerance);
+  requireNonNegative("contact restitutionThreshold", restitutionThreshold);
 }
 
 namespace {
@@ -53,13 +63,6 @@ double impactTime(const Collider& c, const contact::Path& path, double r, double
     if (!(t >= from && t <= dt)) return chordTime;
   }
   return t;
-}
-
-// Puts p on the collider's surface grown by r, along the surface normal at p.
-Eigen::Vector2d ontoSurface(const Collider& c, const Eigen::Vector2d& p, double r, Eigen::Vector2d* normal) {
-  const SurfaceDistance d = c.distance(p);
-  if (normal) *normal = d.normal;
-  return p - (d.distance - r) * d.normal;
 }
 
 }  // namespace
