@@ -21,16 +21,21 @@
 //    so the bounce never carries the speed gained inside the collider; below
 //    restitutionThreshold, and for contacts that persist from the last step,
 //    v⁺ = 0 (resting).
-// 3. Velocities: projected Gauss–Seidel over all rows (constraints, then
+// 3. Positions: nonlinear Gauss–Seidel over the rows' position errors,
+//    C = 0 for the constraints and n·(x − p) ≥ 0 for the contact planes,
+//    each row moving its particles along W Jᵀ (velocities untouched), until
+//    the largest error is below the slop or `positionIterations` passes.
+//    (The constraints alone are corrected once before the contacts are
+//    found, so integrator drift off a wire does not make a contact.) The
+//    constraint rows are then evaluated again where the particles now are.
+// 4. Velocities: projected Gauss–Seidel over all rows (constraints, then
 //    friction, then normals, so the unilateral rows are the last word),
 //    warm-started from the last step's impulses of the same constraint and
 //    the same (particle, collider) contact, until no row changes its
 //    velocity by more than `coupledTolerance` (m/s) or `coupledIterations`
-//    sweeps; the sweeps and that last change are the solve's statistics.
-// 4. Positions: nonlinear Gauss–Seidel over the same rows' position errors,
-//    C = 0 for the constraints and n·(x − p) ≥ 0 for the contact planes,
-//    each row moving its particles along W Jᵀ (velocities untouched), until
-//    the largest error is below the slop or `positionIterations` passes.
+//    sweeps; the sweeps and that last change go to StepStats
+//    (contactIterations, contactResidual). Solving velocities last leaves
+//    J v = 0 at the final positions.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
