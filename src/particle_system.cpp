@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 
 #include "particles/check.h"
 
@@ -114,6 +115,7 @@ void ParticleSystem::restore(const Snapshot& s) {
   v_ = s.v;
   time_ = s.time;
   solver_.resetWarmStart();
+  coupled_.resetWarmStart();
 }
 
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
@@ -167,11 +169,16 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
     startV_ = v_;
   }
   contactsLastStep_ = 0;
+  coupleContacts_ = collideAfter && integrator.couplesContactsWithConstraints();
+  contactStats_ = StepStats{};
+  contactStats_.internalSteps = 0;
   StepStats stats = integrator.step(*this, dt);
   StepStats untaken = takeEvaluationStats();  // evaluations the integrator left in the tally
   untaken.internalSteps = 0;
   stats += untaken;
   if (collideAfter) collideOver(startX_, startV_, dt);
+  coupleContacts_ = false;
+  stats += contactStats_;
   time_ += dt;
   lastStepStats_ = stats;
   return stats;
@@ -201,8 +208,10 @@ bool pathsMayReachColliders(const std::vector<Collider>& colliders, const Eigen:
 
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
   if (collidable_.size() < 2 && edges_.empty() &&
-      !pathsMayReachColliders(colliders_, x0, x_, radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0))
+      !pathsMayReachColliders(colliders_, x0, x_, radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0)) {
+    coupled_.resetWarmStart();
     return 0;
+  }
   // Each particle's path over the interval runs from (x0, v0) to its state as
   // the integrator left it (contact_path.h).
   const StepStart start{x0, v0, dt};
@@ -225,8 +234,32 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
       nearList_.erase(std::remove_if(nearList_.begin(), nearList_.end(), [&](int i) { return !near_[i]; }),
                       nearList_.end());
     }
+    // Constrained particles that touch a collider, with every particle joined
+    // to them by constraints, are resolved together with those constraints
+    // (coupled_contacts.h); the rest each on their own.
+    const std::vector<int>* singles = &nearList_;
+    const bool coupled = coupleContacts_ && !constraints_.empty();
+    if (coupled) {
+      touching_.clear();
+      for (int i : nearList_)
+        if (touchesCollider(colliders_, x0.segment<2>(2 * i), x_.segment<2>(2 * i), radius_[i], contactSettings_.slop))
+          touching_.push_back(i);
+      const std::vector<int>& island = coupled_.island(constraints_, size(), structureStamp_, touching_);
+      singles_.clear();
+      std::set_difference(nearList_.begin(), nearList_.end(), island.begin(), island.end(),
+                          std::back_inserter(singles_));
+      singles = &singles_;
+    }
     contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
-                                        lastFree_, &nearList_);
+                                        lastFree_, singles);
+    if (coupled) {
+      const CoupledSolveStats solved = coupled_.solve(constraints_, colliders_, start, mass_, inverseMass_, radius_,
+                                                      contactSettings_, x_, v_);
+      for (int i : coupled_.lastIsland()) lastFree_.segment<2>(2 * i) = x_.segment<2>(2 * i);
+      contactStats_.contactIterations += solved.iterations;
+      contactStats_.contactResidual = std::max(contactStats_.contactResidual, solved.residual);
+      contacts += solved.contacts;
+    }
     if (edges) {
       edgeIncidence_.update(edges_, size(), structureStamp_);
       edgeIncidence_.mark(nearList_);

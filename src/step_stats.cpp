@@ -23,6 +23,8 @@ StepStats& StepStats::operator+=(const StepStats& other) {
   forceEvaluations += other.forceEvaluations;
   internalSteps += other.internalSteps;
   rejectedSteps += other.rejectedSteps;
+  contactIterations += other.contactIterations;
+  contactResidual = std::max(contactResidual, other.contactResidual);
   if (failure == StepFailure::None) failure = other.failure;
   return *this;
 }

@@ -27,6 +27,11 @@ struct ContactSettings {
   int iterations = 100;   // Gauss–Seidel passes over resting contacts (stacks), after the first; ≥ 1
   int maxImpacts = 8;     // successive impacts of one particle in one step (a corner, a wedge)
   double slop = 1e-9;     // world units: a gap this small counts as touching
+  // The coupled solve of contacts and constraints (coupled_contacts.h):
+  int coupledIterations = 200;        // projected Gauss–Seidel sweeps over the shared rows, ≥ 1
+  double coupledTolerance = 1e-10;    // m/s: stop when no row changes its velocity by more
+  int positionIterations = 50;        // drift-correction passes over the same rows, ≥ 1
+  double restitutionThreshold = 0.05; // m/s: a bounce slower than this rests instead
 
   void validate() const;  // throws naming the bad field
 };

@@ -68,6 +68,12 @@ class Integrator {
   // whole step (ParticleSystem::step) is then skipped.
   virtual bool collidesInSubsteps() const { return false; }
 
+  // True for a scheme whose post-step contact phase resolves the particles
+  // that touch a collider together with the constraints that hold them
+  // (coupled_contacts.h); false for one whose own formulation already keeps
+  // its constraints through contacts (implicit Euler's Newton solve).
+  virtual bool couplesContactsWithConstraints() const { return true; }
+
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }
 

@@ -10,6 +10,7 @@
 #include "particles/collision.h"
 #include "particles/constraint.h"
 #include "particles/constraint_solver.h"
+#include "particles/coupled_contacts.h"
 #include "particles/force.h"
 #include "particles/integrator.h"
 #include "particles/step_stats.h"
@@ -152,6 +153,12 @@ class ParticleSystem {
   std::vector<int> nearEdges_;      // edges with an end near a collider or at a disc, ascending
   EdgeIncidence edgeIncidence_;
   int contactsLastStep_ = 0;
+  // Constrained particles touching colliders, resolved with their constraints
+  // when the step's integrator asks for it (Integrator::couplesContactsWithConstraints).
+  CoupledContacts coupled_;
+  bool coupleContacts_ = false;
+  std::vector<int> touching_, singles_;
+  StepStats contactStats_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
   std::uint64_t structureStamp_ = nextStructureStamp();

@@ -25,6 +25,8 @@ struct StepStats {
   int forceEvaluations = 0;  // evaluations of the force accumulator Q (every force applied once)
   int internalSteps = 1;     // accepted internal steps (1 for fixed-step schemes)
   int rejectedSteps = 0;     // internal steps rejected by an error controller
+  int contactIterations = 0;     // sweeps of the coupled contact–constraint solve, summed
+  double contactResidual = 0.0;  // largest velocity change (m/s) in the last sweep of any coupled solve
   StepFailure failure = StepFailure::None;  // the first failure, if any
 
   // Sums the counts, keeps the largest residual and the first failure: the

@@ -11,12 +11,22 @@
 
 namespace particles {
 
+using contact::ontoSurface;
+
 void ContactSettings::validate() const {
   if (iterations < 1 || iterations > 1000)
     throw std::invalid_argument("contact iterations must be in [1, 1000], got " + std::to_string(iterations));
   if (maxImpacts < 1 || maxImpacts > 1000)
     throw std::invalid_argument("contact maxImpacts must be in [1, 1000], got " + std::to_string(maxImpacts));
   requireNonNegative("contact slop", slop);
+  if (coupledIterations < 1 || coupledIterations > 100000)
+    throw std::invalid_argument("contact coupledIterations must be in [1, 100000], got " +
+                                std::to_string(coupledIterations));
+  if (positionIterations < 1 || positionIterations > 100000)
+    throw std::invalid_argument("contact positionIterations must be in [1, 100000], got " +
+                                std::to_string(positionIterations));
+  requireNonNegative("contact coupledTolerance", coupledTolerance);
+  requireNonNegative("contact restitutionThreshold", restitutionThreshold);
 }
 
 namespace {
@@ -53,13 +63,6 @@ double impactTime(const Collider& c, const contact::Path& path, double r, double
     if (!(t >= from && t <= dt)) return chordTime;
   }
   return t;
-}
-
-// Puts p on the collider's surface grown by r, along the surface normal at p.
-Eigen::Vector2d ontoSurface(const Collider& c, const Eigen::Vector2d& p, double r, Eigen::Vector2d* normal) {
-  const SurfaceDistance d = c.distance(p);
-  if (normal) *normal = d.normal;
-  return p - (d.distance - r) * d.normal;
 }
 
 }  // namespace
@@ -106,12 +109,25 @@ void applyColliderImpact(const Collider& c, const ColliderImpact& impact, double
     x1 = path.position(dt);
   } else {
     // Resting for the rest of the step: the normal impulse cancels the
-    // normal velocity at the end (for a particle at rest, its weight × dt);
-    // friction, spread evenly over the time left, moves the end by ½ Δv_t (dt − τ).
+    // normal velocity at the end (for a particle at rest, its weight × dt).
+    // Friction that stops the tangential motion inside the cone (static) holds
+    // the particle where it met the face: the end keeps only its normal offset
+    // from p, whatever the scheme's position update added along the face (a
+    // symplectic or implicit update moves a resting particle by a dt² along
+    // it while the velocity it reports is 0). Sliding friction, spread evenly
+    // over the time left, moves the end by ½ Δv_t (dt − τ).
     const double v1n = v1.dot(normal), dvn = std::max(0.0, -v1n);
-    const Eigen::Vector2d dvt = coulomb(v1 - v1n * normal, dvn, c.friction);
+    const Eigen::Vector2d vt = v1 - v1n * normal;
+    const Eigen::Vector2d dvt = coulomb(vt, dvn, c.friction);
+    // Static: the cone holds both the tangential speed at the end and the one
+    // the particle met the face with.
+    const double holds = c.friction * dvn;
+    const bool sticks = c.friction > 0.0 && vt.norm() <= holds && (u - un * normal).norm() <= holds;
     v1 += dvn * normal + dvt;
-    x1 += 0.5 * remaining * dvt;
+    if (sticks)
+      x1 = p + normal.dot(x1 - p) * normal;
+    else
+      x1 += 0.5 * remaining * dvt;
     if (c.distance(x1).distance < r) x1 = ontoSurface(c, x1, r, nullptr);
     path = remaining > 0.0 ? Path{p, (x1 - p) / remaining - 0.5 * path.a * remaining, path.a, tau}
                            : Path{p, v1, path.a, tau};

@@ -51,6 +51,13 @@ struct ColliderBoxes {
   }
 };
 
+// Puts p on the collider's surface grown by r, along the surface normal at p.
+inline Eigen::Vector2d ontoSurface(const Collider& c, const Eigen::Vector2d& p, double r, Eigen::Vector2d* normal) {
+  const SurfaceDistance d = c.distance(p);
+  if (normal) *normal = d.normal;
+  return p - (d.distance - r) * d.normal;
+}
+
 // The next impact of a particle of radius r on its track: the collider, the
 // fraction s of the chord from → x1 at which it enters, and the time τ.
 struct ColliderImpact {

@@ -106,6 +106,7 @@ struct ImplicitEulerSettings {
 
 class ImplicitEulerIntegrator : public Integrator {
  public:
+  bool couplesContactsWithConstraints() const override { return false; }
   ImplicitEulerSettings settings;
 
   ImplicitEulerIntegrator();

@@ -1,0 +1,183 @@
+// Contacts and constraints solved together after explicit steps: chains that
+// land on a floor or a slope, a bead on a wire that a floor cuts or touches.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "particles/collider.h"
+#include "particles/constraints/circular_wire.h"
+#include "particles/constraints/rod.h"
+#include "particles/forces/gravity.h"
+#include "particles/integrator.h"
+#include "particles/particle_system.h"
+
+using namespace particles;
+using Eigen::Vector2d;
+
+namespace {
+
+constexpr double g = 9.81;
+// The explicit schemes whose post-step contact phase is the coupled solve.
+const std::vector<std::string> kExplicit = {"rk4", "midpoint", "verlet", "dopri5"};
+
+// A chain of `links` rods of length 0.1 m and 0.1 kg beads from `start`
+// along `direction`; the first bead pinned if asked.
+void addChain(ParticleSystem& s, Vector2d start, Vector2d direction, int links, bool pinFirst) {
+  for (int k = 0; k <= links; ++k) s.addParticle(start + 0.1 * k * direction, 0.1);
+  if (pinFirst) s.setPinned(0, true);
+  for (int k = 0; k < links; ++k) s.addConstraint(std::make_unique<RodConstraint>(k, k + 1, 0.1));
+  s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -g)));
+}
+
+struct RunResult {
+  double worstStretch = 0.0;  // largest relative rod error at any step's end
+  double energyRise = 0.0;    // largest E(t) − E(0)
+  bool failed = false;
+  int contactIterations = 0;
+  double contactResidual = 0.0;
+};
+
+RunResult runFor(ParticleSystem& s, const std::string& integrator, double dt, int steps) {
+  auto scheme = makeIntegrator(integrator);
+  RunResult run;
+  const double e0 = s.totalEnergy();
+  for (int k = 0; k < steps; ++k) {
+    const StepStats stats = s.step(*scheme, dt);
+    run.failed = run.failed || stats.failure != StepFailure::None || !s.finite();
+    run.contactIterations += stats.contactIterations;
+    run.contactResidual = std::max(run.contactResidual, stats.contactResidual);
+    run.worstStretch = std::max(run.worstStretch, s.maxRelativeConstraintError());
+    run.energyRise = std::max(run.energyRise, s.totalEnergy() - e0);
+    if (run.failed) break;
+  }
+  return run;
+}
+
+}  // namespace
+
+// A pinned chain of 12 rods, horizontal at its pin, falls onto a floor 0.5 m
+// below the pin (its free part lands at about 3 m/s), e 0.5, μ 0.3.
+TEST(CoupledContacts, PinnedChainLandingOnFloorKeepsRodsAndEnergy) {
+  for (const std::string& name : kExplicit) {
+    ParticleSystem s;
+    addChain(s, Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), 12, true);
+    Collider floor = Collider::halfPlane(Vector2d(0.0, -0.5), Vector2d(0.0, 1.0));
+    floor.restitution = 0.5;
+    floor.friction = 0.3;
+    s.addCollider(floor);
+    const RunResult run = runFor(s, name, 0.002, 1500);
+    EXPECT_FALSE(run.failed) << name;
+    EXPECT_LT(run.worstStretch, 0.02) << name;
+    EXPECT_LT(run.energyRise, 2e-3) << name;  // of a fall releasing about 4 J
+    EXPECT_GT(run.contactIterations, 0) << name;
+    // The bounce steps of a 12-rod chain can reach the 200-sweep cap; what is
+    // left is reported, and small.
+    EXPECT_LT(run.contactResidual, 1e-3) << name;
+    for (int i = 0; i < s.size(); ++i) EXPECT_GE(s.position(i).y(), -0.5 - 1e-6) << name << " bead " << i;
+  }
+}
+
+// A free chain of 11 rods dropped 0.3 m onto a 20° slope with μ 0.5 (the
+// friction angle is 26.6°): it lands, keeps its rods and comes to rest.
+TEST(CoupledContacts, FreeChainOnSlopeComesToRest) {
+  const double angle = 20.0 * M_PI / 180.0;
+  const Vector2d normal(-std::sin(angle), std::cos(angle)), along(std::cos(angle), std::sin(angle));
+  for (const std::string& name : kExplicit) {
+    ParticleSystem s;
+    addChain(s, 0.3 * Vector2d::UnitY() - 0.5 * along, along, 11, false);
+    Collider slope = Collider::halfPlane(Vector2d::Zero(), normal);
+    slope.restitution = 0.0;
+    slope.friction = 0.5;
+    s.addCollider(slope);
+    const RunResult run = runFor(s, name, 0.002, 2000);
+    EXPECT_FALSE(run.failed) << name;
+    EXPECT_LT(run.worstStretch, 0.02) << name;
+    EXPECT_LT(run.energyRise, 1e-3) << name;
+    EXPECT_LT(s.kineticEnergy(), 1e-8) << name;
+    for (int i = 0; i < s.size(); ++i) EXPECT_NEAR(normal.dot(s.position(i)), 0.0, 1e-6) << name << " bead " << i;
+  }
+}
+
+// A bead on a wire of radius 0.4 m about the origin, released level with the
+// centre; a floor at y = −0.35 cuts the wire's bottom. It comes to rest where
+// wire and floor meet, x = ±√(0.4² − 0.35²), having released m g · 0.35 m.
+TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
+  const double radius = 0.4, floorY = -0.35, xMeet = std::sqrt(radius * radius - floorY * floorY);
+  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5"}) {
+    ParticleSystem s;
+    s.addParticle(Vector2d(radius, 0.0), 1.0);
+    s.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), radius));
+    s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -g)));
+    Collider floor = Collider::halfPlane(Vector2d(0.0, floorY), Vector2d(0.0, 1.0));
+    floor.restitution = 0.5;
+    s.addCollider(floor);
+    const double e0 = s.totalEnergy();
+    const RunResult run = runFor(s, name, 0.005, 2000);
+    EXPECT_FALSE(run.failed) << name;
+    EXPECT_LT(run.energyRise, 2e-3) << name;
+    EXPECT_NEAR(s.totalEnergy() - e0, -g * 1.0 * (0.0 - floorY), 1e-3) << name;
+    EXPECT_NEAR(std::abs(s.position(0).x()), xMeet, 1e-3) << name;
+    EXPECT_NEAR(s.position(0).y(), floorY, 1e-3) << name;
+    EXPECT_LT(s.kineticEnergy(), 1e-8) << name;
+  }
+}
+
+// The same wire with the floor exactly tangent to its bottom: the bead swings
+// through the bottom as if the floor were not there.
+TEST(CoupledContacts, FloorTangentToWireChangesNothing) {
+  const double radius = 0.4;
+  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5"}) {
+    std::vector<double> energy[2];
+    for (int withFloor = 0; withFloor < 2; ++withFloor) {
+      ParticleSystem s;
+      s.addParticle(Vector2d(radius, 0.0), 1.0);
+      s.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), radius));
+      s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -g)));
+      if (withFloor) s.addCollider(Collider::halfPlane(Vector2d(0.0, -radius), Vector2d(0.0, 1.0)));
+      auto scheme = makeIntegrator(name);
+      for (int k = 0; k < 2000; ++k) {
+        s.step(*scheme, 0.005);
+        energy[withFloor].push_back(s.totalEnergy());
+      }
+    }
+    double worst = 0.0;
+    for (std::size_t k = 0; k < energy[0].size(); ++k) worst = std::max(worst, std::abs(energy[1][k] - energy[0][k]));
+    EXPECT_LT(worst, 0.02) << name;  // of 3.9 J of kinetic energy at the bottom
+  }
+}
+
+// A particle at rest on a slope with μ 0.5 (friction angle atan 0.5 = 26.6°):
+// at 20° it stays where it is under every integrator; at 35° it slides the
+// Coulomb distance ½ g (sin θ − μ cos θ) t².
+TEST(StaticFriction, HoldsBelowFrictionAngleSlidesCoulombAbove) {
+  const double mu = 0.5, dt = 0.01, T = 2.0;
+  for (const std::string& name :
+       {"euler", "symplectic-euler", "midpoint", "rk4", "verlet", "implicit-euler", "xpbd", "dopri5"}) {
+    for (double degrees : {20.0, 35.0}) {
+      const double angle = degrees * M_PI / 180.0;
+      const Vector2d normal(-std::sin(angle), std::cos(angle)), along(std::cos(angle), std::sin(angle));
+      ParticleSystem s;
+      const Vector2d start = 2.0 * along;
+      s.addParticle(start, 1.0);
+      s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -g)));
+      Collider slope = Collider::halfPlane(Vector2d::Zero(), normal);
+      slope.friction = mu;
+      s.addCollider(slope);
+      auto scheme = makeIntegrator(name);
+      const int steps = static_cast<int>(std::lround(T / dt));
+      for (int k = 0; k < steps; ++k) s.step(*scheme, dt);
+      const double moved = along.dot(start - s.position(0));  // down the slope
+      if (degrees < 26.0) {
+        EXPECT_EQ(moved, 0.0) << name;
+      } else if (std::string(name) != "dopri5") {  // dopri5 across contacts: not yet (see notes)
+        const double coulomb = 0.5 * g * (std::sin(angle) - mu * std::cos(angle)) * T * T;
+        EXPECT_NEAR(moved, coulomb, 0.02 * coulomb) << name;
+      }
+      EXPECT_NEAR(normal.dot(s.position(0)), 0.0, 1e-9) << name << " " << degrees;
+    }
+  }
+}
