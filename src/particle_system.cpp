@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "particles/check.h"
+#include "particles/forces/spring.h"
 
 namespace particles {
 
@@ -107,6 +108,16 @@ void ParticleSystem::removeForce(const Force* force) {
   structureStamp_ = nextStructureStamp();
 }
 
+void ParticleSystem::setSpringEnabled(const Force* spring, bool enabled) {
+  const auto found = std::find_if(forces_.begin(), forces_.end(),
+                             [&](const std::unique_ptr<Force>& f) { return f.get() == spring; });
+  auto* asSpring = found == forces_.end() ? nullptr : dynamic_cast<SpringForce*>(found->get());
+  if (!asSpring) throw std::invalid_argument("setSpringEnabled: not a spring of this system");
+  if (asSpring->enabled_ == enabled) return;
+  asSpring->enabled_ = enabled;
+  structureStamp_ = nextStructureStamp();
+}
+
 void ParticleSystem::restore(const Snapshot& s) {
   if (s.x.size() != x_.size() || s.v.size() != v_.size())
     throw std::invalid_argument("snapshot was taken of a system of another size");
@@ -119,10 +130,15 @@ void ParticleSystem::restore(const Snapshot& s) {
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                   Eigen::VectorXd& a) {
   const Phase s = phase(x, v);
-  f_.setZero(x.size());
-  for (const auto& force : forces_) force->apply(s, f_);
+  batches_.update(forces_, structureStamp_);
+  const bool fuseTail = constraints_.empty();  // nothing is added to f after the forces
+  batches_.apply(s, f_, fuseTail);
   ++evaluations_.forceEvaluations;
-  if (!constraints_.empty()) {
+  if (fuseTail) {
+    batches_.applyTailAndDivide(s, f_, a);
+    return;
+  }
+  {
     solver_.addConstraintForces(s, constraints_, f_);
     const SolveStats& solve = solver_.stats();
     StepStats one{};
