@@ -36,6 +36,7 @@ struct RunOptions {
   long long steps = 0;
   std::string csvPath, trajectoryPath;
   long long every = 1;
+  long long diagnosticsEvery = 1;
 };
 
 // A CSV file with its header written (numbers in their shortest exact form), or none when path is empty.
@@ -62,7 +63,7 @@ int run(const RunOptions& o) {
   const std::unique_ptr<scenes::CsvWriter> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryColumns);
 
   particles::ParticleSystem& s = *scene.system;
-  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every});
+  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every, o.diagnosticsEvery});
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };
@@ -134,6 +135,12 @@ Command addRunCommand(CLI::App& app) {
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, kMaxSteps));
+  sub->add_option("--diagnostics-every", options->diagnosticsEvery,
+                  "measure the diagnostics (energies, constraint error), check divergence and write the --csv "
+                  "row every K steps (and at step 0); a divergence is then found up to K-1 steps late; a "
+                  "decimal integer >= 1")
       ->capture_default_str()
       ->check(options::decimalInteger(1, kMaxSteps));
   sub->footer(
