@@ -3,6 +3,7 @@
 // spring drops out of forces, potential and Jacobians.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
@@ -11,6 +12,7 @@
 #include "particles/forces/spring.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
+#include "particles/threads.h"
 #include "scene.h"
 
 namespace {
@@ -41,7 +43,9 @@ TEST(ForceBatch, EveryBuiltInSceneGivesThePlainLoopsForcesAndAccelerationsBitFor
     Eigen::VectorXd f;
     batches.apply(system.phase(), f, false);
     expectSameBits(f, plainForces(system), info.name);
-    if (std::string(info.name) == "cloth") EXPECT_GT(batches.springs().size(), 100) << "cloth springs batched";
+    if (std::string(info.name) == "cloth") {
+      EXPECT_GT(batches.springs().size(), 100) << "cloth springs batched";
+    }
     if (system.constraints().empty()) {
       Eigen::VectorXd a;
       system.acceleration(system.positions(), system.velocities(), a);
@@ -82,3 +86,86 @@ TEST(ForceBatch, ATornSpringAddsNoForcePotentialOrJacobianAndMendsBack) {
 }
 
 }  // namespace
+
+namespace {
+
+int threadsOfThisProcess() {
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) n += entry.is_directory();
+  return n;
+}
+
+// A cloth big enough for the parallel paths (kParallelSprings springs,
+// kParallelParticles particles): 80 × 80 particles, 8-way springs.
+std::unique_ptr<ParticleSystem> bigCloth() {
+  auto s = std::make_unique<ParticleSystem>();
+  const int w = 80;
+  std::vector<Eigen::Vector2d> x;
+  for (int r = 0; r < w; ++r)
+    for (int c = 0; c < w; ++c) x.emplace_back(0.05 * c + 0.001 * r * r, -0.05 * r);
+  s->addParticles(x, std::vector<double>(x.size(), 0.2));
+  for (int c = 0; c < w; ++c) s->setPinned(c, true);
+  for (int r = 0; r < w; ++r)
+    for (int c = 0; c < w; ++c) {
+      auto spring = [&](int r2, int c2, double rest) {
+        s->addForce(std::make_unique<particles::SpringForce>(r * w + c, r2 * w + c2, rest, 50.0, 0.5));
+      };
+      if (c + 1 < w) spring(r, c + 1, 0.05);
+      if (r + 1 < w) spring(r + 1, c, 0.05);
+      if (r + 1 < w && c + 1 < w) spring(r + 1, c + 1, 0.0707);
+      if (r + 1 < w && c > 0) spring(r + 1, c - 1, 0.0707);
+    }
+  s->addForce(std::make_unique<particles::GravityForce>(Eigen::Vector2d(0.0, -9.81)));
+  return s;
+}
+
+}  // namespace
+
+// With one thread no parallel region is entered: the process keeps its one thread.
+TEST(ForceBatchThreads, OneThreadNeverStartsAThread) {
+  ASSERT_EQ(threadsOfThisProcess(), 1) << "the test process starts with one thread";
+  particles::setThreadCount(1);
+  auto cloth = bigCloth();
+  auto integrator = particles::makeIntegrator("rk4");
+  for (int k = 0; k < 3; ++k) cloth->step(*integrator, 0.001);
+  EXPECT_EQ(threadsOfThisProcess(), 1);
+  EXPECT_THROW(particles::setThreadCount(0), std::invalid_argument);
+}
+
+// Every integrator on the big cloth and every built-in scene (that it accepts): 2 and 3
+// threads give the one-thread trajectory bit for bit.
+TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
+  std::vector<std::string> integrators;
+  for (const particles::IntegratorInfo& info : particles::integratorTable()) integrators.push_back(info.name);
+  auto run = [&](int threads, const std::string& scene, const std::string& integratorName) {
+    particles::setThreadCount(threads);
+    std::unique_ptr<ParticleSystem> system;
+    double dt = 0.001;
+    scenes::Scene built;
+    if (scene == "big-cloth") {
+      system = bigCloth();
+    } else {
+      built = scenes::buildScene(scene);
+      system = std::move(built.system);
+      dt = built.dt;
+    }
+    auto integrator = particles::makeIntegrator(integratorName);
+    for (int k = 0; k < 10; ++k) system->step(*integrator, dt);
+    Eigen::VectorXd state(2 * system->positions().size());
+    state << system->positions(), system->velocities();
+    return state;
+  };
+  std::vector<std::string> sceneNames = {"big-cloth"};
+  for (const scenes::SceneInfo& info : scenes::sceneTable()) sceneNames.push_back(info.name);
+  for (const std::string& scene : sceneNames)
+    for (const std::string& integrator : integrators) {
+      Eigen::VectorXd one;
+      try {
+        one = run(1, scene, integrator);
+      } catch (const std::invalid_argument&) {
+        continue;  // an integrator that refuses the scene (at setup) refuses it on any thread count
+      }
+      for (int threads : {2, 3}) expectSameBits(run(threads, scene, integrator), one, scene + " " + integrator + " threads " + std::to_string(threads));
+    }
+  particles::setThreadCount(1);
+}

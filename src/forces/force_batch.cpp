@@ -5,10 +5,12 @@
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
+#include "particles/threads.h"
 
 namespace particles {
 
 void SpringBatch::clear() {
+  incidenceBegin_ = incidenceEnd_ = incidenceParticles_ = -1;
   first.clear();
   second.clear();
   rest.clear();
@@ -27,23 +29,91 @@ void SpringBatch::add(int i, int j, double r, double ks, double kd) {
 // springForce() written out on scalars, operation for operation (|l| as
 // sqrt(lx² + ly²), u = l/|l| by division, s = k_s(|l| − r) + k_d l̇·u,
 // f_i = −s u), so that the batch and the virtual call give the same bits.
+inline bool SpringBatch::force(int k, const double* x, const double* v, double& fx, double& fy) const {
+  const int i = 2 * first[k], j = 2 * second[k];
+  const double lx = x[i] - x[j], ly = x[i + 1] - x[j + 1];
+  const double length = std::sqrt(lx * lx + ly * ly);
+  if (length == 0.0) {  // direction undefined: no force
+    fx = fy = 0.0;
+    return false;
+  }
+  const double ux = lx / length, uy = ly / length;
+  const double ldotu = (v[i] - v[j]) * ux + (v[i + 1] - v[j + 1]) * uy;
+  const double m = -(stiffness[k] * (length - rest[k]) + damping[k] * ldotu);
+  fx = m * ux;
+  fy = m * uy;
+  return true;
+}
+
 void SpringBatch::apply(int begin, int end, const Phase& s, Eigen::VectorXd& f) const {
+  const int threads = threadCount();
+  if (threads > 1 && end - begin >= kParallelSprings) {
+    applyParallel(begin, end, s, f, threads);
+    return;
+  }
   const double* x = s.x.data();
   const double* v = s.v.data();
   double* out = f.data();
   for (int k = begin; k < end; ++k) {
     const int i = 2 * first[k], j = 2 * second[k];
-    const double lx = x[i] - x[j], ly = x[i + 1] - x[j + 1];
-    const double length = std::sqrt(lx * lx + ly * ly);
-    if (length == 0.0) continue;  // direction undefined: no force
-    const double ux = lx / length, uy = ly / length;
-    const double ldotu = (v[i] - v[j]) * ux + (v[i + 1] - v[j + 1]) * uy;
-    const double m = -(stiffness[k] * (length - rest[k]) + damping[k] * ldotu);
-    const double fx = m * ux, fy = m * uy;
+    double fx, fy;
+    if (!force(k, x, v, fx, fy)) continue;
     out[i] += fx;
     out[i + 1] += fy;
     out[j] -= fx;
     out[j + 1] -= fy;
+  }
+}
+
+void SpringBatch::buildIncidence(int begin, int end, int particles) const {
+  if (begin == incidenceBegin_ && end == incidenceEnd_ && particles == incidenceParticles_) return;
+  incidenceStart_.assign(particles + 1, 0);
+  for (int k = begin; k < end; ++k) {
+    ++incidenceStart_[first[k] + 1];
+    ++incidenceStart_[second[k] + 1];
+  }
+  for (int p = 0; p < particles; ++p) incidenceStart_[p + 1] += incidenceStart_[p];
+  incidence_.resize(incidenceStart_[particles]);
+  std::vector<int> fill(incidenceStart_.begin(), incidenceStart_.end() - 1);
+  for (int k = begin; k < end; ++k) {  // ascending k within each particle's list
+    incidence_[fill[first[k]]++] = k;
+    incidence_[fill[second[k]]++] = ~k;
+  }
+  forces_.resize(2 * static_cast<std::size_t>(first.size()));
+  incidenceBegin_ = begin;
+  incidenceEnd_ = end;
+  incidenceParticles_ = particles;
+}
+
+void SpringBatch::applyParallel(int begin, int end, const Phase& s, Eigen::VectorXd& f, int threads) const {
+  const int n = s.size();
+  buildIncidence(begin, end, n);
+  const double* x = s.x.data();
+  const double* v = s.v.data();
+  double* out = f.data();
+  double* fs = forces_.data();
+  const int* start = incidenceStart_.data();
+  const int* list = incidence_.data();
+#pragma omp parallel num_threads(threads)
+  {
+#pragma omp for schedule(static)
+    for (int k = begin; k < end; ++k) force(k, x, v, fs[2 * k], fs[2 * k + 1]);
+#pragma omp for schedule(static)
+    for (int p = 0; p < n; ++p) {
+      double fx = out[2 * p], fy = out[2 * p + 1];
+      for (int e = start[p]; e < start[p + 1]; ++e) {
+        const int k = list[e];
+        if (k >= 0) {
+          fx += fs[2 * k];
+          fy += fs[2 * k + 1];
+        } else {
+          fx -= fs[2 * ~k];
+          fy -= fs[2 * ~k + 1];
+        }
+      }
+      out[2 * p] = fx;
+      out[2 * p + 1] = fy;
+    }
   }
 }
 
@@ -126,16 +196,19 @@ void ForceBatches::update(const std::vector<std::unique_ptr<Force>>& forces, std
 
 void ForceBatches::apply(const Phase& s, Eigen::VectorXd& f, bool fuseTail) const {
   f.setZero(s.x.size());
-  const int n = s.size();
+  const int n = s.size(), threads = threadCount();
   const int last = fuseTail ? headSegments_ : static_cast<int>(segments_.size());
   for (int k = 0; k < last; ++k) {
     const Segment& seg = segments_[k];
     switch (seg.kind) {
       case Segment::Kind::Springs: springs_.apply(seg.begin, seg.end, s, f); break;
-      case Segment::Kind::Field:
+      case Segment::Kind::Field: {
+        double* fd = f.data();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n >= kParallelParticles)
         for (int i = 0; i < n; ++i)
-          if (s.inverseMass[i] > 0.0) addField(seg.field, i, s, f.data());
+          if (s.inverseMass[i] > 0.0) addField(seg.field, i, s, fd);
         break;
+      }
       case Segment::Kind::Virtual: seg.force->apply(s, f); break;
     }
   }
@@ -146,6 +219,8 @@ void ForceBatches::applyTailAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen:
   a.resize(2 * n);
   double* fd = f.data();
   double* ad = a.data();
+  const int threads = threadCount();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n >= kParallelParticles)
   for (int i = 0; i < n; ++i) {
     const double w = s.inverseMass[i];
     if (w > 0.0)

@@ -22,14 +22,35 @@
 namespace particles {
 
 // Springs as structure of arrays (see forces/spring.h for the force law).
+// Below kParallelSprings springs a batch runs serially whatever the thread count.
+constexpr int kParallelSprings = 4096;
+// Below kParallelParticles particles the per-particle passes run serially.
+constexpr int kParallelParticles = 4096;
 struct SpringBatch {
   std::vector<int> first, second;
   std::vector<double> rest, stiffness, damping;
   int size() const { return static_cast<int>(first.size()); }
   void clear();
   void add(int i, int j, double r, double ks, double kd);
-  // Adds springs [begin, end) at phase s into f.
+  // Adds springs [begin, end) at phase s into f, on threadCount() threads
+  // when there are several (same bits: see applyParallel).
   void apply(int begin, int end, const Phase& s, Eigen::VectorXd& f) const;
+
+ private:
+  // The force of spring k on its first particle, f_i (f_j = −f_i); false
+  // (and 0) for a spring of length 0.
+  bool force(int k, const double* x, const double* v, double& fx, double& fy) const;
+  // Parallel: every spring's force into forces_ (independent), then each
+  // particle gathers its springs in ascending order, + for a first end and
+  // − for a second: the same additions in the same order as the serial
+  // scatter, so the same bits, with no two threads writing one entry.
+  void applyParallel(int begin, int end, const Phase& s, Eigen::VectorXd& f, int threads) const;
+  // Springs of each particle, ascending, as a compressed list (rebuilt when
+  // the range or the particle count changes).
+  void buildIncidence(int begin, int end, int particles) const;
+  mutable std::vector<int> incidenceStart_, incidence_;  // incidence_: k, or ~k for a second end
+  mutable std::vector<double> forces_;                   // 2 per spring
+  mutable int incidenceBegin_ = -1, incidenceEnd_ = -1, incidenceParticles_ = -1;
 };
 
 // A per-particle field: f_i += m_i g (gravity) or f_i −= k_d v_i (drag),
