@@ -10,6 +10,8 @@
 // Repetitions are interleaved (--benchmark_enable_random_interleaving) and
 // at the end the ratio engine / reference of the medians of the CPU time per
 // step is printed for each size, with the ratio's range over the repetitions.
+// engine-2threads/<n>: the engine on 2 threads (wall time); the speed-up
+// 1 -> 2 threads printed is the ratio of the wall-time medians.
 //
 //   ./build/tests/bench_cloth_reference --benchmark_repetitions=7
 //     --benchmark_enable_random_interleaving=true (one command line)
@@ -24,6 +26,7 @@
 
 #include "cloth_grid.h"
 #include "particles/integrators/rk4.h"
+#include "particles/threads.h"
 
 namespace {
 
@@ -139,10 +142,13 @@ double checkDifference(int size) {
   return worst;
 }
 
-void engineStep(benchmark::State& state, int size) {
+void engineStep(benchmark::State& state, int size, int threads) {
+  particles::setThreadCount(1);
   particles::ParticleSystem s = warmCloth(size);
+  particles::setThreadCount(threads);
   particles::Rk4Integrator rk4;
   for (auto _ : state) s.step(rk4, kDt);
+  particles::setThreadCount(1);
   benchmark::DoNotOptimize(s.positions().data());
   state.counters["particles"] = s.size();
 }
@@ -157,11 +163,14 @@ void referenceStep(benchmark::State& state, int size) {
 // Keeps each repetition's CPU time per iteration, by benchmark name.
 class RatioReporter : public benchmark::ConsoleReporter {
  public:
-  std::map<std::string, std::vector<double>> times;
+  std::map<std::string, std::vector<double>> times, wall;  // CPU and wall time per iteration
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& r : runs)
       if (r.run_type == Run::RT_Iteration && !r.error_occurred)
+      {
         times[r.run_name.function_name].push_back(r.GetAdjustedCPUTime());
+        wall[r.run_name.function_name].push_back(r.GetAdjustedRealTime());
+      }
     ConsoleReporter::ReportRuns(runs);
   }
 };
@@ -177,7 +186,10 @@ double median(std::vector<double> v) {
 int main(int argc, char** argv) {
   for (int size : kSizes) {
     const std::string n = std::to_string(size);
-    benchmark::RegisterBenchmark(("engine/" + n).c_str(), engineStep, size)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("engine/" + n).c_str(), engineStep, size, 1)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("engine-2threads/" + n).c_str(), engineStep, size, 2)
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime();
     benchmark::RegisterBenchmark(("reference/" + n).c_str(), referenceStep, size)->Unit(benchmark::kMicrosecond);
   }
   benchmark::Initialize(&argc, argv);
@@ -197,6 +209,11 @@ int main(int argc, char** argv) {
     std::printf("ratio engine/reference %d^2: median %.3f (repetitions %.3f-%.3f), engine %.1f us, reference %.1f us\n",
                 size, median(e) / median(r), *std::min_element(ratios.begin(), ratios.end()),
                 *std::max_element(ratios.begin(), ratios.end()), median(e), median(r));
+    const auto& e1 = reporter.wall["engine/" + n];
+    const auto& e2 = reporter.wall["engine-2threads/" + n];
+    if (!e1.empty() && !e2.empty())
+      std::printf("speed-up 1 -> 2 threads %d^2 (wall time): %.3f, 1 thread %.1f us, 2 threads %.1f us\n", size,
+                  median(e1) / median(e2), median(e1), median(e2));
   }
   benchmark::Shutdown();
   return 0;
