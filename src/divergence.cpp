@@ -65,6 +65,11 @@ std::string Divergence::message() const {
 
 Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits& limits,
                            double initialEnergy, const StepStats& lastStep) {
+  return checkDivergence(system, limits, initialEnergy, lastStep, system.totalEnergy());
+}
+
+Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits& limits,
+                           double initialEnergy, const StepStats& lastStep, double totalEnergy) {
   Divergence d;
   auto fail = [&](DivergenceReason reason, double value, double limit) {
     d.reason = reason;
@@ -75,7 +80,7 @@ Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits&
   // Squared norms overflow to inf long before the coordinates do.
   const double q2 = system.positions().squaredNorm(), v2 = system.velocities().squaredNorm();
   if (!std::isfinite(q2) || !std::isfinite(v2)) return fail(DivergenceReason::NonFinite, q2 + v2, 0.0);
-  const double energy = system.totalEnergy();
+  const double energy = totalEnergy;
   if (!std::isfinite(energy)) return fail(DivergenceReason::NonFinite, energy, 0.0);
   if (lastStep.failure != StepFailure::None) {
     d.failure = lastStep.failure;

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "particles/check.h"
+#include "particles/forces/spring.h"
 
 namespace particles {
 
@@ -108,6 +109,16 @@ void ParticleSystem::removeForce(const Force* force) {
   structureStamp_ = nextStructureStamp();
 }
 
+void ParticleSystem::setSpringEnabled(const Force* spring, bool enabled) {
+  const auto found = std::find_if(forces_.begin(), forces_.end(),
+                             [&](const std::unique_ptr<Force>& f) { return f.get() == spring; });
+  auto* asSpring = found == forces_.end() ? nullptr : dynamic_cast<SpringForce*>(found->get());
+  if (!asSpring) throw std::invalid_argument("setSpringEnabled: not a spring of this system");
+  if (asSpring->enabled_ == enabled) return;
+  asSpring->enabled_ = enabled;
+  structureStamp_ = nextStructureStamp();
+}
+
 void ParticleSystem::restore(const Snapshot& s) {
   if (s.x.size() != x_.size() || s.v.size() != v_.size())
     throw std::invalid_argument("snapshot was taken of a system of another size");
@@ -120,9 +131,16 @@ void ParticleSystem::restore(const Snapshot& s) {
 
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                   Eigen::VectorXd& a) {
-  appliedForces(x, v, f_);
   const Phase s = phase(x, v);
-  if (!constraints_.empty()) {
+  batches_.update(forces_, structureStamp_);
+  const bool fuseTail = constraints_.empty();  // nothing is added to f after the forces
+  batches_.apply(s, f_, fuseTail);
+  ++evaluations_.forceEvaluations;
+  if (fuseTail) {
+    batches_.applyTailAndDivide(s, f_, a);
+    return;
+  }
+  {
     solver_.addConstraintForces(s, constraints_, f_);
     const SolveStats& solve = solver_.stats();
     StepStats one{};
@@ -139,9 +157,8 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
 }
 
 void ParticleSystem::appliedForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
-  const Phase s = phase(x, v);
-  f.setZero(x.size());
-  for (const auto& force : forces_) force->apply(s, f);
+  batches_.update(forces_, structureStamp_);
+  batches_.apply(phase(x, v), f, false);
   ++evaluations_.forceEvaluations;
 }
 

@@ -217,3 +217,51 @@ TEST(RunnerCounts, ImplicitEulerRowsCountItsEvaluationAndSolves) {
     }
   }
 }
+
+namespace {
+// A spring that counts how often its potential energy is evaluated.
+class PotentialCountingSpring : public SpringForce {
+ public:
+  using SpringForce::SpringForce;
+  double potential(const Phase& s) const override {
+    ++potentials;
+    return SpringForce::potential(s);
+  }
+  mutable int potentials = 0;
+};
+}  // namespace
+
+// The runner measures the energies once per measured step (the divergence
+// check reuses the diagnostics' total energy), and with diagnosticsEvery 3
+// only at steps 3, 6, ... and writes only their rows.
+TEST(RunnerCounts, DiagnosticsMeasureThePotentialOncePerMeasuredStep) {
+  for (long long every : {1LL, 3LL}) {
+    ParticleSystem system;
+    system.addParticle(Vector2d(0.0, 0.0), 1.0);
+    system.addParticle(Vector2d(1.5, 0.0), 1.0);
+    auto& spring = static_cast<PotentialCountingSpring&>(
+        system.addForce(std::make_unique<PotentialCountingSpring>(0, 1, 1.0, 10.0, 0.1)));
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("particle-lab-runner-potential-" + std::to_string(every) + ".csv"))
+            .string();
+    auto integrator = makeIntegrator("rk4");
+    {
+      scenes::CsvWriter csv(path, "the test's CSV", cli::kDiagnosticsColumns);
+      cli::RunLoop loop(system, *integrator, 0.01, {&csv, nullptr, 1, every});
+      EXPECT_EQ(loop.start(), "");
+      const int before = spring.potentials;
+      for (int k = 1; k <= 6; ++k) {
+        const int at = spring.potentials;
+        EXPECT_EQ(loop.step(), "");
+        EXPECT_EQ(spring.potentials - at, k % every == 0 ? 1 : 0) << "step " << k << " every " << every;
+      }
+      EXPECT_EQ(spring.potentials - before, every == 1 ? 6 : 2);
+      csv.close();
+    }
+    std::ifstream in(path);
+    int lines = 0;
+    for (std::string line; std::getline(in, line);) ++lines;
+    EXPECT_EQ(lines, 1 + 1 + (every == 1 ? 6 : 2)) << "header, row 0 and the measured steps";
+    std::filesystem::remove(path);
+  }
+}

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "particles/threads.h"
 #include "cli/command.h"
 #include "cli/run_loop.h"
 #include "cli/step_output.h"
@@ -36,6 +37,8 @@ struct RunOptions {
   long long steps = 0;
   std::string csvPath, trajectoryPath;
   long long every = 1;
+  long long diagnosticsEvery = 1;
+  int threads = particles::affinityCpuCount();
 };
 
 // A CSV file with its header written (numbers in their shortest exact form), or none when path is empty.
@@ -47,6 +50,7 @@ std::unique_ptr<scenes::CsvWriter> openOutput(const std::string& path, const cha
 
 int run(const RunOptions& o) {
   // Check every input before the first output.
+  particles::setThreadCount(o.threads);
   scenes::Scene scene = o.source.load();
   const std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
   particles::IntegratorSettings settings = scene.integratorSettings;
@@ -62,7 +66,7 @@ int run(const RunOptions& o) {
   const std::unique_ptr<scenes::CsvWriter> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryColumns);
 
   particles::ParticleSystem& s = *scene.system;
-  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every});
+  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every, o.diagnosticsEvery});
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };
@@ -134,6 +138,17 @@ Command addRunCommand(CLI::App& app) {
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, kMaxSteps));
+  sub->add_option("--threads", options->threads,
+                  "threads of the engine's parallel loops (the same results on any count; 1 starts no thread; "
+                  "default: the CPUs of the affinity mask), a decimal integer in [1, 1024]")
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, 1024));
+  sub->add_option("--diagnostics-every", options->diagnosticsEvery,
+                  "measure the diagnostics (energies, constraint error), check divergence and write the --csv "
+                  "row every K steps (and at step 0); a divergence is then found up to K-1 steps late; a "
+                  "decimal integer >= 1")
       ->capture_default_str()
       ->check(options::decimalInteger(1, kMaxSteps));
   sub->footer(

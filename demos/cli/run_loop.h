@@ -1,7 +1,8 @@
 #pragma once
 // The runner's step loop (particle-lab run), one step at a time, so that
 // the tests drive exactly the code the runner does:
-//   step → divergence check → diagnostics (once) → CSV row → trajectory rows.
+//   step → diagnostics (once, every diagnosticsEvery steps) → divergence check
+//   on them → CSV row → trajectory rows.
 #include <chrono>
 #include <string>
 
@@ -16,6 +17,9 @@ struct RunOutputs {
   scenes::CsvWriter* csv = nullptr;         // rows of kDiagnosticsColumns
   scenes::CsvWriter* trajectory = nullptr;  // rows of kTrajectoryColumns
   long long every = 1;                 // trajectory rows every `every` steps (and at step 0)
+  // Diagnostics, the divergence check and the CSV row every this many steps
+  // (and at step 0): a divergence is found up to diagnosticsEvery − 1 steps late.
+  long long diagnosticsEvery = 1;
 };
 
 class RunLoop {

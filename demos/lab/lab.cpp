@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "lab/cells.h"
+#include "particles/threads.h"
 #include "lab/lab_scene.h"
 #include "lab/values.h"
 #include "output_file.h"
@@ -26,7 +27,8 @@ double gravityMagnitude(const ParticleSystem& system) {
   return 0.0;
 }
 
-int defaultJobs() { return std::max(1u, std::thread::hardware_concurrency()); }
+// The CPUs this process may run on (its affinity mask: taskset, Slurm), not the machine's.
+int defaultJobs() { return particles::affinityCpuCount(); }
 
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const FailureCriterion& criterion,

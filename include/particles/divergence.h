@@ -56,5 +56,9 @@ struct Divergence {
 // run started from; lastStep the statistics of the step just taken.
 Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits& limits,
                            double initialEnergy, const StepStats& lastStep);
+// The same with the system's total energy already measured (a runner that
+// has just computed it for its diagnostics does not pay for it twice).
+Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits& limits,
+                           double initialEnergy, const StepStats& lastStep, double totalEnergy);
 
 }  // namespace particles

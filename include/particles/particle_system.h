@@ -14,6 +14,7 @@
 #include "particles/force.h"
 #include "particles/integrator.h"
 #include "particles/step_stats.h"
+#include "particles/forces/force_batch.h"
 
 namespace particles {
 
@@ -50,6 +51,11 @@ class ParticleSystem {
   void addCollisionEdge(int a, int b);
   // Removes a force previously added (e.g. the mouse spring on release).
   void removeForce(const Force* force);
+  // Tears (enabled = false) or mends a spring added to this system: a torn
+  // spring adds no force, potential or Jacobian. Changes the structure stamp
+  // (the spring batch is rebuilt at the next evaluation, O(forces)).
+  // std::invalid_argument if spring is not a SpringForce of this system.
+  void setSpringEnabled(const Force* spring, bool enabled);
 
   // --- state --------------------------------------------------------------
   int size() const { return static_cast<int>(mass_.size()); }
@@ -139,6 +145,7 @@ class ParticleSystem {
   Eigen::VectorXd mass_, inverseMass_, radius_;
   double time_ = 0.0;
   std::vector<std::unique_ptr<Force>> forces_;
+  ForceBatches batches_;  // forces_ as flat arrays, rebuilt on a structure change
   ConstraintList constraints_;
   std::vector<Collider> colliders_;
   std::vector<CollisionEdge> edges_;

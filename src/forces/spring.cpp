@@ -62,6 +62,7 @@ SpringForce::SpringForce(int i, int j, double restLength, double stiffness, doub
 }
 
 void SpringForce::apply(const Phase& s, Eigen::VectorXd& f) const {
+  if (!enabled_) return;
   const Eigen::Vector2d fi = springForce(s.position(i_) - s.position(j_),
                                          s.velocity(i_) - s.velocity(j_), rest_, stiffness_, damping_);
   f.segment<2>(2 * i_) += fi;
@@ -69,6 +70,7 @@ void SpringForce::apply(const Phase& s, Eigen::VectorXd& f) const {
 }
 
 double SpringForce::potential(const Phase& s) const {
+  if (!enabled_) return 0.0;
   const double stretch = (s.position(i_) - s.position(j_)).norm() - rest_;
   return 0.5 * stiffness_ * stretch * stretch;
 }
@@ -84,6 +86,7 @@ void springDefiniteJacobian(const Eigen::Vector2d& l, double rest, double stiffn
 }
 
 void SpringForce::addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const {
+  if (!enabled_) return;
   Eigen::Matrix2d dl, dldot;
   springJacobian(s.position(i_) - s.position(j_), s.velocity(i_) - s.velocity(j_), rest_,
                  stiffness_, damping_, dl, dldot);
@@ -91,6 +94,7 @@ void SpringForce::addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) c
 }
 
 void SpringForce::addDefiniteJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const {
+  if (!enabled_) return;
   Eigen::Matrix2d dl, dldot;
   springDefiniteJacobian(s.position(i_) - s.position(j_), rest_, stiffness_, damping_, dl, dldot);
   addBlocks(dl, dldot, dfdx, dfdv);
@@ -112,6 +116,7 @@ void SpringForce::addBlocks(const Eigen::Matrix2d& dl, const Eigen::Matrix2d& dl
 }
 
 void SpringForce::sketch(const Phase& s, Sketch& out) const {
+  if (!enabled_) return;
   out.lines.push_back({s.position(i_), s.position(j_)});
 }
 

@@ -46,6 +46,7 @@
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
 #include "particles/particle_system.h"
+#include "cloth_grid.h"
 #include "rod_chain.h"
 
 using namespace particles;
@@ -58,33 +59,7 @@ constexpr int kWarmupSteps = 5;
 constexpr int kEpisodeSteps = 300;     // 0.3 simulated seconds
 constexpr double kMaxRelativeRodError = 0.01;
 
-// width × height particles of mass 0.2 at `spacing`, row 0 on top and pinned;
-// springs to the right and down neighbours (rest spacing) and to both lower
-// diagonals (rest √2·spacing); gravity and a little drag.
-ParticleSystem buildCloth(int width, int height, double spacing) {
-  const double stiffness = 50.0, damping = 0.5;
-  ParticleSystem system;
-  std::vector<Vector2d> positions;
-  for (int row = 0; row < height; ++row)
-    for (int col = 0; col < width; ++col) positions.emplace_back(col * spacing, -row * spacing);
-  system.addParticles(positions, std::vector<double>(positions.size(), 0.2));
-  auto id = [&](int row, int col) { return row * width + col; };
-  for (int col = 0; col < width; ++col) system.setPinned(id(0, col), true);
-  const double diagonal = std::sqrt(2.0) * spacing;
-  for (int row = 0; row < height; ++row)
-    for (int col = 0; col < width; ++col) {
-      auto spring = [&](int r, int c, double rest) {
-        system.addForce(std::make_unique<SpringForce>(id(row, col), id(r, c), rest, stiffness, damping));
-      };
-      if (col + 1 < width) spring(row, col + 1, spacing);
-      if (row + 1 < height) spring(row + 1, col, spacing);
-      if (row + 1 < height && col + 1 < width) spring(row + 1, col + 1, diagonal);
-      if (row + 1 < height && col > 0) spring(row + 1, col - 1, diagonal);
-    }
-  system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
-  system.addForce(std::make_unique<DragForce>(0.01));
-  return system;
-}
+ParticleSystem buildCloth(int width, int height, double spacing) { return bench::clothGrid(width, height, spacing); }
 
 // Restarts an episode: restore and kWarmupSteps untimed steps. Out of line so
 // that callgrind's call graph tells these steps from the timed ones (the timed

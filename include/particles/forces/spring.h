@@ -45,6 +45,10 @@ class SpringForce : public Force {
   }
   double stiffness() const { return stiffness_; }
   double damping() const { return damping_; }
+  // A disabled spring (torn) adds no force, potential, Jacobian or line.
+  // Switched through ParticleSystem::setSpringEnabled, which keeps the
+  // system's spring batch in step.
+  bool enabled() const { return enabled_; }
 
  private:
   void addBlocks(const Eigen::Matrix2d& dl, const Eigen::Matrix2d& dldot, Triplets& dfdx,
@@ -53,6 +57,8 @@ class SpringForce : public Force {
   double rest_;       // world units
   double stiffness_;  // k_s, force / length
   double damping_;    // k_d, force / speed
+  bool enabled_ = true;
+  friend class ParticleSystem;
 };
 
 }  // namespace particles

@@ -1,0 +1,33 @@
+#include "particles/threads.h"
+
+#include <sched.h>
+
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+namespace particles {
+
+namespace {
+int gThreads = 1;
+}  // namespace
+
+void setThreadCount(int count) {
+  if (count < 1) throw std::invalid_argument("thread count must be >= 1, got " + std::to_string(count));
+  gThreads = count;
+}
+
+int threadCount() { return gThreads; }
+
+int affinityCpuCount() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+    const int n = CPU_COUNT(&set);
+    if (n > 0) return n;
+  }
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? static_cast<int>(hw) : 1;
+}
+
+}  // namespace particles

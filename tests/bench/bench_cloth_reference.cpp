@@ -1,0 +1,220 @@
+// The engine's RK4 step of the 8-way spring cloth (cloth_grid.h) against a
+// plain single-core structure-of-arrays RK4 step of the same springs, at 64²,
+// 128² and 256² particles, dt 1 ms:
+//   engine/<n>     ParticleSystem::step with Rk4Integrator;
+//   reference/<n>  PlainCloth::step below: flat arrays, plain loops, no
+//                  intrinsics, compiled at -O2 (this file's own flags).
+// Both start from the same state warmed up by a few steps; before timing, one
+// run of kCheckSteps steps of each from the same start is compared and the
+// largest difference of any coordinate is printed (0: the same bits).
+// Repetitions are interleaved (--benchmark_enable_random_interleaving) and
+// at the end the ratio engine / reference of the medians of the CPU time per
+// step is printed for each size, with the ratio's range over the repetitions.
+// engine-2threads/<n>: the engine on 2 threads (wall time); the speed-up
+// 1 -> 2 threads printed is the ratio of the wall-time medians.
+//
+//   ./build/tests/bench_cloth_reference --benchmark_repetitions=7
+//     --benchmark_enable_random_interleaving=true (one command line)
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cloth_grid.h"
+#include "particles/integrators/rk4.h"
+#include "particles/threads.h"
+
+namespace {
+
+constexpr double kDt = 0.001;  // s
+constexpr int kWarmupSteps = 5, kCheckSteps = 20;
+constexpr int kSizes[] = {64, 128, 256};
+constexpr double kSpacing = 0.05;  // m
+
+// The reference: the same physics written as simply as possible.
+struct PlainCloth {
+  int n = 0;
+  std::vector<int> a, b;
+  std::vector<double> rest, ks, kd;
+  std::vector<double> mass, w;
+  double gravity = 0.0, drag = 0.0;
+  std::vector<double> x, v, x0, v0, xs, vs, dx, dv, acc, f;
+
+  explicit PlainCloth(const particles::ParticleSystem& s) {
+    n = s.size();
+    for (const auto& force : s.forceObjects())
+      if (const auto* sp = dynamic_cast<const particles::SpringForce*>(force.get())) {
+        a.push_back(sp->first());
+        b.push_back(sp->second());
+        rest.push_back(sp->restLength());
+        ks.push_back(sp->stiffness());
+        kd.push_back(sp->damping());
+      }
+    gravity = bench::kClothGravity;
+    drag = bench::kClothDrag;
+    mass.assign(s.masses().data(), s.masses().data() + n);
+    w.assign(s.inverseMasses().data(), s.inverseMasses().data() + n);
+    x.assign(s.positions().data(), s.positions().data() + 2 * n);
+    v.assign(s.velocities().data(), s.velocities().data() + 2 * n);
+    for (auto* vec : {&x0, &v0, &xs, &vs, &dx, &dv, &acc, &f}) vec->assign(2 * n, 0.0);
+  }
+
+  void accel(const std::vector<double>& px, const std::vector<double>& pv) {
+    std::fill(f.begin(), f.end(), 0.0);
+    const int m = static_cast<int>(a.size());
+    for (int k = 0; k < m; ++k) {
+      const int i = 2 * a[k], j = 2 * b[k];
+      const double lx = px[i] - px[j], ly = px[i + 1] - px[j + 1];
+      const double len = std::sqrt(lx * lx + ly * ly);
+      if (len == 0.0) continue;
+      const double ux = lx / len, uy = ly / len;
+      const double s = -(ks[k] * (len - rest[k]) + kd[k] * ((pv[i] - pv[j]) * ux + (pv[i + 1] - pv[j + 1]) * uy));
+      f[i] += s * ux;
+      f[i + 1] += s * uy;
+      f[j] -= s * ux;
+      f[j + 1] -= s * uy;
+    }
+    for (int p = 0; p < n; ++p) {
+      if (w[p] > 0.0) {
+        f[2 * p + 1] += mass[p] * gravity;
+        f[2 * p] += mass[p] * 0.0;
+        f[2 * p] -= drag * pv[2 * p];
+        f[2 * p + 1] -= drag * pv[2 * p + 1];
+      }
+      acc[2 * p] = w[p] * f[2 * p];
+      acc[2 * p + 1] = w[p] * f[2 * p + 1];
+    }
+  }
+
+  void step(double h) {
+    const int m = 2 * n;
+    x0 = x;
+    v0 = v;
+    accel(x0, v0);
+    for (int k = 0; k < m; ++k) {
+      dx[k] = v0[k];
+      dv[k] = acc[k];
+      xs[k] = x0[k] + (0.5 * h) * v0[k];
+      vs[k] = v0[k] + (0.5 * h) * acc[k];
+    }
+    for (double c : {0.5, 1.0}) {
+      accel(xs, vs);
+      for (int k = 0; k < m; ++k) {
+        dx[k] += 2.0 * vs[k];
+        dv[k] += 2.0 * acc[k];
+        xs[k] = x0[k] + (c * h) * vs[k];
+        vs[k] = v0[k] + (c * h) * acc[k];
+      }
+    }
+    accel(xs, vs);
+    for (int k = 0; k < m; ++k) {
+      dx[k] += vs[k];
+      dv[k] += acc[k];
+      x[k] = x0[k] + (h / 6.0) * dx[k];
+      v[k] = v0[k] + (h / 6.0) * dv[k];
+    }
+  }
+};
+
+particles::ParticleSystem warmCloth(int size) {
+  particles::ParticleSystem s = bench::clothGrid(size, size, kSpacing);
+  particles::Rk4Integrator rk4;
+  for (int k = 0; k < kWarmupSteps; ++k) s.step(rk4, kDt);
+  return s;
+}
+
+// Largest |engine − reference| over every coordinate after kCheckSteps steps.
+double checkDifference(int size) {
+  particles::ParticleSystem s = warmCloth(size);
+  PlainCloth plain(s);
+  particles::Rk4Integrator rk4;
+  for (int k = 0; k < kCheckSteps; ++k) {
+    s.step(rk4, kDt);
+    plain.step(kDt);
+  }
+  double worst = 0.0;
+  for (int k = 0; k < 2 * s.size(); ++k)
+    worst = std::max({worst, std::abs(s.positions()[k] - plain.x[k]), std::abs(s.velocities()[k] - plain.v[k])});
+  return worst;
+}
+
+void engineStep(benchmark::State& state, int size, int threads) {
+  particles::setThreadCount(1);
+  particles::ParticleSystem s = warmCloth(size);
+  particles::setThreadCount(threads);
+  particles::Rk4Integrator rk4;
+  for (auto _ : state) s.step(rk4, kDt);
+  particles::setThreadCount(1);
+  benchmark::DoNotOptimize(s.positions().data());
+  state.counters["particles"] = s.size();
+}
+
+void referenceStep(benchmark::State& state, int size) {
+  PlainCloth plain(warmCloth(size));
+  for (auto _ : state) plain.step(kDt);
+  benchmark::DoNotOptimize(plain.x.data());
+  state.counters["particles"] = plain.n;
+}
+
+// Keeps each repetition's CPU time per iteration, by benchmark name.
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  std::map<std::string, std::vector<double>> times, wall;  // CPU and wall time per iteration
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& r : runs)
+      if (r.run_type == Run::RT_Iteration && !r.error_occurred)
+      {
+        times[r.run_name.function_name].push_back(r.GetAdjustedCPUTime());
+        wall[r.run_name.function_name].push_back(r.GetAdjustedRealTime());
+      }
+    ConsoleReporter::ReportRuns(runs);
+  }
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int size : kSizes) {
+    const std::string n = std::to_string(size);
+    benchmark::RegisterBenchmark(("engine/" + n).c_str(), engineStep, size, 1)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("engine-2threads/" + n).c_str(), engineStep, size, 2)
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark(("reference/" + n).c_str(), referenceStep, size)->Unit(benchmark::kMicrosecond);
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  for (int size : kSizes)
+    std::printf("check %d^2: largest |engine - reference| after %d steps = %.3g\n", size, kCheckSteps,
+                checkDifference(size));
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  for (int size : kSizes) {
+    const std::string n = std::to_string(size);
+    const auto& e = reporter.times["engine/" + n];
+    const auto& r = reporter.times["reference/" + n];
+    if (e.empty() || r.empty()) continue;
+    std::vector<double> ratios;
+    for (std::size_t k = 0; k < std::min(e.size(), r.size()); ++k) ratios.push_back(e[k] / r[k]);
+    std::printf("ratio engine/reference %d^2: median %.3f (repetitions %.3f-%.3f), engine %.1f us, reference %.1f us\n",
+                size, median(e) / median(r), *std::min_element(ratios.begin(), ratios.end()),
+                *std::max_element(ratios.begin(), ratios.end()), median(e), median(r));
+    const auto& e1 = reporter.wall["engine/" + n];
+    const auto& e2 = reporter.wall["engine-2threads/" + n];
+    if (!e1.empty() && !e2.empty())
+      std::printf("speed-up 1 -> 2 threads %d^2 (wall time): %.3f, 1 thread %.1f us, 2 threads %.1f us\n", size,
+                  median(e1) / median(e2), median(e1), median(e2));
+  }
+  benchmark::Shutdown();
+  return 0;
+}
