@@ -111,9 +111,9 @@ Command addAdviseCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(options::decimalInteger(1, 1000000000));
   command->add_option("--reference-tolerance", options->referenceTolerance,
-                      "odeint's error tolerance per step for the reference (checked at 100x it)")
+                      "odeint's error tolerance per step for the reference (checked at 100x it), in [1e-13, 1]")
       ->capture_default_str()
-      ->check(options::positiveNumber());
+      ->check(options::numberInRange(lab::kMinReferenceTolerance, 1.0));
   return {command, [=] { return advise(*options); }};
 }
 

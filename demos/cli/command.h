@@ -17,7 +17,7 @@ enum ExitCode : int {
   kBadInput = options::kBadUsageExit,  // a bad option value, a missing or malformed scene file
   kDiverged = 3,  // the state or its diagnostics became non-finite during a run
   kWriteFailed = 4,  // an output file could not be written (disk full, I/O error)
-  kInterrupted = 130,  // SIGINT or SIGTERM: stopped at a step boundary, outputs complete
+  kInterrupted = 130,  // SIGINT, SIGTERM or SIGHUP: stopped at a step boundary, outputs complete
 };
 
 // A bad option value or combination found after parsing; exits kBadInput.

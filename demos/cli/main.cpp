@@ -1,5 +1,8 @@
 // particle-lab: the headless runner. Subcommands are listed in one table;
 // errors become one line on stderr and an exit code (cli::ExitCode).
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <new>
 #include <string>
@@ -59,7 +62,16 @@ int runCommandLine(const std::vector<std::string>& given) {
   for (const cli::Command& command : commands) {
     if (!command.app->parsed()) continue;
     try {
-      return command.run();
+      const int code = command.run();
+      // The summary or table on stdout is the command's result: a failed write
+      // of it (stdout on a full disk, /dev/full) is a failed output, exit 4.
+      errno = 0;
+      std::cout.flush();
+      if (!std::cout || std::fflush(stdout) != 0)
+        return fail(std::string("cannot write the standard output: ") +
+                        (errno ? std::strerror(errno) : "the write failed"),
+                    cli::kWriteFailed);
+      return code;
     } catch (const scenes::SceneFileError& e) {
       return fail(e.what());
     } catch (const std::invalid_argument& e) {

@@ -119,10 +119,12 @@ Command addRunCommand(CLI::App& app) {
           ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,
-                      "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)");
+                      "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)")
+          ->check(options::decimalInteger(1, 100000));
   options->iterationsOption =
       sub->add_option("--iterations", options->integratorSettings.iterations,
-                      "xpbd: constraint passes per substep, in [1, 10000] (default: the scene's, 1)");
+                      "xpbd: constraint passes per substep, in [1, 10000] (default: the scene's, 1)")
+          ->check(options::decimalInteger(1, 10000));
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)")
                           ->check(options::positiveNumber());
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
@@ -134,9 +136,11 @@ Command addRunCommand(CLI::App& app) {
                   "(cg_iterations: summed over every solve of the step; cg_residual: the largest relative "
                   "residual of them; solves: linear solves; force_evaluations: evaluations of every force; "
                   "internal_steps: accepted steps of an adaptive scheme, 1 otherwise; step_us: wall time of "
-                  "the step's simulation, output excluded)");
+                  "the step's simulation, output excluded)")
+      ->check(options::outputPath());
   sub->add_option("--trajectory", options->trajectoryPath,
-                  "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)");
+                  "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)")
+      ->check(options::outputPath());
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
       ->capture_default_str()
       ->check(options::decimalInteger(1, kMaxSteps));
@@ -157,7 +161,7 @@ Command addRunCommand(CLI::App& app) {
       "non-finite (|q|^2 or |v|^2 overflows), a step failed (a solve with non-finite multipliers, an\n"
       "adaptive step below its floor or over its work cap) or a diagnostic is not finite: the run stops,\n"
       "stderr names the step, time and reason, and the CSV holds every step before it (finite numbers\n"
-      "only); 4 an output file could not be written (disk full); 130 SIGINT or SIGTERM: the run stops at\n"
+      "only); 4 an output file or stdout could not be written (disk full); 130 SIGINT, SIGTERM or SIGHUP: the run stops at\n"
       "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"
       "a second run given the same path is refused (exit 2).");
   return {sub, [options] { return run(*options); }};

@@ -21,7 +21,9 @@ void validate(const SurveySettings& s) {
   if (s.dtMax != 0.0) particles::requirePositive("dt max", s.dtMax);
   if (s.interval != 0.0) particles::requirePositive("interval", s.interval);
   particles::requirePositive("adaptive interval", s.adaptiveInterval);
-  particles::requirePositive("reference tolerance", s.referenceTolerance);
+  // Below 1e-13 the reference integration runs for minutes (rounding, not the
+  // tolerance, bounds its error there), as --tolerance refuses for dopri5.
+  particles::requireInRange("reference tolerance", s.referenceTolerance, kMinReferenceTolerance, 1.0);
   particles::requireInRange("safe fraction", s.safeFraction, 1e-3, 1.0);
   particles::requirePositive("grid resolution", s.gridResolution);
   if (s.members < 1) throw std::invalid_argument("members must be >= 1, got " + std::to_string(s.members));
@@ -195,6 +197,13 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   if (interval > s.horizon)
     throw std::invalid_argument("horizon must be >= the sample interval " + general(interval) + ", got " +
                                 general(s.horizon));
+  // The reference holds every sample of every particle: refuse a horizon whose
+  // trajectory could not be allocated (1e300 s would throw length_error).
+  const double samples = s.horizon / interval * static_cast<double>(std::max<std::size_t>(1, first.system->size()));
+  if (!(samples <= kMaxReferenceSamples))
+    throw std::invalid_argument("horizon " + general(s.horizon) + " s needs " + general(samples) +
+                                " reference samples (T / interval " + general(interval) +
+                                " s, times the particles), more than the limit of " + general(kMaxReferenceSamples));
   Survey survey;
   survey.scene = first.name;
   survey.horizon = s.horizon;

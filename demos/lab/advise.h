@@ -16,6 +16,13 @@
 
 namespace lab {
 
+// Bounds of the survey's inputs: a reference tolerance below this runs for
+// minutes with no gain (rounding bounds the error there, as for dopri5's
+// --tolerance); a reference of more samples (T / interval, times the
+// particles, two doubles each) than this would not fit a machine's memory.
+inline constexpr double kMinReferenceTolerance = 1e-13;
+inline constexpr double kMaxReferenceSamples = 2.5e7;
+
 struct SurveySettings {
   double horizon = 10.0;            // T, simulated seconds
   double abortError = 1e-2;         // a run stops once its error exceeds this (world units)
@@ -34,7 +41,7 @@ struct SurveySettings {
                                     // long enough that its tolerance, not the call, limits its step
   int repeats = 5;                  // timed repeats of each pick; the median is reported
   FailureCriterion failure;         // the failure criterion (lab/failure.h)
-  double referenceTolerance = 1e-11;  // odeint's; the check run uses 100× this
+  double referenceTolerance = 1e-11;  // odeint's, in [kMinReferenceTolerance, 1]; the check run uses 100× this
   std::function<void(double)> progress;        // fraction done, 0..1, on the calling thread
   const std::atomic<bool>* cancel = nullptr;   // set (from any thread) to stop early
 };

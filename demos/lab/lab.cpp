@@ -249,6 +249,7 @@ extern "C" void onInterrupt(int) { stopRequested = true; }
 void installInterruptHandler() {
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
+  std::signal(SIGHUP, onInterrupt);  // the terminal closed: stop as for SIGTERM, outputs complete
 }
 
 bool interrupted() { return stopRequested.load(); }

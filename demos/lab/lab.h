@@ -150,7 +150,7 @@ class Progress {
   std::chrono::steady_clock::time_point start_, lastPrint_;
 };
 
-// Set by SIGINT/SIGTERM once installInterruptHandler() ran; loops stop early.
+// Set by SIGINT/SIGTERM/SIGHUP once installInterruptHandler() ran; loops stop early.
 void installInterruptHandler();
 bool interrupted();
 

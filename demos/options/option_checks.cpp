@@ -38,6 +38,12 @@ CLI::Validator regularFile() {
       "FILE");
 }
 
+CLI::Validator outputPath() {
+  return CLI::Validator(
+      [](std::string& path) -> std::string { return path.empty() ? "expected a file name, got \"\"" : ""; },
+      "FILE");
+}
+
 CLI::Validator integratorTolerance() {
   return CLI::Validator(
       [](std::string& text) -> std::string {

@@ -28,6 +28,9 @@ CLI::Validator integratorTolerance();
 CLI::Validator positiveNumber();
 CLI::Validator numberInRange(double lo, double hi);
 
+// A file to write: an empty name ("") is refused instead of writing nothing.
+CLI::Validator outputPath();
+
 // An integrator of the table, by name: "unknown integrator 'rk5' (valid: …)".
 CLI::Validator integratorName();
 

@@ -1,5 +1,6 @@
 #include "scene_file/json_parse.h"
 
+#include <algorithm>
 #include <cstring>
 #include <unordered_set>
 #include <vector>
@@ -105,6 +106,16 @@ class DocumentBuilder : public nlohmann::json_sax<Json> {
 Json parseJson(const std::string& text) {
   Json document;
   DocumentBuilder builder(document);
+  // nlohmann's lexer ends the input at a NUL byte, so that "{...}\0garbage"
+  // would load: a NUL anywhere (JSON never holds one raw) is a syntax error.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    const std::size_t lineStart = text.rfind('\n', nul);
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + nul, '\n'));
+    const std::size_t column = nul - (lineStart == std::string::npos ? 0 : lineStart + 1) + 1;
+    throw JsonSyntaxError("parse error at line " + std::to_string(line) + ", column " + std::to_string(column) +
+                              ": a NUL byte (JSON text holds none; trailing bytes after the document are refused)",
+                          nul);
+  }
   Json::sax_parse(text, &builder);
   return document;
 }

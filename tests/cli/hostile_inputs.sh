@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Outputs that cannot be written as asked, integers that are not decimal, bounds of advise's
+# survey, JSON followed by a NUL byte, and SIGHUP during a run.
+# Usage: hostile_inputs.sh PROGRAM DATA WORK
+PROGRAM=$1 DATA=$2 WORK=$3
+source "$(dirname "$0")/common.sh"
+rm -rf "$WORK" && mkdir -p "$WORK"
+
+# A FIFO with no reader as --csv: refused at once instead of blocking in open().
+mkfifo "$WORK/out.fifo"
+expect csv-fifo 2 "cannot write --csv file '.*out.fifo': not a regular file or device \(a FIFO or socket\)$" -- \
+  run --scene pendulum --steps 10 --csv "$WORK/out.fifo"
+# An empty file name writes nothing silently no more.
+expect csv-empty 2 '^particle-lab: --csv: expected a file name, got ""$' -- run --scene pendulum --steps 10 --csv ""
+expect trajectory-empty 2 '^particle-lab: --trajectory: expected a file name, got ""$' -- \
+  run --scene pendulum --steps 10 --trajectory ""
+# --csv naming the file stdout is redirected to: the summary would overwrite its header.
+expect_stdout_clash() {
+  local got=0
+  timeout 60 "$PROGRAM" run --scene pendulum --steps 10 --csv /dev/stdout >"$WORK/clash.out" 2>"$WORK/clash.err" || got=$?
+  if [ "$got" = 2 ] && grep -q 'also the standard output' "$WORK/clash.err" && [ "$(wc -l <"$WORK/clash.err")" = 1 ]; then
+    pass csv-is-stdout
+  else
+    fail "csv-is-stdout: exit $got: $(head -c 300 "$WORK/clash.err")"
+  fi
+}
+expect_stdout_clash
+# Integers are decimal: a leading zero or 0x is refused, not read as octal or hex.
+expect substeps-octal 2 'substeps: expected a decimal integer in \[1, 100000\] \(no leading zeros or 0x\), got 010$' -- \
+  run --scene cloth --integrator xpbd --steps 1 --substeps 010
+expect substeps-hex 2 'substeps: expected a decimal integer in \[1, 100000\] \(no leading zeros or 0x\), got 0x10$' -- \
+  run --scene cloth --integrator xpbd --steps 1 --substeps 0x10
+# advise: a horizon whose reference would not fit memory, a reference tolerance below rounding.
+expect advise-horizon 2 'horizon 1e\+300 s needs .* reference samples .*more than the limit of 2.5e\+07$' -- \
+  advise --scene pendulum --error 1e-3 --horizon 1e300
+expect advise-reference-tolerance 2 '^particle-lab: --reference-tolerance: value must be in \[1e-13, 1\], got 1e-300$' -- \
+  advise --scene pendulum --error 1e-3 --reference-tolerance 1e-300
+# The summary on a full disk is a failed output (exit 4), as export's file is.
+if [ -w /dev/full ]; then
+  got=0
+  timeout 60 "$PROGRAM" run --scene pendulum --steps 10 >/dev/full 2>"$WORK/full.err" || got=$?
+  if [ "$got" = 4 ] && grep -q 'cannot write the standard output' "$WORK/full.err"; then pass run-stdout-full
+  else fail "run-stdout-full: exit $got: $(head -c 300 "$WORK/full.err")"; fi
+fi
+# Valid JSON, a NUL byte, then garbage: rejected as trailing garbage is.
+printf '{"particles": []}\0garbage' >"$WORK/nul.json"
+expect nul-then-garbage 2 'parse error at line 1, column 18: a NUL byte' -- run --scene-file "$WORK/nul.json" --steps 1
+
+# SIGHUP during a run stops it at a step boundary, as SIGTERM does (exit 130, complete rows).
+"$PROGRAM" run --scene cloth --param width=20 --param height=20 --steps 100000000 --csv "$WORK/hup.csv" \
+  >/dev/null 2>"$WORK/hup.err" &
+pid=$!
+if wait_for_rows "$WORK/hup.csv" 3; then
+  kill -HUP "$pid"
+  code=0
+  wait_for "$pid" 10 || code=$?
+  if [ "$code" = 130 ] && complete_csv "$WORK/hup.csv"; then pass sighup
+  else fail "sighup: exit $code, csv complete: $(complete_csv "$WORK/hup.csv" && echo yes || echo no)"; fi
+else
+  kill -KILL "$pid" 2>/dev/null
+  fail "sighup: the run wrote no rows"
+fi
+finish
