@@ -22,7 +22,7 @@ namespace {
 
 constexpr double g = 9.81;
 // The explicit schemes whose post-step contact phase is the coupled solve.
-const std::vector<std::string> kExplicit = {"rk4", "midpoint", "verlet", "dopri5"};
+const std::vector<std::string> kExplicit = {"rk4", "midpoint", "verlet", "dopri5", "rattle"};
 
 // A chain of `links` rods of length 0.1 m and 0.1 kg beads from `start`
 // along `direction`; the first bead pinned if asked.
@@ -107,7 +107,7 @@ TEST(CoupledContacts, FreeChainOnSlopeComesToRest) {
 // wire and floor meet, x = ±√(0.4² − 0.35²), having released m g · 0.35 m.
 TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
   const double radius = 0.4, floorY = -0.35, xMeet = std::sqrt(radius * radius - floorY * floorY);
-  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5"}) {
+  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
     ParticleSystem s;
     s.addParticle(Vector2d(radius, 0.0), 1.0);
     s.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), radius));
@@ -130,7 +130,7 @@ TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
 // through the bottom as if the floor were not there.
 TEST(CoupledContacts, FloorTangentToWireChangesNothing) {
   const double radius = 0.4;
-  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5"}) {
+  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
     std::vector<double> energy[2];
     for (int withFloor = 0; withFloor < 2; ++withFloor) {
       ParticleSystem s;
@@ -156,7 +156,7 @@ TEST(CoupledContacts, FloorTangentToWireChangesNothing) {
 TEST(StaticFriction, HoldsBelowFrictionAngleSlidesCoulombAbove) {
   const double mu = 0.5, dt = 0.01, T = 2.0;
   for (const std::string& name :
-       {"euler", "symplectic-euler", "midpoint", "rk4", "verlet", "implicit-euler", "xpbd", "dopri5"}) {
+       {"euler", "symplectic-euler", "midpoint", "rk4", "verlet", "implicit-euler", "xpbd", "dopri5", "rattle"}) {
     for (double degrees : {20.0, 35.0}) {
       const double angle = degrees * M_PI / 180.0;
       const Vector2d normal(-std::sin(angle), std::cos(angle)), along(std::cos(angle), std::sin(angle));
