@@ -56,7 +56,7 @@ void fields(Io& io, Point& p) {
 
 int runAccuracy(const LabOptions& options) {
   prepareOutput(options);
-  const auto integrators = selectedIntegrators(options);
+  const auto integrators = selectedIntegrators(options, true);
   const bool q = options.quick;
   const int repeats = q ? 2 : 5;
   // Periods: oscillator 2π (ω = 1); pendulum ≈ 20 s (scenes::pendulumPeriod);

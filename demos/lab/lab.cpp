@@ -129,10 +129,10 @@ std::string safeStepText(const Boundary& b) {
   return general(b.safeDt, 2);
 }
 
-std::vector<std::string> selectedIntegrators(const LabOptions& options) {
+std::vector<std::string> selectedIntegrators(const LabOptions& options, bool everyScheme) {
   std::vector<std::string> names;
   for (const auto& info : particles::integratorTable())
-    if (options.integrators.empty() ||
+    if ((options.integrators.empty() && (everyScheme || info.inLabSweeps)) ||
         std::find(options.integrators.begin(), options.integrators.end(), info.name) !=
             options.integrators.end())
       names.push_back(info.name);

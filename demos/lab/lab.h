@@ -95,8 +95,10 @@ std::string safeStepText(const Boundary& boundary);
 // Magnitude of the scene's gravity (0 without a gravity force).
 double gravityMagnitude(const particles::ParticleSystem& system);
 
-// Integrators selected by the options, in table order.
-std::vector<std::string> selectedIntegrators(const LabOptions& options);
+// Integrators selected by the options, in table order: those named by
+// --integrators, else every scheme of the table (everyScheme) or those in the
+// laboratory's sweeps (IntegratorInfo::inLabSweeps).
+std::vector<std::string> selectedIntegrators(const LabOptions& options, bool everyScheme = false);
 
 // Log-spaced values from lo to hi inclusive.
 std::vector<double> logSpace(double lo, double hi, int count);

@@ -48,7 +48,7 @@ void fields(Io& io, Damping& d) {
 int runLongtime(const LabOptions& options) {
   prepareOutput(options);
   const bool q = options.quick;
-  const auto integrators = selectedIntegrators(options);
+  const auto integrators = selectedIntegrators(options, true);
   const double horizon = q ? 20.0 : 500.0, every = q ? 0.5 : 1.0;  // energy sampled every `every` s
   const std::vector<LongRun> runs = {{"pendulum", "pendulum", {}, 0.05}, {"6-chain", "test-chain", {{"cl", "6"}}, 0.01}};
   const scenes::PendulumParams pendulum = scenes::PendulumParams::seed();

@@ -91,6 +91,11 @@ struct IntegratorInfo {
   std::unique_ptr<Integrator> (*make)();
   bool usesTolerance = false;  // reads IntegratorSettings (tolerance, step floor, work cap)
   bool usesSubsteps = false;   // reads IntegratorSettings::substeps and ::iterations
+  // Part of the laboratory's default sweeps over long chains and large
+  // scenes (stability, timing, cost, extremes); a scheme left out is run there
+  // only when named (--integrators), and the long-time and accuracy experiments
+  // on small scenes run every scheme.
+  bool inLabSweeps = true;
 };
 
 // Every integrator, in the order the demo cycles through them.
