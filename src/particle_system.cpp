@@ -169,6 +169,12 @@ StepStats ParticleSystem::takeEvaluationStats() {
   return taken;
 }
 
+void ParticleSystem::addEvaluationStats(StepStats& stats) {
+  StepStats taken = takeEvaluationStats();
+  taken.internalSteps = 0;
+  stats += taken;
+}
+
 StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
   evaluations_ = StepStats{};
@@ -190,9 +196,7 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   contactStats_ = StepStats{};
   contactStats_.internalSteps = 0;
   StepStats stats = integrator.step(*this, dt);
-  StepStats untaken = takeEvaluationStats();  // evaluations the integrator left in the tally
-  untaken.internalSteps = 0;
-  stats += untaken;
+  addEvaluationStats(stats);  // evaluations the integrator left in the tally
   if (collideAfter) collideOver(startX_, startV_, dt);
   coupleContacts_ = false;
   stats += contactStats_;

@@ -110,6 +110,9 @@ class ParticleSystem {
   // fixed step (internalSteps = 1); resets the tally. Integrators return it
   // from step(), adding their own counts.
   StepStats takeEvaluationStats();
+  // The same tally added to stats, a step that counts its own internal steps
+  // (stats.internalSteps unchanged); resets the tally.
+  void addEvaluationStats(StepStats& stats);
 
   // One step: keep the start state → integrate by dt → collide (continuous,
   // from the start state; skipped without colliders or collidable discs, and

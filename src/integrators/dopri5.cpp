@@ -218,9 +218,7 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
   xCached_ = x;
   vCached_ = v;
   cached_ = true;
-  StepStats evaluations = system.takeEvaluationStats();
-  evaluations.internalSteps = 0;
-  stats += evaluations;
+  system.addEvaluationStats(stats);
   return stats;
 }
 

@@ -140,9 +140,7 @@ StepStats RattleIntegrator::step(ParticleSystem& system, double dt) {
     }
   }
   lastStep_ = dt;
-  StepStats evaluations = system.takeEvaluationStats();
-  evaluations.internalSteps = 0;
-  stats += evaluations;
+  system.addEvaluationStats(stats);
   return stats;
 }
 
