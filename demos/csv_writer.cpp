@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "particles/format.h"
+#include "format_number.h"
 
 namespace scenes {
 
@@ -34,7 +34,7 @@ CsvWriter& CsvWriter::operator<<(const std::string& cell) { return append(csvFie
 
 // Numbers never need quoting.
 CsvWriter& CsvWriter::operator<<(double value) {
-  return append(format_.digits > 0 ? particles::formatGeneral(value, format_.digits) : particles::formatNumber(value));
+  return append(format_.digits > 0 ? scenes::formatGeneral(value, format_.digits) : scenes::formatNumber(value));
 }
 
 CsvWriter& CsvWriter::operator<<(long long value) { return append(std::to_string(value)); }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "options/usage.h"
 #include "output_file.h"
 #include "scene_file/json_node.h"
 
@@ -48,7 +49,9 @@ const std::vector<std::string>& commandLine() { return arguments; }
 
 int runCommandLine(const std::vector<std::string>& given) {
   CLI::App app{"particle-lab: run particle-system scenes without a window, list and export them, and run the laboratory's experiments"};
+  app.name("particle-lab");
   app.require_subcommand(1);
+  app.set_version_flag("--version", options::versionLine("particle-lab"));
   std::vector<cli::Command> commands;
   for (auto add : kCommands) commands.push_back(add(app));
   arguments = given;
@@ -56,7 +59,7 @@ int runCommandLine(const std::vector<std::string>& given) {
   try {
     app.parse(reversed);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     return fail(e.what());
   }
   for (const cli::Command& command : commands) {

@@ -115,7 +115,7 @@ Command addRunCommand(CLI::App& app) {
       sub->add_option("--tolerance", options->integratorSettings.tolerance,
                       "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
                       "fixed-step integrators (default: the scene's, " +
-                          particles::formatNumber(particles::IntegratorSettings{}.tolerance) + ")")
+                          scenes::formatNumber(particles::IntegratorSettings{}.tolerance) + ")")
           ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.substeps,

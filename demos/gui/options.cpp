@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "options/option_checks.h"
+#include "options/usage.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "scene_keys.h"
@@ -79,6 +80,8 @@ DemoOptions parseOptions(int argc, char** argv) {
   long long frames = 0;
   std::string integrator;
   o.source.scene = "cloth";
+  cli.name("particle-demo");
+  cli.set_version_flag("--version", options::versionLine("particle-demo"));
   o.source.addOptions(cli);
   std::string key;
   auto* keyOption = cli.add_option("--key", key,
@@ -115,9 +118,8 @@ DemoOptions parseOptions(int argc, char** argv) {
   cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
   try {
     cli.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    std::exit(cli.exit(e));
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) std::exit(cli.exit(e));  // --help, --version
     badUsage(e.what());
   }
 

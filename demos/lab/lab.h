@@ -17,7 +17,7 @@
 #include "scene.h"
 #include "lab/failure.h"
 #include "lab/scan.h"
-#include "particles/format.h"
+#include "format_number.h"
 #include "particles/integrator.h"
 
 namespace lab {
@@ -133,10 +133,10 @@ void writeTable(const LabOptions& options, const std::string& name, const std::s
 // Records a value the report quotes under `key` in DIR/values.csv (lab/values.h).
 void recordValue(const LabOptions& options, const std::string& key, const std::string& value);
 
-// Numbers in tables and quoted values (particles/format.h): `digits` after the
+// Numbers in tables and quoted values (format_number.h): `digits` after the
 // point, or `digits` significant digits (printf's %.*f and %.*g).
-inline std::string fixed(double value, int digits) { return particles::formatFixed(value, digits); }
-inline std::string general(double value, int digits = 3) { return particles::formatGeneral(value, digits); }
+inline std::string fixed(double value, int digits) { return scenes::formatFixed(value, digits); }
+inline std::string general(double value, int digits = 3) { return scenes::formatGeneral(value, digits); }
 
 // Progress on stderr: done/total, elapsed, estimated time left (at most every 2 s).
 class Progress {

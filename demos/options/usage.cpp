@@ -6,6 +6,8 @@
 
 namespace options {
 
+std::string versionLine(const char* program) { return std::string(program) + " " + PARTICLES_VERSION; }
+
 void printErrorLine(const char* program, const std::string& message) {
   std::fprintf(stderr, "%s: %s\n", program, scenes::printable(message).c_str());
 }

@@ -15,6 +15,9 @@ class UsageError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// "PROGRAM VERSION" (the CMake project's version): what --version prints.
+std::string versionLine(const char* program);
+
 // Writes "PROGRAM: MESSAGE" as one line on stderr; control characters in the
 // message (a file name's newline, an escape) are escaped (printable.h).
 void printErrorLine(const char* program, const std::string& message);

@@ -6,9 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "particles/format.h"
-
 namespace particles {
+
+// A value in an error message: 6 significant digits, as printf's %.6g
+// ("got 1e+308", "got nan").
+std::string formatValue(double value);
 
 inline void requireFinite(const char* name, double value) {
   if (!std::isfinite(value))

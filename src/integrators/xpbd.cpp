@@ -43,9 +43,9 @@ void adoptAngularSpring(const Force& force, double h, XpbdIntegrator::Forms& for
   forms.angles.push_back(c);
 }
 
-// Fields and the user's spring: soft, non-stiff forces, applied in the prediction.
-void adoptAsForce(const Force& force, double, XpbdIntegrator::Forms& forms) { forms.applied.push_back(&force); }
-
+// The forces with a position form: stiff springs become compliant
+// constraints. Every other force (fields, drag, the mouse spring, a user's own
+// force type) is applied in the prediction.
 struct ForceForm {
   const char* type;
   void (*adopt)(const Force&, double h, XpbdIntegrator::Forms&);
@@ -54,9 +54,6 @@ struct ForceForm {
 const ForceForm kForceForms[] = {
     {"spring", adoptSpring},
     {"angular-spring", adoptAngularSpring},
-    {"gravity", adoptAsForce},
-    {"drag", adoptAsForce},
-    {"mouse-spring", adoptAsForce},
 };
 
 }  // namespace
@@ -68,14 +65,10 @@ XpbdIntegrator::Forms XpbdIntegrator::positionForms(const ParticleSystem& system
     const ForceForm* form = nullptr;
     for (const ForceForm& f : kForceForms)
       if (type == f.type) form = &f;
-    if (form == nullptr) {
-      std::string known;
-      for (const ForceForm& f : kForceForms) known += std::string(known.empty() ? "" : ", ") + f.type;
-      throw std::invalid_argument("xpbd cannot take the force '" + type +
-                                  "': it has no position form and is not applied as a force (xpbd takes " +
-                                  known + ")");
-    }
-    form->adopt(*force, h, forms);
+    if (form != nullptr)
+      form->adopt(*force, h, forms);
+    else
+      forms.applied.push_back(force.get());
   }
   return forms;
 }

@@ -28,8 +28,9 @@ class Constraint;
 //   resolves contacts over the substep (ParticleSystem::collideOver, swept
 //     along each particle's path from xⁿ), so that a contact's impulse enters
 //     the next substep's prediction and constraints.
-// The position error is first order in h. A force type the table in xpbd.cpp
-// does not know is refused with an exception naming it.
+// The position error is first order in h. A force without a position form in
+// the table in xpbd.cpp (fields, drag, the mouse spring, a user's own force
+// type) is applied in the prediction, explicitly, once per substep.
 class XpbdIntegrator : public Integrator {
  public:
   int substeps = IntegratorSettings{}.substeps;
