@@ -38,3 +38,5 @@ find report/figures -name '*.png' ! -name 'demo-*' -delete
 gnuplot -e "data='$data'; fig='report/figures'" report/plots.gp
 "$lab" render-report --template report/template.md --data "$data" --out report/README.md
 echo "report/README.md regenerated" >&2
+"$lab" render-report --template report/readme-results.md --data "$data" --out README.md --section results
+echo "README.md's results regenerated" >&2

@@ -174,6 +174,11 @@ Command addRenderReportCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingDirectory);
   command->add_option("--out", render->outPath, "rendered Markdown file")->required();
+  command->add_option("--section", render->section,
+                      "replace only the lines between this section's markers in --out (<!-- begin NAME: ... --> and "
+                      "<!-- end NAME -->), keeping the rest");
+  command->add_flag("--check", render->check,
+                    "write nothing: exit 0 if --out already holds the rendering, 1 (naming the first differing line) if not");
   return {command, [=] {
             lab::installInterruptHandler();
             try {

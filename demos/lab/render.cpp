@@ -1,5 +1,6 @@
 #include "lab/render.h"
 
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -51,8 +52,46 @@ std::string renderTemplate(const std::string& text, const std::string& dataDir) 
   return out + text.substr(at);
 }
 
+std::string sectionBegin(const std::string& name) {
+  return "<!-- begin " + name + ": rendered by scripts/make-report.sh from report/data; edit its template -->\n";
+}
+
+std::string sectionEnd(const std::string& name) { return "<!-- end " + name + " -->\n"; }
+
+namespace {
+
+// outPath's text with the section between its markers replaced by `rendered`.
+std::string spliceSection(const std::string& file, const std::string& name, const std::string& rendered) {
+  const std::string text = readFile(file), begin = sectionBegin(name), end = sectionEnd(name);
+  const std::size_t open = text.find(begin);
+  const std::size_t close = open == std::string::npos ? open : text.find(end, open + begin.size());
+  if (close == std::string::npos)
+    throw std::runtime_error(file + " has no section '" + name + "' (the lines " + begin.substr(0, begin.size() - 1) +
+                             " ... " + end.substr(0, end.size() - 1) + ")");
+  return text.substr(0, open + begin.size()) + rendered + text.substr(close);
+}
+
+// 1-based number of the first line where a and b differ.
+std::size_t firstDifferentLine(const std::string& a, const std::string& b) {
+  std::size_t line = 1;
+  for (std::size_t k = 0; k < a.size() && k < b.size() && a[k] == b[k]; ++k)
+    if (a[k] == '\n') ++line;
+  return line;
+}
+
+}  // namespace
+
 int renderReport(const RenderOptions& options) {
-  const std::string rendered = renderTemplate(readFile(options.templatePath), options.dataDir);
+  std::string rendered = renderTemplate(readFile(options.templatePath), options.dataDir);
+  if (!options.section.empty()) rendered = spliceSection(options.outPath, options.section, rendered);
+  if (options.check) {
+    const std::string current = readFile(options.outPath);
+    if (current == rendered) return 0;
+    std::fprintf(stderr, "render-report: %s differs from %s rendered with %s at line %zu: edit the template, not the output\n",
+                 options.outPath.c_str(), options.templatePath.c_str(), options.dataDir.c_str(),
+                 firstDifferentLine(current, rendered));
+    return 1;
+  }
   std::ofstream out(options.outPath);
   if (!out) throw std::runtime_error("cannot write " + options.outPath);
   out << rendered;

@@ -9,7 +9,17 @@ namespace lab {
 
 struct RenderOptions {
   std::string templatePath, dataDir, outPath;
+  // With a section name, the rendered text replaces what lies between the
+  // lines sectionBegin(name) and sectionEnd(name) of outPath, and the rest of
+  // that file is kept (the results in the top-level README).
+  std::string section;
+  // Compare instead of writing: 0 when outPath already holds the rendering,
+  // 1 (naming the first line that differs) when it does not.
+  bool check = false;
 };
+
+std::string sectionBegin(const std::string& name);
+std::string sectionEnd(const std::string& name);
 
 int renderReport(const RenderOptions& options);
 
