@@ -79,6 +79,7 @@ App::App(DemoOptions options)
   stepMode_ = options_.lockstep ? StepMode::Lockstep : StepMode::FixedTime;
   showPanel_ = !options_.hidePanel;
   paused_ = options_.startPaused;
+  paced_ = options_.paced();
   if (!options_.script.empty()) script_ = readScript(options_.script);
 
   SceneChoice first;
@@ -168,6 +169,9 @@ void App::display() {
   guarded([&] { pollAdvice(); });
   guarded([&] { playScript(); });
   guarded([&] { advance(); });
+  const Simulation& first = *panes_.front();
+  realTime_.record(std::chrono::duration<double>(start.time_since_epoch()).count(), first.timeReached(),
+                   !paused_ && !first.stopped());
   guarded([&] { draw(); });
   finishFrame();
   if (frameMs_.size() < 1000000) {
@@ -308,6 +312,8 @@ bool App::writeStateLog() const {
   extras.panelShown = showPanel_;
   extras.frameMs = frameMs_;
   extras.frameSimulationMs = frameSimulationMs_;
+  extras.realTime = {realTime_.known() ? realTime_.ratio() : 0.0, realTime_.totalSimSeconds(),
+                     realTime_.totalWallSeconds(), paced_};
   const std::string error = writeStateFile(options_.logState, states, extras, frame_, paused_);
   if (error.empty()) return true;
   reportBadUsage(error);

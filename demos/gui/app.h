@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "real_time.h"
 #include "advice_job.h"
 #include "camera.h"
 #include "exact_motion.h"
@@ -107,6 +108,7 @@ class App {
   void applyAdvice();
   bool adviceIsForThisScene() const;
   std::string paneStateLine(const Simulation& sim) const;
+  std::string realTimeReadout() const;
   // The rest of the keys' actions, one each.
   void doubleDt() { scaleDt(2.0); }
   void halveDt() { scaleDt(0.5); }
@@ -190,6 +192,10 @@ class App {
   bool quit_ = false;
   mutable bool outputFailed_ = false;
   bool frameDue_ = false;
+  // Simulated over wall time (real_time.h); paced_: frames follow the 60 Hz
+  // clock (interactive, or --realtime), not run flat out by a script.
+  RealTimeMeter realTime_;
+  bool paced_ = true;
   bool imguiReady_ = false;
 };
 

@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
   glutMotionFunc(onMotion);
   glutPassiveMotionFunc(onPassiveMotion);
   glutMouseWheelFunc(onWheel);
-  if ((options.frames || !options.script.empty()) && !options.realtime) glutIdleFunc(onIdle);
+  if (!options.paced()) glutIdleFunc(onIdle);
   else glutTimerFunc(16, onTimer, 0);
 
   glutMainLoop();

@@ -30,6 +30,8 @@ struct DemoOptions {
   bool hidePanel = false;
   bool startPaused = false;
   bool realtime = false;                        // scripted runs at 60 frames/s instead of flat out
+  // Frames follow the 60 Hz clock: interactive runs, and scripted ones with --realtime.
+  bool paced() const { return !((frames || !script.empty()) && !realtime); }
   int windowWidth = 1180, windowHeight = 760;
   std::string script;                           // --script FILE
   std::optional<long long> frames;              // --frames N: exit after N frames

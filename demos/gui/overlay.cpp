@@ -107,11 +107,24 @@ std::string App::paneStateLine(const Simulation& sim) const {
   if (sim.refusal()) return *sim.refusal() + ": press i for another integrator";
   const FrameStats& f = sim.lastFrame();
   if (f.capped) return format("slow motion: {} steps/frame fill the {:.0f} ms budget (+ doubles dt)", f.substeps, stepBudgetMsPerFrame / panes_.size());
+  // Paced frames that fall behind the wall clock for any reason (drawing, a
+  // slow machine): said as slow motion, with where the frame's time goes.
+  if (paced_ && !paused_ && realTime_.known() && realTime_.ratio() < RealTimeMeter::kSlowMotionBelow)
+    return format("slow motion: {:.2f}x real time (a frame: stepping {:.0f} ms, drawing {:.0f} ms)", realTime_.ratio(),
+                  f.simulationMs, sceneDrawMs_ + overlayDrawMs_);
   const double frameTime = speed_ / 60.0;
   if (stepMode_ == StepMode::FixedTime && sim.dt() > frameTime)
     return format("dt {:g} s > one frame ({:.3g} s): a step every {:.0f} frames (- halves dt)", sim.dt(), frameTime,
                   std::ceil(sim.dt() / frameTime));
   return "";
+}
+
+// "0.98x real time" over the last second; "flat out" names a scripted run
+// that does not keep to the clock.
+std::string App::realTimeReadout() const {
+  if (paused_) return "paused";
+  if (!realTime_.known()) return "real time: measuring";
+  return format("{:.2f}x real time{}", realTime_.ratio(), paced_ ? "" : " (flat out)");
 }
 
 void App::drawTopBar() {
@@ -128,8 +141,8 @@ void App::drawTopBar() {
   Line title{{scene_.label, titleColour}, {"  " + summary, dimColour}};
   if (panes_.size() == 1)
     title.push_back({format("     t = {:.2f} s{}", first.timeReached(), paused_ ? "   [paused]" : ""), colour(palette::hudText)});
-  else if (paused_)
-    title.push_back({"     [paused]", colour(palette::hudText)});
+  else
+    title.push_back({paused_ ? "     [paused]" : "     " + realTimeReadout(), colour(palette::hudText)});
 
   // The message line: an error or status first, then what the single pane's
   // state needs said, then the scene's hint (for its first seconds), then
@@ -181,8 +194,9 @@ void App::drawBottomBar() {
                       text},
                      {state.empty() ? "" : "   " + state, sim.stopped() ? colour(palette::divergenceText) : titleColour}});
     // Fixed-width numbers, so that the line does not jitter from frame to frame.
-    lines.push_back({{format("simulation {:7.2f} ms   draw {:6.1f} ms (scene {:5.1f} + text and panel {:5.1f})   per frame",
-                             f.simulationMs, sceneDrawMs_ + overlayDrawMs_, sceneDrawMs_, overlayDrawMs_),
+    lines.push_back({{format("simulation {:7.2f} ms   draw {:6.1f} ms (scene {:5.1f} + text and panel {:5.1f})   per frame   {}",
+                             f.simulationMs, sceneDrawMs_ + overlayDrawMs_, sceneDrawMs_, overlayDrawMs_,
+                             realTimeReadout()),
                       text}});
     std::string numbers = plural(s.size(), "particle");
     // The last step's statistics: every solve of it, not only the last one.

@@ -57,6 +57,8 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
                                      extras.frameSimulationMs.end());
   out << "frame-times," << ms.size() << "," << quantile(ms, 0.5) << "," << quantile(ms, 0.1) << "," << quantile(ms, 0.9)
       << "," << quantile(stepping, 0.5) << "\n";
+  out << "real-time," << extras.realTime.lastSecond << "," << extras.realTime.simSeconds << ","
+      << extras.realTime.wallSeconds << "," << (extras.realTime.paced ? 1 : 0) << "\n";
   const AdviceRecord& a = extras.advice;
   out << "advice," << a.state << "," << a.progress << "," << a.integrator << "," << a.dt << "," << a.tolerance << ","
       << a.framesWhileRunning << "," << a.applied << "\n";

@@ -23,6 +23,9 @@
 //   timing,<scene draw ms>,<text and panel draw ms>,<panel shown 0|1>
 //   frame-times,<frames>,<median ms>,<10th percentile>,<90th percentile>,<median stepping ms>
 //     (wall time per frame after the first 10: input, stepping, drawing and the buffer swap)
+//   real-time,<simulated over wall time in the last second>,<simulated seconds>,<wall seconds>,<paced 0|1>
+//     (the HUD's "x real time"; the seconds summed over the frames that ran, not paused or
+//     stopped; paced: frames on the 60 Hz clock, 0 when a script runs them flat out)
 // view maps the pane's pixel rectangle (window pixels, origin top-left, as in
 // the screenshot) onto the world rectangle it shows, at one scale on both axes.
 // Numbers are written with 17 significant digits.
@@ -56,6 +59,11 @@ struct StateExtras {
   double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
   bool panelShown = false;
   std::vector<double> frameMs, frameSimulationMs;  // every frame's wall time and its stepping part
+  struct {
+    double lastSecond = 0.0;             // the HUD's readout (0 before it is known)
+    double simSeconds = 0.0, wallSeconds = 0.0;  // every running frame's
+    bool paced = true;
+  } realTime;
 };
 
 struct PaneState {

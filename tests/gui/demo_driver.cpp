@@ -159,6 +159,11 @@ StateLog readStateLog(const std::string& path) {
     } else if (record == "frame-times") {
       log.measuredFrames = std::stoll(f.at(1));
       log.medianFrameMs = number(2);
+    } else if (record == "real-time") {
+      log.realTimeLastSecond = number(1);
+      log.realTimeSimSeconds = number(2);
+      log.realTimeWallSeconds = number(3);
+      log.realTimePaced = f.at(4) == "1";
     } else if (record == "advice") {
       auto field = [&](std::size_t k) { return k < f.size() ? f[k] : std::string(); };
       log.advice.state = f.at(1);

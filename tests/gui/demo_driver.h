@@ -88,6 +88,10 @@ struct StateLog {
   bool panelShown = false;
   long long measuredFrames = 0;  // frame-times: frames after the warm-up, and their median wall time
   double medianFrameMs = 0.0;
+  // real-time: the HUD's readout over the last second, and the simulated and
+  // wall seconds of every running frame; paced as the 60 Hz clock runs frames.
+  double realTimeLastSecond = 0.0, realTimeSimSeconds = 0.0, realTimeWallSeconds = 0.0;
+  bool realTimePaced = false;
   const LoggedOverlay* widget(const std::string& name) const {
     for (const LoggedOverlay& w : widgets)
       if (w.kind == name) return &w;

@@ -1,5 +1,6 @@
 // particle-demo under Xvfb: runs the program with scripted input and checks
 // its exit code, its state log and its screenshots.
+#include <cstdio>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -362,6 +363,33 @@ TEST(DemoStepping, RealtimeFramesComeFromTheSixtyHertzClock) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GT(seconds, 0.9);
   EXPECT_NEAR(readStateLog(dir + "/state.txt").panes.at(0).time, 1.0, 1e-9);
+}
+
+TEST(DemoStepping, RealTimeReadoutIsTheLoggedRatioAndSlowMotionIsSaidBelowIt) {
+  // The HUD's "x real time" is simulated over wall seconds of the last second
+  // of frames: the readout shown is the logged ratio to two decimals, the
+  // logged simulated seconds are the frames' (every frame advances 1/60 s),
+  // and the state line says slow motion exactly when a paced run's ratio is
+  // below 0.95. No bound on the ratio itself: it depends on the machine.
+  const std::string dir = outputDirectory("RealTimeReadout");
+  for (const char* pacing : {"--realtime", ""}) {
+    const std::string name = std::string("state") + pacing + ".txt";
+    ASSERT_EQ(runDemo(dir, std::string("--scene pendulum --frames 90 ") + pacing + " --log-state " + name).exitCode, 0);
+    const StateLog log = readStateLog(dir + "/" + name);
+    EXPECT_EQ(log.realTimePaced, std::string(pacing) == "--realtime");
+    // the first frame starts the clock; whole steps of dt 0.005 s reach the frames' times
+    EXPECT_NEAR(log.realTimeSimSeconds, 89.0 / 60.0, 0.005);
+    EXPECT_GT(log.realTimeWallSeconds, 0.0);
+    ASSERT_GT(log.realTimeLastSecond, 0.0);
+    char readout[64];
+    std::snprintf(readout, sizeof readout, "%.2fx real time", log.realTimeLastSecond);
+    const LoggedOverlay* hud = log.overlay("hud");
+    ASSERT_NE(hud, nullptr);
+    EXPECT_NE(hud->text.find(readout), std::string::npos) << hud->text;
+    const bool slow = log.realTimePaced && log.realTimeLastSecond < 0.95;
+    EXPECT_EQ(hud->text.find("slow motion") != std::string::npos, slow) << hud->text;
+    if (!log.realTimePaced) EXPECT_NE(hud->text.find("(flat out)"), std::string::npos) << hud->text;
+  }
 }
 
 // ---------------------------------------------------------------------------
