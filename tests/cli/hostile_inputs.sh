@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Outputs that cannot be written as asked, integers that are not decimal, bounds of advise's
-# survey, JSON followed by a NUL byte, and SIGHUP during a run.
+# survey, JSON followed by a NUL byte, SIGHUP during a run, and output files that are only ever
+# whole under their own name.
 # Usage: hostile_inputs.sh PROGRAM DATA WORK
 PROGRAM=$1 DATA=$2 WORK=$3
 source "$(dirname "$0")/common.sh"
@@ -50,7 +51,7 @@ expect nul-then-garbage 2 'parse error at line 1, column 18: a NUL byte' -- run 
 "$PROGRAM" run --scene cloth --param width=20 --param height=20 --steps 100000000 --csv "$WORK/hup.csv" \
   >/dev/null 2>"$WORK/hup.err" &
 pid=$!
-if wait_for_rows "$WORK/hup.csv" 3; then
+if wait_for_rows "$WORK/hup.csv.partial" 3; then  # written under its temporary name until closed
   kill -HUP "$pid"
   code=0
   wait_for "$pid" 10 || code=$?
@@ -59,5 +60,40 @@ if wait_for_rows "$WORK/hup.csv" 3; then
 else
   kill -KILL "$pid" 2>/dev/null
   fail "sighup: the run wrote no rows"
+fi
+
+# An output file of the asked name is only ever whole: while a run writes it, it is
+# TRAJ.partial (TRAJ itself absent, or still the previous complete file); SIGTERM ends
+# the run with TRAJ complete and no .partial; SIGKILL mid-write leaves the previous TRAJ
+# untouched and only the .partial cut.
+traj=$WORK/whole.trajectory.csv
+long_run() {
+  "$PROGRAM" run --scene cloth --param width=40 --param height=40 --steps 100000000 --trajectory "$traj" \
+    >/dev/null 2>"$WORK/whole.err" &
+  pid=$!
+}
+long_run
+if wait_for_rows "$traj.partial" 2000; then
+  [ -e "$traj" ] && fail "whole-file: '$traj' exists while it is being written"
+  kill -TERM "$pid"
+  code=0
+  wait_for "$pid" 30 || code=$?
+  if [ "$code" = 130 ] && [ ! -e "$traj.partial" ] && complete_csv "$traj"; then pass whole-file-sigterm
+  else fail "whole-file-sigterm: exit $code, partial left: $([ -e "$traj.partial" ] && echo yes || echo no)"; fi
+else
+  kill -KILL "$pid" 2>/dev/null
+  fail "whole-file-sigterm: the run wrote no rows"
+fi
+cp "$traj" "$WORK/previous.csv"
+long_run
+if wait_for_rows "$traj.partial" 2000; then
+  cmp -s "$traj" "$WORK/previous.csv" || fail "whole-file: the previous file changed while the new one is written"
+  kill -KILL "$pid"
+  wait "$pid" 2>/dev/null
+  if cmp -s "$traj" "$WORK/previous.csv"; then pass whole-file-sigkill
+  else fail "whole-file-sigkill: '$traj' is not the previous complete file"; fi
+else
+  kill -KILL "$pid" 2>/dev/null
+  fail "whole-file-sigkill: the run wrote no rows"
 fi
 finish
