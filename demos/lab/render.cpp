@@ -53,11 +53,9 @@ std::string renderTemplate(const std::string& text, const std::string& dataDir) 
 
 int renderReport(const RenderOptions& options) {
   const std::string rendered = renderTemplate(readFile(options.templatePath), options.dataDir);
-  std::ofstream out(options.outPath);
-  if (!out) throw std::runtime_error("cannot write " + options.outPath);
-  out << rendered;
+  scenes::OutputFile out(options.outPath, "the rendered report");
+  out.stream() << rendered;
   out.close();
-  if (!out) scenes::throwWriteError("the rendered report", options.outPath);
   return 0;
 }
 
