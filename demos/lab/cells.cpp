@@ -121,6 +121,15 @@ void Cells::writeManifest(const std::string& experiment, const std::vector<std::
 
 namespace {
 
+// object[key] as a count or index: a JSON integer >= 0 (get<std::size_t>
+// would wrap a negative one round to 2^64 − 1).
+std::size_t countAt(const Json& object, const char* key) {
+  const Json& value = object.at(key);
+  if (!value.is_number_unsigned())
+    throw std::invalid_argument(std::string(key) + " must be an integer >= 0, got " + value.dump());
+  return value.get<std::size_t>();
+}
+
 Json readJson(const std::string& path, const std::string& what) {
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("merge: no " + what + " '" + path + "' (not a shard, or its run did not finish)");
@@ -157,10 +166,12 @@ ShardSet readShards(const std::vector<std::string>& dirs) {
       arguments = m.at("arguments").get<std::vector<std::string>>();
       index = m.at("shard").get<int>();
       count = m.at("shards").get<int>();
-      cells = m.at("cells").get<std::size_t>();
-      owned = m.at("owned").get<long>();
+      cells = countAt(m, "cells");
+      owned = static_cast<long>(countAt(m, "owned"));
     } catch (const Json::exception&) {
       throw std::invalid_argument("merge: malformed shard manifest '" + manifestPath + "'");
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("merge: malformed shard manifest '" + manifestPath + "': " + e.what());
     }
     if (arguments.empty() || arguments.front() != experiment)
       throw std::invalid_argument("merge: shard manifest '" + manifestPath + "' records arguments that do not run '" +
@@ -191,11 +202,14 @@ ShardSet readShards(const std::vector<std::string>& dirs) {
       Json result;
       try {
         const Json row = Json::parse(line);
-        cell = row.at("cell").get<std::size_t>();
+        cell = countAt(row, "cell");
         result = row.at("result");
       } catch (const Json::exception&) {
         throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + dir + "/" +
                                     kCellsFile + "'");
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + dir + "/" +
+                                    kCellsFile + "': " + e.what());
       }
       if (cell >= cells || static_cast<int>(cell % count) != index - 1 || !set.cells.emplace(cell, result).second)
         throw std::invalid_argument("merge: " + name + " holds cell " + std::to_string(cell) +

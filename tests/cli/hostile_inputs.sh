@@ -47,6 +47,34 @@ fi
 printf '{"particles": []}\0garbage' >"$WORK/nul.json"
 expect nul-then-garbage 2 'parse error at line 1, column 18: a NUL byte' -- run --scene-file "$WORK/nul.json" --steps 1
 
+# A setting the engine refuses names the file and the field's JSON path; a normal is a direction.
+scene() { printf '{"particles": [{"position": [0, 1], "mass": 1}], %s}' "$2" >"$WORK/$1.json"; }
+scene substeps0 '"integratorSettings": {"substeps": 0}'
+expect scene-substeps-0 2 '^particle-lab: .*substeps0.json: \$\.integratorSettings\.substeps: expected an integer in \[1, 100000\], got 0$' -- \
+  run --scene-file "$WORK/substeps0.json" --steps 1
+scene tolerance '"integratorSettings": {"tolerance": 9.9e-14}'
+expect scene-tolerance 2 '^particle-lab: .*tolerance.json: \$\.integratorSettings\.tolerance: integrator tolerance must be >= 1e-13 .*, got 9\.9e-14$' -- \
+  run --scene-file "$WORK/tolerance.json" --steps 1
+scene huge-normal '"colliders": [{"type": "halfPlane", "point": [0, 0], "normal": [1e308, 1e308]}]'
+if "$PROGRAM" run --scene-file "$WORK/huge-normal.json" --steps 1 >/dev/null 2>"$WORK/huge-normal.err"; then
+  pass scene-huge-normal
+else
+  fail "scene-huge-normal: refused: $(head -c 300 "$WORK/huge-normal.err")"
+fi
+scene zero-normal '"colliders": [{"type": "halfPlane", "point": [0, 0], "normal": [0, 0]}]'
+expect scene-zero-normal 2 '^particle-lab: .*zero-normal.json: \$\.colliders\[0\]\.normal: expected a non-zero vector, got \[0,0\]$' -- \
+  run --scene-file "$WORK/zero-normal.json" --steps 1
+# A right-to-left override (U+202E) in a name is shown escaped, in the summary and in an error.
+printf '{"name": "report\u202eFDP.exe", "particles": [{"position": [0, 0], "mass": 1}]}' >"$WORK/bidi.json"
+got=0
+"$PROGRAM" run --scene-file "$WORK/bidi.json" --steps 1 >"$WORK/bidi.out" 2>&1 || got=$?
+if [ "$got" = 0 ] && grep -Fq 'report\u202eFDP.exe with' "$WORK/bidi.out" && ! grep -q $'\xe2\x80\xae' "$WORK/bidi.out"; then
+  pass bidi-name-summary
+else
+  fail "bidi-name-summary: exit $got: $(od -c "$WORK/bidi.out" | head -3)"
+fi
+expect bidi-name-error 2 "unknown scene 'report\\\\u202eFDP'" -- run --scene $'report\xe2\x80\xaeFDP' --steps 1
+
 # SIGHUP during a run stops it at a step boundary, as SIGTERM does (exit 130, complete rows).
 "$PROGRAM" run --scene cloth --param width=20 --param height=20 --steps 100000000 --csv "$WORK/hup.csv" \
   >/dev/null 2>"$WORK/hup.err" &

@@ -3,6 +3,7 @@
 # their experiment: each refused with one line and exit 2.
 #   --out naming a file, "", a read-only directory, or a directory whose
 #   shard.json is a directory;
+#   a negative cell count or cell index;
 #   a manifest of another format version, or whose recorded arguments run
 #   merge instead of an experiment;
 #   cells that are not the experiment's: its arguments gained an option, a
@@ -57,6 +58,10 @@ expect merge-recursive-arguments 2 "^particle-lab: merge: shard manifest '.*recu
 tampered recurse-named "s|^    \"longtime\",\$|    \"merge\", \"$WORK/recurse-named1\",|; s|^    \"--quick\"\$|    \"$WORK/recurse-named2\"|; s|\"experiment\": \"longtime\"|\"experiment\": \"merge\"|"
 expect merge-recursive-experiment 2 "^particle-lab: merge: the shards' manifest names 'merge', which is not an experiment" -- \
   merge "$WORK/recurse-named1" "$WORK/recurse-named2" --out "$WORK/out-recurse-named"
+# A negative count or cell index is refused as written, never read as 2^64 - 1.
+tampered negative-count 's/"cells": 20/"cells": -1/'
+expect merge-negative-count 2 "^particle-lab: merge: malformed shard manifest '.*negative-count1/shard.json': cells must be an integer >= 0, got -1$" -- \
+  merge "$WORK/negative-count1" "$WORK/negative-count2" --out "$WORK/out-negative-count"
 # Arguments that gained an option: the experiment enumerates other cells than the shards hold.
 tampered integrator 's|^    "--quick"$|    "--quick", "--integrator", "rk4"|'
 LAST_LINE=1 expect merge-gained-integrator 2 "^particle-lab: merge: shard 1/2 in '.*integrator1' holds a cell 2 that is not this experiment's \(made by a different run or version\): " -- \
@@ -68,6 +73,9 @@ cells() {
   cp -r "$WORK/good1" "$WORK/$1"1 && cp -r "$WORK/good2" "$WORK/$1"2
   sed -i -E "1$2" "$WORK/$1"1/cells.jsonl
 }
+cells negative-cell 's/"cell":0/"cell":-1/'
+expect merge-negative-cell 2 "^particle-lab: merge: malformed line 1 in '.*negative-cell1/cells.jsonl': cell must be an integer >= 0, got -1$" -- \
+  merge "$WORK/negative-cell1" "$WORK/negative-cell2" --out "$WORK/out-negative-cell"
 cells missing-key 's/"last":[^,]*,//'
 LAST_LINE=1 expect merge-missing-key 2 "^particle-lab: merge: shard 1/2 in '.*missing-key1' holds a cell 0 that is not this experiment's \(made by a different run or version\): .*key 'last' not found" -- \
   merge "$WORK/missing-key1" "$WORK/missing-key2" --out "$WORK/out-missing-key"
