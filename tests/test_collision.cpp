@@ -86,6 +86,22 @@ TEST(ColliderGeometry, DistanceMatchesClosedFormsForEveryKind) {
   EXPECT_DOUBLE_EQ(disc.distance(Vector2d(4, 5)).distance, 4.5);
 }
 
+// A normal is a direction: components whose squares overflow or underflow a
+// double still give it, and a zero one is reported as it was given.
+TEST(ColliderGeometry, HalfPlaneNormalOfExtremeComponentsIsItsDirection) {
+  for (const double scale : {1e308, 1e-200, 5e-324}) {
+    const Collider plane = Collider::halfPlane(Vector2d(0, 0), Vector2d(scale, scale));
+    EXPECT_NO_THROW(plane.validate()) << scale;
+    EXPECT_NEAR((plane.normal - Vector2d(1, 1).normalized()).norm(), 0.0, 1e-15) << scale;
+  }
+  try {
+    Collider::halfPlane(Vector2d(0, 0), Vector2d(0, -0.0)).validate();
+    FAIL() << "a zero normal was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "halfPlane normal must be a non-zero finite vector, got (0, -0)");
+  }
+}
+
 // The straight path enters each collider grown by the margin where a closed
 // form says it does, and a path starting on the surface hits only if it goes in.
 TEST(ColliderGeometry, SweepFindsTheEntryOfTheGrownShape) {

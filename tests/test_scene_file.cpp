@@ -111,6 +111,30 @@ TEST(SceneFile, ErrorsNameTheSourceThePathAndWhatWasExpected) {
   }
 }
 
+// Values the engine refuses are reported, like a malformed one, at the
+// field's path: a substep count of 0 (stored by JSON as unsigned), a tolerance
+// below rounding, a zero half-plane normal shown as written.
+TEST(SceneFile, RefusedSettingsNameTheFieldsPath) {
+  const std::string particles = R"("particles": [{"position": [0, 1], "mass": 1}])";
+  auto messageFor = [&](const std::string& member) {
+    try {
+      scenes::readScene("{" + particles + ", " + member + "}", "settings.json");
+    } catch (const scenes::SceneFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(messageFor(R"("integratorSettings": {"substeps": 0})"),
+            "settings.json: $.integratorSettings.substeps: expected an integer in [1, 100000], got 0");
+  EXPECT_EQ(messageFor(R"("integratorSettings": {"tolerance": 9.9e-14})"),
+            "settings.json: $.integratorSettings.tolerance: integrator tolerance must be >= 1e-13 (below it double "
+            "precision cannot meet it), got 9.9e-14");
+  EXPECT_EQ(messageFor(R"("colliders": [{"type": "halfPlane", "point": [0, 0], "normal": [0, 0]}])"),
+            "settings.json: $.colliders[0].normal: expected a non-zero vector, got [0,0]");
+  EXPECT_EQ(messageFor(R"("colliders": [{"type": "halfPlane", "point": [0, 0], "normal": [1e308, 1e308]}])"),
+            "accepted");
+}
+
 // The list of valid types in the message comes from the codec tables, so a
 // new force or constraint type is named there without editing any test.
 TEST(SceneFile, UnknownTypesAreRejectedListingEveryTypeOfTheTables) {

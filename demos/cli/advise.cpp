@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "printable.h"
 #include "lab/advise.h"
 #include "options/option_checks.h"
 #include "options/scene_source.h"
@@ -56,7 +57,7 @@ int advise(const AdviseOptions& o) {
   const lab::Survey& survey = advice.survey;
   const std::vector<lab::Pick>& picks = advice.picks;
 
-  std::cout << "scene " << survey.scene << ", " << scenes::plural(survey.particles, "particle") << ", size "
+  std::cout << "scene " << scenes::printable(survey.scene) << ", " << scenes::plural(survey.particles, "particle") << ", size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
             << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
   std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";

@@ -1,5 +1,6 @@
 // The laboratory's subcommands: stability, timing, accuracy, extremes, claims,
 // and render-report, which fills the report template from their output.
+#include <cstdio>
 #include <memory>
 #include <optional>
 
@@ -9,6 +10,7 @@
 #include "lab/render.h"
 #include "options/option_checks.h"
 #include "output_file.h"
+#include "printable.h"
 #include "particles/check.h"
 
 namespace cli {
@@ -70,14 +72,14 @@ std::vector<std::string> resultArguments() {
 int experiment(const CLI::App* command, ExperimentOptions& options, const std::function<int()>& run) {
   std::optional<lab::ShardSpec> shard;
   if (!options.shard.empty()) shard = lab::parseShard(options.shard);
-  if (replayCells) {
-    if (shard) throw UsageError("merge: the shards' arguments hold --shard");
-    options.cells = replayCells;
-  } else if (shard) {
-    options.cells = std::make_shared<lab::Cells>(*shard, options.outDir);
-  }
   lab::installInterruptHandler();
   try {
+    if (replayCells) {
+      if (shard) throw UsageError("merge: the shards' arguments hold --shard");
+      options.cells = replayCells;
+    } else if (shard) {
+      options.cells = std::make_shared<lab::Cells>(*shard, options.outDir);
+    }
     const int code = run();
     if (code == 0) options.cells->writeManifest(command->get_name(), resultArguments());
     return code;
@@ -86,6 +88,13 @@ int experiment(const CLI::App* command, ExperimentOptions& options, const std::f
   } catch (const std::runtime_error& e) {  // an output file that cannot be written
     throw UsageError(e.what());
   }
+}
+
+// An experiment is a subcommand taking --shard (addLabOptions).
+bool isExperiment(const CLI::App& app, const std::string& name) {
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    if (sub->get_name() == name) return sub->get_option_no_throw("--shard") != nullptr;
+  return false;
 }
 
 }  // namespace
@@ -200,9 +209,14 @@ Command addMergeCommand(CLI::App& app) {
   command->add_option("--out", *out, "directory for the merged CSVs, tables and values")->required();
   return {command, [=] {
             const lab::ShardSet set = lab::readShards(*dirs);
+            // Only an experiment is run again (a command taking --shard), never
+            // merge itself or another tool named by an edited manifest.
+            if (!isExperiment(*command->get_parent(), set.experiment))
+              throw UsageError("merge: the shards' manifest names '" + set.experiment +
+                               "', which is not an experiment (made by a different run or version)");
             // The experiment runs again with its own arguments, every cell
             // read from the shards: tables and derived numbers from all cells.
-            replayCells = std::make_shared<lab::Cells>(set.cells);
+            replayCells = std::make_shared<lab::Cells>(set.cells, set.shardNames);
             std::vector<std::string> arguments = set.arguments;
             arguments.insert(arguments.end(), {"--out", *out});
             const int code = runCommandLine(arguments);
@@ -211,6 +225,9 @@ Command addMergeCommand(CLI::App& app) {
             if (code == 0 && enumerated != set.cellCount)
               throw UsageError("merge: the shards hold " + std::to_string(set.cellCount) + " cells, the experiment has " +
                                std::to_string(enumerated) + " (made by a different version?)");
+            if (code == 0)
+              std::fprintf(stderr, "[%s] merged %zu cells from %zu shards into '%s'\n", set.experiment.c_str(),
+                           set.cellCount, set.shardNames.size(), scenes::printable(*out).c_str());
             return code;
           }};
 }

@@ -1,9 +1,11 @@
 #include "script.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,6 +24,18 @@ unsigned char parseKey(const std::string& word) {
   if (word.size() == 1 && word[0] > ' ' && word[0] < 127) return static_cast<unsigned char>(word[0]);
   throw std::invalid_argument("expected a key (one character, space, esc, enter or tab), got '" + word + "'");
 }
+// A line's first word: a frame number in [0, LLONG_MAX].
+long long parseFrame(const std::string& word) {
+  long long frame = 0;
+  const char* end = word.data() + word.size();
+  const auto [last, error] = std::from_chars(word.data(), end, frame);
+  if (error == std::errc::result_out_of_range && word[0] != '-')
+    throw std::invalid_argument("frame number " + word + " is out of range (at most " +
+                                std::to_string(std::numeric_limits<long long>::max()) + ")");
+  if (error != std::errc() || last != end || frame < 0)
+    throw std::invalid_argument("expected a frame number >= 0 first, got '" + word + "'");
+  return frame;
+}
 }  // namespace
 
 std::vector<ScriptEvent> readScript(const std::string& path) {
@@ -38,13 +52,11 @@ std::vector<ScriptEvent> readScript(const std::string& path) {
     ++lineNumber;
     line = line.substr(0, line.find('#'));
     std::istringstream in(line);
-    std::string action;
+    std::string action, frame;
     ScriptEvent e;
-    if (!(in >> e.frame)) {
-      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    }
+    if (!(in >> frame)) continue;  // a blank line or only a comment
     try {
-      if (in.fail() || e.frame < 0) throw std::invalid_argument("expected a frame number >= 0 first");
+      e.frame = parseFrame(frame);
       if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up, resize or wait after the frame");
       if (action == "key" || action == "keydown" || action == "keyup") {
         std::string key;

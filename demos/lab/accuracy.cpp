@@ -79,7 +79,7 @@ int runAccuracy(const LabOptions& options) {
   long total = 0;
   for (const auto& p : problems)
     for (const auto& name : integrators) total += particles::requireIntegrator(name).usesTolerance ? tolerances.size() : p.steps.size();
-  Progress progress("accuracy", total);
+  Progress progress(options, "accuracy", total);
   recordValue(options, "accuracy.repeats", std::to_string(repeats));
   recordValue(options, "accuracy.output_interval", general(outputInterval));
 

@@ -52,12 +52,28 @@ ShardSpec parseShard(const std::string& text) {
 }
 
 Cells::Cells(ShardSpec spec, const std::string& dir) : mode_(Mode::Shard), spec_(spec), dir_(dir) {
-  std::filesystem::create_directories(dir_);
-  std::filesystem::remove(dir_ + "/" + kManifestFile);
+  createOutputDirectory(dir_);
+  // An older manifest goes first: until this run ends the directory is no finished shard.
+  const std::string manifest = dir_ + "/" + kManifestFile;
+  std::error_code error;
+  const auto status = std::filesystem::symlink_status(manifest, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw std::invalid_argument("cannot write the shard manifest file '" + manifest + "': not a regular file");
+  std::filesystem::remove(manifest, error);
+  if (error) throw std::invalid_argument("cannot remove the old shard manifest '" + manifest + "': " + error.message());
   cellsFile_ = std::make_unique<scenes::OutputFile>(dir_ + "/" + kCellsFile, "the shard's cells");
 }
 
-Cells::Cells(std::map<std::size_t, Json> recorded) : mode_(Mode::Replay), recorded_(std::move(recorded)) {}
+Cells::Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames)
+    : mode_(Mode::Replay), recorded_(std::move(recorded)), shardNames_(std::move(shardNames)) {}
+
+void Cells::refuseRecorded(std::size_t index, const std::string& why) const {
+  if (mode_ != Mode::Replay)
+    throw std::logic_error("cell " + std::to_string(index) + " does not read back as its result: " + why);
+  const std::string shard = shardNames_.empty() ? "a shard" : shardNames_[index % shardNames_.size()];
+  throw std::invalid_argument("merge: " + shard + " holds a cell " + std::to_string(index) +
+                              " that is not this experiment's (made by a different run or version): " + why);
+}
 
 std::size_t Cells::reserve(std::size_t count) {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -91,7 +107,8 @@ std::optional<Json> Cells::result(std::size_t index, const std::function<std::op
 void Cells::writeManifest(const std::string& experiment, const std::vector<std::string>& arguments) {
   if (mode_ != Mode::Shard) return;
   cellsFile_->close();
-  const Json manifest = {{"experiment", experiment},
+  const Json manifest = {{"format_version", kManifestFormatVersion},
+                         {"experiment", experiment},
                          {"arguments", arguments},
                          {"shard", spec_.index},
                          {"shards", spec_.count},
@@ -103,6 +120,15 @@ void Cells::writeManifest(const std::string& experiment, const std::vector<std::
 }
 
 namespace {
+
+// object[key] as a count or index: a JSON integer >= 0 (get<std::size_t>
+// would wrap a negative one round to 2^64 − 1).
+std::size_t countAt(const Json& object, const char* key) {
+  const Json& value = object.at(key);
+  if (!value.is_number_unsigned())
+    throw std::invalid_argument(std::string(key) + " must be an integer >= 0, got " + value.dump());
+  return value.get<std::size_t>();
+}
 
 Json readJson(const std::string& path, const std::string& what) {
   std::ifstream in(path);
@@ -122,7 +148,14 @@ ShardSet readShards(const std::vector<std::string>& dirs) {
   std::map<int, std::string> seen;  // shard index → its directory
   int shards = 0;
   for (const std::string& dir : dirs) {
-    const Json m = readJson(dir + "/" + kManifestFile, "shard manifest");
+    const std::string manifestPath = dir + "/" + kManifestFile;
+    const Json m = readJson(manifestPath, "shard manifest");
+    const auto version = m.is_object() ? m.find("format_version") : m.end();
+    if (version == m.end() || !version->is_number_integer() || *version != kManifestFormatVersion)
+      throw std::invalid_argument("merge: shard manifest '" + manifestPath + "' has format version " +
+                                  (version == m.end() ? std::string("none") : version->dump()) +
+                                  ", this particle-lab reads version " + std::to_string(kManifestFormatVersion) +
+                                  " (made by a different version)");
     std::string experiment;
     std::vector<std::string> arguments;
     int index = 0, count = 0;
@@ -133,14 +166,20 @@ ShardSet readShards(const std::vector<std::string>& dirs) {
       arguments = m.at("arguments").get<std::vector<std::string>>();
       index = m.at("shard").get<int>();
       count = m.at("shards").get<int>();
-      cells = m.at("cells").get<std::size_t>();
-      owned = m.at("owned").get<long>();
+      cells = countAt(m, "cells");
+      owned = static_cast<long>(countAt(m, "owned"));
     } catch (const Json::exception&) {
-      throw std::invalid_argument("merge: malformed shard manifest '" + dir + "/" + kManifestFile + "'");
+      throw std::invalid_argument("merge: malformed shard manifest '" + manifestPath + "'");
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("merge: malformed shard manifest '" + manifestPath + "': " + e.what());
     }
+    if (arguments.empty() || arguments.front() != experiment)
+      throw std::invalid_argument("merge: shard manifest '" + manifestPath + "' records arguments that do not run '" +
+                                  experiment + "'");
     const std::string name = "shard " + std::to_string(index) + "/" + std::to_string(count) + " in '" + dir + "'";
     if (seen.empty()) {
       set.experiment = experiment, set.arguments = arguments, set.cellCount = cells, shards = count;
+      set.shardNames.assign(count > 0 ? count : 0, std::string());
     } else if (experiment != set.experiment || arguments != set.arguments) {
       throw std::invalid_argument("merge: " + name + " ran a different experiment or options than '" +
                                   seen.begin()->second + "'");
@@ -153,6 +192,7 @@ ShardSet readShards(const std::vector<std::string>& dirs) {
     if (!seen.emplace(index, dir).second)
       throw std::invalid_argument("merge: shard " + std::to_string(index) + "/" + std::to_string(count) +
                                   " given twice ('" + seen[index] + "', '" + dir + "')");
+    set.shardNames[index - 1] = name;
     std::ifstream in(dir + "/" + kCellsFile);
     if (!in) throw std::invalid_argument("merge: " + name + " has no " + kCellsFile);
     long read = 0;
@@ -162,14 +202,18 @@ ShardSet readShards(const std::vector<std::string>& dirs) {
       Json result;
       try {
         const Json row = Json::parse(line);
-        cell = row.at("cell").get<std::size_t>();
+        cell = countAt(row, "cell");
         result = row.at("result");
       } catch (const Json::exception&) {
         throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + dir + "/" +
                                     kCellsFile + "'");
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + dir + "/" +
+                                    kCellsFile + "': " + e.what());
       }
       if (cell >= cells || static_cast<int>(cell % count) != index - 1 || !set.cells.emplace(cell, result).second)
-        throw std::invalid_argument("merge: " + name + " holds cell " + std::to_string(cell) + ", not one of its own");
+        throw std::invalid_argument("merge: " + name + " holds cell " + std::to_string(cell) +
+                                  ", not one of its own (made by a different run or version)");
       ++read;
     }
     if (read != owned)

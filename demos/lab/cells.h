@@ -42,6 +42,8 @@ ShardSpec parseShard(const std::string& text);
 // What a shard leaves in its output directory.
 constexpr const char* kManifestFile = "shard.json";
 constexpr const char* kCellsFile = "cells.jsonl";
+// The manifest's "format_version": merge reads only this one.
+constexpr int kManifestFormatVersion = 1;
 
 class Cells {
  public:
@@ -50,8 +52,9 @@ class Cells {
   Cells() = default;
   // Shard `spec` writing its cells into `dir` (removes an older manifest there).
   Cells(ShardSpec spec, const std::string& dir);
-  // Every result recorded (cell index → result), none computed.
-  explicit Cells(std::map<std::size_t, Json> recorded);
+  // Every result recorded (cell index → result), none computed; shardNames[k]
+  // names the shard holding the cells with index % N == k, for errors.
+  explicit Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames = {});
 
   Mode mode() const { return mode_; }
   // Whether the experiment writes its CSVs, tables and values (not in a shard).
@@ -66,8 +69,13 @@ class Cells {
   // none: an interrupt). Safe from several threads.
   std::optional<Json> result(std::size_t index, const std::function<std::optional<Json>()>& compute);
 
-  // A shard's manifest, written when its experiment finished: the experiment,
-  // its arguments (without --shard, --out, --jobs), the shard, and the counts.
+  // Cell `index` was recorded in a form its result type does not read (a
+  // missing key, a short array, a wrong type): throws std::invalid_argument
+  // naming the shard in a replay, std::logic_error otherwise.
+  [[noreturn]] void refuseRecorded(std::size_t index, const std::string& why) const;
+
+  // A shard's manifest, written when its experiment finished: the format
+  // version, the experiment, its arguments (without --shard, --out, --jobs), the shard, and the counts.
   void writeManifest(const std::string& experiment, const std::vector<std::string>& arguments);
 
  private:
@@ -77,6 +85,7 @@ class Cells {
   std::size_t next_ = 0;
   long owned_ = 0;
   std::map<std::size_t, Json> recorded_;
+  std::vector<std::string> shardNames_;
   std::unique_ptr<scenes::OutputFile> cellsFile_;
   std::mutex mutex_;
 };
@@ -91,7 +100,13 @@ std::optional<Result> cellResult(Cells& cells, std::size_t index, const std::fun
   });
   if (!j) return std::nullopt;
   Result r{};
-  decode(*j, r);
+  try {
+    decode(*j, r);
+  } catch (const Json::exception& e) {
+    cells.refuseRecorded(index, e.what());
+  } catch (const std::invalid_argument& e) {  // a string that is no number (decode of a double)
+    cells.refuseRecorded(index, e.what());
+  }
   return r;
 }
 
@@ -118,7 +133,8 @@ void sweep(const LabOptions& options, std::size_t count,
 }
 
 // `particle-lab merge`: reads the shards' manifests and cells and checks that
-// they form one complete set (the same experiment, arguments, shard count and
+// they form one complete set (the manifest format this version reads, arguments
+// that run the experiment named, the same experiment, arguments, shard count and
 // cell count; every shard 1..N once; every cell present). Throws
 // std::invalid_argument with one line naming what is wrong.
 struct ShardSet {
@@ -126,6 +142,7 @@ struct ShardSet {
   std::vector<std::string> arguments;  // to run the experiment again, in replay
   std::map<std::size_t, Json> cells;
   std::size_t cellCount = 0;
+  std::vector<std::string> shardNames;  // "shard K/N in 'DIR'", K = 1..N (Cells' shardNames)
 };
 ShardSet readShards(const std::vector<std::string>& dirs);
 

@@ -43,7 +43,7 @@ int runClaims(const LabOptions& options) {
   std::cout << describe(criterion) << "\n";
   // Runs last as long as the stability tables' T (StabilityOptions).
   const double T = q ? 2.0 : StabilityOptions{}.duration;
-  Progress progress("claims", q ? 30 : 80);
+  Progress progress(options, "claims", q ? 30 : 80);
   std::vector<std::vector<std::string>> table;
   const TimingOptions timing{q ? 1 : 5, q ? 5 : 20};
   const int chainLength = q ? 12 : 80;

@@ -84,7 +84,7 @@ int runCost(const LabOptions& options) {
   recordValue(options, "cost.reference_tolerance", general(defaults.referenceTolerance));
   recordValue(options, "cost.repeats", std::to_string(q ? 2 : defaults.repeats));
   recordValue(options, "cost.failure", describe(options.criterion));
-  Progress progress("cost", static_cast<long>(scenes.size()));
+  Progress progress(options, "cost", static_cast<long>(scenes.size()));
 
   Csv picksCsv(options, "cost_of_accuracy.csv",
                {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",

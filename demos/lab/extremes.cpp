@@ -45,7 +45,7 @@ int runExtremes(const LabOptions& options) {
   // every safe boundary of the report is.
   const ScanSettings scan;
   const std::string starts = scenes::plural(scan.members, "start");
-  Progress progress("extremes", static_cast<long>(integrators.size()) * (q ? 8 : 20) + (q ? 30 : 170));
+  Progress progress(options, "extremes", static_cast<long>(integrators.size()) * (q ? 8 : 20) + (q ? 30 : 170));
 
   // 1. Spring stiffness: the safe dt of the 8-way cloth against k_s, scanned
   //    over the window 0.3/√k_s … 10/√k_s (capped at 0.5) around the

@@ -192,7 +192,15 @@ void Csv::endRow() {
   if (writer_) writer_->endRow();
 }
 
-void prepareOutput(const LabOptions& options) { std::filesystem::create_directories(options.outDir); }
+void createOutputDirectory(const std::string& dir) {
+  if (dir.empty()) throw std::invalid_argument("--out: expected a directory name, got an empty one");
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (!error && !std::filesystem::is_directory(dir, error)) error = std::make_error_code(std::errc::not_a_directory);
+  if (error) throw std::invalid_argument("--out: cannot create the directory '" + dir + "': " + error.message());
+}
+
+void prepareOutput(const LabOptions& options) { createOutputDirectory(options.outDir); }
 
 void writeTable(const LabOptions& options, const std::string& name, const std::string& title,
                 const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
@@ -220,11 +228,16 @@ void recordValue(const LabOptions& options, const std::string& key, const std::s
   if (options.cells->writesOutputs()) writeValue(options.outDir, key, value);
 }
 
-Progress::Progress(std::string label, long total)
-    : label_(std::move(label)), total_(total), start_(std::chrono::steady_clock::now()), lastPrint_(start_) {}
+Progress::Progress(const LabOptions& options, std::string label, long total)
+    : label_(std::move(label)),
+      total_(total),
+      silent_(options.cells->mode() == Cells::Mode::Replay),
+      start_(std::chrono::steady_clock::now()),
+      lastPrint_(start_) {}
 
 void Progress::tick(long count) {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (silent_) return;
   done_ += count;
   const auto now = std::chrono::steady_clock::now();
   if (now - lastPrint_ < std::chrono::seconds(2) && done_ < total_) return;
@@ -236,6 +249,7 @@ void Progress::tick(long count) {
 }
 
 Progress::~Progress() {
+  if (silent_) return;
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   std::fprintf(stderr, "[%s] finished %ld/%ld in %.1f s\n", label_.c_str(), done_, total_, elapsed);

@@ -139,9 +139,10 @@ inline std::string fixed(double value, int digits) { return scenes::formatFixed(
 inline std::string general(double value, int digits = 3) { return scenes::formatGeneral(value, digits); }
 
 // Progress on stderr: done/total, elapsed, estimated time left (at most every 2 s).
+// A merge (cells.h, replay) computes nothing and shows none.
 class Progress {
  public:
-  Progress(std::string label, long total);
+  Progress(const LabOptions& options, std::string label, long total);
   void tick(long count = 1);  // safe from several threads
   ~Progress();
 
@@ -149,6 +150,7 @@ class Progress {
   std::mutex mutex_;
   std::string label_;
   long total_, done_ = 0;
+  bool silent_;
   std::chrono::steady_clock::time_point start_, lastPrint_;
 };
 
@@ -156,7 +158,10 @@ class Progress {
 void installInterruptHandler();
 bool interrupted();
 
-// Creates the output directory (and parents).
+// Creates the output directory `dir` (and parents); throws std::invalid_argument
+// "--out: ..." when it is empty, or cannot be created or is not a directory.
+void createOutputDirectory(const std::string& dir);
+// Creates options.outDir (createOutputDirectory).
 void prepareOutput(const LabOptions& options);
 
 }  // namespace lab

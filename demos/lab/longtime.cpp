@@ -54,7 +54,7 @@ int runLongtime(const LabOptions& options) {
   const scenes::PendulumParams pendulum = scenes::PendulumParams::seed();
   const double period = scenes::pendulumPeriod(pendulum);
   const std::vector<double> implicitSteps = q ? std::vector<double>{0.05, 0.2} : logSpace(0.005, 0.5, 7);
-  Progress progress("longtime", static_cast<long>(runs.size() * integrators.size() + implicitSteps.size()));
+  Progress progress(options, "longtime", static_cast<long>(runs.size() * integrators.size() + implicitSteps.size()));
   recordValue(options, "longtime.horizon", general(horizon));
   recordValue(options, "longtime.pendulum_period", fixed(period, 2));
   recordValue(options, "longtime.adaptive_tolerance", general(particles::IntegratorSettings{}.tolerance));

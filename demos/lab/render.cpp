@@ -92,11 +92,9 @@ int renderReport(const RenderOptions& options) {
                  firstDifferentLine(current, rendered));
     return 1;
   }
-  std::ofstream out(options.outPath);
-  if (!out) throw std::runtime_error("cannot write " + options.outPath);
-  out << rendered;
+  scenes::OutputFile out(options.outPath, "the rendered report");
+  out.stream() << rendered;
   out.close();
-  if (!out) scenes::throwWriteError("the rendered report", options.outPath);
   return 0;
 }
 

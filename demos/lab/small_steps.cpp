@@ -180,7 +180,7 @@ int runSmallSteps(const LabOptions& options) {
   };
   long total = 0;
   for (const Problem& p : problems) total += 1 + static_cast<long>(p.rk4Steps.size() + p.implicitSteps.size()) + 3 * static_cast<long>(budgets.size());
-  Progress progress("small-steps", total);
+  Progress progress(options, "small-steps", total);
 
   std::vector<std::vector<std::string>> claimRows, familyRows;
   bool substepsWinEverywhere = true, xpbdBeatsImplicitEverywhere = true;

@@ -131,7 +131,7 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   Csv mapCsv(options, "stability_map.csv",
              {"integrator", "chain_length", "feedback_ks", "duration", "dt", "members_run", "survivors", "survived",
               "failure", "max_relative_stretch", "max_energy_rise"});
-  Progress progress("stability", static_cast<long>(cells.size()));
+  Progress progress(options, "stability", static_cast<long>(cells.size()));
 
   // safe[T][integrator][cl] at the default k_s; safe boundaries at 4 k_s.
   std::map<double, std::map<std::string, std::map<int, Boundary>>> safe;

@@ -84,7 +84,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
                                                 : std::vector<int>{10, 20, 40, 80, 160, 320, 640, 1000};
   const std::vector<int> cloths = options.quick ? std::vector<int>{4, 8}
                                                 : std::vector<int>{8, 16, 32, 64, 128, 256};
-  Progress progress("timing", static_cast<long>(integrators.size() * (chains.size() + cloths.size() + 2)));
+  Progress progress(options, "timing", static_cast<long>(integrators.size() * (chains.size() + cloths.size() + 2)));
   recordValue(options, "timing.adaptive_tolerance", general(particles::IntegratorSettings{}.tolerance));
 
   Csv csv(options, "timing.csv",

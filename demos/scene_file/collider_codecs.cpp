@@ -21,7 +21,7 @@ Json material(Json object, const Collider& c) {
 Collider readHalfPlane(const JsonNode& node) {
   node.allowOnly({"type", "point", "normal", "restitution", "friction"});
   const Eigen::Vector2d n = node["normal"].vec2();
-  if (!(n.norm() > 0.0)) node["normal"].expected("a non-zero vector");
+  if (!(n.cwiseAbs().maxCoeff() > 0.0)) node["normal"].expected("a non-zero vector");
   return withMaterial(Collider::halfPlane(node["point"].vec2(), n), node);
 }
 Json writeHalfPlane(const Collider& c) {

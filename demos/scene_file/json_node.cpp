@@ -132,7 +132,8 @@ int JsonNode::integerWhere(const std::string& what, int lo, int hi) const {
   const Json& v = require(value_ && value_->is_number_integer(), what.c_str());
   // Non-negative integers are stored unsigned and may exceed int64.
   const bool inRange = v.is_number_unsigned()
-                           ? hi >= 0 && v.get<std::uint64_t>() <= std::uint64_t(hi)
+                           ? hi >= 0 && v.get<std::uint64_t>() <= std::uint64_t(hi) &&
+                                 (lo <= 0 || v.get<std::uint64_t>() >= std::uint64_t(lo))
                            : v.get<std::int64_t>() >= lo && v.get<std::int64_t>() <= hi;
   if (!inRange) expected(what);
   return static_cast<int>(v.get<std::int64_t>());

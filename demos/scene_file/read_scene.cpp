@@ -55,9 +55,17 @@ void readIntegrator(const JsonNode& node, Scene& scene) {
 void readIntegratorSettings(const JsonNode& node, particles::IntegratorSettings& s) {
   if (!node.present()) return;
   node.allowOnly({"tolerance", "substeps", "iterations"});
-  if (node["tolerance"].present()) s.tolerance = node["tolerance"].positive();
-  if (node["substeps"].present()) s.substeps = node["substeps"].integer(1, 100000);
-  if (node["iterations"].present()) s.iterations = node["iterations"].integer(1, 10000);
+  // Each field is checked by the engine's own rules as it is read, so a
+  // refusal (a tolerance below rounding) names the field's path.
+  const auto read = [&](const char* key, auto value) {
+    const JsonNode field = node[key];
+    if (!field.present()) return;
+    value(field);
+    guarded(field, [&] { s.validate(); });
+  };
+  read("tolerance", [&](const JsonNode& field) { s.tolerance = field.positive(); });
+  read("substeps", [&](const JsonNode& field) { s.substeps = field.integer(1, 100000); });
+  read("iterations", [&](const JsonNode& field) { s.iterations = field.integer(1, 10000); });
 }
 
 void readView(const JsonNode& node, Scene& scene) {

@@ -56,7 +56,12 @@ Collider Collider::halfPlane(const Eigen::Vector2d& point, const Eigen::Vector2d
   Collider c;
   c.shape = ColliderShape::HalfPlane;
   c.points = {point};
-  c.normal = n.norm() > 0.0 ? Eigen::Vector2d(n.normalized()) : n;
+  // n·n overflows for components near 1e308 and underflows near 1e-200,
+  // though the direction is plain: those are first divided by their largest
+  // magnitude. A zero or non-finite n is kept as given, for validate() to report.
+  const double squared = n.squaredNorm(), largest = n.cwiseAbs().maxCoeff();
+  if (squared > 0.0 && std::isfinite(squared)) c.normal = n.normalized();
+  else c.normal = n.allFinite() && largest > 0.0 ? Eigen::Vector2d((n / largest).normalized()) : n;
   return c;
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Outputs that cannot be written as asked, integers that are not decimal, bounds of advise's
-# survey, JSON followed by a NUL byte, and SIGHUP during a run.
+# survey, JSON followed by a NUL byte, SIGHUP during a run, and output files that are only ever
+# whole under their own name.
 # Usage: hostile_inputs.sh PROGRAM DATA WORK
 PROGRAM=$1 DATA=$2 WORK=$3
 source "$(dirname "$0")/common.sh"
@@ -46,11 +47,39 @@ fi
 printf '{"particles": []}\0garbage' >"$WORK/nul.json"
 expect nul-then-garbage 2 'parse error at line 1, column 18: a NUL byte' -- run --scene-file "$WORK/nul.json" --steps 1
 
+# A setting the engine refuses names the file and the field's JSON path; a normal is a direction.
+scene() { printf '{"particles": [{"position": [0, 1], "mass": 1}], %s}' "$2" >"$WORK/$1.json"; }
+scene substeps0 '"integratorSettings": {"substeps": 0}'
+expect scene-substeps-0 2 '^particle-lab: .*substeps0.json: \$\.integratorSettings\.substeps: expected an integer in \[1, 100000\], got 0$' -- \
+  run --scene-file "$WORK/substeps0.json" --steps 1
+scene tolerance '"integratorSettings": {"tolerance": 9.9e-14}'
+expect scene-tolerance 2 '^particle-lab: .*tolerance.json: \$\.integratorSettings\.tolerance: integrator tolerance must be >= 1e-13 .*, got 9\.9e-14$' -- \
+  run --scene-file "$WORK/tolerance.json" --steps 1
+scene huge-normal '"colliders": [{"type": "halfPlane", "point": [0, 0], "normal": [1e308, 1e308]}]'
+if "$PROGRAM" run --scene-file "$WORK/huge-normal.json" --steps 1 >/dev/null 2>"$WORK/huge-normal.err"; then
+  pass scene-huge-normal
+else
+  fail "scene-huge-normal: refused: $(head -c 300 "$WORK/huge-normal.err")"
+fi
+scene zero-normal '"colliders": [{"type": "halfPlane", "point": [0, 0], "normal": [0, 0]}]'
+expect scene-zero-normal 2 '^particle-lab: .*zero-normal.json: \$\.colliders\[0\]\.normal: expected a non-zero vector, got \[0,0\]$' -- \
+  run --scene-file "$WORK/zero-normal.json" --steps 1
+# A right-to-left override (U+202E) in a name is shown escaped, in the summary and in an error.
+printf '{"name": "report\u202eFDP.exe", "particles": [{"position": [0, 0], "mass": 1}]}' >"$WORK/bidi.json"
+got=0
+"$PROGRAM" run --scene-file "$WORK/bidi.json" --steps 1 >"$WORK/bidi.out" 2>&1 || got=$?
+if [ "$got" = 0 ] && grep -Fq 'report\u202eFDP.exe with' "$WORK/bidi.out" && ! grep -q $'\xe2\x80\xae' "$WORK/bidi.out"; then
+  pass bidi-name-summary
+else
+  fail "bidi-name-summary: exit $got: $(od -c "$WORK/bidi.out" | head -3)"
+fi
+expect bidi-name-error 2 "unknown scene 'report\\\\u202eFDP'" -- run --scene $'report\xe2\x80\xaeFDP' --steps 1
+
 # SIGHUP during a run stops it at a step boundary, as SIGTERM does (exit 130, complete rows).
 "$PROGRAM" run --scene cloth --param width=20 --param height=20 --steps 100000000 --csv "$WORK/hup.csv" \
   >/dev/null 2>"$WORK/hup.err" &
 pid=$!
-if wait_for_rows "$WORK/hup.csv" 3; then
+if wait_for_rows "$WORK/hup.csv.partial" 3; then  # written under its temporary name until closed
   kill -HUP "$pid"
   code=0
   wait_for "$pid" 10 || code=$?
@@ -59,5 +88,40 @@ if wait_for_rows "$WORK/hup.csv" 3; then
 else
   kill -KILL "$pid" 2>/dev/null
   fail "sighup: the run wrote no rows"
+fi
+
+# An output file of the asked name is only ever whole: while a run writes it, it is
+# TRAJ.partial (TRAJ itself absent, or still the previous complete file); SIGTERM ends
+# the run with TRAJ complete and no .partial; SIGKILL mid-write leaves the previous TRAJ
+# untouched and only the .partial cut.
+traj=$WORK/whole.trajectory.csv
+long_run() {
+  "$PROGRAM" run --scene cloth --param width=40 --param height=40 --steps 100000000 --trajectory "$traj" \
+    >/dev/null 2>"$WORK/whole.err" &
+  pid=$!
+}
+long_run
+if wait_for_rows "$traj.partial" 2000; then
+  [ -e "$traj" ] && fail "whole-file: '$traj' exists while it is being written"
+  kill -TERM "$pid"
+  code=0
+  wait_for "$pid" 30 || code=$?
+  if [ "$code" = 130 ] && [ ! -e "$traj.partial" ] && complete_csv "$traj"; then pass whole-file-sigterm
+  else fail "whole-file-sigterm: exit $code, partial left: $([ -e "$traj.partial" ] && echo yes || echo no)"; fi
+else
+  kill -KILL "$pid" 2>/dev/null
+  fail "whole-file-sigterm: the run wrote no rows"
+fi
+cp "$traj" "$WORK/previous.csv"
+long_run
+if wait_for_rows "$traj.partial" 2000; then
+  cmp -s "$traj" "$WORK/previous.csv" || fail "whole-file: the previous file changed while the new one is written"
+  kill -KILL "$pid"
+  wait "$pid" 2>/dev/null
+  if cmp -s "$traj" "$WORK/previous.csv"; then pass whole-file-sigkill
+  else fail "whole-file-sigkill: '$traj' is not the previous complete file"; fi
+else
+  kill -KILL "$pid" 2>/dev/null
+  fail "whole-file-sigkill: the run wrote no rows"
 fi
 finish

@@ -14,7 +14,8 @@ for signal in INT TERM; do
     "$PROGRAM" run --scene cloth --param width=40 --param height=40 --steps 100000000 \
       --csv "$csv" --trajectory "$trajectory" >"$WORK/$name.out" 2>"$WORK/$name.err" &
     pid=$!
-    if ! wait_for_rows "$csv" 3; then fail "$name: no rows after 30 s"; kill -KILL $pid; continue; fi
+    # Each file is written as NAME.partial and renamed when closed.
+    if ! wait_for_rows "$csv.partial" 3; then fail "$name: no rows after 30 s"; kill -KILL $pid; continue; fi
     sleep "$delay"
     kill -"$signal" $pid
     code=0
@@ -25,6 +26,7 @@ for signal in INT TERM; do
       fail "$name: stderr is not the one interrupt line: $(head -c 300 "$WORK/$name.err")"; continue
     fi
     last=$(sed -E 's/.*after step ([0-9]+) .*/\1/' "$WORK/$name.err")
+    [ ! -e "$csv.partial" ] && [ ! -e "$trajectory.partial" ] || { fail "$name: a .partial file was left"; continue; }
     complete_csv "$csv" || { fail "$name: $csv has a cut or malformed row"; continue; }
     complete_csv "$trajectory" || { fail "$name: $trajectory has a cut or malformed row"; continue; }
     [ "$(tail -n 1 "$csv" | cut -d, -f1)" = "$last" ] || { fail "$name: $csv does not end at step $last"; continue; }

@@ -19,7 +19,7 @@ expect dev-null 2 '/dev/null: cannot read the file \(not a regular file\)$' -- r
 "$PROGRAM" run --scene cloth --param width=30 --param height=30 --steps 100000000 --csv "$WORK/shared.csv" \
   >/dev/null 2>"$WORK/first.err" &
 first=$!
-if wait_for_rows "$WORK/shared.csv" 3; then
+if wait_for_rows "$WORK/shared.csv.partial" 3; then  # written under its temporary name until closed
   expect second-writer 2 "cannot write --csv file '.*shared.csv': another process is writing it$" -- \
     run --scene cloth --steps 10 --csv "$WORK/shared.csv"
   expect second-exporter 2 "cannot write --output file '.*shared.csv': another process is writing it$" -- \

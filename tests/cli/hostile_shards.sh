@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# Lab output directories that cannot be written, and shard sets that do not fit
+# their experiment: each refused with one line and exit 2.
+#   --out naming a file, "", a read-only directory, or a directory whose
+#   shard.json is a directory;
+#   a negative cell count or cell index;
+#   a manifest of another format version, or whose recorded arguments run
+#   merge instead of an experiment;
+#   cells that are not the experiment's: its arguments gained an option, a
+#   shard of another experiment, a missing key, a short array, a wrong type.
+# Usage: hostile_shards.sh PROGRAM DATA WORK
+PROGRAM=$1 DATA=$2 WORK=$3
+source "$(dirname "$0")/common.sh"
+rm -rf "$WORK" && mkdir -p "$WORK"
+
+# Output directories that cannot be written.
+touch "$WORK/a-file"
+expect out-is-file 2 "^particle-lab: --out: cannot create the directory '.*a-file': Not a directory$" -- \
+  longtime --quick --shard 1/2 --out "$WORK/a-file"
+expect out-is-file-unsharded 2 "^particle-lab: --out: cannot create the directory '.*a-file': Not a directory$" -- \
+  longtime --quick --out "$WORK/a-file"
+expect out-empty 2 '^particle-lab: --out: expected a directory name, got an empty one$' -- \
+  longtime --quick --shard 1/2 --out ""
+mkdir -p "$WORK/manifest-dir/shard.json/inside"
+expect manifest-is-dir 2 "^particle-lab: cannot write the shard manifest file '.*manifest-dir/shard.json': not a regular file$" -- \
+  longtime --quick --shard 1/2 --out "$WORK/manifest-dir"
+mkdir -p "$WORK/read-only" && chmod 555 "$WORK/read-only"
+if [ "$(id -u)" != 0 ]; then
+  expect out-read-only 2 "^particle-lab: cannot write the shard's cells file '.*read-only/cells.jsonl': Permission denied$" -- \
+    longtime --quick --shard 1/2 --out "$WORK/read-only"
+else
+  echo "skipped out-read-only: root writes into a read-only directory"
+fi
+
+# Two good shards of longtime and one of stability.
+for k in 1 2; do
+  "$PROGRAM" longtime --quick --shard $k/2 --out "$WORK/good$k" >/dev/null 2>&1 || fail "longtime shard $k/2 failed"
+done
+"$PROGRAM" stability --quick --shard 2/2 --out "$WORK/stability2" >/dev/null 2>&1 || fail "stability shard 2/2 failed"
+expect merge-good 0 '^\[longtime\] merged 20 cells from 2 shards into' -- merge "$WORK/good1" "$WORK/good2" --out "$WORK/merged"
+
+# tampered NAME SED: copies of the good shards as NAME1, NAME2, shard 1's manifest edited by SED.
+tampered() {
+  rm -rf "$WORK/$1"1 "$WORK/$1"2
+  cp -r "$WORK/good1" "$WORK/$1"1 && cp -r "$WORK/good2" "$WORK/$1"2
+  sed -i -E "$2" "$WORK/$1"1/shard.json "$WORK/$1"2/shard.json
+}
+tampered version 's/"format_version": 1/"format_version": 7/'
+expect merge-version 2 "^particle-lab: merge: shard manifest '.*version1/shard.json' has format version 7, this particle-lab reads version 1" -- \
+  merge "$WORK/version1" "$WORK/version2" --out "$WORK/out-version"
+tampered noversion '/"format_version"/d'
+expect merge-no-version 2 "^particle-lab: merge: shard manifest '.*noversion1/shard.json' has format version none," -- \
+  merge "$WORK/noversion1" "$WORK/noversion2" --out "$WORK/out-noversion"
+# Recorded arguments that would run merge again on the same shards.
+tampered recurse "s|^    \"longtime\",\$|    \"merge\", \"$WORK/recurse1\",|; s|^    \"--quick\"\$|    \"$WORK/recurse2\"|"
+expect merge-recursive-arguments 2 "^particle-lab: merge: shard manifest '.*recurse1/shard.json' records arguments that do not run 'longtime'$" -- \
+  merge "$WORK/recurse1" "$WORK/recurse2" --out "$WORK/out-recurse"
+tampered recurse-named "s|^    \"longtime\",\$|    \"merge\", \"$WORK/recurse-named1\",|; s|^    \"--quick\"\$|    \"$WORK/recurse-named2\"|; s|\"experiment\": \"longtime\"|\"experiment\": \"merge\"|"
+expect merge-recursive-experiment 2 "^particle-lab: merge: the shards' manifest names 'merge', which is not an experiment" -- \
+  merge "$WORK/recurse-named1" "$WORK/recurse-named2" --out "$WORK/out-recurse-named"
+# A negative count or cell index is refused as written, never read as 2^64 - 1.
+tampered negative-count 's/"cells": 20/"cells": -1/'
+expect merge-negative-count 2 "^particle-lab: merge: malformed shard manifest '.*negative-count1/shard.json': cells must be an integer >= 0, got -1$" -- \
+  merge "$WORK/negative-count1" "$WORK/negative-count2" --out "$WORK/out-negative-count"
+# Arguments that gained an option: the experiment enumerates other cells than the shards hold.
+tampered integrator 's|^    "--quick"$|    "--quick", "--integrator", "rk4"|'
+LAST_LINE=1 expect merge-gained-integrator 2 "^particle-lab: merge: shard 1/2 in '.*integrator1' holds a cell 2 that is not this experiment's \(made by a different run or version\): " -- \
+  merge "$WORK/integrator1" "$WORK/integrator2" --out "$WORK/out-integrator"
+
+# cells NAME SED: copies of the good shards, shard 1's first cell edited by SED.
+cells() {
+  rm -rf "$WORK/$1"1 "$WORK/$1"2
+  cp -r "$WORK/good1" "$WORK/$1"1 && cp -r "$WORK/good2" "$WORK/$1"2
+  sed -i -E "1$2" "$WORK/$1"1/cells.jsonl
+}
+cells negative-cell 's/"cell":0/"cell":-1/'
+expect merge-negative-cell 2 "^particle-lab: merge: malformed line 1 in '.*negative-cell1/cells.jsonl': cell must be an integer >= 0, got -1$" -- \
+  merge "$WORK/negative-cell1" "$WORK/negative-cell2" --out "$WORK/out-negative-cell"
+cells missing-key 's/"last":[^,]*,//'
+LAST_LINE=1 expect merge-missing-key 2 "^particle-lab: merge: shard 1/2 in '.*missing-key1' holds a cell 0 that is not this experiment's \(made by a different run or version\): .*key 'last' not found" -- \
+  merge "$WORK/missing-key1" "$WORK/missing-key2" --out "$WORK/out-missing-key"
+cells short-array 's/"samples":\[\[([^],]*),[^]]*\]/"samples":[[\1]/'
+LAST_LINE=1 expect merge-short-array 2 "^particle-lab: merge: shard 1/2 in '.*short-array1' holds a cell 0 that is not this experiment's \(made by a different run or version\): " -- \
+  merge "$WORK/short-array1" "$WORK/short-array2" --out "$WORK/out-short-array"
+cells wrong-type 's/"failed":false/"failed":"no"/'
+LAST_LINE=1 expect merge-wrong-type 2 "^particle-lab: merge: shard 1/2 in '.*wrong-type1' holds a cell 0 that is not this experiment's \(made by a different run or version\): .*type must be boolean" -- \
+  merge "$WORK/wrong-type1" "$WORK/wrong-type2" --out "$WORK/out-wrong-type"
+cells not-a-number 's/"last":[^,]*,/"last":"many",/'
+LAST_LINE=1 expect merge-not-a-number 2 "^particle-lab: merge: shard 1/2 in '.*not-a-number1' holds a cell 0 that is not this experiment's \(made by a different run or version\): not a number: 'many'$" -- \
+  merge "$WORK/not-a-number1" "$WORK/not-a-number2" --out "$WORK/out-not-a-number"
+# A shard of another experiment under longtime's manifest: its cells are stability's.
+rm -rf "$WORK/foreign2" && cp -r "$WORK/good2" "$WORK/foreign2"
+awk 'NR <= 10' "$WORK/stability2/cells.jsonl" >"$WORK/foreign2/cells.jsonl"
+LAST_LINE=1 expect merge-foreign-cells 2 "^particle-lab: merge: shard 2/2 in '.*foreign2' holds cell [0-9]+, not one of its own \(made by a different run or version\)$" -- \
+  merge "$WORK/good1" "$WORK/foreign2" --out "$WORK/out-foreign"
+finish
