@@ -2,9 +2,11 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace lab {
@@ -25,6 +27,20 @@ void decode(const Json& j, double& value) {
     return;
   }
   value = j.get<double>();
+}
+
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash) {
+  for (const unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+
+std::string hexDigest(std::uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
 }
 
 std::shared_ptr<Cells> allCells() { return std::make_shared<Cells>(); }
@@ -97,7 +113,9 @@ std::optional<Json> Cells::result(std::size_t index, const std::function<std::op
   const std::string text = computed->dump();
   if (mode_ == Mode::Shard) {
     std::lock_guard<std::mutex> lock(mutex_);
-    cellsFile_->stream() << Json{{"cell", index}, {"result", Json::parse(text)}}.dump() << '\n' << std::flush;
+    const std::string line = Json{{"cell", index}, {"result", Json::parse(text)}}.dump() + '\n';
+    cellsFile_->stream() << line << std::flush;
+    cellsDigest_ = fnv1a(line, cellsDigest_);
     cellsFile_->check();
     ++owned_;
   }
@@ -113,7 +131,8 @@ void Cells::writeManifest(const std::string& experiment, const std::vector<std::
                          {"shard", spec_.index},
                          {"shards", spec_.count},
                          {"cells", next_},
-                         {"owned", owned_}};
+                         {"owned", owned_},
+                         {"cells_digest", hexDigest(cellsDigest_)}};
   scenes::OutputFile out(dir_ + "/" + kManifestFile, "the shard manifest");
   out.stream() << manifest.dump(2) << '\n';
   out.close();
@@ -142,83 +161,120 @@ Json readJson(const std::string& path, const std::string& what) {
 
 }  // namespace
 
+namespace {
+
+// One shard's manifest, as read and checked on its own.
+struct Manifest {
+  std::string path, experiment;
+  std::vector<std::string> arguments;
+  int index = 0, count = 0;
+  std::size_t cells = 0;
+  long owned = 0;
+  std::string cellsDigest;
+};
+
+Manifest readManifest(const std::string& dir) {
+  Manifest m;
+  m.path = dir + "/" + kManifestFile;
+  const Json json = readJson(m.path, "shard manifest");
+  const auto version = json.is_object() ? json.find("format_version") : json.end();
+  if (version == json.end() || !version->is_number_integer() || *version != kManifestFormatVersion)
+    throw std::invalid_argument("merge: shard manifest '" + m.path + "' has format version " +
+                                (version == json.end() ? std::string("none") : version->dump()) +
+                                ", this particle-lab reads version " + std::to_string(kManifestFormatVersion) +
+                                " (made by a different version)");
+  try {
+    m.experiment = json.at("experiment").get<std::string>();
+    m.arguments = json.at("arguments").get<std::vector<std::string>>();
+    m.index = json.at("shard").get<int>();
+    m.count = json.at("shards").get<int>();
+    m.cells = countAt(json, "cells");
+    m.owned = static_cast<long>(countAt(json, "owned"));
+    m.cellsDigest = json.at("cells_digest").get<std::string>();
+  } catch (const Json::exception&) {
+    throw std::invalid_argument("merge: malformed shard manifest '" + m.path + "'");
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("merge: malformed shard manifest '" + m.path + "': " + e.what());
+  }
+  if (m.arguments.empty() || m.arguments.front() != m.experiment)
+    throw std::invalid_argument("merge: shard manifest '" + m.path + "' records arguments that do not run '" +
+                                m.experiment + "'");
+  return m;
+}
+
+// The manifest against the set's first one: same experiment, options, shard
+// count and cell count; an index of its own.
+void joinSet(const Manifest& m, const std::string& dir, const std::string& name, ShardSet& set,
+             std::map<int, std::string>& seen, int& shards) {
+  if (seen.empty()) {
+    set.experiment = m.experiment, set.arguments = m.arguments, set.cellCount = m.cells, shards = m.count;
+    set.shardNames.assign(m.count > 0 ? m.count : 0, std::string());
+  } else if (m.experiment != set.experiment || m.arguments != set.arguments) {
+    throw std::invalid_argument("merge: " + name + " ran a different experiment or options than '" +
+                                seen.begin()->second + "'");
+  } else if (m.count != shards || m.cells != set.cellCount) {
+    throw std::invalid_argument("merge: " + name + " has " + std::to_string(m.cells) + " cells in " +
+                                std::to_string(m.count) + " shards, '" + seen.begin()->second + "' " +
+                                std::to_string(set.cellCount) + " in " + std::to_string(shards));
+  }
+  if (m.index < 1 || m.index > m.count)
+    throw std::invalid_argument("merge: " + name + " is not a shard of " + std::to_string(m.count));
+  if (!seen.emplace(m.index, dir).second)
+    throw std::invalid_argument("merge: shard " + std::to_string(m.index) + "/" + std::to_string(m.count) +
+                                " given twice ('" + seen[m.index] + "', '" + dir + "')");
+  set.shardNames[m.index - 1] = name;
+}
+
+// The shard's cells file: its digest what the manifest recorded, every line
+// one of this shard's cells, as many as it owned.
+void readCells(const Manifest& m, const std::string& dir, const std::string& name, ShardSet& set) {
+  const std::string path = dir + "/" + kCellsFile;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("merge: " + name + " has no " + kCellsFile);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  const std::string text = bytes.str();
+  if (hexDigest(fnv1a(text)) != m.cellsDigest)
+    throw std::invalid_argument("merge: '" + path + "' is not the file its shard wrote (its digest " +
+                                hexDigest(fnv1a(text)) + " differs from the manifest's " + m.cellsDigest + ")");
+  std::istringstream lines(text);
+  long read = 0;
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::size_t cell = 0;
+    Json result;
+    try {
+      const Json row = Json::parse(line);
+      cell = countAt(row, "cell");
+      result = row.at("result");
+    } catch (const Json::exception&) {
+      throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + path + "'");
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + path + "': " +
+                                  e.what());
+    }
+    if (cell >= m.cells || static_cast<int>(cell % m.count) != m.index - 1 || !set.cells.emplace(cell, result).second)
+      throw std::invalid_argument("merge: " + name + " holds cell " + std::to_string(cell) +
+                                  ", not one of its own (made by a different run or version)");
+    ++read;
+  }
+  if (read != m.owned)
+    throw std::invalid_argument("merge: " + name + " holds " + std::to_string(read) + " cells, its manifest says " +
+                                std::to_string(m.owned));
+}
+
+}  // namespace
+
 ShardSet readShards(const std::vector<std::string>& dirs) {
   if (dirs.empty()) throw std::invalid_argument("merge: no shard directories given");
   ShardSet set;
   std::map<int, std::string> seen;  // shard index → its directory
   int shards = 0;
   for (const std::string& dir : dirs) {
-    const std::string manifestPath = dir + "/" + kManifestFile;
-    const Json m = readJson(manifestPath, "shard manifest");
-    const auto version = m.is_object() ? m.find("format_version") : m.end();
-    if (version == m.end() || !version->is_number_integer() || *version != kManifestFormatVersion)
-      throw std::invalid_argument("merge: shard manifest '" + manifestPath + "' has format version " +
-                                  (version == m.end() ? std::string("none") : version->dump()) +
-                                  ", this particle-lab reads version " + std::to_string(kManifestFormatVersion) +
-                                  " (made by a different version)");
-    std::string experiment;
-    std::vector<std::string> arguments;
-    int index = 0, count = 0;
-    std::size_t cells = 0;
-    long owned = 0;
-    try {
-      experiment = m.at("experiment").get<std::string>();
-      arguments = m.at("arguments").get<std::vector<std::string>>();
-      index = m.at("shard").get<int>();
-      count = m.at("shards").get<int>();
-      cells = countAt(m, "cells");
-      owned = static_cast<long>(countAt(m, "owned"));
-    } catch (const Json::exception&) {
-      throw std::invalid_argument("merge: malformed shard manifest '" + manifestPath + "'");
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("merge: malformed shard manifest '" + manifestPath + "': " + e.what());
-    }
-    if (arguments.empty() || arguments.front() != experiment)
-      throw std::invalid_argument("merge: shard manifest '" + manifestPath + "' records arguments that do not run '" +
-                                  experiment + "'");
-    const std::string name = "shard " + std::to_string(index) + "/" + std::to_string(count) + " in '" + dir + "'";
-    if (seen.empty()) {
-      set.experiment = experiment, set.arguments = arguments, set.cellCount = cells, shards = count;
-      set.shardNames.assign(count > 0 ? count : 0, std::string());
-    } else if (experiment != set.experiment || arguments != set.arguments) {
-      throw std::invalid_argument("merge: " + name + " ran a different experiment or options than '" +
-                                  seen.begin()->second + "'");
-    } else if (count != shards || cells != set.cellCount) {
-      throw std::invalid_argument("merge: " + name + " has " + std::to_string(cells) + " cells in " +
-                                  std::to_string(count) + " shards, '" + seen.begin()->second + "' " +
-                                  std::to_string(set.cellCount) + " in " + std::to_string(shards));
-    }
-    if (index < 1 || index > count) throw std::invalid_argument("merge: " + name + " is not a shard of " + std::to_string(count));
-    if (!seen.emplace(index, dir).second)
-      throw std::invalid_argument("merge: shard " + std::to_string(index) + "/" + std::to_string(count) +
-                                  " given twice ('" + seen[index] + "', '" + dir + "')");
-    set.shardNames[index - 1] = name;
-    std::ifstream in(dir + "/" + kCellsFile);
-    if (!in) throw std::invalid_argument("merge: " + name + " has no " + kCellsFile);
-    long read = 0;
-    std::string line;
-    while (std::getline(in, line)) {
-      std::size_t cell = 0;
-      Json result;
-      try {
-        const Json row = Json::parse(line);
-        cell = countAt(row, "cell");
-        result = row.at("result");
-      } catch (const Json::exception&) {
-        throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + dir + "/" +
-                                    kCellsFile + "'");
-      } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + dir + "/" +
-                                    kCellsFile + "': " + e.what());
-      }
-      if (cell >= cells || static_cast<int>(cell % count) != index - 1 || !set.cells.emplace(cell, result).second)
-        throw std::invalid_argument("merge: " + name + " holds cell " + std::to_string(cell) +
-                                  ", not one of its own (made by a different run or version)");
-      ++read;
-    }
-    if (read != owned)
-      throw std::invalid_argument("merge: " + name + " holds " + std::to_string(read) + " cells, its manifest says " +
-                                  std::to_string(owned));
+    const Manifest m = readManifest(dir);
+    const std::string name = "shard " + std::to_string(m.index) + "/" + std::to_string(m.count) + " in '" + dir + "'";
+    joinSet(m, dir, name, set, seen, shards);
+    readCells(m, dir, name, set);
   }
   for (int k = 1; k <= shards; ++k)
     if (!seen.count(k))

@@ -15,6 +15,7 @@
 //   replay  (`particle-lab merge`): no cell is computed; every result is read
 //           from the shards, and the experiment writes exactly the files an
 //           unsharded run writes, tables and derived numbers from all cells.
+#include <cstdint>
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -43,7 +44,14 @@ ShardSpec parseShard(const std::string& text);
 constexpr const char* kManifestFile = "shard.json";
 constexpr const char* kCellsFile = "cells.jsonl";
 // The manifest's "format_version": merge reads only this one.
-constexpr int kManifestFormatVersion = 1;
+// Version 2: the manifest records the digest of its cells file.
+constexpr int kManifestFormatVersion = 2;
+
+// FNV-1a (64 bits) of bytes, continued from `hash`: the digest a shard's
+// manifest records of its cells file, so that a merge refuses cells changed
+// after the shard wrote them. Written as 16 hex digits.
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash = 0xcbf29ce484222325ull);
+std::string hexDigest(std::uint64_t hash);
 
 class Cells {
  public:
@@ -84,6 +92,7 @@ class Cells {
   std::string dir_;
   std::size_t next_ = 0;
   long owned_ = 0;
+  std::uint64_t cellsDigest_ = fnv1a("");  // of every byte written to the cells file
   std::map<std::size_t, Json> recorded_;
   std::vector<std::string> shardNames_;
   std::unique_ptr<scenes::OutputFile> cellsFile_;

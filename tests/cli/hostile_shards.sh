@@ -6,6 +6,7 @@
 #   a negative cell count or cell index;
 #   a manifest of another format version, or whose recorded arguments run
 #   merge instead of an experiment;
+#   a cells file edited after its shard wrote it (the manifest's digest);
 #   cells that are not the experiment's: its arguments gained an option, a
 #   shard of another experiment, a missing key, a short array, a wrong type.
 # Usage: hostile_shards.sh PROGRAM DATA WORK
@@ -45,8 +46,8 @@ tampered() {
   cp -r "$WORK/good1" "$WORK/$1"1 && cp -r "$WORK/good2" "$WORK/$1"2
   sed -i -E "$2" "$WORK/$1"1/shard.json "$WORK/$1"2/shard.json
 }
-tampered version 's/"format_version": 1/"format_version": 7/'
-expect merge-version 2 "^particle-lab: merge: shard manifest '.*version1/shard.json' has format version 7, this particle-lab reads version 1" -- \
+tampered version 's/"format_version": 2/"format_version": 7/'
+expect merge-version 2 "^particle-lab: merge: shard manifest '.*version1/shard.json' has format version 7, this particle-lab reads version 2" -- \
   merge "$WORK/version1" "$WORK/version2" --out "$WORK/out-version"
 tampered noversion '/"format_version"/d'
 expect merge-no-version 2 "^particle-lab: merge: shard manifest '.*noversion1/shard.json' has format version none," -- \
@@ -67,11 +68,28 @@ tampered integrator 's|^    "--quick"$|    "--quick", "--integrator", "rk4"|'
 LAST_LINE=1 expect merge-gained-integrator 2 "^particle-lab: merge: shard 1/2 in '.*integrator1' holds a cell 2 that is not this experiment's \(made by a different run or version\): " -- \
   merge "$WORK/integrator1" "$WORK/integrator2" --out "$WORK/out-integrator"
 
-# cells NAME SED: copies of the good shards, shard 1's first cell edited by SED.
+# The FNV-1a digest of a file, as a shard's manifest records it (perl-base is
+# part of every Debian system).
+digest() {
+  perl -e 'use integer; local $/; my $d = <STDIN>; my $h = -3750763034362895579;
+           for my $c (unpack("C*", $d)) { $h ^= $c; $h *= 1099511628211; } printf("%016x\n", $h)' <"$1"
+}
+# A cell edited after its shard wrote it: refused by the manifest's digest.
+rm -rf "$WORK/edited1" "$WORK/edited2" && cp -r "$WORK/good1" "$WORK/edited1" && cp -r "$WORK/good2" "$WORK/edited2"
+sed -i -E '1s/"last":[^,]*,/"last":"nan",/' "$WORK/edited1/cells.jsonl"
+expect merge-edited-cell 2 "^particle-lab: merge: '.*edited1/cells.jsonl' is not the file its shard wrote \(its digest [0-9a-f]{16} differs from the manifest's [0-9a-f]{16}\)$" -- \
+  merge "$WORK/edited1" "$WORK/edited2" --out "$WORK/out-edited"
+[ "$(digest "$WORK/good1/cells.jsonl")" = "$(sed -n 's/.*"cells_digest": "\([0-9a-f]*\)".*/\1/p' "$WORK/good1/shard.json")" ] ||
+  fail "the digest of good1/cells.jsonl is not its manifest's"
+
+# cells NAME SED: copies of the good shards, shard 1's first cell edited by
+# SED and its manifest's digest made to match (a shard of another version
+# would carry a digest of its own cells): the cells' contents are checked.
 cells() {
   rm -rf "$WORK/$1"1 "$WORK/$1"2
   cp -r "$WORK/good1" "$WORK/$1"1 && cp -r "$WORK/good2" "$WORK/$1"2
   sed -i -E "1$2" "$WORK/$1"1/cells.jsonl
+  sed -i -E "s/\"cells_digest\": \"[0-9a-f]*\"/\"cells_digest\": \"$(digest "$WORK/$1"1/cells.jsonl)\"/" "$WORK/$1"1/shard.json
 }
 cells negative-cell 's/"cell":0/"cell":-1/'
 expect merge-negative-cell 2 "^particle-lab: merge: malformed line 1 in '.*negative-cell1/cells.jsonl': cell must be an integer >= 0, got -1$" -- \
@@ -91,6 +109,7 @@ LAST_LINE=1 expect merge-not-a-number 2 "^particle-lab: merge: shard 1/2 in '.*n
 # A shard of another experiment under longtime's manifest: its cells are stability's.
 rm -rf "$WORK/foreign2" && cp -r "$WORK/good2" "$WORK/foreign2"
 awk 'NR <= 10' "$WORK/stability2/cells.jsonl" >"$WORK/foreign2/cells.jsonl"
+sed -i -E "s/\"cells_digest\": \"[0-9a-f]*\"/\"cells_digest\": \"$(digest "$WORK/foreign2/cells.jsonl")\"/" "$WORK/foreign2/shard.json"
 LAST_LINE=1 expect merge-foreign-cells 2 "^particle-lab: merge: shard 2/2 in '.*foreign2' holds cell [0-9]+, not one of its own \(made by a different run or version\)$" -- \
   merge "$WORK/good1" "$WORK/foreign2" --out "$WORK/out-foreign"
 finish
