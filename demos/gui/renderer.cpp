@@ -18,6 +18,12 @@ constexpr double arrowMaxPixels = 90.0;
 constexpr double arrowMinPixels = 2.0;
 constexpr int circleSegments = 96;
 constexpr std::size_t smoothLineLimit = 8000;  // lines drawn antialiased up to this many
+// Shaded faces fill at most this many times the pane's area. A cloth that
+// holds together covers each pixel about once, so it is always drawn whole;
+// one torn apart by a diverging integrator (faces thousands of panes wide,
+// each filled by a software rasteriser) is drawn up to the budget, and the
+// frame stays interactive.
+constexpr double faceFillBudget = 4.0;
 constexpr int coilSpringLimit = 16;            // scenes with at most this many springs draw them as coils
 constexpr int coilTurns = 8;
 constexpr double coilWidthPixels = 7.0;
@@ -64,7 +70,7 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   for (auto& entry : discsBySize_) entry.second.clear();
 
   collectWalls(system, view);
-  collectFaces(simulation);
+  collectFaces(simulation, view);
   collectSketches(system, options, view.pixelsPerUnit, !simulation.scene().faces.empty());
   if (options.forces) collectForceArrows(system, view);
   collectParticles(simulation, view);
@@ -169,14 +175,23 @@ void Renderer::collectWalls(const particles::ParticleSystem& system, const ViewT
 // A surface drawn as shaded quads: its colour brightens where a face is
 // stretched beyond its rest area and darkens where it is compressed; a face
 // turned over (a fold, negative signed area) shows the back colour.
-void Renderer::collectFaces(const Simulation& simulation) {
+void Renderer::collectFaces(const Simulation& simulation, const ViewTransform& view) {
   const particles::ParticleSystem& system = simulation.system();
   const auto& faces = simulation.scene().faces;
   const auto& rest = simulation.restFaceAreas();
+  const double paneArea = static_cast<double>(view.pane.width) * view.pane.height;
+  const double pixelArea = view.pixelsPerUnit * view.pixelsPerUnit;
+  double filled = 0.0;  // pixels, each face's clipped to the pane's area
+  facesOverBudget_ = 0;
   for (std::size_t k = 0; k < faces.size() && k < rest.size(); ++k) {
     const auto& f = faces[k];
     const double area = faceArea(system, f);
     if (!std::isfinite(area) || !(std::abs(rest[k]) > 0.0)) continue;
+    filled += std::min(std::abs(area) * pixelArea, paneArea);
+    if (filled > faceFillBudget * paneArea) {
+      ++facesOverBudget_;
+      continue;
+    }
     const double ratio = area / rest[k];
     const Rgb base = ratio >= 0.0 ? palette::clothFront : palette::clothBack;
     const double shade = std::clamp(0.8 + 0.4 * (std::abs(ratio) - 1.0), 0.55, 1.3);

@@ -33,6 +33,9 @@ class Renderer {
   void drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                 const DrawOptions& options, const GhostFrame* ghost = nullptr);
 
+  // Faces the last drawPane left unshaded: a mesh stretched past the fill budget.
+  int facesOverBudget() const { return facesOverBudget_; }
+
  private:
   // Vertices of one primitive kind: 2 floats and 4 bytes of colour each.
   struct Batch {
@@ -51,7 +54,7 @@ class Renderer {
   };
 
   void collectWalls(const particles::ParticleSystem& system, const ViewTransform& view);  // colliders
-  void collectFaces(const Simulation& simulation);
+  void collectFaces(const Simulation& simulation, const ViewTransform& view);
   // surface: the springs are drawn faintly over the shaded faces.
   void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options, double pixelsPerUnit,
                        bool surface);
@@ -68,6 +71,7 @@ class Renderer {
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
   Batch ghostPoints_;
   int ghostDiameter_ = minParticlePixels;
+  int facesOverBudget_ = 0;  // the last pane's faces left unshaded by the fill budget
   particles::Sketch sketch_;
   std::vector<Eigen::VectorXd> forceByType_;
   Eigen::VectorXd totalForce_;
