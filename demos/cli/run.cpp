@@ -81,15 +81,18 @@ int run(const RunOptions& o) {
     return finish(kDiverged);
   }
   long long done = 0;
+  double doneTime = s.time();
   for (long long step = 1; step <= o.steps && !lab::interrupted(); ++step) {
     if (const std::string reason = loop.step(); !reason.empty()) {
       diverge(step, reason);
       return finish(kDiverged);
     }
+    if (loop.cancelledStep()) break;
     done = step;
+    doneTime = s.time();
   }
   if (lab::interrupted()) {
-    std::cerr << "particle-lab: interrupted after step " << done << " (t = " << s.time()
+    std::cerr << "particle-lab: interrupted after step " << done << " (t = " << doneTime
               << "): the output files hold every step up to it\n";
     return finish(kInterrupted);
   }

@@ -1,6 +1,7 @@
 #include "cli/run_loop.h"
 
 #include "cli/step_output.h"
+#include "lab/lab.h"
 
 namespace cli {
 
@@ -25,6 +26,12 @@ std::string RunLoop::step() {
   const Clock::time_point start = Clock::now();
   const particles::StepStats stats = system_.step(integrator_, dt_);
   const Clock::duration elapsed = Clock::now() - start;
+  // A signal during the step may have cut its solves short (particles/cancel.h):
+  // the step is not written, and the outputs end with the step before it.
+  if (lab::interrupted()) {
+    cancelledStep_ = true;
+    return {};
+  }
   simulated_ += elapsed;
   const long long step = steps_ + 1;
   // Measured steps: the diagnostics once (each energy is a pass over the

@@ -35,6 +35,8 @@ class RunLoop {
   std::string step();
 
   long long steps() const { return steps_; }  // steps completed
+  // The last step() ran while a signal arrived: it was not counted or written.
+  bool cancelledStep() const { return cancelledStep_; }
   // Wall time spent in ParticleSystem::step, output excluded.
   double simulatedSeconds() const { return std::chrono::duration<double>(simulated_).count(); }
 
@@ -46,6 +48,7 @@ class RunLoop {
   particles::DivergenceLimits limits_;
   double initialEnergy_;
   long long steps_ = 0;
+  bool cancelledStep_ = false;
   std::chrono::steady_clock::duration simulated_{};
 };
 

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "lab/cells.h"
+#include "particles/cancel.h"
 #include "particles/threads.h"
 #include "lab/lab_scene.h"
 #include "lab/values.h"
@@ -60,6 +61,10 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
       ++result.steps;
       result.time = k * dt + dt;
       fail(Failure::StepFailed);
+      break;
+    }
+    if (interrupted()) {  // the step's solves may have been cut short: not a result
+      result.cutShort = true;
       break;
     }
     result.seconds += std::chrono::duration<double>(Clock::now() - start).count();
@@ -264,6 +269,7 @@ void installInterruptHandler() {
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
   std::signal(SIGHUP, onInterrupt);  // the terminal closed: stop as for SIGTERM, outputs complete
+  particles::setCancelFlag(&stopRequested);  // and a long solve inside a step stops too
 }
 
 bool interrupted() { return stopRequested.load(); }

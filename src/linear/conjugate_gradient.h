@@ -4,7 +4,8 @@
 // positive (semi-)definite, given as a matrix-free operator:
 //   r₀ = b − A x₀,  z₀ = M⁻¹ r₀,  p₀ = z₀;  each iteration
 //   α = rᵀz / pᵀAp,  x += α p,  r −= α A p,  z = M⁻¹ r,  p = z + (r⁺ᵀz⁺ / rᵀz) p,
-// until |r| ≤ tolerance·|b| or maxIterations. When A is only semi-definite
+// until |r| ≤ tolerance·|b| or maxIterations, or until the program's cancel
+// flag goes up (particles/cancel.h: a signal during a long solve). When A is only semi-definite
 // and b has a part outside its range (a constraint set that lost rank) CG
 // meets a direction with pᵀAp ≈ 0; it stops there with the finite x it has
 // (curvature floor below). The operator and preconditioner are callables
@@ -12,6 +13,8 @@
 //   precondition(const VectorXd& r, VectorXd& z)     z = M⁻¹ r
 // and the scratch vectors are the caller's, so a step loop allocates nothing.
 #include <Eigen/Core>
+
+#include "particles/cancel.h"
 
 namespace particles::linear {
 
@@ -51,7 +54,7 @@ CgResult conjugateGradient(const Apply& apply, const Precondition& precondition,
   double rz = r.dot(z);
   const double target = settings.tolerance * bNorm;
   double rNorm = r.norm();
-  while (result.iterations < settings.maxIterations && rNorm > target) {
+  while (result.iterations < settings.maxIterations && rNorm > target && !cancelRequested()) {
     apply(p, Ap);
     const double pAp = p.dot(Ap);
     // |p|² is needed only against a positive floor (0·|p|² = 0 otherwise).
