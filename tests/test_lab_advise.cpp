@@ -5,6 +5,8 @@
 #include <atomic>
 #include <cmath>
 #include <map>
+#include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -95,16 +97,87 @@ TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
   EXPECT_LE(chosenCost, 2 * cheapestCost) << "chose " << pickArguments(chosen) << ", cheapest " << cheapestName;
 }
 
+TEST(Advise, APrintedPickRerunFromItsOptionsReproducesItsError) {
+  // The options printed for a pick (pickArguments) are read back as a user
+  // would and rerun: the closed-form error of the rerun is within 10% of the
+  // error the survey measured for the pick against its reference.
+  const double error = 1e-4, horizon = 16.0;
+  SurveySettings settings;
+  settings.horizon = horizon;
+  settings.targetError = settings.abortError = error;
+  settings.integrators = {"dopri5", "rk4", "verlet"};
+  settings.maxSteps = 20000;
+  settings.repeats = 1;
+  const auto build = [] { return scenes::buildScene("oscillator"); };
+  const Survey survey = surveyScene(build, settings);
+  ASSERT_TRUE(survey.limit.empty()) << survey.limit;
+  const auto picks = pickPerIntegrator(build, survey, settings, error);
+  int found = 0;
+  for (const Pick& pick : picks) {
+    if (!pick.found) continue;
+    ++found;
+    std::istringstream words(pickArguments(pick.candidate));
+    Candidate rerun;
+    for (std::string word; words >> word;) {
+      if (word == "--integrator") words >> rerun.integrator;
+      if (word == "--dt") words >> rerun.dt;
+      if (word == "--tolerance") words >> rerun.tolerance;
+    }
+    EXPECT_EQ(rerun.integrator, pick.candidate.integrator);
+    EXPECT_EQ(rerun.dt, pick.candidate.dt);
+    EXPECT_EQ(rerun.tolerance, pick.candidate.tolerance);
+    EXPECT_NEAR(closedFormError(rerun, horizon), pick.candidate.maxError, 0.1 * pick.candidate.maxError)
+        << pickArguments(pick.candidate);
+  }
+  EXPECT_EQ(found, 3);
+}
+
+TEST(Advise, PastTheChaoticHorizonSaysSoAndNamesTheHorizonItCanCertify) {
+  // The rod chain's two references part by more than E/10 = 1e-3 within 10 s:
+  // no integrator is scanned, and the horizon named as certifiable is
+  // certified when asked for (the references agree within E/10 over it).
+  SurveySettings settings;
+  settings.horizon = 10.0;
+  settings.targetError = settings.abortError = 1e-2;
+  settings.integrators = {"rk4"};
+  settings.repeats = 1;
+  const auto build = [] { return scenes::buildScene("rod-chain"); };
+  const Survey survey = surveyScene(build, settings);
+  EXPECT_NE(survey.limit.find("not predictable"), std::string::npos) << survey.limit;
+  EXPECT_TRUE(survey.integrators.empty());
+  EXPECT_GT(survey.certifiableHorizon, 1.0);
+  EXPECT_LT(survey.certifiableHorizon, 10.0);
+  settings.horizon = survey.certifiableHorizon;
+  const Survey shorter = surveyScene(build, settings);
+  EXPECT_TRUE(shorter.limit.empty()) << shorter.limit;
+  EXPECT_LE(shorter.referenceAgreement, 1e-3);
+  ASSERT_EQ(shorter.integrators.size(), 1u);
+}
+
+TEST(Advise, AReferenceThatMeetsAContactCertifiesNothingPastIt) {
+  // The hair's discs meet one another or its colliders early; the
+  // reference models no contact, so advise names the contact and a shorter horizon.
+  SurveySettings settings;
+  settings.horizon = 0.2;
+  settings.targetError = settings.abortError = 1e-3;
+  settings.integrators = {"rk4"};
+  settings.repeats = 1;
+  const Survey survey = surveyScene([] { return scenes::buildScene("hair"); }, settings);
+  EXPECT_NE(survey.limit.find("contact"), std::string::npos) << survey.limit;
+  EXPECT_TRUE(survey.integrators.empty());
+  EXPECT_LT(survey.certifiableHorizon, 0.2);
+}
+
 TEST(Advise, NothingWithinAnUnreachableBudget) {
   SurveySettings settings;
   settings.horizon = 10.0;
-  settings.targetError = settings.abortError = 1e-9;
+  settings.targetError = settings.abortError = 1e-6;
   settings.integrators = {"euler"};
   settings.maxSteps = 2000;
   settings.repeats = 1;
   const auto build = [] { return scenes::buildScene("oscillator"); };
   const Survey survey = surveyScene(build, settings);
-  const auto picks = pickPerIntegrator(build, survey, settings, 1e-9);
+  const auto picks = pickPerIntegrator(build, survey, settings, 1e-6);
   ASSERT_EQ(picks.size(), 1u);
   EXPECT_FALSE(picks[0].found);
   EXPECT_EQ(cheapest(picks), -1);

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "format_number.h"
 #include "printable.h"
 #include "lab/advise.h"
 #include "options/option_checks.h"
@@ -49,8 +50,8 @@ int advise(const AdviseOptions& o) {
     if (fraction == 0.0)
       std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
     else
-      std::fprintf(stderr, "advise: %3.0f%% done (the scan, then %d timed repeats of each pick)\n",
-                   100.0 * fraction, o.repeats);
+      std::fprintf(stderr, "advise: %3.0f%% done (the scan, then %s of each pick)\n", 100.0 * fraction,
+                   scenes::plural(o.repeats, "timed repeat").c_str());
   };
   const lab::Advice advice = lab::advise([&] { return o.source.load(); }, settings);
   if (lab::interrupted() || !advice.complete) return 130;
@@ -60,6 +61,11 @@ int advise(const AdviseOptions& o) {
   std::cout << "scene " << scenes::printable(survey.scene) << ", " << scenes::plural(survey.particles, "particle") << ", size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
             << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
+  if (!survey.limit.empty()) {
+    std::cout << "advise: " << survey.limit << "; the longest horizon it can certify: --horizon "
+              << scenes::formatNumber(survey.certifiableHorizon) << "\n";
+    return kCannotCertify;
+  }
   std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
   for (std::size_t k = 0; k < picks.size(); ++k) {
     const auto& scan = survey.integrators[k];

@@ -102,7 +102,11 @@ void App::drawAdvicePanel() {
     }
     ImGui::EndTable();
   }
-  if (a.best < 0) ImGui::TextWrapped("no integrator meets E over T within its safe range");
+  if (!a.survey.limit.empty())
+    ImGui::TextWrapped("cannot certify: %s (longest horizon it can: %.4g s)", a.survey.limit.c_str(),
+                       a.survey.certifiableHorizon);
+  else if (a.best < 0)
+    ImGui::TextWrapped("no integrator meets E over T within its safe range");
   else ImGui::TextWrapped("cheapest: %s", lab::pickArguments(a.picks[a.best].candidate).c_str());
 }
 

@@ -178,14 +178,47 @@ Reference makeReference(const std::function<scenes::Scene()>& build, double hori
   out.trajectory = closedForm ? closedForm(horizon, interval) : odeintReference(scene, horizon, tight);
   scenes::Scene again = build();
   const Trajectory checked = odeintReference(again, horizon, check);
-  for (std::size_t k = 0; k < checked.x.size() && k * stride < out.trajectory.x.size(); ++k)
-    out.agreement = std::max(out.agreement, maxParticleDistance(out.trajectory.x[k * stride], checked.x[k]));
+  for (std::size_t k = 0; k < checked.x.size() && k * stride < out.trajectory.x.size(); ++k) {
+    const double distance = maxParticleDistance(out.trajectory.x[k * stride], checked.x[k]);
+    out.agreement = std::max(out.agreement, distance);
+    out.partingTimes.push_back(static_cast<double>(k * stride) * interval);
+    out.parting.push_back(distance);
+  }
   out.description = closedForm ? "closed form (odeint RKF78 at tolerance " + general(check.tolerance) +
                                      " agrees within " + general(out.agreement) + ")"
                                : "odeint RKF78 at tolerance " + general(tight.tolerance) + " (at " +
                                      general(check.tolerance) + " it differs by " + general(out.agreement) + ")";
   return out;
 }
+
+double predictableUntil(const Reference& reference, double threshold, double horizon) {
+  for (std::size_t k = 0; k < reference.parting.size(); ++k)
+    if (!(reference.parting[k] <= threshold)) return k > 0 ? reference.partingTimes[k - 1] : 0.0;
+  return horizon;
+}
+
+namespace {
+
+// Why the reference cannot certify an error of `budget` over the horizon
+// (Survey::limit), and the longest horizon it can; empty when it can.
+void limitOfReference(const Reference& reference, double budget, double horizon, Survey& survey) {
+  const double threshold = budget / 10.0;
+  if (reference.trajectory.touchedWall) {
+    // the last sample before the contact
+    survey.certifiableHorizon = std::max(0.0, reference.trajectory.contactTime - reference.trajectory.interval);
+    survey.limit = "the reference meets a contact at t = " + general(reference.trajectory.contactTime, 4) +
+                   " s (a particle in a collider or two discs overlapping) and does not model contacts, so no "
+                   "integrator can be certified against it past that time";
+  } else if (reference.agreement > threshold) {
+    survey.certifiableHorizon = predictableUntil(reference, threshold, horizon);
+    survey.limit = "the two references (at two tolerances) part by " + general(reference.agreement) +
+                   ", more than E/10 = " + general(threshold) + ", after t = " + general(survey.certifiableHorizon, 4) +
+                   " s (their last common sample within it): past that time the scene is not predictable at this error (chaos, or a reference that "
+                   "cannot converge), so no integrator can be certified over T";
+  }
+}
+
+}  // namespace
 
 Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySettings& settings,
                    const ClosedForm& closedForm) {
@@ -217,6 +250,8 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   survey.size = reference.trajectory.size();
   survey.touchedWall = reference.trajectory.touchedWall;
   if (s.relativeToSize) s.abortError *= survey.size, s.targetError *= survey.size;
+  limitOfReference(reference, s.targetError, s.horizon, survey);
+  if (!survey.limit.empty()) return survey;
 
   std::vector<std::string> names;
   for (const auto& info : particles::integratorTable())
@@ -318,14 +353,11 @@ int cheapest(const std::vector<Pick>& picks) {
   return best;
 }
 
+// Every number with the digits that read back to the same double, so that
+// the printed options rerun exactly the run that was measured.
 std::string pickArguments(const Candidate& c) {
-  char buffer[128];
-  std::snprintf(buffer, sizeof buffer, "--integrator %s --dt %.9g", c.integrator.c_str(), c.dt);
-  std::string args = buffer;
-  if (c.tolerance > 0.0) {
-    std::snprintf(buffer, sizeof buffer, " --tolerance %.3g", c.tolerance);
-    args += buffer;
-  }
+  std::string args = "--integrator " + c.integrator + " --dt " + scenes::formatNumber(c.dt);
+  if (c.tolerance > 0.0) args += " --tolerance " + scenes::formatNumber(c.tolerance);
   return args;
 }
 

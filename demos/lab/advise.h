@@ -99,6 +99,13 @@ struct Survey {
   std::string reference;             // how it was computed
   bool touchedWall = false;          // the reference passed through a wall (contacts ignored)
   int particles = 0;
+  // Why no integrator can be certified within E over T, empty if one can:
+  // the references part by more than E/10 before T (chaos: the scene is not
+  // predictable that long at that error), or the reference meets a contact it
+  // does not model. Then no integrator is scanned, and certifiableHorizon is
+  // the longest T from 0 over which the reference still holds.
+  std::string limit;
+  double certifiableHorizon = 0.0;
   std::vector<IntegratorSurvey> integrators;
 };
 
@@ -111,7 +118,12 @@ struct Reference {
   Trajectory trajectory;
   double agreement = 0.0;
   std::string description;
+  // The references' distance at each common sample (about 1 s apart): parting[k] at time partingTimes[k].
+  std::vector<double> partingTimes, parting;
 };
+// The longest T from 0 over which the references agree within `threshold`:
+// the last common sample before the first that parts by more (the horizon if none does).
+double predictableUntil(const Reference& reference, double threshold, double horizon);
 // Throws Cancelled once `cancel` is set.
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
                         double tolerance, const ClosedForm& closedForm = {},

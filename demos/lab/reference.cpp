@@ -16,6 +16,25 @@ namespace {
 // The first-order form y = (x, v), ẏ = (v, a(x, v)) that odeint integrates.
 using State = std::vector<double>;
 
+// Whether positions x put a particle inside a collider, or two collidable
+// particles (discs) into each other: a contact the reference does not model.
+bool inContact(const particles::ParticleSystem& system, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd& r = system.radii();
+  for (const particles::Collider& collider : system.colliders())
+    for (int i = 0; i < system.size(); ++i)
+      if (collider.distance(x.segment<2>(2 * i)).distance < r[i]) return true;
+  std::vector<int> discs;
+  for (int i = 0; i < system.size(); ++i)
+    if (system.collidable(i)) discs.push_back(i);
+  if (discs.size() < 2 || !system.colliding()) return false;
+  for (std::size_t a = 0; a < discs.size(); ++a)
+    for (std::size_t b = a + 1; b < discs.size(); ++b) {
+      const int i = discs[a], j = discs[b];
+      if ((x.segment<2>(2 * i) - x.segment<2>(2 * j)).norm() < r[i] + r[j]) return true;
+    }
+  return false;
+}
+
 void recordSample(particles::ParticleSystem& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                   Trajectory& out) {
   Eigen::VectorXd a(x.size());
@@ -27,9 +46,10 @@ void recordSample(particles::ParticleSystem& system, const Eigen::VectorXd& x, c
   system.positions() = x;
   system.velocities() = v;
   out.energy.push_back(system.totalEnergy());
-  for (const particles::Collider& collider : system.colliders())
-    for (int i = 0; i < system.size(); ++i)
-      if (collider.distance(x.segment<2>(2 * i)).distance < system.radii()[i]) out.touchedWall = true;
+  if (!out.touchedWall && inContact(system, x)) {
+    out.touchedWall = true;
+    out.contactTime = out.interval * static_cast<double>(out.x.size() - 1);
+  }
   system.restore(saved);
 }
 

@@ -20,7 +20,10 @@ class Trajectory {
   double interval = 0.0;                 // h, simulated seconds
   std::vector<Eigen::VectorXd> x, v, a;  // per sample, 2n each
   std::vector<double> energy;            // total energy per sample
-  bool touchedWall = false;  // a sample lies inside a wall: the reference ignored a contact
+  // A sample lies inside a collider, or two collidable particles overlap: the
+  // reference ignored a contact. contactTime: the first such sample's time.
+  bool touchedWall = false;
+  double contactTime = 0.0;
 
   double duration() const { return interval * (x.size() - 1); }
   // Positions at time t in [0, duration()].
