@@ -1,7 +1,7 @@
 #include "cli/run_loop.h"
 
 #include "cli/step_output.h"
-#include "lab/lab.h"
+#include "particles/cancel.h"
 
 namespace cli {
 
@@ -28,7 +28,7 @@ std::string RunLoop::step() {
   const Clock::duration elapsed = Clock::now() - start;
   // A signal during the step may have cut its solves short (particles/cancel.h):
   // the step is not written, and the outputs end with the step before it.
-  if (lab::interrupted()) {
+  if (particles::cancelRequested()) {
     cancelledStep_ = true;
     return {};
   }
