@@ -71,9 +71,11 @@ std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& co
 // resting contact for the rest of the step; the track then starts at τ.
 void applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double dt,
                          Track& track);
-// Out of impacts (a particle wedged in a narrow corner): the track's end is
-// put back to its last event, which is outside every collider.
-void stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
+// Out of impacts (the work cap ContactSettings::maxImpacts): if the rest of
+// the track still enters a collider, its end is put back to its last event,
+// which is outside every collider, and true is returned (the step then fails
+// with StepFailure::ContactCapReached).
+bool stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
                          double slop, Track& track);
 
 }  // namespace particles::contact
