@@ -94,7 +94,11 @@ TEST(SceneFile, EveryShippedExampleLoadsAndSteps) {
     ++examples;
     scenes::Scene scene = scenes::loadSceneFile(entry.path().string());
     auto integrator = particles::makeIntegrator(scene.integrator);
-    for (int k = 0; k < 200; ++k) scene.system->step(*integrator, scene.dt);
+    // 300 steps: polygon.json's block slides over the wedge's lower vertex at
+    // step 134, where the chord of its resting track lies on the face.
+    for (int k = 0; k < 300; ++k)
+      EXPECT_EQ(scene.system->step(*integrator, scene.dt).failure, particles::StepFailure::None)
+          << entry.path() << " step " << k + 1;
     EXPECT_TRUE(scene.system->finite()) << entry.path();
     EXPECT_LE(scene.system->maxRelativeConstraintError(), 0.01) << entry.path();
   }

@@ -87,7 +87,10 @@ std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& co
   return ColliderImpact{hit.collider, hit.s, tau};
 }
 
-void applyColliderImpact(const Collider& c, const ColliderImpact& impact, double r, double dt, Track& track) {
+bool applyColliderImpact(const Collider& c, const ColliderImpact& impact, double r, double slop, double dt,
+                         Track& track) {
+  const double t = track.t();
+  const Eigen::Vector2d x1Before = track.x1, v1Before = track.v1;
   const Eigen::Vector2d from = track.from();
   contact::Path& path = track.path;
   Eigen::Vector2d &x1 = track.x1, &v1 = track.v1;
@@ -133,6 +136,8 @@ void applyColliderImpact(const Collider& c, const ColliderImpact& impact, double
                            : Path{p, v1, path.a, tau};
   }
   ++track.impacts;
+  return !(change.resting && tau == t && (x1 - x1Before).norm() <= slop &&
+           (v1 - v1Before).norm() * remaining <= slop);
 }
 
 bool stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
@@ -165,7 +170,7 @@ ContactCount resolveColliderContacts(const std::vector<Collider>& colliders, con
       const std::optional<contact::ColliderImpact> impact =
           contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
       if (!impact) break;
-      contact::applyColliderImpact(colliders[impact->collider], *impact, r, dt, track);
+      if (!contact::applyColliderImpact(colliders[impact->collider], *impact, r, settings.slop, dt, track)) break;
     }
     if (track.impacts == settings.maxImpacts && contact::stopIfStillEntering(colliders, boxes, r, settings.slop, track))
       ++contacts.capped;

@@ -247,9 +247,12 @@ ContactCount ParticleContacts::resolveImpacts(const std::vector<int>& collidable
                        settings.slop, dt);
     if (hit) push({hit->tau, a, b, S.stamp[a], S.stamp[b], {}, *hit});
   };
+  auto predictPairsOf = [&](int a) {
+    for (int k = S.pairsOfStart[a]; k < S.pairsOfStart[a + 1]; ++k) predictPair(S.pairsOf[k]);
+  };
   auto predictAll = [&](int a) {
     predictWall(a);
-    for (int k = S.pairsOfStart[a]; k < S.pairsOfStart[a + 1]; ++k) predictPair(S.pairsOf[k]);
+    predictPairsOf(a);
   };
   for (int a = 0; a < count; ++a) predictWall(a);
   for (int p = 0; p < static_cast<int>(S.pairs.size()); ++p) predictPair(p);
@@ -263,8 +266,13 @@ ContactCount ParticleContacts::resolveImpacts(const std::vector<int>& collidable
     ++contacts.contacts;
     ++S.stamp[e.a];
     if (e.b < 0) {
-      contact::applyColliderImpact(colliders[e.wall.collider], e.wall, radius[collidable[e.a]], dt, S.tracks[e.a]);
-      predictAll(e.a);
+      // A resting contact met again without effect settles the disc on that
+      // surface: only its pairs are predicted again.
+      if (contact::applyColliderImpact(colliders[e.wall.collider], e.wall, radius[collidable[e.a]], settings.slop, dt,
+                                       S.tracks[e.a]))
+        predictAll(e.a);
+      else
+        predictPairsOf(e.a);
     } else {
       ++S.stamp[e.b];
       applyPairImpact(e.pair, inverseMass[collidable[e.a]], inverseMass[collidable[e.b]], dt, S.tracks[e.a],
