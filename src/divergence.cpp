@@ -63,6 +63,21 @@ std::string Divergence::message() const {
   return "unknown divergence";
 }
 
+double blowUpEnergyScale(ParticleSystem& system, double length) {
+  requireNonNegative("blow-up length", length);
+  const Phase s = system.phase();
+  double potentials = 0.0;
+  for (const auto& force : system.forceObjects())
+    if (force->hasPotential()) potentials += std::abs(force->potential(s));
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(system.positions().size());
+  system.appliedForces(system.positions(), system.velocities(), f);
+  double forces = 0.0;
+  for (int i = 0; i < system.size(); ++i)
+    if (!system.pinned(i)) forces += f.segment<2>(2 * i).norm();
+  const double scale = std::abs(system.totalEnergy()) + system.kineticEnergy() + potentials + length * forces;
+  return std::max(scale, 1e-300);
+}
+
 Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits& limits,
                            double initialEnergy, const StepStats& lastStep) {
   return checkDivergence(system, limits, initialEnergy, lastStep, system.totalEnergy());

@@ -238,10 +238,10 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
   const StepStart start{x0, v0, dt};
   const bool discs = collidable_.size() > 1, walls = !colliders_.empty(), edges = walls && !edges_.empty();
   lastFree_ = x_;
-  int contacts = 0;
+  ContactCount counted;
   // Discs meet each other and the colliders in the order of their impacts.
   if (discs)
-    contacts += contacts_.resolve(collidable_, colliders_, start, inverseMass_, radius_, contactSettings_, true, x_,
+    counted += contacts_.resolve(collidable_, colliders_, start, inverseMass_, radius_, contactSettings_, true, x_,
                                   v_, &lastFree_);
   // Every other particle meets only the colliders, on its own, and only if
   // its path comes near one (as does an edge, only if one of its ends does).
@@ -271,7 +271,7 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
                           std::back_inserter(singles_));
       singles = &singles_;
     }
-    contacts += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
+    counted += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
                                         lastFree_, singles);
     if (coupled) {
       const CoupledSolveStats solved = coupled_.solve(constraints_, colliders_, start, mass_, inverseMass_, radius_,
@@ -279,7 +279,7 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
       for (int i : coupled_.lastIsland()) lastFree_.segment<2>(2 * i) = x_.segment<2>(2 * i);
       contactStats_.contactIterations += solved.iterations;
       contactStats_.contactResidual = std::max(contactStats_.contactResidual, solved.residual);
-      contacts += solved.contacts;
+      counted.contacts += solved.contacts;
     }
     if (edges) {
       edgeIncidence_.update(edges_, size(), structureStamp_);
@@ -290,7 +290,7 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
   }
   const int edgeContacts =
       edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &nearEdges_) : 0;
-  contacts += edgeContacts;
+  counted.contacts += edgeContacts;
   // Resting contacts push on each other (a stack on a floor, a rope over a
   // nail): Gauss–Seidel passes until none is left, colliders last, as the
   // hard boundary. Without discs left touching or an edge caught, nothing
@@ -305,11 +305,20 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
     int resolved = 0;
     if (discs) largest = contacts_.resolveResting(inverseMass_, radius_, contactSettings_, pass % 2 == 0, x_, v_);
     if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &nearEdges_);
-    if (walls) resolved += pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
+    if (walls) {
+      const ContactCount pushedOut =
+          pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
+      resolved += pushedOut.contacts;
+      counted.capped += pushedOut.capped;
+    }
     if (largest <= settled && resolved == 0) break;
   }
-  contactsLastStep_ += contacts;
-  return contacts;
+  // A particle that ran out of the impact work cap was stopped short of its
+  // motion: the step reports it as failed rather than lose the motion silently.
+  if (counted.capped > 0 && contactStats_.failure == StepFailure::None)
+    contactStats_.failure = StepFailure::ContactCapReached;
+  contactsLastStep_ += counted.contacts;
+  return counted.contacts;
 }
 
 double ParticleSystem::kineticEnergy() const {

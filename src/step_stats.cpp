@@ -10,6 +10,7 @@ const char* stepFailureName(StepFailure failure) {
     case StepFailure::StepBelowFloor: return "step-below-floor";
     case StepFailure::WorkCapReached: return "work-cap";
     case StepFailure::SolveFailed: return "solve-failed";
+    case StepFailure::ContactCapReached: return "contact-cap";
   }
   return "unknown";
 }

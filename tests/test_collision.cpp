@@ -14,6 +14,7 @@
 
 #include "particles/constants.h"
 #include "particles/collision.h"
+#include "particles/divergence.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
@@ -470,7 +471,7 @@ TEST(ParticleContacts, UnequalMassesConserveMomentumAndScaleRelativeNormalVeloci
   VectorXd x1 = x, v1 = v;
   ParticleContacts contacts;
   contacts.restitution = e;
-  EXPECT_EQ(contacts.resolve({0, 1}, {}, StepStart{x0, v0, dt}, w, radius, ContactSettings{}, true, x1, v1), 1);
+  EXPECT_EQ(contacts.resolve({0, 1}, {}, StepStart{x0, v0, dt}, w, radius, ContactSettings{}, true, x1, v1).contacts, 1);
   auto momentum = [&](const VectorXd& u) { return Vector2d(m0 * u.segment<2>(0) + m1 * u.segment<2>(2)); };
   EXPECT_LT((momentum(v1) - momentum(v0)).norm(), 1e-14);
   EXPECT_LT((momentum(x1) - momentum(x)).norm(), 1e-14) << "the centre of mass moves on undisturbed";
@@ -535,7 +536,7 @@ TEST(ParticleContacts, GridBroadPhaseFindsTheSameContactsAsBruteForce) {
 
   ParticleContacts contacts;
   const VectorXd x0 = x, v0 = v;  // overlapping from the start: resting contacts
-  EXPECT_EQ(contacts.resolve(collidable, {}, StepStart{x0, v0, 0.01}, w, radius, ContactSettings{}, true, x, v),
+  EXPECT_EQ(contacts.resolve(collidable, {}, StepStart{x0, v0, 0.01}, w, radius, ContactSettings{}, true, x, v).contacts,
             bruteForce);
   int remaining = 0;
   for (int i = 0; i < n; ++i)
@@ -554,7 +555,7 @@ TEST(ParticleContacts, FarFlungAndNonFiniteParticlesDoNotBreakTheBroadPhase) {
   x << 0.0, 0.0, 0.15, 0.0, 1e300, -1e300, std::nan(""), 0.0;
   const VectorXd x0 = x, v0 = v;
   ParticleContacts contacts;
-  EXPECT_EQ(contacts.resolve({0, 1, 2, 3}, {}, StepStart{x0, v0, 0.01}, w, r, ContactSettings{}, false, x, v), 1);
+  EXPECT_EQ(contacts.resolve({0, 1, 2, 3}, {}, StepStart{x0, v0, 0.01}, w, r, ContactSettings{}, false, x, v).contacts, 1);
   EXPECT_NEAR((x.segment<2>(0) - x.segment<2>(2)).norm(), 0.2, 1e-12);
 }
 
@@ -732,6 +733,79 @@ TEST(PinnedParticles, AreNeverMovedByAnyContact) {
 }
 
 // --- parameters -------------------------------------------------------------------
+
+namespace {
+
+// A point at (1, b) moving at (−200, 0) m/s into the wedge 0 ≤ φ ≤ α of two
+// elastic, frictionless half-planes with their apex at the origin, no gravity.
+struct Wedge {
+  double alpha, b;
+  Vector2d start() const { return Vector2d(1.0, b); }
+  Vector2d velocity() const { return Vector2d(-200.0, 0.0); }
+
+  ParticleSystem system() const {
+    ParticleSystem s;
+    s.addParticle(start(), 1.0, velocity());
+    Collider lower = Collider::halfPlane(Vector2d::Zero(), Vector2d(0.0, 1.0));
+    Collider upper = Collider::halfPlane(Vector2d::Zero(), Vector2d(std::sin(alpha), -std::cos(alpha)));
+    lower.restitution = upper.restitution = 1.0;
+    s.addCollider(lower);
+    s.addCollider(upper);
+    return s;
+  }
+
+  // The billiard unfolded: reflections in the faces map the wedge onto its
+  // images, so the unfolded path is the straight line x₀ + v t; its polar
+  // angle φ folded back into [0, α] (φ − kα for even k = ⌊φ/α⌋, (k+1)α − φ
+  // for odd k) at the same radius is the exact position.
+  Vector2d exact(double t) const {
+    const Vector2d unfolded = start() + t * velocity();
+    const double phi = std::atan2(unfolded.y(), unfolded.x()), k = std::floor(phi / alpha);
+    const double folded = std::fmod(k, 2.0) == 0.0 ? phi - k * alpha : (k + 1.0) * alpha - phi;
+    return unfolded.norm() * Vector2d(std::cos(folded), std::sin(folded));
+  }
+};
+
+}  // namespace
+
+// Every impact of a step is resolved: in a 1° wedge the point meets the faces
+// 179 times on its way in and out, dozens of them within one step of 0.2 m
+// (with a budget of 8 impacts a step it lagged the exact billiard by 2.1 m,
+// and by 0.17 m in a 10° wedge). The position follows the unfolded solution
+// within 1 mm at every step of dt 0.001 for 0.02 s (in to the apex and out).
+TEST(ContactWedge, BilliardFollowsTheUnfoldedExactSolution) {
+  const double dt = 0.001;
+  for (const Wedge& wedge : {Wedge{1.0 * M_PI / 180.0, 0.5 * std::tan(1.0 * M_PI / 180.0)},
+                             Wedge{10.0 * M_PI / 180.0, 0.01}}) {
+    ParticleSystem s = wedge.system();
+    auto rk4 = makeIntegrator("rk4");
+    double worst = 0.0;
+    for (int k = 1; k <= 20; ++k) {
+      const StepStats stats = s.step(*rk4, dt);
+      EXPECT_EQ(stats.failure, StepFailure::None);
+      worst = std::max(worst, (s.position(0) - wedge.exact(k * dt)).norm());
+    }
+    EXPECT_LT(worst, 1e-3) << "wedge of " << wedge.alpha * 180.0 / M_PI << " degrees: largest distance from the "
+                           << "exact billiard " << worst << " m";
+  }
+}
+
+// A particle that needs more impacts in a step than the work cap is stopped
+// at its last impact, outside both faces, and the step reports the failure
+// that the tools treat as a divergence (the runner's exit 3).
+TEST(ContactWedge, RunningOutOfTheImpactCapFailsTheStep) {
+  const Wedge wedge{1.0 * M_PI / 180.0, 0.5 * std::tan(1.0 * M_PI / 180.0)};
+  ParticleSystem s = wedge.system();
+  s.contactSettings().maxImpacts = 8;
+  auto rk4 = makeIntegrator("rk4");
+  StepFailure failure = StepFailure::None;
+  for (int k = 0; k < 20 && failure == StepFailure::None; ++k) failure = s.step(*rk4, 0.001).failure;
+  EXPECT_EQ(failure, StepFailure::ContactCapReached);
+  const Divergence d = checkDivergence(s, DivergenceLimits{}, s.totalEnergy(), s.lastStepStats());
+  EXPECT_EQ(d.reason, DivergenceReason::StepFailed);
+  EXPECT_EQ(d.message(), "the step failed: contact-cap");
+  for (const Collider& c : s.colliders()) EXPECT_GE(c.distance(s.position(0)).distance, 0.0);
+}
 
 TEST(CollisionParameters, BadCollidersAreRejectedWithTheirName) {
   ParticleSystem s;

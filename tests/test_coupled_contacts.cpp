@@ -173,7 +173,7 @@ TEST(StaticFriction, HoldsBelowFrictionAngleSlidesCoulombAbove) {
       const double moved = along.dot(start - s.position(0));  // down the slope
       if (degrees < 26.0) {
         EXPECT_EQ(moved, 0.0) << name;
-      } else if (std::string(name) != "dopri5") {  // dopri5 across contacts: not yet (see notes)
+      } else {
         const double coulomb = 0.5 * g * (std::sin(angle) - mu * std::cos(angle)) * T * T;
         EXPECT_NEAR(moved, coulomb, 0.02 * coulomb) << name;
       }

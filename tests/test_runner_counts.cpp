@@ -3,8 +3,11 @@
 // cg_iterations and internal_steps are compared with what a counting force
 // (test_support::CountingForce: its evaluations and the CG iterations the
 // solver reported at each) and a counting constraint saw during that step.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,6 +21,7 @@
 #include "particles/forces/spring.h"
 #include "particles/integrators/implicit_euler.h"
 #include "particles/particle_system.h"
+#include "scene.h"
 #include "test_support.h"
 
 using namespace particles;
@@ -105,7 +109,7 @@ std::vector<Row> runCounted(CountedChain& c, Integrator& integrator, double dt, 
                              ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".csv"))
                                .string();
   scenes::CsvWriter csv(path, "the test's CSV", cli::kDiagnosticsColumns);
-  cli::RunLoop loop(c.system, integrator, dt, {&csv, nullptr, 1});
+  cli::RunLoop loop(c.system, integrator, dt, {&csv, nullptr, 1}, 2.0);
   EXPECT_EQ(loop.start(), "");
   for (int k = 0; k < steps; ++k) {
     c.force->seen.clear();
@@ -247,7 +251,7 @@ TEST(RunnerCounts, DiagnosticsMeasureThePotentialOncePerMeasuredStep) {
     auto integrator = makeIntegrator("rk4");
     {
       scenes::CsvWriter csv(path, "the test's CSV", cli::kDiagnosticsColumns);
-      cli::RunLoop loop(system, *integrator, 0.01, {&csv, nullptr, 1, every});
+      cli::RunLoop loop(system, *integrator, 0.01, {&csv, nullptr, 1, every}, 2.0);
       EXPECT_EQ(loop.start(), "");
       const int before = spring.potentials;
       for (int k = 1; k <= 6; ++k) {
@@ -264,4 +268,50 @@ TEST(RunnerCounts, DiagnosticsMeasureThePotentialOncePerMeasuredStep) {
     EXPECT_EQ(lines, 1 + 1 + (every == 1 ? 6 : 2)) << "header, row 0 and the measured steps";
     std::filesystem::remove(path);
   }
+}
+
+// --- the runner's energy bound ---------------------------------------------------
+
+// Every built-in scene at its own integrator and dt for 3 s of simulated time
+// stays inside the runner's energy bound (E − E₀ ≤ 100 E_ref), with room to
+// spare: the largest rise is printed as a fraction of E_ref.
+TEST(RunnerDivergence, BuiltInScenesStayInsideTheEnergyBoundAtTheirDefaults) {
+  for (const scenes::SceneInfo& info : scenes::sceneTable()) {
+    scenes::Scene scene = scenes::buildScene(info.name);
+    particles::ParticleSystem& system = *scene.system;
+    auto integrator = makeIntegrator(scene.integrator, scene.integratorSettings);
+    const double length = cli::sceneLength(scene);
+    const double scale = particles::blowUpEnergyScale(system, length), e0 = system.totalEnergy();
+    cli::RunLoop loop(system, *integrator, scene.dt, {nullptr, nullptr, 1}, length);
+    ASSERT_EQ(loop.start(), "") << info.name;
+    double rise = 0.0;
+    const int steps = static_cast<int>(std::lround(3.0 / scene.dt));
+    for (int k = 1; k <= steps; ++k) {
+      ASSERT_EQ(loop.step(), "") << info.name << " step " << k;
+      rise = std::max(rise, system.totalEnergy() - e0);
+    }
+    std::cout << info.name << " (" << scene.integrator << ", dt " << scene.dt << "): largest energy rise " << rise
+              << " J = " << rise / scale << " E_ref\n";
+    EXPECT_LT(rise, 0.01 * cli::kEnergyBoundFactor * scale) << info.name;
+  }
+}
+
+// Explicit Euler on a spring of ω = 100 rad/s at dt 0.01 multiplies the
+// energy by 1 + ω²h² = 2 each step: the run ends at the energy bound within
+// 20 steps, with the state still finite (it overflows only after ~1000).
+TEST(RunnerDivergence, ExplicitEulerOnAStiffSpringEndsAtTheEnergyBound) {
+  ParticleSystem system;
+  system.addParticle(Vector2d(0.0, 0.0), 1.0);
+  system.setPinned(0, true);
+  system.addParticle(Vector2d(0.51, 0.0), 1.0);
+  system.addForce(std::make_unique<SpringForce>(1, 0, 0.5, 1e4, 0.0));
+  auto euler = makeIntegrator("euler");
+  cli::RunLoop loop(system, *euler, 0.01, {nullptr, nullptr, 1}, 2.0);
+  ASSERT_EQ(loop.start(), "");
+  std::string reason;
+  int step = 0;
+  while (reason.empty() && step < 200) reason = loop.step(), ++step;
+  EXPECT_EQ(reason.rfind("the energy rose by ", 0), 0u) << reason;
+  EXPECT_LE(step, 20) << "stopped at step " << step << ": " << reason;
+  EXPECT_TRUE(system.finite());
 }

@@ -195,6 +195,22 @@ TEST(Divergence, EachReasonTriggersOnItsOwn) {
   }
 }
 
+// E_ref = |E(0)| + K(0) + Σ|V_f(0)| + L Σ|F_i(0)|: for 2 kg at rest at the
+// origin under g = 9.81 (E, K and V all zero) it is the weight times L; a
+// pinned particle adds no force, a moving one its kinetic energy twice
+// (in E and in K).
+TEST(Divergence, BlowUpEnergyScaleIsTheEnergiesAndTheWorkOfTheForcesAcrossTheScene) {
+  ParticleSystem system;
+  system.addParticle(Vector2d(0.0, 0.0), 2.0);
+  system.addParticle(Vector2d(0.0, 0.0), 5.0);
+  system.setPinned(1, true);
+  system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
+  EXPECT_NEAR(blowUpEnergyScale(system, 3.0), 2.0 * 9.81 * 3.0, 1e-12);
+  system.velocities()[0] = 1.0;  // K = 1 J
+  EXPECT_NEAR(blowUpEnergyScale(system, 3.0), 2.0 + 2.0 * 9.81 * 3.0, 1e-12);
+  EXPECT_GT(blowUpEnergyScale(system, 0.0), 0.0);
+}
+
 TEST(Divergence, LimitsMustBePositiveAndNotNaN) {
   DivergenceLimits limits;
   limits.validate();

@@ -66,7 +66,7 @@ int run(const RunOptions& o) {
   const std::unique_ptr<scenes::CsvWriter> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryColumns);
 
   particles::ParticleSystem& s = *scene.system;
-  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every, o.diagnosticsEvery});
+  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every, o.diagnosticsEvery}, sceneLength(scene));
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };
@@ -161,8 +161,11 @@ Command addRunCommand(CLI::App& app) {
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
-      "non-finite (|q|^2 or |v|^2 overflows), a step failed (a solve with non-finite multipliers, an\n"
-      "adaptive step below its floor or over its work cap) or a diagnostic is not finite: the run stops,\n"
+      "non-finite (|q|^2 or |v|^2 overflows), the total energy rose above E0 + 100 E_ref (the scene's\n"
+      "energies and the work of its starting forces across its view: particles/divergence.h), a step\n"
+      "failed (a solve with non-finite multipliers, an adaptive step below its floor or over its work\n"
+      "cap, a particle over the contact work cap of 100000 impacts in one step) or a diagnostic is not\n"
+      "finite: the run stops,\n"
       "stderr names the step, time and reason, and the CSV holds every step before it (finite numbers\n"
       "only); 4 an output file or stdout could not be written (disk full); 130 SIGINT, SIGTERM or SIGHUP: the run stops at\n"
       "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"

@@ -5,12 +5,13 @@
 
 namespace cli {
 
-RunLoop::RunLoop(particles::ParticleSystem& system, particles::Integrator& integrator, double dt, RunOutputs outputs)
+RunLoop::RunLoop(particles::ParticleSystem& system, particles::Integrator& integrator, double dt, RunOutputs outputs,
+                 double sceneLength)
     : system_(system),
       integrator_(integrator),
       dt_(dt),
       outputs_(outputs),
-      limits_(runnerDivergenceLimits()),
+      limits_(runnerDivergenceLimits(system, sceneLength)),
       initialEnergy_(system.totalEnergy()) {}
 
 std::string RunLoop::start() {

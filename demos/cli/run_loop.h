@@ -24,7 +24,9 @@ struct RunOutputs {
 
 class RunLoop {
  public:
-  RunLoop(particles::ParticleSystem& system, particles::Integrator& integrator, double dt, RunOutputs outputs);
+  // sceneLength: L of the energy bound (runnerDivergenceLimits, sceneLength()).
+  RunLoop(particles::ParticleSystem& system, particles::Integrator& integrator, double dt, RunOutputs outputs,
+          double sceneLength);
 
   // Row 0, the initial state. Returns why the run cannot go on (a
   // non-finite diagnostic), empty when it can.

@@ -6,10 +6,19 @@
 
 namespace cli {
 
-particles::DivergenceLimits runnerDivergenceLimits() {
+particles::DivergenceLimits runnerDivergenceLimits(particles::ParticleSystem& system, double sceneLength) {
   particles::DivergenceLimits limits;
   limits.maxRelativeConstraintError = particles::DivergenceLimits::off;
+  limits.energyScale = particles::blowUpEnergyScale(system, sceneLength);
+  limits.energyRiseFraction = kEnergyBoundFactor;
   return limits;
+}
+
+double sceneLength(const scenes::Scene& scene) {
+  Eigen::Vector2d lo = scene.viewMin.cwiseMin(scene.viewMax), hi = scene.viewMin.cwiseMax(scene.viewMax);
+  const particles::ParticleSystem& s = *scene.system;
+  for (int i = 0; i < s.size(); ++i) lo = lo.cwiseMin(s.position(i)), hi = hi.cwiseMax(s.position(i));
+  return (hi - lo).norm();
 }
 
 Diagnostics measureDiagnostics(long long step, const particles::ParticleSystem& s) {

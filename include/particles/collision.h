@@ -25,7 +25,13 @@ namespace particles {
 
 struct ContactSettings {
   int iterations = 100;   // Gauss–Seidel passes over resting contacts (stacks), after the first; ≥ 1
-  int maxImpacts = 8;     // successive impacts of one particle in one step (a corner, a wedge)
+  // Work cap: impacts (and resting push-outs) one particle may take in one
+  // step. Every impact in the step is resolved — a particle in a 1° wedge
+  // meets its faces up to 180 times on one pass into the corner — and a
+  // particle that would need more ends the step with
+  // StepFailure::ContactCapReached (left at its last event, outside every
+  // collider) rather than losing the motion silently; ≥ 1.
+  int maxImpacts = 100000;
   double slop = 1e-9;     // world units: a gap this small counts as touching
   // The coupled solve of contacts and constraints (coupled_contacts.h):
   int coupledIterations = 200;        // projected Gauss–Seidel sweeps over the shared rows, ≥ 1
@@ -40,6 +46,18 @@ struct ContactSettings {
 // Each particle's path through the step runs from (x, v) here to its state as
 // the integrator left it (contact_path.h); every contact pass reads it before
 // any contact has changed that particle.
+// What one contact pass did: the contacts it resolved and the particles that
+// ran out of the work cap ContactSettings::maxImpacts (nonzero fails the step).
+struct ContactCount {
+  int contacts = 0;
+  int capped = 0;
+  ContactCount& operator+=(const ContactCount& other) {
+    contacts += other.contacts;
+    capped += other.capped;
+    return *this;
+  }
+};
+
 struct StepStart {
   const Eigen::VectorXd& x;  // 2n positions
   const Eigen::VectorXd& v;  // 2n velocities
@@ -55,8 +73,8 @@ struct StepStart {
 // `only` (null: all) lists the particles to resolve, the others are left
 // alone. `lastFree` (2n) receives each resolved particle's end position (known
 // to be outside every collider), from which pushOutOfColliders sweeps later.
-// Returns the contacts.
-int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
+// Returns the contacts and the particles that ran out of maxImpacts.
+ContactCount resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
                             const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                             const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
                             Eigen::VectorXd& lastFree, const std::vector<int>* only = nullptr);
@@ -75,8 +93,9 @@ void markNearColliders(const std::vector<Collider>& colliders, const Eigen::Vect
 // A resting pass for particles that another contact pushed into a collider
 // after resolveColliderContacts: the path lastFree → x finds the face entered,
 // the particle is put back on it and its approach (with Coulomb friction)
-// removed. Updates lastFree; returns the contacts.
-int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& inverseMass,
+// removed. Updates lastFree; returns the contacts and the particles still
+// entering a collider after maxImpacts passes.
+ContactCount pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& inverseMass,
                        const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
                        Eigen::VectorXd& v, Eigen::VectorXd& lastFree);
 
@@ -102,14 +121,16 @@ class ParticleContacts {
   // impacts: the continuous pass of a step, from `start` (the colliders may be
   // empty); without, only the resting contacts at the step's end. lastFree
   // (may be null) receives the discs' end positions after their impacts, as
-  // resolveColliderContacts' does. Returns the number of contacts resolved.
+  // resolveColliderContacts' does. Returns the number of contacts resolved and
+  // the discs that ran out of maxImpacts.
   // The pairs found touching are kept; resolveResting goes over them again
   // (alternating the order, which carries a push through a stack in both
   // directions) without a new broad phase, and returns the largest speed
   // change it made.
-  int resolve(const std::vector<int>& collidable, const std::vector<Collider>& colliders, const StepStart& start,
-              const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const ContactSettings& settings,
-              bool impacts, Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree = nullptr);
+  ContactCount resolve(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
+                       const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                       const ContactSettings& settings, bool impacts, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                       Eigen::VectorXd* lastFree = nullptr);
   double resolveResting(const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                         const ContactSettings& settings, bool reverse, Eigen::VectorXd& x, Eigen::VectorXd& v);
   int touchingPairs() const { return static_cast<int>(touching_.size()); }
@@ -117,10 +138,10 @@ class ParticleContacts {
  private:
   // Pairs of collidable discs near enough to meet this step, as indices into `collidable`.
   void findCandidatePairs(const std::vector<int>& collidable, const Eigen::VectorXd& x, double cell);
-  int resolveImpacts(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
-                     const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
-                     const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                     Eigen::VectorXd* lastFree);
+  ContactCount resolveImpacts(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
+                              const StepStart& start, const Eigen::VectorXd& inverseMass,
+                              const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
+                              Eigen::VectorXd& v, Eigen::VectorXd* lastFree);
 
   std::vector<std::pair<int, int>> touching_;  // pairs found in contact by the last resolve
   struct Scratch;  // broad phase and event queue, kept between steps to avoid allocation

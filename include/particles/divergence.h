@@ -12,7 +12,9 @@
 //    scale r, or max |C| > maxConstraintError in world units over all of them
 //    (ConstraintViolation);
 //  - E − E₀ > energyRiseFraction · energyScale (EnergyGrowth; off while
-//    energyScale is infinite);
+//    energyScale is infinite): the laboratory's E_s with a fraction of 0.1
+//    (lab/failure.h), the runner's blow-up bound blowUpEnergyScale() with a
+//    factor of 100 (cli/step_output.h);
 //  - some coordinate |q_i| > maxCoordinate, world units (OutOfBounds).
 // The thresholds default to the laboratory's except those that need a scale
 // of the scene (energyScale, maxConstraintError, maxCoordinate): the tool
@@ -51,6 +53,23 @@ struct Divergence {
   // One line, e.g. "max |C|/r = 0.31 exceeds 0.1" or "the step failed: work-cap".
   std::string message() const;
 };
+
+// The energy scale of a scene for a blow-up bound, from its state at the
+// start and a length L of the scene (the runner's: the diagonal of the box
+// around the scene's view and its initial positions):
+//   E_ref = |E(0)| + K(0) + Σ_f |V_f(0)| + L · Σ_i |F_i(0)|,
+// K the kinetic energy, V_f each force's potential, F_i the applied force on
+// moving particle i at the start (m g under gravity; a spring at rest adds
+// none). The last term is the work the starting forces could do across the
+// scene; with the first it keeps E_ref away from zero for a scene at rest
+// whose energies happen to vanish (one particle at rest on a floor at y = 0).
+// A scheme that stays stable changes the energy by a modest multiple of it
+// at most; an unstable one multiplies the energy step after step (explicit
+// Euler on a spring by 1 + ω²h² per step) and passes any multiple long
+// before its state overflows. Only a rise is judged: damping, drag and
+// inelastic contacts take energy out without bound over a long fall.
+// At least 1e-300.
+double blowUpEnergyScale(ParticleSystem& system, double length);
 
 // Checks the system after a step. initialEnergy is E₀, the total energy the
 // run started from; lastStep the statistics of the step just taken.

@@ -12,9 +12,10 @@ enum class StepFailure {
   StepBelowFloor,  // an adaptive scheme needed an internal step below its floor
   WorkCapReached,  // an adaptive scheme ran out of its work budget for one call
   SolveFailed,     // a linear solve gave non-finite multipliers or residual
+  ContactCapReached,  // a particle needed more impacts in one step than ContactSettings::maxImpacts
 };
 
-// One-word name of a failure ("none", "step-below-floor", "work-cap", "solve-failed").
+// One-word name of a failure ("none", "step-below-floor", "work-cap", "solve-failed", "contact-cap").
 const char* stepFailureName(StepFailure failure);
 
 struct StepStats {

@@ -16,8 +16,8 @@ using contact::ontoSurface;
 void ContactSettings::validate() const {
   if (iterations < 1 || iterations > 1000)
     throw std::invalid_argument("contact iterations must be in [1, 1000], got " + std::to_string(iterations));
-  if (maxImpacts < 1 || maxImpacts > 1000)
-    throw std::invalid_argument("contact maxImpacts must be in [1, 1000], got " + std::to_string(maxImpacts));
+  if (maxImpacts < 1 || maxImpacts > 1000000000)
+    throw std::invalid_argument("contact maxImpacts must be in [1, 1000000000], got " + std::to_string(maxImpacts));
   requireNonNegative("contact slop", slop);
   if (coupledIterations < 1 || coupledIterations > 100000)
     throw std::invalid_argument("contact coupledIterations must be in [1, 100000], got " +
@@ -87,7 +87,10 @@ std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& co
   return ColliderImpact{hit.collider, hit.s, tau};
 }
 
-void applyColliderImpact(const Collider& c, const ColliderImpact& impact, double r, double dt, Track& track) {
+bool applyColliderImpact(const Collider& c, const ColliderImpact& impact, double r, double slop, double dt,
+                         Track& track) {
+  const double t = track.t();
+  const Eigen::Vector2d x1Before = track.x1, v1Before = track.v1;
   const Eigen::Vector2d from = track.from();
   contact::Path& path = track.path;
   Eigen::Vector2d &x1 = track.x1, &v1 = track.v1;
@@ -133,24 +136,28 @@ void applyColliderImpact(const Collider& c, const ColliderImpact& impact, double
                            : Path{p, v1, path.a, tau};
   }
   ++track.impacts;
+  return !(change.resting && tau == t && (x1 - x1Before).norm() <= slop &&
+           (v1 - v1Before).norm() * remaining <= slop);
 }
 
-void stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
+bool stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
                          double slop, Track& track) {
-  if (firstHit(colliders, boxes, track.from(), track.x1, r, slop).collider >= 0) track.x1 = track.from();
+  if (firstHit(colliders, boxes, track.from(), track.x1, r, slop).collider < 0) return false;
+  track.x1 = track.from();
+  return true;
 }
 
 }  // namespace contact
 
-int resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
-                            const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
-                            const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
-                            Eigen::VectorXd& lastFree, const std::vector<int>* only) {
+ContactCount resolveColliderContacts(const std::vector<Collider>& colliders, const StepStart& start,
+                                     const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                                     const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                                     Eigen::VectorXd& lastFree, const std::vector<int>* only) {
   const double dt = start.dt;
   const int n = static_cast<int>(inverseMass.size());
   const contact::ColliderBoxes boxes(colliders);
   if (lastFree.size() != x.size()) lastFree = x;
-  int contacts = 0;
+  ContactCount contacts;
   const int count = only ? static_cast<int>(only->size()) : n;
   for (int k = 0; k < count; ++k) {
     const int i = only ? (*only)[k] : k;
@@ -163,10 +170,11 @@ int resolveColliderContacts(const std::vector<Collider>& colliders, const StepSt
       const std::optional<contact::ColliderImpact> impact =
           contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
       if (!impact) break;
-      contact::applyColliderImpact(colliders[impact->collider], *impact, r, dt, track);
+      if (!contact::applyColliderImpact(colliders[impact->collider], *impact, r, settings.slop, dt, track)) break;
     }
-    if (track.impacts == settings.maxImpacts) contact::stopIfStillEntering(colliders, boxes, r, settings.slop, track);
-    contacts += track.impacts;
+    if (track.impacts == settings.maxImpacts && contact::stopIfStillEntering(colliders, boxes, r, settings.slop, track))
+      ++contacts.capped;
+    contacts.contacts += track.impacts;
     x.segment<2>(2 * i) = track.x1;
     v.segment<2>(2 * i) = track.v1;
     lastFree.segment<2>(2 * i) = track.x1;
@@ -174,19 +182,20 @@ int resolveColliderContacts(const std::vector<Collider>& colliders, const StepSt
   return contacts;
 }
 
-int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& inverseMass,
-                       const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
-                       Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
+ContactCount pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& inverseMass,
+                                const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
+                                Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
   const int n = static_cast<int>(inverseMass.size());
   const contact::ColliderBoxes boxes(colliders);
-  int contacts = 0;
+  ContactCount contacts;
   for (int i = 0; i < n; ++i) {
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];
     Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
     Eigen::Vector2d from = lastFree.segment<2>(2 * i);
     if (from == x1) continue;  // not moved since it was known to be outside
-    for (int pass = 0; pass < settings.maxImpacts; ++pass) {
+    int pass = 0;
+    for (; pass < settings.maxImpacts; ++pass) {
       const Hit hit = firstHit(colliders, boxes, from, x1, r, settings.slop);
       if (hit.collider < 0) break;
       const Collider& c = colliders[hit.collider];
@@ -198,7 +207,11 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const Eigen::Vect
       const double vn = v1.dot(normal);
       if (vn < 0.0) v1 += -vn * normal + contact::coulomb(v1 - vn * normal, vn, c.friction);
       from = p;
-      ++contacts;
+      ++contacts.contacts;
+    }
+    if (pass == settings.maxImpacts && firstHit(colliders, boxes, from, x1, r, settings.slop).collider >= 0) {
+      x1 = from;  // out of passes: back to the last point known outside
+      ++contacts.capped;
     }
     x.segment<2>(2 * i) = x1;
     v.segment<2>(2 * i) = v1;

@@ -69,11 +69,18 @@ std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& co
                                                  const Track& track, double r, double slop, double dt);
 // Applies it: a bounce (−e times the normal velocity, Coulomb friction) or a
 // resting contact for the rest of the step; the track then starts at τ.
-void applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double dt,
+// Returns false when the impact changed nothing: a resting contact met again
+// at the time of the last event, with the step's end moved by no more than
+// `slop` and its velocity by no more than would move it that far in the time
+// left (a particle sliding over the edge of a face, whose chord lies on the
+// face). The rest of the track then lies on the surface and is settled.
+bool applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double slop, double dt,
                          Track& track);
-// Out of impacts (a particle wedged in a narrow corner): the track's end is
-// put back to its last event, which is outside every collider.
-void stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
+// Out of impacts (the work cap ContactSettings::maxImpacts): if the rest of
+// the track still enters a collider, its end is put back to its last event,
+// which is outside every collider, and true is returned (the step then fails
+// with StepFailure::ContactCapReached).
+bool stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,
                          double slop, Track& track);
 
 }  // namespace particles::contact

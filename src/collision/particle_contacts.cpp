@@ -111,16 +111,16 @@ ParticleContacts::~ParticleContacts() = default;
 ParticleContacts::ParticleContacts(ParticleContacts&&) noexcept = default;
 ParticleContacts& ParticleContacts::operator=(ParticleContacts&&) noexcept = default;
 
-int ParticleContacts::resolve(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
-                              const StepStart& start, const Eigen::VectorXd& inverseMass,
-                              const Eigen::VectorXd& radius, const ContactSettings& settings, bool impacts,
-                              Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree) {
+ContactCount ParticleContacts::resolve(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
+                                       const StepStart& start, const Eigen::VectorXd& inverseMass,
+                                       const Eigen::VectorXd& radius, const ContactSettings& settings, bool impacts,
+                                       Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree) {
   // A public field rather than a constructor argument, so it is checked where it is used.
   requireInRange("particle contact restitution", restitution, 0.0, 1.0);
   const Scratch& S = *scratch_;
   const int count = static_cast<int>(collidable.size());
   touching_.clear();
-  if (count == 0) return 0;
+  if (count == 0) return {};
   double maxRadius = 0.0, maxTravel = 0.0;
   for (int i : collidable) {
     maxRadius = std::max(maxRadius, radius[i]);
@@ -133,7 +133,7 @@ int ParticleContacts::resolve(const std::vector<int>& collidable, const std::vec
   const Eigen::VectorXd& at = impacts ? start.x : x;
   findCandidatePairs(collidable, at, 2.0 * (maxRadius + 2.0 * maxTravel));
 
-  int contacts = 0;
+  ContactCount contacts;
   if (impacts) contacts += resolveImpacts(collidable, colliders, start, inverseMass, radius, settings, x, v, lastFree);
 
   // What is left touching or overlapping at the end is resting contact.
@@ -144,7 +144,7 @@ int ParticleContacts::resolve(const std::vector<int>& collidable, const std::vec
         (x.segment<2>(2 * i) - x.segment<2>(2 * j)).squaredNorm() >= (reach + settings.slop) * (reach + settings.slop))
       continue;
     touching_.emplace_back(i, j);
-    if (restingPair(i, j, inverseMass, radius, settings, x, v) >= 0.0) ++contacts;
+    if (restingPair(i, j, inverseMass, radius, settings, x, v) >= 0.0) ++contacts.contacts;
   }
   return contacts;
 }
@@ -195,17 +195,19 @@ void ParticleContacts::findCandidatePairs(const std::vector<int>& collidable, co
       }
 }
 
-int ParticleContacts::resolveImpacts(const std::vector<int>& collidable, const std::vector<Collider>& colliders,
-                                     const StepStart& start, const Eigen::VectorXd& inverseMass,
-                                     const Eigen::VectorXd& radius, const ContactSettings& settings,
-                                     Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree) {
+ContactCount ParticleContacts::resolveImpacts(const std::vector<int>& collidable,
+                                              const std::vector<Collider>& colliders, const StepStart& start,
+                                              const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                                              const ContactSettings& settings, Eigen::VectorXd& x,
+                                              Eigen::VectorXd& v, Eigen::VectorXd* lastFree) {
   Scratch& S = *scratch_;
   // Event-driven over the step: every disc's next impact (against a collider
   // or another disc) is predicted on its track, and the earliest is applied
   // first, so each impact happens on the paths the discs really follow then.
   // An impact changes the tracks of its discs only; the predictions that
   // involve them are made again (older ones in the queue are recognised as
-  // stale by the discs' stamps). Each disc takes at most maxImpacts impacts.
+  // stale by the discs' stamps). Each disc takes at most maxImpacts impacts
+  // (the work cap): one that would take more is counted in `capped`.
   const int count = static_cast<int>(collidable.size());
   const double dt = start.dt;
   const contact::ColliderBoxes boxes(colliders);
@@ -245,24 +247,32 @@ int ParticleContacts::resolveImpacts(const std::vector<int>& collidable, const s
                        settings.slop, dt);
     if (hit) push({hit->tau, a, b, S.stamp[a], S.stamp[b], {}, *hit});
   };
+  auto predictPairsOf = [&](int a) {
+    for (int k = S.pairsOfStart[a]; k < S.pairsOfStart[a + 1]; ++k) predictPair(S.pairsOf[k]);
+  };
   auto predictAll = [&](int a) {
     predictWall(a);
-    for (int k = S.pairsOfStart[a]; k < S.pairsOfStart[a + 1]; ++k) predictPair(S.pairsOf[k]);
+    predictPairsOf(a);
   };
   for (int a = 0; a < count; ++a) predictWall(a);
   for (int p = 0; p < static_cast<int>(S.pairs.size()); ++p) predictPair(p);
 
-  int contacts = 0;
+  ContactCount contacts;
   while (!S.queue.empty()) {
     std::pop_heap(S.queue.begin(), S.queue.end(), later);
     const Scratch::Event e = S.queue.back();
     S.queue.pop_back();
     if (e.stampA != S.stamp[e.a] || (e.b >= 0 && e.stampB != S.stamp[e.b])) continue;  // stale
-    ++contacts;
+    ++contacts.contacts;
     ++S.stamp[e.a];
     if (e.b < 0) {
-      contact::applyColliderImpact(colliders[e.wall.collider], e.wall, radius[collidable[e.a]], dt, S.tracks[e.a]);
-      predictAll(e.a);
+      // A resting contact met again without effect settles the disc on that
+      // surface: only its pairs are predicted again.
+      if (contact::applyColliderImpact(colliders[e.wall.collider], e.wall, radius[collidable[e.a]], settings.slop, dt,
+                                       S.tracks[e.a]))
+        predictAll(e.a);
+      else
+        predictPairsOf(e.a);
     } else {
       ++S.stamp[e.b];
       applyPairImpact(e.pair, inverseMass[collidable[e.a]], inverseMass[collidable[e.b]], dt, S.tracks[e.a],
@@ -275,8 +285,9 @@ int ParticleContacts::resolveImpacts(const std::vector<int>& collidable, const s
   for (int a = 0; a < count; ++a) {
     const int i = collidable[a];
     contact::Track& track = S.tracks[a];
-    if (!colliders.empty() && track.impacts >= settings.maxImpacts)
-      contact::stopIfStillEntering(colliders, boxes, radius[i], settings.slop, track);
+    if (track.impacts >= settings.maxImpacts &&
+        (colliders.empty() || contact::stopIfStillEntering(colliders, boxes, radius[i], settings.slop, track)))
+      ++contacts.capped;
     x.segment<2>(2 * i) = track.x1;
     v.segment<2>(2 * i) = track.v1;
     if (lastFree) lastFree->segment<2>(2 * i) = track.x1;

@@ -151,6 +151,14 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
     kx_[0] = v;
     lead_ = 0.0;
     system.acceleration(x0_, kx_[0], kv_[0]);
+    // An event (a contact, a drag, a restore) ends the internal step where
+    // the output stood. The step proposed after the last accepted one is not
+    // carried across it: in uniform gravity the error estimate vanishes and
+    // the controller grows h tenfold per step, so a restart at every contact
+    // would soon take steps of years whose dense output at θ ≈ dt/h rounds
+    // back to the old state. The restarted step is instead the last accepted
+    // one, capped by the output interval.
+    if (accepted_ > 0.0) h_ = std::min(accepted_, dt);
   }
   StepStats stats;
   stats.internalSteps = 0;
@@ -185,6 +193,7 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
         kv_[0].swap(kv_[6]);
         lead_ += h;
         denseStep_ = h;
+        accepted_ = h;
         ++stats.internalSteps;
         lastStep_ = std::max(lastStep_, h);
         double factor = kSafety * std::pow(std::max(err, 1e-10), -kAlpha) * std::pow(errPrevious_, kBeta);

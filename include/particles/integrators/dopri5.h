@@ -29,7 +29,10 @@ namespace particles {
 // time falls inside the last accepted step takes no step and evaluates
 // nothing. The internal solution carries on between calls only while the
 // system holds the state the last call returned (a collision, a drag or a
-// restore restarts it there). The first call picks its step with HNW's
+// restore restarts it there, so dense output never spans such an event). A
+// restart begins from the last accepted internal step capped by dt, not
+// from the controller's proposal after it, which an event-free stretch can
+// grow without bound. The first call picks its step with HNW's
 // starting-step estimate (II.4). A step
 // the controller would cut below settings.minStepFraction·dt, or more than
 // settings.maxStepsPerCall attempts in one call, ends the call early with
@@ -58,6 +61,7 @@ class Dopri5Integrator : public Integrator {
 
   IntegratorSettings settings_;
   double h_ = 0.0, errPrevious_ = 1e-4;
+  double accepted_ = 0.0;  // the last accepted internal step (0: none yet)
   std::array<Eigen::VectorXd, 7> kx_, kv_;  // stage derivatives of x (the stage velocities) and v
   // (x0_, kx_[0]): the internal solution, lead_ (s) ahead of the output state;
   // x1_ a trial's end positions, xs_ a stage's; vs_, a_ the starting step's probe.
