@@ -62,23 +62,24 @@ Scene buildCloth(const ClothParams& p) {
   const double half = std::max(1.0, 2.2 * L);
   const Eigen::Vector2d topLeft(-0.5 * clothWidth, 0.6 * half);
 
-  // Row r hangs r rest lengths down its column, turned by the swing so that
-  // every spring starts at its rest length. 4-way springs do not resist
-  // shear: each column is turned about its particle on the rail, and the rail
-  // stays horizontal. The diagonals of the 8-way cloth do (turning the columns
-  // by 20° would stretch one diagonal of each cell by 16 % and shorten the
-  // other by 19 %), so that cloth is turned as a rigid body about its
-  // top-left particle, and its rail runs along the turned top row.
+  // Row r hangs r rest lengths down its column; every spring starts at its
+  // rest length (cloth.h). The 4-way cloth's columns are turned by the swing
+  // (a shear its springs do not resist); the 8-way cloth hangs straight and
+  // its rows start moving at ω times their depth.
   const double swing = radians(p.swing);
-  const bool rigidSwing = p.links == 8;
-  const Eigen::Vector2d down(std::sin(swing), -std::cos(swing));
-  const Eigen::Vector2d across = rigidSwing ? Eigen::Vector2d(std::cos(swing), std::sin(swing)) : Eigen::Vector2d::UnitX();
-  const double railAngle = rigidSwing ? swing : 0.0;
+  const bool swingByVelocity = p.links == 8;
+  const Eigen::Vector2d down =
+      swingByVelocity ? Eigen::Vector2d(0.0, -1.0) : Eigen::Vector2d(std::sin(swing), -std::cos(swing));
   std::vector<Eigen::Vector2d> positions;
   for (int row = 0; row < p.height; ++row)
     for (int col = 0; col < p.width; ++col)
-      positions.push_back(topLeft + p.rest * (col * across + row * down));
+      positions.push_back(topLeft + p.rest * (col * Eigen::Vector2d::UnitX() + row * down));
   s.addParticles(positions, std::vector<double>(positions.size(), p.mass));
+  if (swingByVelocity && clothHeight > 0.0) {
+    const double omega = std::copysign(std::sqrt(3.0 * p.gravity * (1.0 - std::cos(swing)) / clothHeight), swing);
+    for (int row = 0; row < p.height; ++row)
+      for (int col = 0; col < p.width; ++col) s.velocities()[2 * (row * p.width + col)] = omega * row * p.rest;
+  }
   const auto id = [&](int row, int col) { return row * p.width + col; };
 
   // Grid cells as faces, counter-clockwise: top-left, bottom-left, bottom-right, top-right.
@@ -103,9 +104,9 @@ Scene buildCloth(const ClothParams& p) {
   addGravity(s, p.gravity);
   if (p.drag > 0.0) s.addForce(std::make_unique<particles::DragForce>(p.drag));
 
-  // The curtain rail: the top row slides on the line through it.
+  // The curtain rail: the top row slides on the horizontal line through it.
   for (int col = 0; col < p.width; ++col)
-    s.addConstraint(std::make_unique<particles::LineConstraint>(id(0, col), topLeft, railAngle));
+    s.addConstraint(std::make_unique<particles::LineConstraint>(id(0, col), topLeft, 0.0));
 
   // A big wall left of the cloth, from just below the rail to below the hem
   // of the cloth hanging stretched under its weight (about twice its rest

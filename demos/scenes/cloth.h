@@ -7,13 +7,16 @@ namespace scenes {
 // The cloth testing ground: a width × height grid of particles joined by
 // damped springs, its top row sliding on a horizontal line like a curtain on
 // a rail, under gravity, beside a big wall on the left that stops most of the
-// cloth and a small "nail" on the right it can catch on. The cloth is
-// released at rest swung out by `swing`, with every spring at its rest
-// length: the 4-way cloth with every column turned by that angle about its
+// cloth and a small "nail" on the right it can catch on. The cloth swings by
+// `swing` with every spring at its rest length at the start: the 4-way
+// cloth is released at rest with every column turned by that angle about its
 // particle on the rail (a shear, which 4-way springs do not resist), so it
 // swings like a curtain pushed aside; the 8-way cloth, whose diagonals do
-// resist shear, turned as a rigid body about its top-left particle, its rail
-// along the turned top row, so that it slides down the tilted rail.
+// resist shear (that shear would stretch one diagonal of each cell by 16% and
+// shorten the other by 19% at 20°), hangs straight and is released moving,
+// each row at ω times its depth, with the ω that would lift a rigid column
+// on a fixed pin to the swing angle: ½ (m H²/3) ω² = m g (H/2)(1 − cos swing);
+// on its sliding rail that push both swings the curtain and slides it along.
 //
 // Defaults: the top spring of each column carries the weight of the
 // height − 1 particles below it, stretching by (height − 1) m g / k_s =
@@ -45,7 +48,7 @@ struct ClothParams {
     field("damping", damping, "spring k_d, N s/m");
     field("mass", mass, "mass of each particle, kg");
     field("gravity", gravity, "downward acceleration, m/s^2");
-    field("swing", swing, "release angle of the cloth's columns from hanging straight, degrees (+: hem to the right; 8-way: the whole cloth and its rail turned)");
+    field("swing", swing, "release angle of the cloth's columns from hanging straight, degrees (+: hem to the right; 8-way: hangs straight, released with the push that swings a pinned column to it)");
     field("drag", drag, "air drag k_d on every particle, N s/m (0: none)");
     field("edge-contacts", edgeContacts, "1: the cloth's edges, not only its particles, meet the wall and nail; 0: particles only");
   }
