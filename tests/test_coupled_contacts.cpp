@@ -107,7 +107,7 @@ TEST(CoupledContacts, FreeChainOnSlopeComesToRest) {
 // wire and floor meet, x = ±√(0.4² − 0.35²), having released m g · 0.35 m.
 TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
   const double radius = 0.4, floorY = -0.35, xMeet = std::sqrt(radius * radius - floorY * floorY);
-  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
+  for (const char* name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
     ParticleSystem s;
     s.addParticle(Vector2d(radius, 0.0), 1.0);
     s.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), radius));
@@ -130,7 +130,7 @@ TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
 // through the bottom as if the floor were not there.
 TEST(CoupledContacts, FloorTangentToWireChangesNothing) {
   const double radius = 0.4;
-  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
+  for (const char* name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
     std::vector<double> energy[2];
     for (int withFloor = 0; withFloor < 2; ++withFloor) {
       ParticleSystem s;
