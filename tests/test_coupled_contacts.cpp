@@ -155,7 +155,7 @@ TEST(CoupledContacts, FloorTangentToWireChangesNothing) {
 // Coulomb distance ½ g (sin θ − μ cos θ) t².
 TEST(StaticFriction, HoldsBelowFrictionAngleSlidesCoulombAbove) {
   const double mu = 0.5, dt = 0.01, T = 2.0;
-  for (const std::string& name :
+  for (const char* name :
        {"euler", "symplectic-euler", "midpoint", "rk4", "verlet", "implicit-euler", "xpbd", "dopri5", "rattle"}) {
     for (double degrees : {20.0, 35.0}) {
       const double angle = degrees * M_PI / 180.0;
