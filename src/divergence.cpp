@@ -22,6 +22,7 @@ constexpr ReasonInfo kReasons[] = {
     {DivergenceReason::ConstraintViolation, "constraint"},
     {DivergenceReason::EnergyGrowth, "energy"},
     {DivergenceReason::StepFailed, "step-failed"},
+    {DivergenceReason::SolveFailed, "solve-failed"},
     {DivergenceReason::OutOfBounds, "out-of-bounds"},
 };
 
@@ -45,6 +46,7 @@ void DivergenceLimits::validate() const {
   requireLimit("energyScale", energyScale);
   requireLimit("energyRiseFraction", energyRiseFraction);
   requireLimit("maxCoordinate", maxCoordinate);
+  requireLimit("maxSolveResidual", maxSolveResidual);
 }
 
 std::string Divergence::message() const {
@@ -53,6 +55,9 @@ std::string Divergence::message() const {
     case DivergenceReason::NonFinite:
       return "the positions, velocities or energy are no longer finite (|q|^2, |v|^2 or E overflows)";
     case DivergenceReason::StepFailed: return std::string("the step failed: ") + stepFailureName(failure);
+    case DivergenceReason::SolveFailed:
+      return "a constraint solve left a relative residual of " + formatValue(value) + ", above the limit " +
+             formatValue(limit) + " (its multipliers are no solution)";
     case DivergenceReason::ConstraintViolation:
       return "a constraint error of " + formatValue(value) + " exceeds the limit " + formatValue(limit);
     case DivergenceReason::EnergyGrowth:
@@ -101,6 +106,8 @@ Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits&
     d.failure = lastStep.failure;
     return fail(DivergenceReason::StepFailed, 0.0, 0.0);
   }
+  if (lastStep.solves > 0 && !(lastStep.maxResidual <= limits.maxSolveResidual))
+    return fail(DivergenceReason::SolveFailed, lastStep.maxResidual, limits.maxSolveResidual);
   if (!system.constraints().empty()) {
     const double relative = system.maxRelativeConstraintError();
     if (!(relative <= limits.maxRelativeConstraintError))

@@ -11,6 +11,7 @@ particles::DivergenceLimits runnerDivergenceLimits(particles::ParticleSystem& sy
   limits.maxRelativeConstraintError = particles::DivergenceLimits::off;
   limits.energyScale = particles::blowUpEnergyScale(system, sceneLength);
   limits.energyRiseFraction = kEnergyBoundFactor;
+  limits.maxSolveResidual = kMaxSolveResidual;
   return limits;
 }
 

@@ -19,7 +19,10 @@ namespace cli {
 // work cap, a particle over the contact work cap) and at an energy blow-up:
 //   E − E₀ > kEnergyBoundFactor · E_ref,
 // E_ref = particles::blowUpEnergyScale(system, L) of the state the run starts
-// from, L = sceneLength(). Constraint error is recorded, not judged.
+// from, L = sceneLength(); and at a constraint solve whose relative residual
+// passes kMaxSolveResidual (CG that cannot converge on a contradictory
+// constraint set: the damped direct solve's least-squares answer on the
+// taut chain leaves 0.45). Constraint error is recorded, not judged.
 // The factor leaves every built-in scene at its own integrator and dt far
 // inside the bound (the largest rise over 3 s is 1.5e-4 E_ref, the test
 // chain's under RK4; test RunnerDivergence.BuiltInScenesStayInsideTheEnergyBoundAtTheirDefaults
@@ -29,6 +32,7 @@ namespace cli {
 // unstable scheme, which multiplies the energy step after step, crosses it
 // long before its state overflows.
 constexpr double kEnergyBoundFactor = 100.0;
+constexpr double kMaxSolveResidual = 10.0;
 particles::DivergenceLimits runnerDivergenceLimits(particles::ParticleSystem& system, double sceneLength);
 
 // L of the energy bound: the diagonal of the box around the scene's view and

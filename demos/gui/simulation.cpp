@@ -16,6 +16,7 @@ particles::DivergenceLimits demoDivergenceLimits(const scenes::Scene& scene) {
   limits.maxRelativeConstraintError = 1.0;
   limits.maxConstraintError = 1.0 * diagonal;
   limits.maxCoordinate = 1000.0 * diagonal;
+  limits.maxSolveResidual = 10.0;  // as the runner's (cli/step_output.h)
   return limits;
 }
 

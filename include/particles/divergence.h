@@ -8,6 +8,10 @@
 //    before inf appears in q itself);
 //  - the step failed (StepFailed: a solve gave non-finite multipliers, or an
 //    adaptive scheme hit its step floor or its work cap);
+//  - a constraint solve of the step left a relative residual |r|/|b| above
+//    maxSolveResidual (SolveFailed; off by default): its multipliers are not
+//    a solution (an iterative solve that cannot converge on a contradictory
+//    constraint set, where the damped direct solve finds the least-squares one);
 //  - max |C|/r > maxRelativeConstraintError over the constraints with a length
 //    scale r, or max |C| > maxConstraintError in world units over all of them
 //    (ConstraintViolation);
@@ -28,9 +32,9 @@ namespace particles {
 
 class ParticleSystem;
 
-enum class DivergenceReason { None, NonFinite, ConstraintViolation, EnergyGrowth, StepFailed, OutOfBounds };
+enum class DivergenceReason { None, NonFinite, ConstraintViolation, EnergyGrowth, StepFailed, SolveFailed, OutOfBounds };
 
-// "none", "non-finite", "constraint", "energy", "step-failed", "out-of-bounds".
+// "none", "non-finite", "constraint", "energy", "step-failed", "solve-failed", "out-of-bounds".
 const char* divergenceReasonName(DivergenceReason reason);
 
 struct DivergenceLimits {
@@ -40,6 +44,7 @@ struct DivergenceLimits {
   double energyScale = off;                 // energy the scene can release, J; tool-supplied
   double energyRiseFraction = 0.1;          // fail when E − E₀ > fraction · energyScale
   double maxCoordinate = off;               // |q_i|, world units
+  double maxSolveResidual = off;            // a solve's relative residual |r|/|b|
 
   void validate() const;  // throws naming the bad field (each must be > 0; NaN refused)
 };
