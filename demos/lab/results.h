@@ -26,4 +26,22 @@ Results<Result> sweepResults(const LabOptions& options, std::size_t count,
   return results;
 }
 
+// `count` cells one at a time on this thread, in order (cell, cells.h), and
+// their results kept: for measurements of wall time, which other work running
+// beside them would disturb. With `stopAtInterrupt`, no cell starts after an
+// interrupt. `after(k)` (optional) runs after each cell, computed here or not.
+template <class Result>
+Results<Result> resultsInTurn(const LabOptions& options, std::size_t count,
+                              const std::function<std::optional<Result>(std::size_t)>& compute,
+                              bool stopAtInterrupt, const std::function<void(std::size_t)>& after = {}) {
+  Results<Result> results;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (stopAtInterrupt && interrupted()) break;
+    auto result = cell<Result>(options, [&] { return compute(k); });
+    if (after) after(k);
+    if (result) results.emplace(k, std::move(*result));
+  }
+  return results;
+}
+
 }  // namespace lab
