@@ -122,7 +122,9 @@ class ProblemScene {
  public:
   explicit ProblemScene(const Problem& problem) : problem_(problem) {
     if (problem.closedForm)
-      closedForm_ = [&p = problem_](double T, double h) { return oscillatorReference(p.params, T, h, scenes::kSeedPreset); };
+      closedForm_ = [&p = problem_](double T, double h) {
+        return oscillatorReference(p.params, T, h, scenes::kSeedPreset);
+      };
     scenes::Scene first = build();
     particles = first.system->size();
     scale = releasableEnergy(*first.system);
@@ -148,19 +150,19 @@ class ProblemScene {
 // The run against the reference, then the timed repeats.
 std::optional<Point> measurePoint(const AccuracyPlan& plan, const Problem& problem, ProblemScene& scene,
                                   const PointCell& cell, const FailureCriterion& failure) {
-  Point out;
-  out.candidate = measureRun(scene.builder(), scene.reference().trajectory, cell.integrator, cell.dt, cell.tolerance,
+  Point point;
+  point.candidate = measureRun(scene.builder(), scene.reference().trajectory, cell.integrator, cell.dt, cell.tolerance,
                              problem.horizon, failure, scene.scale);
-  for (int r = 0; r < plan.repeats && out.candidate.survived && !interrupted(); ++r) {
+  for (int repeat = 0; repeat < plan.repeats && point.candidate.survived && !interrupted(); ++repeat) {
     scenes::Scene run = scene.build();
     particles::IntegratorSettings settings;
     if (cell.tolerance > 0.0) settings.tolerance = cell.tolerance;
     auto stepper = particles::makeIntegrator(cell.integrator, settings);
-    out.perSecond.push_back(simulate(run, *stepper, cell.dt, problem.horizon, failure).seconds / problem.horizon);
+    point.perSecond.push_back(simulate(run, *stepper, cell.dt, problem.horizon, failure).seconds / problem.horizon);
   }
   if (interrupted()) return std::nullopt;
-  if (out.perSecond.empty()) out.perSecond.push_back(out.candidate.seconds / problem.horizon);
-  return out;
+  if (point.perSecond.empty()) point.perSecond.push_back(point.candidate.seconds / problem.horizon);
+  return point;
 }
 
 // One integrator's sweep on a problem: its points measured here, and whether the sweep ran to its end.
@@ -215,19 +217,19 @@ ProblemRun measureProblem(const LabOptions& options, const AccuracyPlan& plan, c
 double observedOrder(const Problem& problem, const ProblemRun& run, const Sweep& sweep) {
   std::vector<double> knobs, errors;
   const double floor = problem.closedForm ? 1e-13 : run.summary.agreement;
-  for (const auto& [c, point] : sweep.points) {
+  for (const auto& [cell, point] : sweep.points) {
     const Candidate& candidate = point.candidate;
     if (candidate.survived && candidate.maxError < 0.1 * run.summary.size && candidate.maxError > floor)
-      knobs.push_back(c.tolerance > 0.0 ? c.knob : c.dt), errors.push_back(candidate.maxError);
+      knobs.push_back(cell.tolerance > 0.0 ? cell.knob : cell.dt), errors.push_back(candidate.maxError);
   }
   return logLogSlope(knobs, errors);
 }
 
 void writePointRows(Csv& csv, const Problem& problem, const Sweep& sweep) {
-  for (const auto& [c, point] : sweep.points) {
+  for (const auto& [cell, point] : sweep.points) {
     const Candidate& candidate = point.candidate;
     const std::vector<double>& perSecond = point.perSecond;
-    csv << problem.label << c.integrator << c.dt << c.tolerance << candidate.maxError << median(perSecond)
+    csv << problem.label << cell.integrator << cell.dt << cell.tolerance << candidate.maxError << median(perSecond)
         << candidate.errorAtT << candidate.energyError << candidate.constraintDrift
         << *std::min_element(perSecond.begin(), perSecond.end())
         << *std::max_element(perSecond.begin(), perSecond.end()) << (candidate.survived ? 1L : 0L)
@@ -247,22 +249,22 @@ void writeRuns(const LabOptions& options, const AccuracyPlan& plan, const std::v
            "energy_error", "constraint_drift", "cpu_min", "cpu_max", "survived", "failure"});
   Csv slopes(options, "accuracy_slopes.csv", {"problem", "integrator", "slope"});
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    const Problem& p = plan.problems[k];
+    const Problem& problem = plan.problems[k];
     const ProblemRun& run = runs[k];
-    references.push_back({p.label, std::to_string(run.particles), general(p.horizon), general(run.summary.size),
-                          run.summary.description});
-    recordValue(options, "accuracy.reference_agreement." + p.label, general(run.summary.agreement, 2));
-    recordValue(options, "accuracy.horizon." + p.label, general(p.horizon));
-    std::vector<std::string> row{p.label + " (" + scenes::plural(run.particles, "particle") +
-                                 ", T = " + general(p.horizon) + " s)"};
+    references.push_back({problem.label, std::to_string(run.particles), general(problem.horizon),
+                          general(run.summary.size), run.summary.description});
+    recordValue(options, "accuracy.reference_agreement." + problem.label, general(run.summary.agreement, 2));
+    recordValue(options, "accuracy.horizon." + problem.label, general(problem.horizon));
+    std::vector<std::string> row{problem.label + " (" + scenes::plural(run.particles, "particle") +
+                                 ", T = " + general(problem.horizon) + " s)"};
     for (const Sweep& sweep : run.sweeps) {
-      writePointRows(csv, p, sweep);
+      writePointRows(csv, problem, sweep);
       if (!sweep.complete) break;
-      const double slope = observedOrder(p, run, sweep);
-      slopes << p.label << sweep.integrator << slope;
+      const double slope = observedOrder(problem, run, sweep);
+      slopes << problem.label << sweep.integrator << slope;
       slopes.endRow();
       row.push_back(std::isfinite(slope) ? fixed(slope, 2) : "–");
-      recordValue(options, "accuracy.slope." + p.label + "." + sweep.integrator, row.back());
+      recordValue(options, "accuracy.slope." + problem.label + "." + sweep.integrator, row.back());
     }
     table.push_back(row);
   }
@@ -289,8 +291,8 @@ int runAccuracy(const LabOptions& options) {
   const auto integrators = selectedIntegrators(options, true);
   const AccuracyPlan plan = options.quick ? quickPlan() : fullPlan();
   long total = 0;
-  for (const auto& p : plan.problems)
-    for (const auto& name : integrators) total += static_cast<long>(knobsOf(plan, p, name).size());
+  for (const auto& problem : plan.problems)
+    for (const auto& name : integrators) total += static_cast<long>(knobsOf(plan, problem, name).size());
   Progress progress("accuracy", total);
   recordValue(options, "accuracy.repeats", std::to_string(plan.repeats));
   recordValue(options, "accuracy.output_interval", general(plan.outputInterval));

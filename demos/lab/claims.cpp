@@ -122,14 +122,14 @@ void claimRk4AgainstMidpoint(Context& context) {
   const ScanSettings scan = rk4MidpointScan(plan);
   const std::vector<std::string> pair = {"rk4", "midpoint"};
   const auto scanned = sweepResults<Boundary>(context.options, 2, [&](std::size_t k) {
-    auto b = scanSafeStep([&] { return buildChain({plan.scanLength}); }, pair[k], plan.duration, scan,
+    auto boundary = scanSafeStep([&] { return buildChain({plan.scanLength}); }, pair[k], plan.duration, scan,
                           context.options.criterion);
     context.progress.tick();
-    return b;
+    return boundary;
   });
   if (interrupted()) return;
   std::vector<Boundary> boundaries(2);
-  for (const auto& [k, b] : scanned) boundaries[k] = b;
+  for (const auto& [k, boundary] : scanned) boundaries[k] = boundary;
   const double dtRk4 = boundaries[0].safeDt, dtMid = boundaries[1].safeDt;
   recordValue(context.options, "claims.rk4_midpoint_cost_ratio", fixed(rk4 / mid, 2));
   recordValue(context.options, "claims.rk4_midpoint_step_ratio", fixed(dtRk4 / dtMid, 2));
@@ -223,22 +223,24 @@ std::optional<RunResult> runStarved(const Context& context, const Starved& cell)
   settings.maxIterations = cell.cap;
   settings.warmStart = cell.warm;
   auto stepper = particles::makeIntegrator("rk4");
-  RunResult r = simulate(chain, *stepper, 0.01, context.plan.duration, finiteOnly);
+  RunResult run = simulate(chain, *stepper, 0.01, context.plan.duration, finiteOnly);
   context.progress.tick();
-  if (r.cutShort) return std::nullopt;
-  return r;
+  if (run.cutShort) return std::nullopt;
+  return run;
 }
 
 // Every run in words: "cold: cap 1 …; warm: …".
 std::string starvedDetail(const std::vector<Starved>& cells, const std::vector<RunResult>& results) {
   std::string detail;
   for (std::size_t k = 0; k < cells.size(); ++k) {
-    if (k % kStarvedCaps.size() == 0) detail += std::string(detail.empty() ? "" : "; ") + (cells[k].warm ? "warm:" : "cold:");
-    const RunResult& r = results[k];
+    if (k % kStarvedCaps.size() == 0)
+      detail += std::string(detail.empty() ? "" : "; ") + (cells[k].warm ? "warm:" : "cold:");
+    const RunResult& run = results[k];
     detail += std::string(" ") + (cells[k].cap ? "cap " + std::to_string(cells[k].cap) : std::string("uncapped")) +
-              " " + (r.failed ? r.reason + " at t = " + general(r.time, 3)
-                              : "stretch " + general(r.maxRelativeStretch, 2) + ", energy rise " +
-                                    general(r.maxEnergyRise, 2) + " E_s");
+              " " +
+              (run.failed ? run.reason + " at t = " + general(run.time, 3)
+                          : "stretch " + general(run.maxRelativeStretch, 2) + ", energy rise " +
+                                general(run.maxEnergyRise, 2) + " E_s");
   }
   return detail;
 }
@@ -253,10 +255,10 @@ Holds holdsAt(double tau, const std::vector<Starved>& cells, const std::vector<R
   for (int countEnergy = 0; countEnergy < 2; ++countEnergy)
     for (std::size_t k = 0; k < cells.size(); ++k) {
       if (cells[k].cap <= 0) continue;
-      const RunResult& r = results[k];
-      const bool exploded = r.failed || (countEnergy && r.maxEnergyRise > rise);
+      const RunResult& run = results[k];
+      const bool exploded = run.failed || (countEnergy && run.maxEnergyRise > rise);
       bool& holdsHere = holds.at[countEnergy][cells[k].warm];
-      holdsHere = holdsHere && !exploded && r.maxRelativeStretch <= tau;
+      holdsHere = holdsHere && !exploded && run.maxRelativeStretch <= tau;
     }
   return holds;
 }
@@ -299,11 +301,11 @@ void claimStarvedSolver(Context& context) {
   Csv csv(context.options, "claims_starved_cg.csv",
           {"warm_start", "max_iterations", "failure", "time", "max_relative_stretch", "max_energy_rise"});
   std::vector<RunResult> results(cells.size());
-  for (const auto& [k, r] : measured) {
-    csv << static_cast<long>(cells[k].warm) << static_cast<long>(cells[k].cap) << failureName(r.failure) << r.time
-        << r.maxRelativeStretch << r.maxEnergyRise;
+  for (const auto& [k, run] : measured) {
+    csv << static_cast<long>(cells[k].warm) << static_cast<long>(cells[k].cap) << failureName(run.failure) << run.time
+        << run.maxRelativeStretch << run.maxEnergyRise;
     csv.endRow();
-    results[k] = r;
+    results[k] = run;
   }
   if (interrupted()) return;
   const std::string detail = starvedDetail(cells, results);
@@ -330,15 +332,15 @@ std::optional<std::pair<double, double>> measureShear(const Context& context, co
   auto stepper = particles::makeIntegrator("rk4");
   double sum = 0.0, worst = 0.0;
   int samples = 0;
-  const RunResult r =
+  const RunResult run =
       simulate(cloth, *stepper, cloth.dt, context.plan.duration, context.options.criterion,
                [&](const particles::ParticleSystem& s) {
-                 const auto [m, w] = cellShear(s, side, side);
-                 sum += m, worst = std::max(worst, w), ++samples;
+                 const auto [meanShear, worstShear] = cellShear(s, side, side);
+                 sum += meanShear, worst = std::max(worst, worstShear), ++samples;
                  return true;
                });
   context.progress.tick();
-  if (r.cutShort) return std::nullopt;
+  if (run.cutShort) return std::nullopt;
   return std::pair{samples ? sum / samples : 0.0, worst};
 }
 

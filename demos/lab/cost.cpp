@@ -145,10 +145,11 @@ void writePickRows(Csv& csv, const CostScene& scene, const Surveyed& survey, dou
   const double budget = relative * survey.size;
   for (std::size_t k = 0; k < picks.size(); ++k) {
     if (!picks[k].found) continue;
-    const Candidate& c = picks[k].candidate;
+    const Candidate& candidate = picks[k].candidate;
     csv << scene.label << static_cast<long>(survey.particles) << scene.horizon << survey.size << relative << budget
-        << c.integrator << c.dt << c.tolerance << c.maxError << survey.integrators[k].safeDt
-        << picks[k].cpuPerSimulatedSecond << picks[k].cpuMin << picks[k].cpuMax << survey.referenceAgreement;
+        << candidate.integrator << candidate.dt << candidate.tolerance << candidate.maxError
+        << survey.integrators[k].safeDt << picks[k].cpuPerSimulatedSecond << picks[k].cpuMin << picks[k].cpuMax
+        << survey.referenceAgreement;
     csv.endRow();
   }
 }
@@ -162,11 +163,11 @@ std::vector<std::string> cheapestText(const CostScene& scene, const Surveyed& su
   const int best = cheapest(picks);
   if (best < 0) return {"none within budget (grid down to dt = " + general(scene.horizon / scene.maxSteps) + ")", "–",
                         "–", "–"};
-  const auto& p = picks[best];
+  const auto& pick = picks[best];
   const std::string step =
-      general(p.candidate.dt) + (p.candidate.tolerance > 0 ? ", tol " + general(p.candidate.tolerance) : "");
-  return {p.candidate.integrator, step, general(p.candidate.maxError),
-          general(p.cpuPerSimulatedSecond) + " (" + general(p.cpuMin, 2) + "–" + general(p.cpuMax, 2) + ")"};
+      general(pick.candidate.dt) + (pick.candidate.tolerance > 0 ? ", tol " + general(pick.candidate.tolerance) : "");
+  return {pick.candidate.integrator, step, general(pick.candidate.maxError),
+          general(pick.cpuPerSimulatedSecond) + " (" + general(pick.cpuMin, 2) + "–" + general(pick.cpuMax, 2) + ")"};
 }
 
 void writeResults(const LabOptions& options, const CostPlan& plan, const Results<Surveyed>& surveys) {
@@ -184,7 +185,8 @@ void writeResults(const LabOptions& options, const CostPlan& plan, const Results
     for (std::size_t b = 0; b < kBudgets.size(); ++b) {
       const double relative = kBudgets[b], budget = relative * survey.size;
       std::vector<std::string> row{label, general(relative) + " (" + general(budget, 2) + ")"};
-      if (measurable(budget, survey.referenceAgreement)) writePickRows(picksCsv, scene, survey, relative, survey.picks[b]);
+      if (measurable(budget, survey.referenceAgreement))
+        writePickRows(picksCsv, scene, survey, relative, survey.picks[b]);
       const std::vector<std::string> cheapestColumns = cheapestText(scene, survey, budget, survey.picks[b]);
       row.insert(row.end(), cheapestColumns.begin(), cheapestColumns.end());
       table.push_back(row);

@@ -108,7 +108,8 @@ struct Context {
 };
 
 // A table's body: one row per integrator, its name and then its cells.
-Rows integratorRows(const std::vector<std::string>& integrators, std::map<std::string, std::vector<std::string>>& cells) {
+Rows integratorRows(const std::vector<std::string>& integrators,
+                    std::map<std::string, std::vector<std::string>>& cells) {
   Rows table;
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
@@ -155,11 +156,11 @@ void writeStiffness(const Context& context, const std::vector<SweptCell>& cells,
   Csv csv(context.options, "extremes_stiffness.csv",
           {"integrator", "stiffness", "safe_dt", "first_failure_dt", "first_failure", "grid_lo", "grid_hi"});
   std::map<std::string, std::vector<std::string>> rows;
-  for (const auto& [k, b] : results) {
-    csv << cells[k].integrator << cells[k].value << b.safeDt << b.firstFailureDt << failureName(b.firstFailure)
-        << b.lowest << b.highest;
+  for (const auto& [k, boundary] : results) {
+    csv << cells[k].integrator << cells[k].value << boundary.safeDt << boundary.firstFailureDt
+        << failureName(boundary.firstFailure) << boundary.lowest << boundary.highest;
     csv.endRow();
-    rows[cells[k].integrator].push_back(safeStepText(b));
+    rows[cells[k].integrator].push_back(safeStepText(boundary));
   }
   if (interrupted()) return;
   std::vector<std::string> header{"integrator"};
@@ -176,14 +177,14 @@ void runStiffness(Context& context) {
   const auto results = sweepResults<Boundary>(
       context.options, cells.size(),
       [&](std::size_t k) {
-        auto b = scanStiffness(context, cells[k]);
+        auto boundary = scanStiffness(context, cells[k]);
         context.progress.tick();
-        return b;
+        return boundary;
       },
       [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
-        const SweptCell& c = cells[k];
-        return estimatedRunSeconds(stiffCloth(context.plan.stiffness, c.value), c.integrator, windowBottom(c.value),
-                                   context.plan.stiffness.duration);
+        const SweptCell& cell = cells[k];
+        return estimatedRunSeconds(stiffCloth(context.plan.stiffness, cell.value), cell.integrator,
+                                   windowBottom(cell.value), context.plan.stiffness.duration);
       });
   writeStiffness(context, cells, results);
 }
@@ -207,14 +208,14 @@ using MassRatioResult = std::pair<Boundary, double>;  // the boundary, CG iterat
 std::optional<MassRatioResult> measureMassRatio(const Context& context, const SweptCell& cell) {
   const MassRatioSection& section = context.plan.massRatio;
   const ChainSpec spec = heavyTipChain(section, cell.value);
-  auto b = scanSafeStep([&] { return buildChain(spec); }, cell.integrator, section.duration, massRatioWindow(context),
-                        context.options.criterion);
+  auto boundary = scanSafeStep([&] { return buildChain(spec); }, cell.integrator, section.duration,
+                               massRatioWindow(context), context.options.criterion);
   context.progress.tick();
-  if (!b) return std::nullopt;
+  if (!boundary) return std::nullopt;
   scenes::Scene chain = buildChain(spec);
   chain.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
   const StepCost cost = measureStepCost(chain, cell.integrator, chain.dt, {1, 5});
-  return MassRatioResult{*b, cost.cgIterations};
+  return MassRatioResult{*boundary, cost.cgIterations};
 }
 
 void writeMassRatio(const Context& context, const std::vector<SweptCell>& cells,
@@ -223,16 +224,16 @@ void writeMassRatio(const Context& context, const std::vector<SweptCell>& cells,
   Csv csv(context.options, "extremes_mass_ratio.csv",
           {"integrator", "mass_ratio", "safe_dt", "first_failure_dt", "first_failure", "cg_iterations_per_step"});
   std::map<std::string, std::vector<std::string>> rows;
-  for (const auto& [k, r] : results) {
-    const Boundary& b = r.first;
-    csv << cells[k].integrator << cells[k].value << b.safeDt << b.firstFailureDt << failureName(b.firstFailure)
-        << r.second;
+  for (const auto& [k, result] : results) {
+    const Boundary& boundary = result.first;
+    csv << cells[k].integrator << cells[k].value << boundary.safeDt << boundary.firstFailureDt
+        << failureName(boundary.firstFailure) << result.second;
     csv.endRow();
-    rows[cells[k].integrator].push_back(safeStepText(b) + " (" + general(r.second, 3) + " it)");
+    rows[cells[k].integrator].push_back(safeStepText(boundary) + " (" + general(result.second, 3) + " it)");
   }
   if (interrupted()) return;
   std::vector<std::string> header{"integrator"};
-  for (double r : section.ratios) header.push_back("tip/link mass " + general(r));
+  for (double ratio : section.ratios) header.push_back("tip/link mass " + general(ratio));
   writeTable(context.options, "extremes_mass_ratio",
              "Safe dt of the " + std::to_string(section.length) + "-chain, T = " + general(section.duration) + " s, " +
                  context.starts + " (and Jacobi-CG iterations per step at the default dt) against tip mass ratio",
@@ -261,10 +262,10 @@ std::optional<FeedbackResult> runFeedback(const Context& context, double stiffne
   chain.system->solver().settings.stiffness = stiffness;
   chain.system->solver().settings.damping = damping;
   auto stepper = particles::makeIntegrator("rk4");
-  const RunResult r = simulate(chain, *stepper, section.dt, section.duration, context.options.criterion);
+  const RunResult run = simulate(chain, *stepper, section.dt, section.duration, context.options.criterion);
   context.progress.tick();
-  if (r.cutShort) return std::nullopt;
-  return std::pair{r, chain.system->maxRelativeConstraintError()};
+  if (run.cutShort) return std::nullopt;
+  return std::pair{run, chain.system->maxRelativeConstraintError()};
 }
 
 void runFeedbackGains(Context& context) {
@@ -272,15 +273,17 @@ void runFeedbackGains(Context& context) {
   const std::size_t dampings = section.damping.size();
   const auto results = resultsInTurn<FeedbackResult>(
       context.options, section.stiffness.size() * dampings,
-      [&](std::size_t k) { return runFeedback(context, section.stiffness[k / dampings], section.damping[k % dampings]); },
+      [&](std::size_t k) {
+        return runFeedback(context, section.stiffness[k / dampings], section.damping[k % dampings]);
+      },
       true);
   Csv csv(context.options, "extremes_feedback.csv",
           {"ks", "kd", "critical_kd", "survived", "failure", "max_relative_stretch", "final_relative_stretch"});
   for (const auto& [k, result] : results) {
-    const double s = section.stiffness[k / dampings], d = section.damping[k % dampings];
-    const RunResult& r = result.first;
-    csv << s << d << 2.0 * std::sqrt(s) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.maxRelativeStretch
-        << result.second;
+    const double stiffness = section.stiffness[k / dampings], damping = section.damping[k % dampings];
+    const RunResult& run = result.first;
+    csv << stiffness << damping << 2.0 * std::sqrt(stiffness) << (run.failed ? 0L : 1L) << failureName(run.failure)
+        << run.maxRelativeStretch << result.second;
     csv.endRow();
   }
   if (interrupted()) return;
@@ -313,10 +316,10 @@ std::optional<RunResult> runBudget(const Context& context, const BudgetCell& cel
   settings.warmStart = cell.warm;
   settings.preconditioner = particles::Preconditioner::None;
   auto stepper = particles::makeIntegrator("rk4");
-  RunResult r = simulate(chain, *stepper, section.dt, section.duration, context.options.criterion);
+  RunResult run = simulate(chain, *stepper, section.dt, section.duration, context.options.criterion);
   context.progress.tick();
-  if (r.cutShort) return std::nullopt;
-  return r;
+  if (run.cutShort) return std::nullopt;
+  return run;
 }
 
 void runCgBudget(Context& context) {
@@ -327,11 +330,11 @@ void runCgBudget(Context& context) {
   Csv csv(context.options, "extremes_cg_budget.csv",
           {"warm_start", "tolerance", "max_iterations", "survived", "failure", "max_relative_stretch",
            "cg_iterations_per_step"});
-  for (const auto& [k, r] : results) {
-    const BudgetCell& c = cells[k];
-    csv << static_cast<long>(c.warm) << c.tolerance << static_cast<long>(c.cap) << (r.failed ? 0L : 1L)
-        << failureName(r.failure) << r.maxRelativeStretch
-        << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
+  for (const auto& [k, run] : results) {
+    const BudgetCell& cell = cells[k];
+    csv << static_cast<long>(cell.warm) << cell.tolerance << static_cast<long>(cell.cap) << (run.failed ? 0L : 1L)
+        << failureName(run.failure) << run.maxRelativeStretch
+        << static_cast<double>(run.work.cgIterations) / std::max(1L, run.steps);
     csv.endRow();
   }
   if (interrupted()) return;
@@ -367,9 +370,9 @@ std::optional<RodFormCost> measureRodForm(const Context& context, const RodFormC
   const StepCost cost = measureStepCost(chain, cell.integrator, chain.dt, section.timing);
   scenes::Scene fresh = buildChain(big);
   auto stepper = particles::makeIntegrator(cell.integrator);
-  const RunResult r = simulate(fresh, *stepper, fresh.dt, section.duration, context.options.criterion);
-  if (r.cutShort) return std::nullopt;
-  return std::pair{cost, r.maxRelativeStretch};
+  const RunResult run = simulate(fresh, *stepper, fresh.dt, section.duration, context.options.criterion);
+  if (run.cutShort) return std::nullopt;
+  return std::pair{cost, run.maxRelativeStretch};
 }
 
 Results<Boundary> scanRodForms(Context& context, const std::vector<RodFormCell>& cells) {
@@ -379,10 +382,10 @@ Results<Boundary> scanRodForms(Context& context, const std::vector<RodFormCell>&
       context.options, cells.size(),
       [&](std::size_t k) {
         const ChainSpec spec{section.scanLength, cells[k].form};
-        auto b = scanSafeStep([&] { return buildChain(spec); }, cells[k].integrator, section.duration, window,
+        auto boundary = scanSafeStep([&] { return buildChain(spec); }, cells[k].integrator, section.duration, window,
                               context.options.criterion);
         context.progress.tick();
-        return b;
+        return boundary;
       },
       [&](std::size_t k) {
         return estimatedRunSeconds(buildChain(ChainSpec{section.scanLength, cells[k].form}), cells[k].integrator,
@@ -409,9 +412,9 @@ void writeRodForms(const Context& context, const std::vector<RodFormCell>& cells
   }
   if (interrupted()) return;
   writeTable(context.options, "extremes_rod_form",
-             "Squared against root rods: safe dt (" + std::to_string(section.scanLength) + "-chain, T = " +
-                 general(section.duration) + " s, " + context.starts + "), µs per step and max stretch at the scene's dt (" +
-                 std::to_string(section.runLength) + "-chain)",
+             "Squared against root rods: safe dt (" + std::to_string(section.scanLength) +
+                 "-chain, T = " + general(section.duration) + " s, " + context.starts +
+                 "), µs per step and max stretch at the scene's dt (" + std::to_string(section.runLength) + "-chain)",
              {"integrator", "squared: safe dt", "squared: µs/step", "squared: max stretch", "root: safe dt",
               "root: µs/step", "root: max stretch"},
              integratorRows(context.scanned, rows));
@@ -437,10 +440,10 @@ std::optional<RunResult> runTaut(const Context& context, const std::string& inte
     settings.maxIterations = cap;
   }
   auto stepper = particles::makeIntegrator(integrator);
-  RunResult r = simulate(taut, *stepper, taut.dt, context.plan.taut.duration, context.options.criterion);
+  RunResult run = simulate(taut, *stepper, taut.dt, context.plan.taut.duration, context.options.criterion);
   context.progress.tick();
-  if (r.cutShort) return std::nullopt;
-  return r;
+  if (run.cutShort) return std::nullopt;
+  return run;
 }
 
 std::string capText(int cap) {
@@ -456,24 +459,24 @@ void writeTaut(const Context& context, const Results<RunResult>& results) {
   Rows table;
   for (std::size_t i = 0; i < context.integrators.size(); ++i) {
     std::vector<std::string> row{context.integrators[i]};
-    for (std::size_t c = 0; c < section.caps.size(); ++c) {
-      const auto found = results.find(i * section.caps.size() + c);
+    for (std::size_t column = 0; column < section.caps.size(); ++column) {
+      const auto found = results.find(i * section.caps.size() + column);
       if (found == results.end()) continue;  // another shard's cell, or cut short
-      const RunResult& r = found->second;
-      csv << context.integrators[i] << static_cast<long>(section.caps[c]) << (r.failed ? 0L : 1L)
-          << failureName(r.failure) << r.time << r.maxRelativeStretch
-          << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
+      const RunResult& run = found->second;
+      csv << context.integrators[i] << static_cast<long>(section.caps[column]) << (run.failed ? 0L : 1L)
+          << failureName(run.failure) << run.time << run.maxRelativeStretch
+          << static_cast<double>(run.work.cgIterations) / std::max(1L, run.steps);
       csv.endRow();
-      row.push_back(r.failed ? r.reason + " at t = " + general(r.time, 3)
-                             : "held (stretch " + general(r.maxRelativeStretch, 2) + ")");
+      row.push_back(run.failed ? run.reason + " at t = " + general(run.time, 3)
+                               : "held (stretch " + general(run.maxRelativeStretch, 2) + ")");
     }
     table.push_back(row);
   }
   if (interrupted()) return;
   std::vector<std::string> header{"integrator"};
   for (int cap : section.caps) header.push_back(capText(cap));
-  writeTable(context.options, "extremes_taut_chain", "Taut chain between two wires, T = " + general(section.duration) + " s",
-             header, table);
+  writeTable(context.options, "extremes_taut_chain",
+             "Taut chain between two wires, T = " + general(section.duration) + " s", header, table);
 }
 
 void runTautChain(Context& context) {
@@ -500,7 +503,8 @@ int runExtremes(const LabOptions& options) {
     if (!particles::requireIntegrator(name).usesTolerance) scanned.push_back(name);
   std::cout << describe(options.criterion) << "\n";
   const ScanSettings scan;
-  Progress progress("extremes", static_cast<long>(integrators.size()) * plan.progressPerIntegrator + plan.progressFixed);
+  Progress progress("extremes",
+                    static_cast<long>(integrators.size()) * plan.progressPerIntegrator + plan.progressFixed);
   Context context{options, plan, integrators, scanned, scan, scenes::plural(scan.members, "start"), progress};
   for (const auto section : kSections) {
     section(context);

@@ -72,16 +72,16 @@ std::optional<EnergyRun> runEnergy(const LongtimePlan& plan, const LongRun& run,
   const double scale = releasableEnergy(*scene.system), e0 = scene.system->totalEnergy();
   auto stepper = particles::makeIntegrator(integrator);
   const long stride = std::max(1L, std::lround(plan.every / run.dt));
-  long k = 0;
+  long step = 0;
   EnergyRun out;
-  const RunResult r =
+  const RunResult result =
       simulate(scene, *stepper, run.dt, plan.horizon, driftCriterion(), [&](const particles::ParticleSystem& s) {
         out.last = (s.totalEnergy() - e0) / scale;
-        if (++k % stride == 0) out.samples.push_back({s.time(), out.last});
+        if (++step % stride == 0) out.samples.push_back({s.time(), out.last});
         return true;
       });
-  if (r.cutShort) return std::nullopt;
-  out.failed = r.failed, out.time = r.time;
+  if (result.cutShort) return std::nullopt;
+  out.failed = result.failed, out.time = result.time;
   return out;
 }
 
@@ -136,17 +136,17 @@ double chainLoss(double dt, double duration) {
 // periods P gives the fraction lost per period, 1 − (E_s(T)/E_s(0))^(P/T).
 std::optional<Damping> measureDamping(const LongtimePlan& plan, double wanted, double period, double eBottom) {
   const double T = plan.pendulumPeriods * period;
-  Damping d;
-  d.dt = T / std::round(T / wanted);
+  Damping damping;
+  damping.dt = T / std::round(T / wanted);
   scenes::Scene scene = buildLabScene("pendulum");
   const double swing0 = scene.system->totalEnergy() - eBottom;
   auto stepper = particles::makeIntegrator("implicit-euler");
-  simulate(scene, *stepper, d.dt, T, driftCriterion());
+  simulate(scene, *stepper, damping.dt, T, driftCriterion());
   if (interrupted()) return std::nullopt;
-  d.left = (scene.system->totalEnergy() - eBottom) / swing0;
-  d.perPeriod = 1.0 - std::pow(std::max(d.left, 0.0), period / T);
-  d.chain = chainLoss(d.dt, plan.chainDuration);
-  return d;
+  damping.left = (scene.system->totalEnergy() - eBottom) / swing0;
+  damping.perPeriod = 1.0 - std::pow(std::max(damping.left, 0.0), period / T);
+  damping.chain = chainLoss(damping.dt, plan.chainDuration);
+  return damping;
 }
 
 void writeDamping(const LabOptions& options, const LongtimePlan& plan, double period,
@@ -155,11 +155,11 @@ void writeDamping(const LabOptions& options, const LongtimePlan& plan, double pe
   Csv loss(options, "longtime_implicit_loss.csv",
            {"dt", "periods", "swing_energy_left", "loss_per_period", "chain6_loss"});
   std::vector<std::vector<std::string>> lossRows;
-  for (const auto& [k, d] : results) {
-    loss << d.dt << T / period << d.left << d.perPeriod << d.chain;
+  for (const auto& [k, damping] : results) {
+    loss << damping.dt << T / period << damping.left << damping.perPeriod << damping.chain;
     loss.endRow();
-    lossRows.push_back({general(d.dt), general(100 * d.left, 3) + "%", general(100 * d.perPeriod, 2) + "%",
-                        general(100 * d.chain, 2) + "%"});
+    lossRows.push_back({general(damping.dt), general(100 * damping.left, 3) + "%",
+                        general(100 * damping.perPeriod, 2) + "%", general(100 * damping.chain, 2) + "%"});
   }
   writeTable(options, "longtime_implicit_loss",
              "Implicit Euler on the pendulum (period P = " + fixed(period, 2) + " s) over " + general(T / period) +
@@ -194,9 +194,9 @@ int runLongtime(const LabOptions& options) {
   const auto damping = resultsInTurn<Damping>(
       options, plan.implicitSteps.size(),
       [&](std::size_t k) {
-        auto d = measureDamping(plan, plan.implicitSteps[k], period, eBottom);
-        if (d) progress.tick();
-        return d;
+        auto damping = measureDamping(plan, plan.implicitSteps[k], period, eBottom);
+        if (damping) progress.tick();
+        return damping;
       },
       true);
   writeDamping(options, plan, period, damping);

@@ -216,10 +216,10 @@ std::vector<RunCell> runCells(const SmallStepsPlan& plan, const Problem& problem
   std::vector<RunCell> cells;
   for (int n : plan.budgets)
     for (const auto& [split, si] : splits(n)) {
-      RunCell c{"xpbd", split, n, {}, kFrame};
-      c.settings.substeps = si.first;
-      c.settings.iterations = si.second;
-      cells.push_back(c);
+      RunCell cell{"xpbd", split, n, {}, kFrame};
+      cell.settings.substeps = si.first;
+      cell.settings.iterations = si.second;
+      cells.push_back(cell);
     }
   for (double dt : problem.implicitSteps) cells.push_back({"implicit-euler", "-", 0, {}, dt});
   for (double dt : problem.rk4Steps) cells.push_back({"rk4", "-", 0, {}, dt});
@@ -256,21 +256,22 @@ ProblemRun measureProblem(const LabOptions& options, const Problem& problem, con
   ProblemReference reference(problem, options.criterion);
   ProblemRun run;
   run.reference = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
-    const Outcome o = reference.outcome();
+    const Outcome outcome = reference.outcome();
     progress.tick();
     if (interrupted()) return std::nullopt;
-    return o;
+    return outcome;
   });
   if (interrupted()) return run;
   run.cells = runCells(plan, problem);
   run.runs = resultsInTurn<Outcome>(
       options, run.cells.size(),
       [&](std::size_t k) -> std::optional<Outcome> {
-        const RunCell& c = run.cells[k];
-        const Outcome o = runOne(problem, c.family, c.settings, c.dt, reference.positions(), options.criterion);
+        const RunCell& cell = run.cells[k];
+        const Outcome outcome =
+            runOne(problem, cell.family, cell.settings, cell.dt, reference.positions(), options.criterion);
         progress.tick();
         if (interrupted()) return std::nullopt;
-        return o;
+        return outcome;
       },
       true);
   return run;
@@ -278,15 +279,16 @@ ProblemRun measureProblem(const LabOptions& options, const Problem& problem, con
 
 void writeRunRows(Csv& csv, const Problem& problem, const ProblemRun& run) {
   auto write = [&](const std::string& family, const std::string& split, int budget, int substeps, int iterations,
-                   double dt, const Outcome& o) {
-    csv << problem.name << family << split << budget << substeps << iterations << dt << o.cpuPerSecond
-        << o.constraintError << o.energyLoss << o.positionError << std::string(failureName(o.failure));
+                   double dt, const Outcome& outcome) {
+    csv << problem.name << family << split << budget << substeps << iterations << dt << outcome.cpuPerSecond
+        << outcome.constraintError << outcome.energyLoss << outcome.positionError
+        << std::string(failureName(outcome.failure));
     csv.endRow();
   };
   if (run.reference) write("reference", "-", 0, 1, 1, problem.referenceDt, *run.reference);
-  for (const auto& [k, o] : run.runs) {
-    const RunCell& c = run.cells[k];
-    write(c.family, c.split, c.budget, c.substeps(), c.iterations(), c.dt, o);
+  for (const auto& [k, outcome] : run.runs) {
+    const RunCell& cell = run.cells[k];
+    write(cell.family, cell.split, cell.budget, cell.substeps(), cell.iterations(), cell.dt, outcome);
   }
 }
 
@@ -299,11 +301,12 @@ struct XpbdRuns {
 XpbdRuns xpbdRuns(const SmallStepsPlan& plan, const ProblemRun& run) {
   const particles::IntegratorSettings defaults;
   XpbdRuns xpbd;
-  for (const auto& [k, o] : run.runs) {
-    const RunCell& c = run.cells[k];
-    if (c.family != "xpbd") continue;
-    if (c.budget == plan.budgets.back()) xpbd.atLargest[c.split] = o;
-    if (c.settings.substeps == defaults.substeps && c.settings.iterations == defaults.iterations) xpbd.atDefault = o;
+  for (const auto& [k, outcome] : run.runs) {
+    const RunCell& cell = run.cells[k];
+    if (cell.family != "xpbd") continue;
+    if (cell.budget == plan.budgets.back()) xpbd.atLargest[cell.split] = outcome;
+    if (cell.settings.substeps == defaults.substeps && cell.settings.iterations == defaults.iterations)
+      xpbd.atDefault = outcome;
   }
   return xpbd;
 }
@@ -311,8 +314,8 @@ XpbdRuns xpbdRuns(const SmallStepsPlan& plan, const ProblemRun& run) {
 // Fixed budget: do many substeps beat many iterations (constraint error and
 // damping)? Damping compares |energy change|: an unconverged solve can also gain energy.
 bool substepsWin(const Outcome& many, const Outcome& iterated) {
-  return many.constraintError <= iterated.constraintError && std::abs(many.energyLoss) <= std::abs(iterated.energyLoss) &&
-         many.positionError <= iterated.positionError;
+  return many.constraintError <= iterated.constraintError &&
+         std::abs(many.energyLoss) <= std::abs(iterated.energyLoss) && many.positionError <= iterated.positionError;
 }
 
 std::vector<std::string> budgetRow(const SmallStepsPlan& plan, const Problem& problem, XpbdRuns& xpbd) {
@@ -333,14 +336,14 @@ struct Chosen {
 Chosen chooseAtBudget(const ProblemRun& run, const std::string& family, double budget) {
   Chosen chosen;
   bool any = false;
-  for (const auto& [k, o] : run.runs) {
-    const RunCell& c = run.cells[k];
-    if (c.family != family) continue;
-    const bool affordable = o.cpuPerSecond <= budget;
+  for (const auto& [k, outcome] : run.runs) {
+    const RunCell& cell = run.cells[k];
+    if (cell.family != family) continue;
+    const bool affordable = outcome.cpuPerSecond <= budget;
     const bool chosenOver = chosen.outcome.cpuPerSecond > budget;
-    if (!any || (affordable && (chosenOver || c.dt < chosen.dt)) ||
-        (!affordable && chosenOver && o.cpuPerSecond < chosen.outcome.cpuPerSecond)) {
-      chosen = {o, c.dt};
+    if (!any || (affordable && (chosenOver || cell.dt < chosen.dt)) ||
+        (!affordable && chosenOver && outcome.cpuPerSecond < chosen.outcome.cpuPerSecond)) {
+      chosen = {outcome, cell.dt};
       any = true;
     }
   }
@@ -348,9 +351,9 @@ Chosen chooseAtBudget(const ProblemRun& run, const std::string& family, double b
 }
 
 std::string chosenText(const std::string& family, const Chosen& chosen) {
-  const Outcome& o = chosen.outcome;
+  const Outcome& outcome = chosen.outcome;
   return family + " at dt " + general(chosen.dt, 3) +
-         (o.failed() ? std::string(" (failed: ") + failureName(o.failure) + ")" : "");
+         (outcome.failed() ? std::string(" (failed: ") + failureName(outcome.failure) + ")" : "");
 }
 
 // The tables' rows, and whether each claim holds on every scene.
@@ -497,7 +500,8 @@ int runSmallSteps(const LabOptions& options) {
   const SmallStepsPlan plan = options.quick ? quickPlan() : fullPlan();
   long total = 0;
   for (const Problem& p : plan.problems)
-    total += 1 + static_cast<long>(p.rk4Steps.size() + p.implicitSteps.size()) + 3 * static_cast<long>(plan.budgets.size());
+    total +=
+        1 + static_cast<long>(p.rk4Steps.size() + p.implicitSteps.size()) + 3 * static_cast<long>(plan.budgets.size());
   Progress progress("small-steps", total);
 
   std::vector<ProblemRun> runs;

@@ -113,7 +113,7 @@ scenes::Scene buildCell(int length, double stiffness) {
 
 std::string listText(const std::vector<double>& values) {
   std::string text;
-  for (double v : values) text += (text.empty() ? "" : ";") + general(v, 3);
+  for (double value : values) text += (text.empty() ? "" : ";") + general(value, 3);
   return text;
 }
 
@@ -145,9 +145,13 @@ double fastestLinkRate(int length, double duration, const FailureCriterion& crit
 // interval would measure nothing, so it is left out here.
 std::vector<std::string> scannedIntegrators(const LabOptions& options) {
   std::vector<std::string> integrators;
-  for (const auto& name : selectedIntegrators(options))
-    if (!particles::requireIntegrator(name).usesTolerance) integrators.push_back(name);
-    else std::cout << name << ": not scanned (its internal step is chosen by --tolerance, dt is only its call interval)\n";
+  for (const auto& name : selectedIntegrators(options)) {
+    if (!particles::requireIntegrator(name).usesTolerance) {
+      integrators.push_back(name);
+      continue;
+    }
+    std::cout << name << ": not scanned (its internal step is chosen by --tolerance, dt is only its call interval)\n";
+  }
   return integrators;
 }
 
@@ -155,8 +159,9 @@ void printGrid(const StabilityPlan& plan) {
   const ScanSettings& scan = plan.scan;
   std::cout << "grid: " << scan.grid.size() << " dt from " << general(scan.grid.front(), 3) << " to "
             << general(scan.grid.back(), 3) << " s, neighbours " << general(scan.grid[1] / scan.grid[0] - 1, 2)
-            << " apart; scanned up to " << scan.beyond << "x the first failure; " << scenes::plural(scan.members, "start")
-            << " (perturbed by " << plan.perturbation << " of the scene size); T = " << general(plan.duration) << " s\n";
+            << " apart; scanned up to " << scan.beyond << "x the first failure; "
+            << scenes::plural(scan.members, "start") << " (perturbed by " << plan.perturbation
+            << " of the scene size); T = " << general(plan.duration) << " s\n";
 }
 
 // The longest T a chain length is scanned for.
@@ -187,12 +192,13 @@ std::vector<LadderCell> ladderCells(const StabilityPlan& plan, const std::vector
 // The whip's frequency per chain length, over the longest T each is scanned for.
 std::map<int, double> measureWhipRates(const LabOptions& options, const StabilityPlan& plan) {
   std::map<int, double> whipRate;
-  const Results<double> rates = sweepResults<double>(options, plan.lengths.size(), [&](std::size_t k) -> std::optional<double> {
-    const int length = plan.lengths[k];
-    const double rate = fastestLinkRate(length, longestDuration(plan, length), options.criterion);
-    if (interrupted()) return std::nullopt;
-    return rate;
-  });
+  const Results<double> rates =
+      sweepResults<double>(options, plan.lengths.size(), [&](std::size_t k) -> std::optional<double> {
+        const int length = plan.lengths[k];
+        const double rate = fastestLinkRate(length, longestDuration(plan, length), options.criterion);
+        if (interrupted()) return std::nullopt;
+        return rate;
+      });
   for (const auto& [k, rate] : rates) whipRate[plan.lengths[k]] = rate;
   return whipRate;
 }
@@ -220,21 +226,22 @@ Results<std::vector<ScanRun>> runScans(const LabOptions& options, const Stabilit
         return runs;
       },
       [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
-        const Cell& c = cells[k];
-        return estimatedRunSeconds(buildCell(c.length, c.stiffness), c.integrator, plan.scan.grid.front(),
-                                   c.durations.back());
+        const Cell& cell = cells[k];
+        return estimatedRunSeconds(buildCell(cell.length, cell.stiffness), cell.integrator, plan.scan.grid.front(),
+                                   cell.durations.back());
       });
 }
 
 // A member that fails ends the cell: it and every longer chain fail at this dt.
-std::optional<Probe> runLadderCell(const LadderCell& cell, const StabilityPlan& plan, const FailureCriterion& criterion) {
+std::optional<Probe> runLadderCell(const LadderCell& cell, const StabilityPlan& plan,
+                                   const FailureCriterion& criterion) {
   Probe worst;
   for (int member = 0; member < plan.scan.members; ++member) {
-    const auto p = runMember([&] { return buildChain({cell.length}); }, cell.integrator, cell.dt, member,
+    const auto probe = runMember([&] { return buildChain({cell.length}); }, cell.integrator, cell.dt, member,
                              plan.duration, criterion);
-    if (!p) return std::nullopt;
-    if (!p->survives(plan.duration, cell.dt)) return p;
-    worst = *p;
+    if (!probe) return std::nullopt;
+    if (!probe->survives(plan.duration, cell.dt)) return probe;
+    worst = *probe;
   }
   return worst;
 }
@@ -251,14 +258,16 @@ struct Frequencies {
 };
 
 Frequencies frequenciesOf(const Cell& cell, const ChainConstants& constants, const std::map<int, double>& whipRate) {
-  Frequencies f;
-  f.feedback = std::sqrt(cell.stiffness);
-  f.chain = 2.0 * std::sqrt((cell.length - 1) * constants.gravity / constants.rod);
+  Frequencies frequencies;
+  frequencies.feedback = std::sqrt(cell.stiffness);
+  frequencies.chain = 2.0 * std::sqrt((cell.length - 1) * constants.gravity / constants.rod);
   const auto whip = whipRate.find(cell.length);
-  f.whip = whip != whipRate.end() ? whip->second : 0.0;
-  const double stiffest = std::max({f.feedback, f.chain, f.whip});
-  f.stiffest = stiffest == f.feedback ? "feedback" : stiffest == f.whip ? "whip" : "chain";
-  return f;
+  frequencies.whip = whip != whipRate.end() ? whip->second : 0.0;
+  const double stiffest = std::max({frequencies.feedback, frequencies.chain, frequencies.whip});
+  frequencies.stiffest = stiffest == frequencies.feedback ? "feedback"
+                         : stiffest == frequencies.whip   ? "whip"
+                                                          : "chain";
+  return frequencies;
 }
 
 // What a scan says about one of its T.
@@ -300,23 +309,25 @@ SafeSteps writeScanRows(const LabOptions& options, const StabilityPlan& plan, co
               "failure", "max_relative_stretch", "max_energy_rise"});
   SafeSteps safe;
   for (const auto& [k, runs] : scans) {
-    const Cell& c = cells[k];
-    const Frequencies f = frequenciesOf(c, constants, whipRate);
-    for (const Verdict& verdict : verdictsOf(c, runs, plan.scan.members)) {
-      const Boundary& b = verdict.boundary;
-      boundaryCsv << c.integrator << c.length << c.stiffness << verdict.duration << b.safeDt << b.firstFailureDt
-                  << failureName(b.firstFailure) << listText(b.survivalAbove) << b.lowest << b.highest
-                  << static_cast<long>(plan.scan.members) << f.feedback << f.chain << f.whip << f.stiffest;
+    const Cell& cell = cells[k];
+    const Frequencies frequencies = frequenciesOf(cell, constants, whipRate);
+    for (const Verdict& verdict : verdictsOf(cell, runs, plan.scan.members)) {
+      const Boundary& boundary = verdict.boundary;
+      boundaryCsv << cell.integrator << cell.length << cell.stiffness << verdict.duration << boundary.safeDt
+                  << boundary.firstFailureDt << failureName(boundary.firstFailure) << listText(boundary.survivalAbove)
+                  << boundary.lowest << boundary.highest << static_cast<long>(plan.scan.members) << frequencies.feedback
+                  << frequencies.chain << frequencies.whip << frequencies.stiffest;
       boundaryCsv.endRow();
       for (const GridSurvival& point : verdict.survival) {
-        mapCsv << c.integrator << c.length << c.stiffness << verdict.duration << point.dt
+        mapCsv << cell.integrator << cell.length << cell.stiffness << verdict.duration << point.dt
                << static_cast<long>(point.membersRun) << static_cast<long>(point.survivors)
                << static_cast<long>(point.survived) << failureName(point.survived ? Failure::None : point.failure)
                << point.maxRelativeStretch << point.maxEnergyRise;
         mapCsv.endRow();
       }
-      if (c.stiffness == constants.defaultStiffness) safe.byDuration[verdict.duration][c.integrator][c.length] = b;
-      else safe.stiff[c.integrator][c.length] = b;
+      if (cell.stiffness == constants.defaultStiffness)
+        safe.byDuration[verdict.duration][cell.integrator][cell.length] = boundary;
+      else safe.stiff[cell.integrator][cell.length] = boundary;
     }
   }
   return safe;
@@ -327,15 +338,16 @@ using LadderSurvival = std::map<std::string, std::map<double, std::map<int, bool
 
 LadderSurvival writeLadderRows(const LabOptions& options, const StabilityPlan& plan,
                                const std::vector<LadderCell>& cells, const Results<Probe>& probes) {
-  Csv ladderCsv(options, "table1_runs.csv", {"integrator", "dt", "chain_length", "survived", "failure", "failure_time"});
+  Csv ladderCsv(options, "table1_runs.csv",
+                {"integrator", "dt", "chain_length", "survived", "failure", "failure_time"});
   LadderSurvival survived;
-  for (const auto& [k, p] : probes) {
-    const LadderCell& c = cells[k];
-    const bool ok = p.survives(plan.duration, c.dt);
-    ladderCsv << c.integrator << c.dt << static_cast<long>(c.length) << static_cast<long>(ok)
-              << failureName(ok ? Failure::None : p.failure) << (ok ? plan.duration : p.time);
+  for (const auto& [k, probe] : probes) {
+    const LadderCell& cell = cells[k];
+    const bool ok = probe.survives(plan.duration, cell.dt);
+    ladderCsv << cell.integrator << cell.dt << static_cast<long>(cell.length) << static_cast<long>(ok)
+              << failureName(ok ? Failure::None : probe.failure) << (ok ? plan.duration : probe.time);
     ladderCsv.endRow();
-    survived[c.integrator][c.dt][c.length] = ok;
+    survived[cell.integrator][cell.dt][cell.length] = ok;
   }
   return survived;
 }
@@ -423,10 +435,12 @@ Rows boundaryRows(const StabilityPlan& plan, const std::vector<std::string>& int
   Rows rows;
   for (const auto& name : integrators)
     for (int length : plan.lengths) {
-      const Boundary& b = safe.at(plan.duration, name, length);
-      rows.push_back({name, std::to_string(length), safeStepText(b),
-                      b.aboveGrid() ? "–" : general(b.firstFailureDt, 3) + " (" + failureName(b.firstFailure) + ")",
-                      b.survivalAbove.empty() ? "–" : listText(b.survivalAbove)});
+      const Boundary& boundary = safe.at(plan.duration, name, length);
+      rows.push_back({name, std::to_string(length), safeStepText(boundary),
+                      boundary.aboveGrid()
+                          ? "–"
+                          : general(boundary.firstFailureDt, 3) + " (" + failureName(boundary.firstFailure) + ")",
+                      boundary.survivalAbove.empty() ? "–" : listText(boundary.survivalAbove)});
     }
   return rows;
 }
@@ -447,12 +461,12 @@ Rows frequencyRows(const StabilityPlan& plan, const std::vector<std::string>& in
   Rows rows;
   for (const auto& name : integrators)
     for (int length : plan.lengths) {
-      const Boundary& b = safe.at(plan.duration, name, length);
-      if (!onGrid(b)) continue;
-      rows.push_back({name, std::to_string(length), general(b.safeDt, 2),
-                      general(b.safeDt * std::sqrt(constants.defaultStiffness), 2),
-                      general(b.safeDt * whipRate[length], 2),
-                      general(b.safeDt * 2.0 * std::sqrt((length - 1) * constants.gravity / constants.rod), 2)});
+      const Boundary& boundary = safe.at(plan.duration, name, length);
+      if (!onGrid(boundary)) continue;
+      rows.push_back({name, std::to_string(length), general(boundary.safeDt, 2),
+                      general(boundary.safeDt * std::sqrt(constants.defaultStiffness), 2),
+                      general(boundary.safeDt * whipRate[length], 2),
+                      general(boundary.safeDt * 2.0 * std::sqrt((length - 1) * constants.gravity / constants.rod), 2)});
     }
   return rows;
 }
@@ -462,11 +476,11 @@ Rows feedbackRows(const StabilityPlan& plan, const std::vector<std::string>& int
   Rows rows;
   for (const auto& name : integrators)
     for (int length : plan.feedbackLengths) {
-      const Boundary& a = safe.at(plan.duration, name, length);
-      const Boundary& b = safe.stiff[name][length];
-      rows.push_back({name, std::to_string(length), safeStepText(a), safeStepText(b),
-                      onGrid(a) ? general(a.safeDt * std::sqrt(constants.defaultStiffness), 3) : "–",
-                      onGrid(b) ? general(b.safeDt * std::sqrt(constants.stiffFeedback), 3) : "–"});
+      const Boundary& soft = safe.at(plan.duration, name, length);
+      const Boundary& stiff = safe.stiff[name][length];
+      rows.push_back({name, std::to_string(length), safeStepText(soft), safeStepText(stiff),
+                      onGrid(soft) ? general(soft.safeDt * std::sqrt(constants.defaultStiffness), 3) : "–",
+                      onGrid(stiff) ? general(stiff.safeDt * std::sqrt(constants.stiffFeedback), 3) : "–"});
     }
   return rows;
 }
@@ -480,9 +494,9 @@ void recordShifts(const LabOptions& options, const StabilityPlan& plan, const st
     std::vector<double> ratios;
     for (const auto& name : integrators)
       for (int length : plan.sweepLengths) {
-        const Boundary& a = safe.at(plan.durations[k], name, length);
-        const Boundary& b = safe.at(plan.durations[k + 1], name, length);
-        if (onGrid(a) && onGrid(b)) ratios.push_back(b.safeDt / a.safeDt);
+        const Boundary& shorter = safe.at(plan.durations[k], name, length);
+        const Boundary& longer = safe.at(plan.durations[k + 1], name, length);
+        if (onGrid(shorter) && onGrid(longer)) ratios.push_back(longer.safeDt / shorter.safeDt);
       }
     recordValue(options, std::string("stability.shift.") + step[k], ratios.empty() ? "–" : fixed(median(ratios), 2));
   }
@@ -502,7 +516,8 @@ void writeSafeStepTables(const LabOptions& options, const StabilityPlan& plan, c
   std::vector<std::string> table2Header{"integrator"};
   for (int length : plan.tableLengths) table2Header.push_back("cl " + std::to_string(length));
   for (const char* seed : {"seed cl 6", "seed cl 12", "seed cl 24"}) table2Header.push_back(seed);
-  writeTable(options, "table2", "Table 2: safe dt (every grid dt at or below it survives), " + at, table2Header, table2);
+  writeTable(options, "table2", "Table 2: safe dt (every grid dt at or below it survives), " + at, table2Header,
+             table2);
   writeTable(options, "stability_boundary", "Safe dt, first failure (what fired) and survival above it, " + at,
              {"integrator", "chain length", "safe dt", "first failure", "survives again at"}, boundaries);
   std::vector<std::string> header{"integrator", "chain length"};

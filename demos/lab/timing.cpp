@@ -104,13 +104,13 @@ void fields(Io& io, Timed& t) {
 }
 
 Timed timeScene(scenes::Scene& scene, const std::string& integrator, const TimingOptions& timing) {
-  Timed t;
-  t.cost = measureStepCost(scene, integrator, scene.dt, timing);
-  t.particles = scene.system->size();
-  t.constraints = static_cast<long>(scene.system->constraints().size());
-  t.forces = static_cast<long>(scene.system->forceObjects().size());
-  t.dt = scene.dt;
-  return t;
+  Timed timed;
+  timed.cost = measureStepCost(scene, integrator, scene.dt, timing);
+  timed.particles = scene.system->size();
+  timed.constraints = static_cast<long>(scene.system->constraints().size());
+  timed.forces = static_cast<long>(scene.system->forceObjects().size());
+  timed.dt = scene.dt;
+  return timed;
 }
 
 // One size of one scene family under one integrator.
@@ -154,28 +154,29 @@ struct Growth {
 
 Growth writeSizeRows(const LabOptions& options, const TimingPlan& plan, const std::vector<SizeCell>& cells,
                      const Results<Timed>& results) {
-  Csv csv(options, "timing.csv",
-          {"scene", "integrator", "particles", "constraints", "springs", "dt", "step_seconds", "cg_iterations_per_step"});
+  Csv csv(
+      options, "timing.csv",
+      {"scene", "integrator", "particles", "constraints", "springs", "dt", "step_seconds", "cg_iterations_per_step"});
   Growth growth;
   for (const auto& [k, timed] : results) {
-    const SizeCell& c = cells[k];
+    const SizeCell& cell = cells[k];
     const StepCost& cost = timed.cost;
-    if (!c.cloth) {
-      csv << "test-chain" << c.integrator << static_cast<long>(c.size) << timed.constraints << timed.forces << timed.dt
-          << cost.seconds << cost.cgIterations;
+    if (!cell.cloth) {
+      csv << "test-chain" << cell.integrator << static_cast<long>(cell.size) << timed.constraints << timed.forces
+          << timed.dt << cost.seconds << cost.cgIterations;
       csv.endRow();
-      growth.chainN[c.integrator].push_back(c.size);
-      growth.chainT[c.integrator].push_back(cost.seconds);
+      growth.chainN[cell.integrator].push_back(cell.size);
+      growth.chainT[cell.integrator].push_back(cost.seconds);
       continue;
     }
-    recordValue(options, "timing.cloth" + std::to_string(c.size) + "." + c.integrator + "_ms",
+    recordValue(options, "timing.cloth" + std::to_string(cell.size) + "." + cell.integrator + "_ms",
                 general(cost.seconds * 1e3, 3));
-    csv << "cloth-8" << c.integrator << timed.particles << timed.constraints << timed.forces << timed.dt
+    csv << "cloth-8" << cell.integrator << timed.particles << timed.constraints << timed.forces << timed.dt
         << cost.seconds << cost.cgIterations;
     csv.endRow();
-    if (c.size >= plan.slopeFromSide) {
-      growth.clothN[c.integrator].push_back(timed.particles);
-      growth.clothT[c.integrator].push_back(cost.seconds);
+    if (cell.size >= plan.slopeFromSide) {
+      growth.clothN[cell.integrator].push_back(timed.particles);
+      growth.clothT[cell.integrator].push_back(cost.seconds);
     }
   }
   return growth;
@@ -228,13 +229,13 @@ scenes::Scene solverChain(const SolverVariant& variant, int length) {
 using SolverMeasure = std::pair<StepCost, double>;
 std::optional<SolverMeasure> measureSolver(const SolverVariant& variant, int length, double duration,
                                            const TimingOptions& timing) {
-  scenes::Scene timed = solverChain(variant, length);
-  const StepCost cost = measureStepCost(timed, "rk4", timed.dt, timing);
-  scenes::Scene run = solverChain(variant, length);
+  scenes::Scene timedChain = solverChain(variant, length);
+  const StepCost cost = measureStepCost(timedChain, "rk4", timedChain.dt, timing);
+  scenes::Scene runChain = solverChain(variant, length);
   auto rk4 = particles::makeIntegrator("rk4");
-  const RunResult r = simulate(run, *rk4, run.dt, duration);
-  if (r.cutShort) return std::nullopt;
-  return std::pair{cost, r.maxRelativeStretch};
+  const RunResult run = simulate(runChain, *rk4, runChain.dt, duration);
+  if (run.cutShort) return std::nullopt;
+  return std::pair{cost, run.maxRelativeStretch};
 }
 
 // Cell k is variant k / lengths, chain length k % lengths.
@@ -261,7 +262,8 @@ void writeSolvers(const LabOptions& options, const TimingPlan& plan, const Resul
     rows.push_back(row);
   }
   std::vector<std::string> header{"solver"};
-  for (int length : lengths) header.push_back("chain " + std::to_string(length) + ": RK4 step, CG it/solve, max stretch");
+  for (int length : lengths)
+    header.push_back("chain " + std::to_string(length) + ": RK4 step, CG it/solve, max stretch");
   for (int length : lengths) {
     const std::string key = "timing.solvers.chain" + std::to_string(length);
     recordValue(options, key + ".direct_us", general(solverCost["direct LDLT"][length] * 1e6, 3));
