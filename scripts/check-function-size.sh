@@ -58,7 +58,11 @@ export tidy build config out
 printf '%s\0' "${files[@]}" |
   xargs -0 -n 1 -P "${JOBS:-2}" bash -c \
     '"$tidy" -p "$build" --quiet --checks="-*,readability-function-size" --config="$config" "$0" \
-       > "$out/$(printf %s "$0" | tr / _).txt" 2>/dev/null || true'
+       > "$out/$(printf %s "$0" | tr / _).txt" 2>/dev/null || printf "%s\n" "$0" >> "$out/failed"'
+if [ -f "$out/failed" ]; then
+  sed 's/^/check-function-size: clang-tidy failed on /' "$out/failed" >&2
+  exit 2
+fi
 report=$(cat "$out"/*.txt | awk -v threshold="$lines" '
     /warning: function .* exceeds recommended size\/complexity thresholds/ {
       split($0, at, ":"); where = at[1] ":" at[2]
