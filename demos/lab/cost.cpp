@@ -10,6 +10,7 @@
 #include "lab/cells.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
+#include "lab/results.h"
 #include "format_number.h"
 
 namespace lab {
@@ -57,114 +58,137 @@ void fields(Io& io, Surveyed& s) {
 
 bool measurable(double budget, double referenceAgreement) { return !(budget < kReferenceMargin * referenceAgreement); }
 
-}  // namespace
+// What the experiment surveys.
+struct CostPlan {
+  std::vector<CostScene> scenes;
+  int repeats = 0;  // timed repeats per pick; the median is reported
+};
 
-int runCost(const LabOptions& options) {
-  prepareOutput(options);
-  const bool q = options.quick;
-  const std::vector<CostScene> scenes = q
-      ? std::vector<CostScene>{
-            {"oscillator", "oscillator", {}, 10.0, 2000, true},
-            {"pendulum", "pendulum", {}, 20.0, 2000, false},
-            {"6-chain", "test-chain", {{"cl", "6"}}, 5.0, 1000, false},
-            {"6x6 cloth", "cloth", {{"width", "6"}, {"height", "6"}}, 2.0, 500, false},
-            {"hair", "hair", {{"curls", "1"}, {"particles", "6"}}, 1.0, 1000, false}}
-      : std::vector<CostScene>{
-            {"oscillator", "oscillator", {}, 32.0, 100000, true},
-            {"pendulum", "pendulum", {}, 100.0, 100000, false},
-            {"24-chain", "test-chain", {{"cl", "24"}}, 20.0, 20000, false},
-            {"24-chain", "test-chain", {{"cl", "24"}}, 60.0, 20000, false},
-            {"16x16 cloth", "cloth", {{"width", "16"}, {"height", "16"}}, 10.0, 10000, false},
-            {"hair", "hair", {}, 10.0, 20000, false}};
-  const std::vector<double> budgets = {1e-2, 1e-4, 1e-6};  // × the scene's size
+// Error budgets, × the scene's size.
+const std::vector<double> kBudgets = {1e-2, 1e-4, 1e-6};
+
+// Small scenes, short horizons: proves the code runs.
+CostPlan quickPlan() {
+  return {{{"oscillator", "oscillator", {}, 10.0, 2000, true},
+           {"pendulum", "pendulum", {}, 20.0, 2000, false},
+           {"6-chain", "test-chain", {{"cl", "6"}}, 5.0, 1000, false},
+           {"6x6 cloth", "cloth", {{"width", "6"}, {"height", "6"}}, 2.0, 500, false},
+           {"hair", "hair", {{"curls", "1"}, {"particles", "6"}}, 1.0, 1000, false}},
+          2};
+}
+
+CostPlan fullPlan() {
+  return {{{"oscillator", "oscillator", {}, 32.0, 100000, true},
+           {"pendulum", "pendulum", {}, 100.0, 100000, false},
+           {"24-chain", "test-chain", {{"cl", "24"}}, 20.0, 20000, false},
+           {"24-chain", "test-chain", {{"cl", "24"}}, 60.0, 20000, false},
+           {"16x16 cloth", "cloth", {{"width", "16"}, {"height", "16"}}, 10.0, 10000, false},
+           {"hair", "hair", {}, 10.0, 20000, false}},
+          SurveySettings{}.repeats};
+}
+
+// One survey: runs stop once beyond the loosest budget, and each
+// integrator's scan ends within the tightest.
+SurveySettings surveySettings(const LabOptions& options, const CostPlan& plan, const CostScene& scene) {
+  SurveySettings settings;
+  settings.horizon = scene.horizon;
+  settings.maxSteps = scene.maxSteps;
+  settings.integrators = selectedIntegrators(options);
+  settings.repeats = plan.repeats;
+  settings.failure = options.criterion;
+  settings.relativeToSize = true;
+  settings.abortError = kBudgets.front();
+  settings.targetError = kBudgets.back();
+  return settings;
+}
+
+// One scene's survey and its picks per budget (nullopt: interrupted).
+std::optional<Surveyed> surveyCostScene(const CostScene& scene, const SurveySettings& settings) {
+  const auto build = [&] { return buildLabScene(scene.scene, scene.params); };
+  ClosedForm closedForm;
+  if (scene.closedForm)
+    closedForm = [&](double T, double h) { return oscillatorReference(scene.params, T, h, scenes::kSeedPreset); };
+  const Survey survey = surveyScene(build, settings, closedForm);
+  if (interrupted()) return std::nullopt;
+  Surveyed out{survey.particles, survey.size, survey.referenceAgreement, {}, {}};
+  for (const auto& scan : survey.integrators)
+    out.integrators.push_back({scan.integrator, scan.adaptive, scan.safeDt, scan.firstFailureDt,
+                               static_cast<long>(scan.scanned.size()), scan.ensembleRuns});
+  for (double relative : kBudgets)
+    out.picks.push_back(measurable(relative * survey.size, survey.referenceAgreement)
+                            ? pickPerIntegrator(build, survey, settings, relative * survey.size)
+                            : std::vector<Pick>{});
+  if (interrupted()) return std::nullopt;
+  return out;
+}
+
+void recordSettings(const LabOptions& options, const CostPlan& plan) {
   const SurveySettings defaults;
   recordValue(options, "cost.safe_fraction", general(defaults.safeFraction));
   recordValue(options, "cost.grid_ratio", fixed(std::pow(2.0, 1.0 / stepsPerOctave(defaults.gridResolution)), 3));
   recordValue(options, "cost.members", std::to_string(defaults.members));
   recordValue(options, "cost.reference_tolerance", general(defaults.referenceTolerance));
-  recordValue(options, "cost.repeats", std::to_string(q ? 2 : defaults.repeats));
+  recordValue(options, "cost.repeats", std::to_string(plan.repeats));
   recordValue(options, "cost.failure", describe(options.criterion));
-  Progress progress(options, "cost", static_cast<long>(scenes.size()));
+}
 
+void writeSafeRows(Csv& csv, const CostScene& scene, const Surveyed& survey) {
+  for (const auto& scan : survey.integrators) {
+    csv << scene.label << scene.horizon << scan.integrator << (scan.adaptive ? std::nan("") : scan.safeDt)
+        << scan.firstFailureDt << scan.runs << scan.ensembleRuns;
+    csv.endRow();
+  }
+}
+
+void writePickRows(Csv& csv, const CostScene& scene, const Surveyed& survey, double relative,
+                   const std::vector<Pick>& picks) {
+  const double budget = relative * survey.size;
+  for (std::size_t k = 0; k < picks.size(); ++k) {
+    if (!picks[k].found) continue;
+    const Candidate& candidate = picks[k].candidate;
+    csv << scene.label << static_cast<long>(survey.particles) << scene.horizon << survey.size << relative << budget
+        << candidate.integrator << candidate.dt << candidate.tolerance << candidate.maxError
+        << survey.integrators[k].safeDt << picks[k].cpuPerSimulatedSecond << picks[k].cpuMin << picks[k].cpuMax
+        << survey.referenceAgreement;
+    csv.endRow();
+  }
+}
+
+// The table's columns after scene and budget: the cheapest pick, or why there is none.
+std::vector<std::string> cheapestText(const CostScene& scene, const Surveyed& survey, double budget,
+                                      const std::vector<Pick>& picks) {
+  if (!measurable(budget, survey.referenceAgreement))
+    return {"reference not converged (tolerances differ by " + general(survey.referenceAgreement, 2) + ")", "–", "–",
+            "–"};
+  const int best = cheapest(picks);
+  if (best < 0) return {"none within budget (grid down to dt = " + general(scene.horizon / scene.maxSteps) + ")", "–",
+                        "–", "–"};
+  const auto& pick = picks[best];
+  const std::string step =
+      general(pick.candidate.dt) + (pick.candidate.tolerance > 0 ? ", tol " + general(pick.candidate.tolerance) : "");
+  return {pick.candidate.integrator, step, general(pick.candidate.maxError),
+          general(pick.cpuPerSimulatedSecond) + " (" + general(pick.cpuMin, 2) + "–" + general(pick.cpuMax, 2) + ")"};
+}
+
+void writeResults(const LabOptions& options, const CostPlan& plan, const Results<Surveyed>& surveys) {
   Csv picksCsv(options, "cost_of_accuracy.csv",
                {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",
                 "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
   Csv safeCsv(options, "cost_safe_dt.csv",
               {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs", "ensemble_runs"});
   std::vector<std::vector<std::string>> table;
-  for (const auto& cs : scenes) {
-    if (interrupted()) break;
-    const auto build = [&] { return buildLabScene(cs.scene, cs.params); };
-    SurveySettings settings;
-    settings.horizon = cs.horizon;
-    settings.maxSteps = cs.maxSteps;
-    settings.integrators = selectedIntegrators(options);
-    settings.repeats = q ? 2 : defaults.repeats;
-    settings.failure = options.criterion;
-    // One survey: runs stop once beyond the loosest budget, and each
-    // integrator's scan ends within the tightest.
-    settings.relativeToSize = true;
-    settings.abortError = budgets.front();
-    settings.targetError = budgets.back();
-    ClosedForm closedForm;
-    if (cs.closedForm) closedForm = [&](double T, double h) { return oscillatorReference(cs.params, T, h, scenes::kSeedPreset); };
-    const auto surveyed = cell<Surveyed>(options, [&]() -> std::optional<Surveyed> {
-      const Survey survey = surveyScene(build, settings, closedForm);
-      if (interrupted()) return std::nullopt;
-      Surveyed out{survey.particles, survey.size, survey.referenceAgreement, {}, {}};
-      for (const auto& scan : survey.integrators)
-        out.integrators.push_back({scan.integrator, scan.adaptive, scan.safeDt, scan.firstFailureDt,
-                                   static_cast<long>(scan.scanned.size()), scan.ensembleRuns});
-      for (double relative : budgets)
-        out.picks.push_back(measurable(relative * survey.size, survey.referenceAgreement)
-                                ? pickPerIntegrator(build, survey, settings, relative * survey.size)
-                                : std::vector<Pick>{});
-      if (interrupted()) return std::nullopt;
-      return out;
-    });
-    if (interrupted()) break;
-    progress.tick();
-    if (!surveyed) continue;  // another shard's cell
-    const Surveyed& survey = *surveyed;
-    for (const auto& scan : survey.integrators) {
-      safeCsv << cs.label << cs.horizon << scan.integrator << (scan.adaptive ? std::nan("") : scan.safeDt)
-              << scan.firstFailureDt << scan.runs << scan.ensembleRuns;
-      safeCsv.endRow();
-    }
-    const std::string label = cs.label + " (" + scenes::plural(survey.particles, "particle") + ", T = " +
-                              general(cs.horizon) + " s)";
-    for (std::size_t b = 0; b < budgets.size(); ++b) {
-      const double relative = budgets[b];
-      const double budget = relative * survey.size;
+  for (const auto& [k, survey] : surveys) {
+    const CostScene& scene = plan.scenes[k];
+    writeSafeRows(safeCsv, scene, survey);
+    const std::string label = scene.label + " (" + scenes::plural(survey.particles, "particle") + ", T = " +
+                              general(scene.horizon) + " s)";
+    for (std::size_t b = 0; b < kBudgets.size(); ++b) {
+      const double relative = kBudgets[b], budget = relative * survey.size;
       std::vector<std::string> row{label, general(relative) + " (" + general(budget, 2) + ")"};
-      if (!measurable(budget, survey.referenceAgreement)) {
-        row.insert(row.end(), {"reference not converged (tolerances differ by " +
-                                   general(survey.referenceAgreement, 2) + ")",
-                               "–", "–", "–"});
-        table.push_back(row);
-        continue;
-      }
-      const std::vector<Pick>& picks = survey.picks[b];
-      for (std::size_t k = 0; k < picks.size(); ++k) {
-        if (!picks[k].found) continue;
-        const Candidate& c = picks[k].candidate;
-        picksCsv << cs.label << static_cast<long>(survey.particles) << cs.horizon << survey.size << relative << budget
-                 << c.integrator << c.dt << c.tolerance << c.maxError << survey.integrators[k].safeDt
-                 << picks[k].cpuPerSimulatedSecond << picks[k].cpuMin << picks[k].cpuMax << survey.referenceAgreement;
-        picksCsv.endRow();
-      }
-      const int best = cheapest(picks);
-      if (best < 0) {
-        row.insert(row.end(), {"none within budget (grid down to dt = " + general(cs.horizon / cs.maxSteps) + ")",
-                               "–", "–", "–"});
-      } else {
-        const auto& p = picks[best];
-        const std::string step = general(p.candidate.dt) +
-                                 (p.candidate.tolerance > 0 ? ", tol " + general(p.candidate.tolerance) : "");
-        row.insert(row.end(), {p.candidate.integrator, step, general(p.candidate.maxError),
-                               general(p.cpuPerSimulatedSecond) + " (" + general(p.cpuMin, 2) + "–" +
-                                   general(p.cpuMax, 2) + ")"});
-      }
+      if (measurable(budget, survey.referenceAgreement))
+        writePickRows(picksCsv, scene, survey, relative, survey.picks[b]);
+      const std::vector<std::string> cheapestColumns = cheapestText(scene, survey, budget, survey.picks[b]);
+      row.insert(row.end(), cheapestColumns.begin(), cheapestColumns.end());
       table.push_back(row);
     }
   }
@@ -173,6 +197,21 @@ int runCost(const LabOptions& options) {
              "against the reference is within the budget (relative to the scene's size; absolute in brackets), "
              "at dt <= 0.8 x its safe boundary; CPU seconds per simulated second, median of repeats (min–max)",
              {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s"}, table);
+}
+
+}  // namespace
+
+int runCost(const LabOptions& options) {
+  prepareOutput(options);
+  const CostPlan plan = options.quick ? quickPlan() : fullPlan();
+  recordSettings(options, plan);
+  Progress progress(options, "cost", static_cast<long>(plan.scenes.size()));
+  // One scene at a time: the picks' CPU times are measurements.
+  const auto surveys = resultsInTurn<Surveyed>(
+      options, plan.scenes.size(),
+      [&](std::size_t k) { return surveyCostScene(plan.scenes[k], surveySettings(options, plan, plan.scenes[k])); },
+      true, [&](std::size_t) { progress.tick(); });
+  writeResults(options, plan, surveys);
   return interrupted() ? 130 : 0;
 }
 

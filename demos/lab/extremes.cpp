@@ -10,16 +10,107 @@
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
 #include "lab/cells.h"
+#include "lab/results.h"
 #include "format_number.h"
 
 namespace lab {
 
 namespace {
 
+using Rows = std::vector<std::vector<std::string>>;
+
+// 1. Spring stiffness: the safe dt of the 8-way cloth against k_s.
+struct StiffnessSection {
+  std::vector<double> stiffness;  // k_s swept
+  double duration;                // T, s
+  int clothSide;                  // particles per side
+};
+// 2. Mass ratio: a heavy tip on a light chain.
+struct MassRatioSection {
+  std::vector<double> ratios;  // tip mass / link mass
+  double duration;
+  int length;                  // chain particles
+  double gridLo;               // the scanned grid's smallest dt (up to 0.5)
+};
+// 3. Constraint feedback gains k_s, k_d of the solver (RK4, test chain).
+struct FeedbackSection {
+  std::vector<double> stiffness, damping;
+  double duration, dt;
+  int length;
+};
+// 4. CG budget: tolerance × iteration cap (RK4, test chain).
+struct BudgetSection {
+  std::vector<double> tolerances;
+  std::vector<int> caps;  // 0: uncapped
+  double duration, dt;
+  int length;
+};
+// 5. Squared against root rods.
+struct RodFormSection {
+  double duration;
+  double gridLo;            // the scanned grid's smallest dt (up to 0.5)
+  int scanLength;           // the chain whose safe dt is scanned
+  int runLength;            // the chain whose step is timed
+  TimingOptions timing;     // of that step
+};
+// 6. The taut chain under each integrator and solver budget.
+struct TautSection {
+  std::vector<int> caps;  // CG with an iteration cap (0: uncapped), and −1 for the direct solve
+  double duration;
+};
+
+// What the experiment runs, section by section.
+struct ExtremesPlan {
+  StiffnessSection stiffness;
+  MassRatioSection massRatio;
+  FeedbackSection feedback;
+  BudgetSection budget;
+  RodFormSection rodForm;
+  TautSection taut;
+  long progressPerIntegrator, progressFixed;  // the progress estimate: cells per integrator, and others
+};
+
+// Small scenes, short runs: proves the code runs.
+ExtremesPlan quickPlan() {
+  return {{{1, 100}, 1.0, 4},
+          {{1, 100}, 1.0, 6, 0.0125},
+          {{0, 60}, {0, 10}, 1.0, 0.02, 6},
+          {{1e-2, 1e-8}, {2, 0}, 1.0, 0.01, 12},
+          {1.0, 0.0125, 6, 12, {1, 5}},
+          {{0, -1}, 1.0},
+          8,
+          30};
+}
+
+ExtremesPlan fullPlan() {
+  return {{logSpace(1, 1e5, 6), 5.0, 10},
+          {logSpace(1, 1e4, 5), 10.0, 24, 0.05 / 32},
+          {{0, 1, 10, 60, 100, 1000, 10000}, {0, 1, 3, 10, 30, 100, 300}, 20.0, 0.05, 24},
+          {logSpace(1e-10, 1e-2, 5), {1, 2, 5, 10, 20, 50, 0}, 20.0, 0.01, 80},
+          {20.0, 0.05 / 16, 24, 80, {5, 20}},
+          {{5, 20, 0, -1}, 20.0},
+          20,
+          170};
+}
+
+// What every section shares.
+struct Context {
+  const LabOptions& options;
+  const ExtremesPlan& plan;
+  std::vector<std::string> integrators;
+  std::vector<std::string> scanned;  // scanned sections leave out adaptive schemes: their dt is only a call interval
+  // Safe steps by scanning a 5% log grid (scan.h) over the lab's ensemble of
+  // starts (the scene as built and starts perturbed by 1e-6 of its size), as
+  // every safe boundary of the report is.
+  ScanSettings scan;
+  std::string starts;  // "N starts"
+  Progress& progress;
+};
+
 // A table's body: one row per integrator, its name and then its cells.
-std::vector<std::vector<std::string>> integratorRows(const std::vector<std::string>& integrators,
-                                                     std::map<std::string, std::vector<std::string>>& cells) {
-  std::vector<std::vector<std::string>> table;
+Rows integratorRows(const std::vector<std::string>& integrators,
+                    std::map<std::string, std::vector<std::string>>& cells) {
+  Rows table;
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
     row.insert(row.end(), cells[name].begin(), cells[name].end());
@@ -28,317 +119,397 @@ std::vector<std::vector<std::string>> integratorRows(const std::vector<std::stri
   return table;
 }
 
+// A cell of a scanned section: an integrator at one value of the swept parameter.
+struct SweptCell {
+  std::string integrator;
+  double value;
+};
+
+std::vector<SweptCell> sweptCells(const std::vector<std::string>& integrators, const std::vector<double>& values) {
+  std::vector<SweptCell> cells;
+  for (const auto& name : integrators)
+    for (double value : values) cells.push_back({name, value});
+  return cells;
+}
+
+// 1. Spring stiffness, scanned over the window 0.3/√k_s … 10/√k_s (capped at
+//    0.5) around the spring's time scale, continued a decade lower when its
+//    bottom fails.
+scenes::Scene stiffCloth(const StiffnessSection& section, double ks) {
+  const std::string side = std::to_string(section.clothSide);
+  return buildLabScene("cloth", {{"width", side}, {"height", side}, {"links", "8"}, {"stiffness", general(ks, 6)}});
+}
+
+double windowBottom(double ks) { return 0.3 / std::sqrt(ks); }
+
+std::optional<Boundary> scanStiffness(const Context& context, const SweptCell& cell) {
+  const StiffnessSection& section = context.plan.stiffness;
+  ScanSettings window = context.scan;
+  window.grid = stepGrid(windowBottom(cell.value), std::min(0.5, 10.0 / std::sqrt(cell.value)));
+  window.extendDecades = 1;
+  return scanSafeStep([&] { return stiffCloth(section, cell.value); }, cell.integrator, section.duration, window,
+                      context.options.criterion);
+}
+
+void writeStiffness(const Context& context, const std::vector<SweptCell>& cells, const Results<Boundary>& results) {
+  const StiffnessSection& section = context.plan.stiffness;
+  Csv csv(context.options, "extremes_stiffness.csv",
+          {"integrator", "stiffness", "safe_dt", "first_failure_dt", "first_failure", "grid_lo", "grid_hi"});
+  std::map<std::string, std::vector<std::string>> rows;
+  for (const auto& [k, boundary] : results) {
+    csv << cells[k].integrator << cells[k].value << boundary.safeDt << boundary.firstFailureDt
+        << failureName(boundary.firstFailure) << boundary.lowest << boundary.highest;
+    csv.endRow();
+    rows[cells[k].integrator].push_back(safeStepText(boundary));
+  }
+  if (interrupted()) return;
+  std::vector<std::string> header{"integrator"};
+  for (double ks : section.stiffness) header.push_back("k_s " + general(ks));
+  const std::string side = std::to_string(section.clothSide);
+  writeTable(context.options, "extremes_stiffness",
+             "Safe dt of the " + side + "×" + side + " 8-way cloth against spring stiffness, T = " +
+                 general(section.duration) + " s, " + context.starts,
+             header, integratorRows(context.scanned, rows));
+}
+
+void runStiffness(Context& context) {
+  const std::vector<SweptCell> cells = sweptCells(context.scanned, context.plan.stiffness.stiffness);
+  const auto results = sweepResults<Boundary>(
+      context.options, cells.size(),
+      [&](std::size_t k) {
+        auto boundary = scanStiffness(context, cells[k]);
+        context.progress.tick();
+        return boundary;
+      },
+      [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
+        const SweptCell& cell = cells[k];
+        return estimatedRunSeconds(stiffCloth(context.plan.stiffness, cell.value), cell.integrator,
+                                   windowBottom(cell.value), context.plan.stiffness.duration);
+      });
+  writeStiffness(context, cells, results);
+}
+
+// 2. Mass ratio: the safe dt, and the iterations of Jacobi CG, which show how
+//    the mass ratio conditions J W Jᵀ.
+ChainSpec heavyTipChain(const MassRatioSection& section, double ratio) {
+  ChainSpec spec{section.length};
+  spec.extra["tip-mass-ratio"] = general(ratio, 6);
+  return spec;
+}
+
+ScanSettings massRatioWindow(const Context& context) {
+  ScanSettings window = context.scan;
+  window.grid = stepGrid(context.plan.massRatio.gridLo, 0.5);
+  return window;
+}
+
+using MassRatioResult = std::pair<Boundary, double>;  // the boundary, CG iterations per step
+
+std::optional<MassRatioResult> measureMassRatio(const Context& context, const SweptCell& cell) {
+  const MassRatioSection& section = context.plan.massRatio;
+  const ChainSpec spec = heavyTipChain(section, cell.value);
+  auto boundary = scanSafeStep([&] { return buildChain(spec); }, cell.integrator, section.duration,
+                               massRatioWindow(context), context.options.criterion);
+  context.progress.tick();
+  if (!boundary) return std::nullopt;
+  scenes::Scene chain = buildChain(spec);
+  chain.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
+  const StepCost cost = measureStepCost(chain, cell.integrator, chain.dt, {1, 5});
+  return MassRatioResult{*boundary, cost.cgIterations};
+}
+
+void writeMassRatio(const Context& context, const std::vector<SweptCell>& cells,
+                    const Results<MassRatioResult>& results) {
+  const MassRatioSection& section = context.plan.massRatio;
+  Csv csv(context.options, "extremes_mass_ratio.csv",
+          {"integrator", "mass_ratio", "safe_dt", "first_failure_dt", "first_failure", "cg_iterations_per_step"});
+  std::map<std::string, std::vector<std::string>> rows;
+  for (const auto& [k, result] : results) {
+    const Boundary& boundary = result.first;
+    csv << cells[k].integrator << cells[k].value << boundary.safeDt << boundary.firstFailureDt
+        << failureName(boundary.firstFailure) << result.second;
+    csv.endRow();
+    rows[cells[k].integrator].push_back(safeStepText(boundary) + " (" + general(result.second, 3) + " it)");
+  }
+  if (interrupted()) return;
+  std::vector<std::string> header{"integrator"};
+  for (double ratio : section.ratios) header.push_back("tip/link mass " + general(ratio));
+  writeTable(context.options, "extremes_mass_ratio",
+             "Safe dt of the " + std::to_string(section.length) + "-chain, T = " + general(section.duration) + " s, " +
+                 context.starts + " (and Jacobi-CG iterations per step at the default dt) against tip mass ratio",
+             header, integratorRows(context.scanned, rows));
+}
+
+void runMassRatio(Context& context) {
+  const MassRatioSection& section = context.plan.massRatio;
+  const std::vector<SweptCell> cells = sweptCells(context.scanned, section.ratios);
+  const double gridLo = massRatioWindow(context).grid.front();
+  const auto results = sweepResults<MassRatioResult>(
+      context.options, cells.size(), [&](std::size_t k) { return measureMassRatio(context, cells[k]); },
+      [&](std::size_t k) {
+        return estimatedRunSeconds(buildChain(heavyTipChain(section, cells[k].value)), cells[k].integrator, gridLo,
+                                   section.duration);
+      });
+  writeMassRatio(context, cells, results);
+}
+
+// 3. Constraint feedback gains: cell k is stiffness k / dampings, damping k % dampings.
+using FeedbackResult = std::pair<RunResult, double>;  // the run, its final max |C|/r
+
+std::optional<FeedbackResult> runFeedback(const Context& context, double stiffness, double damping) {
+  const FeedbackSection& section = context.plan.feedback;
+  scenes::Scene chain = buildChain({section.length});
+  chain.system->solver().settings.stiffness = stiffness;
+  chain.system->solver().settings.damping = damping;
+  auto stepper = particles::makeIntegrator("rk4");
+  const RunResult run = simulate(chain, *stepper, section.dt, section.duration, context.options.criterion);
+  context.progress.tick();
+  if (run.cutShort) return std::nullopt;
+  return std::pair{run, chain.system->maxRelativeConstraintError()};
+}
+
+void runFeedbackGains(Context& context) {
+  const FeedbackSection& section = context.plan.feedback;
+  const std::size_t dampings = section.damping.size();
+  const auto results = resultsInTurn<FeedbackResult>(
+      context.options, section.stiffness.size() * dampings,
+      [&](std::size_t k) {
+        return runFeedback(context, section.stiffness[k / dampings], section.damping[k % dampings]);
+      },
+      true);
+  Csv csv(context.options, "extremes_feedback.csv",
+          {"ks", "kd", "critical_kd", "survived", "failure", "max_relative_stretch", "final_relative_stretch"});
+  for (const auto& [k, result] : results) {
+    const double stiffness = section.stiffness[k / dampings], damping = section.damping[k % dampings];
+    const RunResult& run = result.first;
+    csv << stiffness << damping << 2.0 * std::sqrt(stiffness) << (run.failed ? 0L : 1L) << failureName(run.failure)
+        << run.maxRelativeStretch << result.second;
+    csv.endRow();
+  }
+  if (interrupted()) return;
+  recordValue(context.options, "extremes.feedback.dt", general(section.dt));
+  recordValue(context.options, "extremes.feedback.duration", general(section.duration));
+}
+
+// 4. CG budget: plain CG started cold (the cap really starves each solve) and warm.
+struct BudgetCell {
+  bool warm;
+  double tolerance;
+  int cap;
+};
+
+std::vector<BudgetCell> budgetCells(const BudgetSection& section) {
+  std::vector<BudgetCell> cells;
+  for (bool warm : {false, true})
+    for (double tol : section.tolerances)
+      for (int cap : section.caps) cells.push_back({warm, tol, cap});
+  return cells;
+}
+
+std::optional<RunResult> runBudget(const Context& context, const BudgetCell& cell) {
+  const BudgetSection& section = context.plan.budget;
+  scenes::Scene chain = buildChain({section.length});
+  auto& settings = chain.system->solver().settings;
+  settings.tolerance = cell.tolerance;
+  settings.method = particles::SolveMethod::ConjugateGradient;
+  settings.maxIterations = cell.cap;
+  settings.warmStart = cell.warm;
+  settings.preconditioner = particles::Preconditioner::None;
+  auto stepper = particles::makeIntegrator("rk4");
+  RunResult run = simulate(chain, *stepper, section.dt, section.duration, context.options.criterion);
+  context.progress.tick();
+  if (run.cutShort) return std::nullopt;
+  return run;
+}
+
+void runCgBudget(Context& context) {
+  const BudgetSection& section = context.plan.budget;
+  const std::vector<BudgetCell> cells = budgetCells(section);
+  const auto results = sweepResults<RunResult>(context.options, cells.size(),
+                                               [&](std::size_t k) { return runBudget(context, cells[k]); });
+  Csv csv(context.options, "extremes_cg_budget.csv",
+          {"warm_start", "tolerance", "max_iterations", "survived", "failure", "max_relative_stretch",
+           "cg_iterations_per_step"});
+  for (const auto& [k, run] : results) {
+    const BudgetCell& cell = cells[k];
+    csv << static_cast<long>(cell.warm) << cell.tolerance << static_cast<long>(cell.cap) << (run.failed ? 0L : 1L)
+        << failureName(run.failure) << run.maxRelativeStretch
+        << static_cast<double>(run.work.cgIterations) / std::max(1L, run.steps);
+    csv.endRow();
+  }
+  if (interrupted()) return;
+  recordValue(context.options, "extremes.cg_budget.duration", general(section.duration));
+  recordValue(context.options, "extremes.cg_budget.length", std::to_string(section.length));
+}
+
+// 5. Squared against root rods: cost, stretch and safe step.
+struct RodFormCell {
+  std::string integrator;
+  std::string form;  // "squared" | "root"
+};
+
+std::vector<RodFormCell> rodFormCells(const std::vector<std::string>& integrators) {
+  std::vector<RodFormCell> cells;
+  for (const auto& name : integrators)
+    for (const std::string form : {"squared", "root"}) cells.push_back({name, form});
+  return cells;
+}
+
+ScanSettings rodFormWindow(const Context& context) {
+  ScanSettings window = context.scan;
+  window.grid = stepGrid(context.plan.rodForm.gridLo, 0.5);
+  return window;
+}
+
+using RodFormCost = std::pair<StepCost, double>;  // the step cost, the max stretch of a run
+
+std::optional<RodFormCost> measureRodForm(const Context& context, const RodFormCell& cell) {
+  const RodFormSection& section = context.plan.rodForm;
+  ChainSpec big{section.runLength, cell.form};
+  scenes::Scene chain = buildChain(big);
+  const StepCost cost = measureStepCost(chain, cell.integrator, chain.dt, section.timing);
+  scenes::Scene fresh = buildChain(big);
+  auto stepper = particles::makeIntegrator(cell.integrator);
+  const RunResult run = simulate(fresh, *stepper, fresh.dt, section.duration, context.options.criterion);
+  if (run.cutShort) return std::nullopt;
+  return std::pair{cost, run.maxRelativeStretch};
+}
+
+Results<Boundary> scanRodForms(Context& context, const std::vector<RodFormCell>& cells) {
+  const RodFormSection& section = context.plan.rodForm;
+  const ScanSettings window = rodFormWindow(context);
+  return sweepResults<Boundary>(
+      context.options, cells.size(),
+      [&](std::size_t k) {
+        const ChainSpec spec{section.scanLength, cells[k].form};
+        auto boundary = scanSafeStep([&] { return buildChain(spec); }, cells[k].integrator, section.duration, window,
+                              context.options.criterion);
+        context.progress.tick();
+        return boundary;
+      },
+      [&](std::size_t k) {
+        return estimatedRunSeconds(buildChain(ChainSpec{section.scanLength, cells[k].form}), cells[k].integrator,
+                                   window.grid.front(), section.duration);
+      });
+}
+
+void writeRodForms(const Context& context, const std::vector<RodFormCell>& cells, const Results<Boundary>& boundaries,
+                   const Results<RodFormCost>& costs) {
+  const RodFormSection& section = context.plan.rodForm;
+  Csv csv(context.options, "extremes_rod_form.csv",
+          {"integrator", "rod", "safe_dt", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
+  std::map<std::string, std::vector<std::string>> rows;
+  for (const auto& [k, result] : costs) {
+    const auto found = boundaries.find(k);
+    const Boundary boundary = found != boundaries.end() ? found->second : Boundary{};
+    const auto& [cost, stretch] = result;
+    csv << cells[k].integrator << cells[k].form << boundary.safeDt << cost.seconds << cost.cgIterations << stretch;
+    csv.endRow();
+    auto& row = rows[cells[k].integrator];
+    row.push_back(safeStepText(boundary));
+    row.push_back(general(cost.seconds * 1e6, 3));
+    row.push_back(general(stretch, 2));
+  }
+  if (interrupted()) return;
+  writeTable(context.options, "extremes_rod_form",
+             "Squared against root rods: safe dt (" + std::to_string(section.scanLength) +
+                 "-chain, T = " + general(section.duration) + " s, " + context.starts +
+                 "), µs per step and max stretch at the scene's dt (" + std::to_string(section.runLength) + "-chain)",
+             {"integrator", "squared: safe dt", "squared: µs/step", "squared: max stretch", "root: safe dt",
+              "root: µs/step", "root: max stretch"},
+             integratorRows(context.scanned, rows));
+}
+
+void runRodForms(Context& context) {
+  const std::vector<RodFormCell> cells = rodFormCells(context.scanned);
+  const Results<Boundary> boundaries = scanRodForms(context, cells);
+  if (interrupted()) return;
+  // The step cost is timed on this thread after the scans, so the timings
+  // never share the machine with another cell.
+  const auto costs = resultsInTurn<RodFormCost>(context.options, cells.size(),
+                                                [&](std::size_t k) { return measureRodForm(context, cells[k]); }, true);
+  writeRodForms(context, cells, boundaries, costs);
+}
+
+// 6. The taut chain (the seed report's explosion case): cell k is integrator k / caps, cap k % caps.
+std::optional<RunResult> runTaut(const Context& context, const std::string& integrator, int cap) {
+  scenes::Scene taut = buildLabScene("taut-chain");
+  auto& settings = taut.system->solver().settings;
+  if (cap >= 0) {
+    settings.method = particles::SolveMethod::ConjugateGradient;
+    settings.maxIterations = cap;
+  }
+  auto stepper = particles::makeIntegrator(integrator);
+  RunResult run = simulate(taut, *stepper, taut.dt, context.plan.taut.duration, context.options.criterion);
+  context.progress.tick();
+  if (run.cutShort) return std::nullopt;
+  return run;
+}
+
+std::string capText(int cap) {
+  if (cap > 0) return "CG cap " + std::to_string(cap);
+  return cap == 0 ? "CG uncapped" : "direct LDLT";
+}
+
+void writeTaut(const Context& context, const Results<RunResult>& results) {
+  const TautSection& section = context.plan.taut;
+  Csv csv(context.options, "extremes_taut_chain.csv",
+          {"integrator", "max_iterations", "survived", "reason", "time", "max_relative_stretch",
+           "cg_iterations_per_step"});
+  Rows table;
+  for (std::size_t i = 0; i < context.integrators.size(); ++i) {
+    std::vector<std::string> row{context.integrators[i]};
+    for (std::size_t column = 0; column < section.caps.size(); ++column) {
+      const auto found = results.find(i * section.caps.size() + column);
+      if (found == results.end()) continue;  // another shard's cell, or cut short
+      const RunResult& run = found->second;
+      csv << context.integrators[i] << static_cast<long>(section.caps[column]) << (run.failed ? 0L : 1L)
+          << failureName(run.failure) << run.time << run.maxRelativeStretch
+          << static_cast<double>(run.work.cgIterations) / std::max(1L, run.steps);
+      csv.endRow();
+      row.push_back(run.failed ? run.reason + " at t = " + general(run.time, 3)
+                               : "held (stretch " + general(run.maxRelativeStretch, 2) + ")");
+    }
+    table.push_back(row);
+  }
+  if (interrupted()) return;
+  std::vector<std::string> header{"integrator"};
+  for (int cap : section.caps) header.push_back(capText(cap));
+  writeTable(context.options, "extremes_taut_chain",
+             "Taut chain between two wires, T = " + general(section.duration) + " s", header, table);
+}
+
+void runTautChain(Context& context) {
+  const std::vector<int>& caps = context.plan.taut.caps;
+  const auto results = resultsInTurn<RunResult>(
+      context.options, context.integrators.size() * caps.size(),
+      [&](std::size_t k) { return runTaut(context, context.integrators[k / caps.size()], caps[k % caps.size()]); },
+      true);
+  writeTaut(context, results);
+}
+
+// The sections in the order they run.
+const std::vector<void (*)(Context&)> kSections = {runStiffness, runMassRatio, runFeedbackGains,
+                                                   runCgBudget,  runRodForms,  runTautChain};
+
 }  // namespace
 
 int runExtremes(const LabOptions& options) {
   prepareOutput(options);
+  const ExtremesPlan plan = options.quick ? quickPlan() : fullPlan();
   const auto integrators = selectedIntegrators(options);
-  // Scanned sections leave out adaptive schemes: their dt is only a call interval.
   std::vector<std::string> scanned;
   for (const auto& name : integrators)
     if (!particles::requireIntegrator(name).usesTolerance) scanned.push_back(name);
-  const bool q = options.quick;
-  const FailureCriterion& criterion = options.criterion;
-  std::cout << describe(criterion) << "\n";
-  // Safe steps by scanning a 5% log grid (scan.h) over the lab's ensemble of
-  // starts (the scene as built and starts perturbed by 1e-6 of its size), as
-  // every safe boundary of the report is.
+  std::cout << describe(options.criterion) << "\n";
   const ScanSettings scan;
-  const std::string starts = scenes::plural(scan.members, "start");
-  Progress progress(options, "extremes", static_cast<long>(integrators.size()) * (q ? 8 : 20) + (q ? 30 : 170));
-
-  // 1. Spring stiffness: the safe dt of the 8-way cloth against k_s, scanned
-  //    over the window 0.3/√k_s … 10/√k_s (capped at 0.5) around the
-  //    spring's time scale, continued a decade lower when its bottom fails.
-  {
-    const std::vector<double> stiffness = q ? std::vector<double>{1, 100} : logSpace(1, 1e5, 6);
-    const double duration = q ? 1.0 : 5.0;
-    Csv csv(options, "extremes_stiffness.csv",
-            {"integrator", "stiffness", "safe_dt", "first_failure_dt", "first_failure", "grid_lo", "grid_hi"});
-    std::vector<std::pair<std::string, double>> cells;
-    for (const auto& name : scanned)
-      for (double ks : stiffness) cells.push_back({name, ks});
-    auto cloth = [q](double ks) {
-      return buildLabScene("cloth", {{"width", q ? "4" : "10"}, {"height", q ? "4" : "10"},
-                                     {"links", "8"}, {"stiffness", general(ks, 6)}});
-    };
-    auto bottom = [](double ks) { return 0.3 / std::sqrt(ks); };  // the window's smallest dt
-    std::map<std::string, std::vector<std::string>> rows;
-    sweep<Boundary>(
-        options, cells.size(),
-        [&](std::size_t k) {
-          const auto& [name, ks] = cells[k];
-          ScanSettings window = scan;
-          window.grid = stepGrid(bottom(ks), std::min(0.5, 10.0 / std::sqrt(ks)));
-          window.extendDecades = 1;
-          auto build = [&, ks = ks] { return cloth(ks); };
-          auto b = scanSafeStep(build, name, duration, window, criterion);
-          progress.tick();
-          return b;
-        },
-        [&](std::size_t k, Boundary& b) {
-          const auto& [name, ks] = cells[k];
-          csv << name << ks << b.safeDt << b.firstFailureDt << failureName(b.firstFailure) << b.lowest << b.highest;
-          csv.endRow();
-          rows[name].push_back(safeStepText(b));
-        },
-        [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
-          const auto& [name, ks] = cells[k];
-          return estimatedRunSeconds(cloth(ks), name, bottom(ks), duration);
-        });
+  Progress progress(options, "extremes",
+                    static_cast<long>(integrators.size()) * plan.progressPerIntegrator + plan.progressFixed);
+  Context context{options, plan, integrators, scanned, scan, scenes::plural(scan.members, "start"), progress};
+  for (const auto section : kSections) {
+    section(context);
     if (interrupted()) return 130;
-    const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
-    std::vector<std::string> header{"integrator"};
-    for (double ks : stiffness) header.push_back("k_s " + general(ks));
-    writeTable(options, "extremes_stiffness",
-               "Safe dt of the " + std::string(q ? "4×4" : "10×10") + " 8-way cloth against spring stiffness, T = " +
-                   general(duration) + " s, " + starts,
-               header, table);
   }
-
-  // 2. Mass ratio: a heavy tip on a light chain.
-  {
-    const std::vector<double> ratios = q ? std::vector<double>{1, 100} : logSpace(1, 1e4, 5);
-    const double duration = q ? 1.0 : 10.0;
-    const int length = q ? 6 : 24;
-    ScanSettings window = scan;
-    window.grid = stepGrid(q ? 0.0125 : 0.05 / 32, 0.5);
-    Csv csv(options, "extremes_mass_ratio.csv",
-            {"integrator", "mass_ratio", "safe_dt", "first_failure_dt", "first_failure", "cg_iterations_per_step"});
-    std::vector<std::pair<std::string, double>> cells;
-    for (const auto& name : scanned)
-      for (double ratio : ratios) cells.push_back({name, ratio});
-    std::map<std::string, std::vector<std::string>> rows;
-    auto cellChain = [&](std::size_t k) {  // the chain of cell k, for its scan and its cost estimate
-      ChainSpec spec{length};
-      spec.extra["tip-mass-ratio"] = general(cells[k].second, 6);
-      return spec;
-    };
-    using Result = std::pair<Boundary, double>;
-    sweep<Result>(
-        options, cells.size(),
-        [&](std::size_t k) -> std::optional<Result> {
-          const std::string& name = cells[k].first;
-          const ChainSpec spec = cellChain(k);
-          auto b = scanSafeStep([&] { return buildChain(spec); }, name, duration, window, criterion);
-          progress.tick();
-          if (!b) return std::nullopt;
-          // Iterations of Jacobi CG show how the mass ratio conditions J W Jᵀ.
-          scenes::Scene chain = buildChain(spec);
-          chain.system->solver().settings.method = particles::SolveMethod::ConjugateGradient;
-          const StepCost cost = measureStepCost(chain, name, chain.dt, {1, 5});
-          return Result{*b, cost.cgIterations};
-        },
-        [&](std::size_t k, Result& r) {
-          const auto& [name, ratio] = cells[k];
-          const Boundary& b = r.first;
-          csv << name << ratio << b.safeDt << b.firstFailureDt << failureName(b.firstFailure) << r.second;
-          csv.endRow();
-          rows[name].push_back(safeStepText(b) + " (" + general(r.second, 3) + " it)");
-        },
-        [&](std::size_t k) {
-          return estimatedRunSeconds(buildChain(cellChain(k)), cells[k].first, window.grid.front(), duration);
-        });
-    if (interrupted()) return 130;
-    const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
-    std::vector<std::string> header{"integrator"};
-    for (double r : ratios) header.push_back("tip/link mass " + general(r));
-    writeTable(options, "extremes_mass_ratio",
-               "Safe dt of the " + std::to_string(length) + "-chain, T = " + general(duration) + " s, " + starts +
-                   " (and Jacobi-CG iterations per step at the default dt) against tip mass ratio",
-               header, table);
-  }
-
-  // 3. Constraint feedback gains k_s, k_d of the solver (RK4, test chain).
-  {
-    const std::vector<double> ks = q ? std::vector<double>{0, 60} : std::vector<double>{0, 1, 10, 60, 100, 1000, 10000};
-    const std::vector<double> kd = q ? std::vector<double>{0, 10} : std::vector<double>{0, 1, 3, 10, 30, 100, 300};
-    const double duration = q ? 1.0 : 20.0, dt = q ? 0.02 : 0.05;
-    Csv csv(options, "extremes_feedback.csv",
-            {"ks", "kd", "critical_kd", "survived", "failure", "max_relative_stretch", "final_relative_stretch"});
-    for (double s : ks)
-      for (double d : kd) {
-        if (interrupted()) break;
-        // The run and its final max |C|/r.
-        const auto result = cell<std::pair<RunResult, double>>(options, [&]() -> std::optional<std::pair<RunResult, double>> {
-          scenes::Scene chain = buildChain({q ? 6 : 24});
-          chain.system->solver().settings.stiffness = s;
-          chain.system->solver().settings.damping = d;
-          auto stepper = particles::makeIntegrator("rk4");
-          const RunResult r = simulate(chain, *stepper, dt, duration, criterion);
-          progress.tick();
-          if (r.cutShort) return std::nullopt;
-          return std::pair{r, chain.system->maxRelativeConstraintError()};
-        });
-        if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
-        const RunResult& r = result->first;
-        csv << s << d << 2.0 * std::sqrt(s) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.maxRelativeStretch
-            << result->second;
-        csv.endRow();
-      }
-    if (interrupted()) return 130;
-    recordValue(options, "extremes.feedback.dt", general(dt));
-    recordValue(options, "extremes.feedback.duration", general(duration));
-  }
-
-  // 4. CG budget: tolerance × iteration cap (RK4, 80-particle chain), plain
-  //    CG started cold (the cap really starves each solve) and warm.
-  {
-    const std::vector<double> tolerances = q ? std::vector<double>{1e-2, 1e-8} : logSpace(1e-10, 1e-2, 5);
-    const std::vector<int> caps = q ? std::vector<int>{2, 0} : std::vector<int>{1, 2, 5, 10, 20, 50, 0};
-    const double duration = q ? 1.0 : 20.0, dt = 0.01;
-    Csv csv(options, "extremes_cg_budget.csv",
-            {"warm_start", "tolerance", "max_iterations", "survived", "failure", "max_relative_stretch",
-             "cg_iterations_per_step"});
-    struct Budget {
-      bool warm;
-      double tolerance;
-      int cap;
-    };
-    std::vector<Budget> cells;
-    for (bool warm : {false, true})
-      for (double tol : tolerances)
-        for (int cap : caps) cells.push_back({warm, tol, cap});
-    sweep<RunResult>(
-        options, cells.size(),
-        [&](std::size_t k) -> std::optional<RunResult> {
-          const Budget& c = cells[k];
-          scenes::Scene chain = buildChain({q ? 12 : 80});
-          auto& settings = chain.system->solver().settings;
-          settings.tolerance = c.tolerance;
-          settings.method = particles::SolveMethod::ConjugateGradient;
-          settings.maxIterations = c.cap;
-          settings.warmStart = c.warm;
-          settings.preconditioner = particles::Preconditioner::None;
-          auto stepper = particles::makeIntegrator("rk4");
-          RunResult r = simulate(chain, *stepper, dt, duration, criterion);
-          progress.tick();
-          if (r.cutShort) return std::nullopt;
-          return r;
-        },
-        [&](std::size_t k, RunResult& r) {
-          const Budget& c = cells[k];
-          csv << static_cast<long>(c.warm) << c.tolerance << static_cast<long>(c.cap) << (r.failed ? 0L : 1L)
-              << failureName(r.failure) << r.maxRelativeStretch
-              << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
-          csv.endRow();
-        });
-    if (interrupted()) return 130;
-    recordValue(options, "extremes.cg_budget.duration", general(duration));
-    recordValue(options, "extremes.cg_budget.length", std::to_string(q ? 12 : 80));
-  }
-
-  // 5. Squared against root rods: cost, stretch and safe step.
-  {
-    const double duration = q ? 1.0 : 20.0;
-    ScanSettings window = scan;
-    window.grid = stepGrid(q ? 0.0125 : 0.05 / 16, 0.5);
-    Csv csv(options, "extremes_rod_form.csv",
-            {"integrator", "rod", "safe_dt", "step_seconds", "cg_iterations_per_step", "max_relative_stretch"});
-    std::vector<std::pair<std::string, std::string>> cells;
-    for (const auto& name : scanned)
-      for (const std::string form : {"squared", "root"}) cells.push_back({name, form});
-    struct Result {
-      Boundary boundary;
-      StepCost cost;
-      double stretch;
-    };
-    std::map<std::string, std::vector<std::string>> rows;
-    // The step cost is timed on this thread after the scans, so the timings
-    // never share the machine with another cell.
-    std::vector<Boundary> boundaries(cells.size());
-    auto cellChain = [&](std::size_t k) { return ChainSpec{q ? 6 : 24, cells[k].second}; };
-    sweep<Boundary>(
-        options, cells.size(),
-        [&](std::size_t k) {
-          const ChainSpec spec = cellChain(k);
-          auto b = scanSafeStep([&] { return buildChain(spec); }, cells[k].first, duration, window, criterion);
-          progress.tick();
-          return b;
-        },
-        [&](std::size_t k, Boundary& b) { boundaries[k] = b; },
-        [&](std::size_t k) {
-          return estimatedRunSeconds(buildChain(cellChain(k)), cells[k].first, window.grid.front(), duration);
-        });
-    if (interrupted()) return 130;
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      const auto& [name, form] = cells[k];
-      // The step cost and the max stretch of a run.
-      const auto result = cell<std::pair<StepCost, double>>(options, [&, &name = name, &form = form]()
-                                                                -> std::optional<std::pair<StepCost, double>> {
-        ChainSpec big{q ? 12 : 80, form};
-        scenes::Scene chain = buildChain(big);
-        const StepCost cost = measureStepCost(chain, name, chain.dt, {q ? 1 : 5, q ? 5 : 20});
-        scenes::Scene fresh = buildChain(big);
-        auto stepper = particles::makeIntegrator(name);
-        const RunResult r = simulate(fresh, *stepper, fresh.dt, duration, criterion);
-        if (r.cutShort) return std::nullopt;
-        return std::pair{cost, r.maxRelativeStretch};
-      });
-      if (interrupted()) return 130;
-      if (!result) continue;  // another shard's cell
-      const auto& [cost, stretch] = *result;
-      csv << name << form << boundaries[k].safeDt << cost.seconds << cost.cgIterations << stretch;
-      csv.endRow();
-      rows[name].push_back(safeStepText(boundaries[k]));
-      rows[name].push_back(general(cost.seconds * 1e6, 3));
-      rows[name].push_back(general(stretch, 2));
-    }
-    const std::vector<std::vector<std::string>> table = integratorRows(scanned, rows);
-    writeTable(options, "extremes_rod_form",
-               "Squared against root rods: safe dt (" + std::to_string(q ? 6 : 24) + "-chain, T = " +
-                   general(duration) + " s, " + starts + "), µs per step and max stretch at the scene's dt (" +
-                   std::to_string(q ? 12 : 80) + "-chain)",
-               {"integrator", "squared: safe dt", "squared: µs/step", "squared: max stretch", "root: safe dt",
-                "root: µs/step", "root: max stretch"},
-               table);
-  }
-
-  // 6. The taut chain (the seed report's explosion case) under each integrator
-  //    and solver budget.
-  {
-    // CG with an iteration cap (0: uncapped), and −1 for the direct solve.
-    const std::vector<int> caps = q ? std::vector<int>{0, -1} : std::vector<int>{5, 20, 0, -1};
-    const double duration = q ? 1.0 : 20.0;
-    Csv csv(options, "extremes_taut_chain.csv",
-            {"integrator", "max_iterations", "survived", "reason", "time", "max_relative_stretch",
-             "cg_iterations_per_step"});
-    std::vector<std::vector<std::string>> table;
-    for (const auto& name : integrators) {
-      std::vector<std::string> row{name};
-      for (int cap : caps) {
-        if (interrupted()) break;
-        const auto result = cell<RunResult>(options, [&]() -> std::optional<RunResult> {
-          scenes::Scene taut = buildLabScene("taut-chain");
-          auto& settings = taut.system->solver().settings;
-          if (cap >= 0) {
-            settings.method = particles::SolveMethod::ConjugateGradient;
-            settings.maxIterations = cap;
-          }
-          auto stepper = particles::makeIntegrator(name);
-          RunResult r = simulate(taut, *stepper, taut.dt, duration, criterion);
-          progress.tick();
-          if (r.cutShort) return std::nullopt;
-          return r;
-        });
-        if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
-        const RunResult& r = *result;
-        csv << name << static_cast<long>(cap) << (r.failed ? 0L : 1L) << failureName(r.failure) << r.time
-            << r.maxRelativeStretch << static_cast<double>(r.work.cgIterations) / std::max(1L, r.steps);
-        csv.endRow();
-        row.push_back(r.failed ? r.reason + " at t = " + general(r.time, 3)
-                                 : "held (stretch " + general(r.maxRelativeStretch, 2) + ")");
-      }
-      table.push_back(row);
-    }
-    if (interrupted()) return 130;
-    std::vector<std::string> header{"integrator"};
-    for (int cap : caps)
-      header.push_back(cap > 0 ? "CG cap " + std::to_string(cap) : cap == 0 ? "CG uncapped" : "direct LDLT");
-    writeTable(options, "extremes_taut_chain", "Taut chain between two wires, T = " + general(duration) + " s",
-               header, table);
-  }
-  if (interrupted()) return 130;
   recordValue(options, "extremes.members", std::to_string(scan.members));
   return 0;
 }

@@ -9,6 +9,7 @@
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
+#include "lab/results.h"
 #include "scenes/pendulum.h"
 
 namespace lab {
@@ -43,116 +44,162 @@ void fields(Io& io, Damping& d) {
   io("dt", d.dt), io("left", d.left), io("per_period", d.perPeriod), io("chain", d.chain);
 }
 
-}  // namespace
+// What the experiment runs.
+struct LongtimePlan {
+  double horizon = 0.0;               // T of the energy runs, s
+  double every = 0.0;                 // their energy is sampled every `every` s
+  std::vector<double> implicitSteps;  // dt of implicit Euler's damping runs (moved to divide their T)
+  double pendulumPeriods = 0.0;       // the damping runs' T on the pendulum, in periods
+  double chainDuration = 0.0;         // the damping runs' T on the 6-chain, s
+};
 
-int runLongtime(const LabOptions& options) {
-  prepareOutput(options);
-  const bool q = options.quick;
-  const auto integrators = selectedIntegrators(options, true);
-  const double horizon = q ? 20.0 : 500.0, every = q ? 0.5 : 1.0;  // energy sampled every `every` s
-  const std::vector<LongRun> runs = {{"pendulum", "pendulum", {}, 0.05}, {"6-chain", "test-chain", {{"cl", "6"}}, 0.01}};
-  const scenes::PendulumParams pendulum = scenes::PendulumParams::seed();
-  const double period = scenes::pendulumPeriod(pendulum);
-  const std::vector<double> implicitSteps = q ? std::vector<double>{0.05, 0.2} : logSpace(0.005, 0.5, 7);
-  Progress progress(options, "longtime", static_cast<long>(runs.size() * integrators.size() + implicitSteps.size()));
-  recordValue(options, "longtime.horizon", general(horizon));
-  recordValue(options, "longtime.pendulum_period", fixed(period, 2));
-  recordValue(options, "longtime.adaptive_tolerance", general(particles::IntegratorSettings{}.tolerance));
+// Short runs: proves the code runs.
+LongtimePlan quickPlan() { return {20.0, 0.5, {0.05, 0.2}, 2.0, 5.0}; }
+LongtimePlan fullPlan() { return {500.0, 1.0, logSpace(0.005, 0.5, 7), 5.0, 60.0}; }
 
-  // Only non-finite states end a run: the drift itself is what is shown.
+const std::vector<LongRun> kLongRuns = {{"pendulum", "pendulum", {}, 0.05},
+                                        {"6-chain", "test-chain", {{"cl", "6"}}, 0.01}};
+
+// Only non-finite states end a run: the drift itself is what is shown.
+FailureCriterion driftCriterion() {
   FailureCriterion drift;
   drift.maxRelativeConstraintError = drift.energyRiseFraction = std::numeric_limits<double>::infinity();
+  return drift;
+}
+
+std::optional<EnergyRun> runEnergy(const LongtimePlan& plan, const LongRun& run, const std::string& integrator) {
+  scenes::Scene scene = buildLabScene(run.scene, run.params);
+  const double scale = releasableEnergy(*scene.system), e0 = scene.system->totalEnergy();
+  auto stepper = particles::makeIntegrator(integrator);
+  const long stride = std::max(1L, std::lround(plan.every / run.dt));
+  long step = 0;
+  EnergyRun out;
+  const RunResult result =
+      simulate(scene, *stepper, run.dt, plan.horizon, driftCriterion(), [&](const particles::ParticleSystem& s) {
+        out.last = (s.totalEnergy() - e0) / scale;
+        if (++step % stride == 0) out.samples.push_back({s.time(), out.last});
+        return true;
+      });
+  if (result.cutShort) return std::nullopt;
+  out.failed = result.failed, out.time = result.time;
+  return out;
+}
+
+std::string energyText(const EnergyRun& run) {
+  if (run.failed) return "non-finite at t = " + general(run.time, 3);
+  return std::abs(run.last) > 1e3 ? "diverged (" + general(run.last, 2) + ")" : general(run.last, 2);
+}
+
+// Cell k is kLongRuns[k / integrators] under integrator k % integrators.
+void writeEnergy(const LabOptions& options, const LongtimePlan& plan, const std::vector<std::string>& integrators,
+                 const Results<EnergyRun>& results) {
   Csv energy(options, "longtime_energy.csv", {"problem", "integrator", "dt", "time", "energy_change"});
   std::vector<std::vector<std::string>> table;
-  for (const auto& run : runs) {
+  for (std::size_t r = 0; r < kLongRuns.size(); ++r) {
+    const LongRun& run = kLongRuns[r];
     std::vector<std::string> row{run.label + " (dt = " + general(run.dt) + " s)"};
-    for (const auto& name : integrators) {
-      if (interrupted()) break;
-      const auto result = cell<EnergyRun>(options, [&]() -> std::optional<EnergyRun> {
-        scenes::Scene scene = buildLabScene(run.scene, run.params);
-        const double scale = releasableEnergy(*scene.system), e0 = scene.system->totalEnergy();
-        auto stepper = particles::makeIntegrator(name);
-        const long stride = std::max(1L, std::lround(every / run.dt));
-        long k = 0;
-        EnergyRun out;
-        const RunResult r = simulate(scene, *stepper, run.dt, horizon, drift, [&](const particles::ParticleSystem& s) {
-          out.last = (s.totalEnergy() - e0) / scale;
-          if (++k % stride == 0) out.samples.push_back({s.time(), out.last});
-          return true;
-        });
-        progress.tick();
-        if (r.cutShort) return std::nullopt;
-        out.failed = r.failed, out.time = r.time;
-        return out;
-      });
-      if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
-      energy << run.label << name << run.dt << 0.0 << 0.0;
+    for (std::size_t i = 0; i < integrators.size(); ++i) {
+      const auto found = results.find(r * integrators.size() + i);
+      if (found == results.end()) continue;  // another shard's cell, or cut short
+      const EnergyRun& result = found->second;
+      energy << run.label << integrators[i] << run.dt << 0.0 << 0.0;
       energy.endRow();
-      for (const auto& [t, change] : result->samples) {
-        energy << run.label << name << run.dt << t << change;
+      for (const auto& [t, change] : result.samples) {
+        energy << run.label << integrators[i] << run.dt << t << change;
         energy.endRow();
       }
-      const double last = result->last;
-      row.push_back(result->failed ? "non-finite at t = " + general(result->time, 3)
-                                   : std::abs(last) > 1e3 ? "diverged (" + general(last, 2) + ")" : general(last, 2));
-      recordValue(options, "longtime.energy_change." + run.label + "." + name, general(last, 2));
+      row.push_back(energyText(result));
+      recordValue(options, "longtime.energy_change." + run.label + "." + integrators[i], general(result.last, 2));
     }
     table.push_back(row);
   }
   std::vector<std::string> header{"problem"};
   for (const auto& name : integrators) header.push_back(name);
   writeTable(options, "longtime_energy",
-             "Energy change (E(T) − E(0)) / E_s after T = " + general(horizon) +
+             "Energy change (E(T) − E(0)) / E_s after T = " + general(plan.horizon) +
                  " s at one dt per scene (E_s: the energy the scene can release, lab/failure.h)",
              header, table);
+}
 
-  // Implicit Euler damps: the swing energy E − E_bottom left after whole
-  // periods P gives the fraction lost per period, 1 − (E_s(T)/E_s(0))^(P/T).
-  const double T = q ? 2 * period : 5 * period;
-  std::map<std::string, std::string> bottom{{"angle", "0"}};
-  const double eBottom = buildLabScene("pendulum", bottom).system->totalEnergy();
-  // The 6-chain beside it: energy lost over 60 s as a fraction of the potential
-  // drop from the start to hanging straight, g·m·L·cl(cl−1)/2.
-  const double chainT = q ? 5.0 : 60.0;
-  const auto chainLoss = [&](double dt) {
-    scenes::Scene chain = buildChain(ChainSpec(6));
-    const double drop = releasableEnergy(*chain.system);  // g·m·L·cl(cl−1)/2 for the test chain
-    const double e0 = chain.system->totalEnergy();
-    auto stepper = particles::makeIntegrator("implicit-euler");
-    simulate(chain, *stepper, chainT / std::round(chainT / dt), chainT, drift);
-    return (e0 - chain.system->totalEnergy()) / drop;
-  };
+// The 6-chain beside the pendulum: energy lost over its T as a fraction of the
+// potential drop from the start to hanging straight, g·m·L·cl(cl−1)/2.
+double chainLoss(double dt, double duration) {
+  scenes::Scene chain = buildChain(ChainSpec(6));
+  const double drop = releasableEnergy(*chain.system);  // g·m·L·cl(cl−1)/2 for the test chain
+  const double e0 = chain.system->totalEnergy();
+  auto stepper = particles::makeIntegrator("implicit-euler");
+  simulate(chain, *stepper, duration / std::round(duration / dt), duration, driftCriterion());
+  return (e0 - chain.system->totalEnergy()) / drop;
+}
+
+// Implicit Euler damps: the swing energy E − E_bottom left after whole
+// periods P gives the fraction lost per period, 1 − (E_s(T)/E_s(0))^(P/T).
+std::optional<Damping> measureDamping(const LongtimePlan& plan, double wanted, double period, double eBottom) {
+  const double T = plan.pendulumPeriods * period;
+  Damping damping;
+  damping.dt = T / std::round(T / wanted);
+  scenes::Scene scene = buildLabScene("pendulum");
+  const double swing0 = scene.system->totalEnergy() - eBottom;
+  auto stepper = particles::makeIntegrator("implicit-euler");
+  simulate(scene, *stepper, damping.dt, T, driftCriterion());
+  if (interrupted()) return std::nullopt;
+  damping.left = (scene.system->totalEnergy() - eBottom) / swing0;
+  damping.perPeriod = 1.0 - std::pow(std::max(damping.left, 0.0), period / T);
+  damping.chain = chainLoss(damping.dt, plan.chainDuration);
+  return damping;
+}
+
+void writeDamping(const LabOptions& options, const LongtimePlan& plan, double period,
+                  const Results<Damping>& results) {
+  const double T = plan.pendulumPeriods * period;
   Csv loss(options, "longtime_implicit_loss.csv",
            {"dt", "periods", "swing_energy_left", "loss_per_period", "chain6_loss"});
   std::vector<std::vector<std::string>> lossRows;
-  for (double wanted : implicitSteps) {
-    if (interrupted()) break;
-    const auto result = cell<Damping>(options, [&]() -> std::optional<Damping> {
-      Damping d;
-      d.dt = T / std::round(T / wanted);
-      scenes::Scene scene = buildLabScene("pendulum");
-      const double swing0 = scene.system->totalEnergy() - eBottom;
-      auto stepper = particles::makeIntegrator("implicit-euler");
-      simulate(scene, *stepper, d.dt, T, drift);
-      if (interrupted()) return std::nullopt;
-      d.left = (scene.system->totalEnergy() - eBottom) / swing0;
-      d.perPeriod = 1.0 - std::pow(std::max(d.left, 0.0), period / T);
-      d.chain = chainLoss(d.dt);
-      progress.tick();
-      return d;
-    });
-    if (!result) continue;  // another shard's cell, or cut short (the check above ends the loop)
-    const Damping& d = *result;
-    loss << d.dt << T / period << d.left << d.perPeriod << d.chain;
+  for (const auto& [k, damping] : results) {
+    loss << damping.dt << T / period << damping.left << damping.perPeriod << damping.chain;
     loss.endRow();
-    lossRows.push_back({general(d.dt), general(100 * d.left, 3) + "%", general(100 * d.perPeriod, 2) + "%",
-                        general(100 * d.chain, 2) + "%"});
+    lossRows.push_back({general(damping.dt), general(100 * damping.left, 3) + "%",
+                        general(100 * damping.perPeriod, 2) + "%", general(100 * damping.chain, 2) + "%"});
   }
   writeTable(options, "longtime_implicit_loss",
              "Implicit Euler on the pendulum (period P = " + fixed(period, 2) + " s) over " + general(T / period) +
                  " periods: swing energy E − E_bottom left, and lost per period; the 6-chain's energy lost over " +
-                 general(chainT) + " s as a fraction of its potential drop g·m·L·cl(cl−1)/2",
+                 general(plan.chainDuration) + " s as a fraction of its potential drop g·m·L·cl(cl−1)/2",
              {"dt (s)", "pendulum swing energy left", "pendulum lost per period", "6-chain lost"}, lossRows);
+}
+
+}  // namespace
+
+int runLongtime(const LabOptions& options) {
+  prepareOutput(options);
+  const LongtimePlan plan = options.quick ? quickPlan() : fullPlan();
+  const auto integrators = selectedIntegrators(options, true);
+  const double period = scenes::pendulumPeriod(scenes::PendulumParams::seed());
+  Progress progress(options, "longtime", static_cast<long>(kLongRuns.size() * integrators.size() + plan.implicitSteps.size()));
+  recordValue(options, "longtime.horizon", general(plan.horizon));
+  recordValue(options, "longtime.pendulum_period", fixed(period, 2));
+  recordValue(options, "longtime.adaptive_tolerance", general(particles::IntegratorSettings{}.tolerance));
+
+  const auto energy = resultsInTurn<EnergyRun>(
+      options, kLongRuns.size() * integrators.size(),
+      [&](std::size_t k) {
+        auto run = runEnergy(plan, kLongRuns[k / integrators.size()], integrators[k % integrators.size()]);
+        progress.tick();
+        return run;
+      },
+      true);
+  writeEnergy(options, plan, integrators, energy);
+
+  const double eBottom = buildLabScene("pendulum", {{"angle", "0"}}).system->totalEnergy();
+  const auto damping = resultsInTurn<Damping>(
+      options, plan.implicitSteps.size(),
+      [&](std::size_t k) {
+        auto damping = measureDamping(plan, plan.implicitSteps[k], period, eBottom);
+        if (damping) progress.tick();
+        return damping;
+      },
+      true);
+  writeDamping(options, plan, period, damping);
   return interrupted() ? 130 : 0;
 }
 

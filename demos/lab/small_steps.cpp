@@ -18,6 +18,7 @@
 #include "lab/experiments.h"
 #include "lab/failure.h"
 #include "lab/lab_scene.h"
+#include "lab/results.h"
 #include "particles/forces/spring.h"
 #include "scenes/cloth.h"
 
@@ -139,230 +140,384 @@ std::vector<std::string> row(const std::string& a, const std::string& b, const O
           general(o.positionError, 3)};
 }
 
-}  // namespace
+using Rows = std::vector<std::vector<std::string>>;
 
-int runSmallSteps(const LabOptions& options) {
-  prepareOutput(options);
-  std::cout << describe(options.criterion) << "\n";
-  recordValue(options, "small_steps.failure", describe(options.criterion));
-  const bool q = options.quick;
-  const double frame = 1.0 / 60.0;
-  std::map<std::string, std::string> undampedCloth;
-  const int clothSize = q ? 8 : 24;
-  const std::vector<Problem> problems = {
-      {"chain80", [] { return buildLabScene("test-chain", {{"cl", "80"}}); }, q ? 1.0 : 5.0, 1e-3,
-       q ? std::vector<double>{frame, frame / 8} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8, frame / 16},
-       q ? std::vector<double>{frame} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8}},
-      {"stiff-cloth",
-       [clothSize] {
-         scenes::ClothParams p = scenes::stiffClothParams(clothSize);
-         p.damping = 0.0;
-         return scenes::buildCloth(p);
-       },
-       q ? 0.25 : 1.0, 1e-4,
-       q ? std::vector<double>{frame / 64} : std::vector<double>{frame / 16, frame / 32, frame / 64, frame / 128},
-       q ? std::vector<double>{frame} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8}},
-      {"hair", [] { return buildLabScene("hair", {{"damping", "0"}, {"bend-damping", "0"}}); }, q ? 1.0 : 4.0,
-       2e-4, q ? std::vector<double>{frame / 8} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8, frame / 16},
-       q ? std::vector<double>{frame} : std::vector<double>{frame, frame / 2, frame / 4, frame / 8}},
+constexpr double kFrame = 1.0 / 60.0;  // s
+
+// What the experiment runs.
+struct SmallStepsPlan {
+  std::vector<Problem> problems;
+  std::vector<int> budgets;          // n = substeps × iterations; 20 is xpbd's default (20 × 1), the yardstick
+  int clothSize = 0;                 // the 60 Hz stiff cloth: n × n particles
+  int frameRepeats = 0;              // timed frames (RK4: twice as many steps)
+  std::vector<int> clothSubsteps;    // xpbd's substeps per frame on it
+  int loadFrames = 0;                // frames run before timing: one simulated second, the cloth hangs loaded
+};
+
+std::function<scenes::Scene()> chain80() {
+  return [] { return buildLabScene("test-chain", {{"cl", "80"}}); };
+}
+
+std::function<scenes::Scene()> undampedStiffCloth(int size) {
+  return [size] {
+    scenes::ClothParams p = scenes::stiffClothParams(size);
+    p.damping = 0.0;
+    return scenes::buildCloth(p);
   };
-  // 20 is xpbd's default (20 × 1), the equal-cost yardstick below.
-  const std::vector<int> budgets = q ? std::vector<int>{1, 4, 20} : std::vector<int>{1, 2, 4, 8, 16, 20, 32, 64};
+}
 
-  Csv csv(options, "small_steps.csv",
-          {"scene", "family", "split", "budget", "substeps", "iterations", "dt", "cpu_per_simulated_second",
-           "constraint_error", "energy_loss_per_second", "position_error", "failure"});
-  auto write = [&](const std::string& scene, const std::string& family, const std::string& split, int budget,
-                   int substeps, int iterations, double dt, const Outcome& o) {
-    csv << scene << family << split << budget << substeps << iterations << dt << o.cpuPerSecond
-        << o.constraintError << o.energyLoss << o.positionError << std::string(failureName(o.failure));
-    csv.endRow();
-  };
-  long total = 0;
-  for (const Problem& p : problems) total += 1 + static_cast<long>(p.rk4Steps.size() + p.implicitSteps.size()) + 3 * static_cast<long>(budgets.size());
-  Progress progress(options, "small-steps", total);
+std::function<scenes::Scene()> undampedHair() {
+  return [] { return buildLabScene("hair", {{"damping", "0"}, {"bend-damping", "0"}}); };
+}
 
-  std::vector<std::vector<std::string>> claimRows, familyRows;
-  bool substepsWinEverywhere = true, xpbdBeatsImplicitEverywhere = true;
-  for (const Problem& p : problems) {
-    const particles::IntegratorSettings defaults;
-    // The converged reference: its outcome is a cell; its positions at T are
-    // computed at most once here, by the first of the problem's cells that needs them.
-    std::optional<Outcome> computed;
-    const auto referenceX = [&]() -> const Eigen::VectorXd* {
-      if (!computed) computed = runOne(p, "rk4", defaults, p.referenceDt, nullptr, options.criterion);
-      return &computed->x;
-    };
-    const auto referenceCell = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
-      referenceX();
-      progress.tick();
-      if (interrupted()) return std::nullopt;
-      return *computed;
-    });
-    if (interrupted()) return 130;
-    const Outcome reference = referenceCell.value_or(Outcome{});
-    if (referenceCell) write(p.name, "reference", "-", 0, 1, 1, p.referenceDt, reference);
-    // One run against the reference, as a cell.
-    const auto measure = [&](const std::string& integrator, const particles::IntegratorSettings& settings, double dt) {
-      return cell<Outcome>(options, [&]() -> std::optional<Outcome> {
-        const Outcome o = runOne(p, integrator, settings, dt, referenceX(), options.criterion);
+// Small scenes, short runs: proves the code runs.
+SmallStepsPlan quickPlan() {
+  const double f = kFrame;
+  SmallStepsPlan plan;
+  plan.problems = {{"chain80", chain80(), 1.0, 1e-3, {f, f / 8}, {f}},
+                   {"stiff-cloth", undampedStiffCloth(8), 0.25, 1e-4, {f / 64}, {f}},
+                   {"hair", undampedHair(), 1.0, 2e-4, {f / 8}, {f}}};
+  plan.budgets = {1, 4, 20};
+  plan.clothSize = 32;
+  plan.frameRepeats = 3;
+  plan.clothSubsteps = {10, 30};
+  plan.loadFrames = 10;
+  return plan;
+}
+
+SmallStepsPlan fullPlan() {
+  const double f = kFrame;
+  SmallStepsPlan plan;
+  plan.problems = {
+      {"chain80", chain80(), 5.0, 1e-3, {f, f / 2, f / 4, f / 8, f / 16}, {f, f / 2, f / 4, f / 8}},
+      {"stiff-cloth", undampedStiffCloth(24), 1.0, 1e-4, {f / 16, f / 32, f / 64, f / 128}, {f, f / 2, f / 4, f / 8}},
+      {"hair", undampedHair(), 4.0, 2e-4, {f, f / 2, f / 4, f / 8, f / 16}, {f, f / 2, f / 4, f / 8}}};
+  plan.budgets = {1, 2, 4, 8, 16, 20, 32, 64};
+  plan.clothSize = 128;
+  plan.frameRepeats = 5;
+  plan.clothSubsteps = {10, 20, 30, 40, 60};
+  plan.loadFrames = 60;
+  return plan;
+}
+
+// One run on a problem: xpbd at one split of a budget, or a force-based scheme at one dt.
+struct RunCell {
+  std::string family;  // "xpbd", "implicit-euler", "rk4"
+  std::string split;   // xpbd: "1xn", "sqrt", "nx1"; else "-"
+  int budget = 0;      // xpbd: n; else 0
+  particles::IntegratorSettings settings;
+  double dt = 0.0;
+  int substeps() const { return family == "xpbd" ? settings.substeps : 1; }
+  int iterations() const { return family == "xpbd" ? settings.iterations : 1; }
+};
+
+// Every budget's splits at 1/60 s, then implicit Euler's steps, then RK4's.
+std::vector<RunCell> runCells(const SmallStepsPlan& plan, const Problem& problem) {
+  std::vector<RunCell> cells;
+  for (int n : plan.budgets)
+    for (const auto& [split, si] : splits(n)) {
+      RunCell cell{"xpbd", split, n, {}, kFrame};
+      cell.settings.substeps = si.first;
+      cell.settings.iterations = si.second;
+      cells.push_back(cell);
+    }
+  for (double dt : problem.implicitSteps) cells.push_back({"implicit-euler", "-", 0, {}, dt});
+  for (double dt : problem.rk4Steps) cells.push_back({"rk4", "-", 0, {}, dt});
+  return cells;
+}
+
+// The converged reference of a problem: its positions at T computed at most
+// once, by the first of the problem's cells that needs them.
+class ProblemReference {
+ public:
+  ProblemReference(const Problem& problem, const FailureCriterion& criterion)
+      : problem_(problem), criterion_(criterion) {}
+  const Outcome& outcome() {
+    if (!computed_) computed_ = runOne(problem_, "rk4", {}, problem_.referenceDt, nullptr, criterion_);
+    return *computed_;
+  }
+  const Eigen::VectorXd* positions() { return &outcome().x; }
+
+ private:
+  const Problem& problem_;
+  const FailureCriterion& criterion_;
+  std::optional<Outcome> computed_;
+};
+
+// Everything measured on one problem (in a shard: its own cells).
+struct ProblemRun {
+  std::optional<Outcome> reference;
+  std::vector<RunCell> cells;
+  Results<Outcome> runs;  // by index into cells
+};
+
+ProblemRun measureProblem(const LabOptions& options, const Problem& problem, const SmallStepsPlan& plan,
+                          Progress& progress) {
+  ProblemReference reference(problem, options.criterion);
+  ProblemRun run;
+  run.reference = cell<Outcome>(options, [&]() -> std::optional<Outcome> {
+    const Outcome outcome = reference.outcome();
+    progress.tick();
+    if (interrupted()) return std::nullopt;
+    return outcome;
+  });
+  if (interrupted()) return run;
+  run.cells = runCells(plan, problem);
+  run.runs = resultsInTurn<Outcome>(
+      options, run.cells.size(),
+      [&](std::size_t k) -> std::optional<Outcome> {
+        const RunCell& cell = run.cells[k];
+        const Outcome outcome =
+            runOne(problem, cell.family, cell.settings, cell.dt, reference.positions(), options.criterion);
         progress.tick();
         if (interrupted()) return std::nullopt;
-        return o;
-      });
-    };
-    std::map<std::string, Outcome> atLargest;
-    Outcome xpbdDefault;
-    const int largest = budgets.back();
-    for (int n : budgets)
-      for (const auto& [split, si] : splits(n)) {
-        particles::IntegratorSettings settings;
-        settings.substeps = si.first;
-        settings.iterations = si.second;
-        const auto run = measure("xpbd", settings, frame);
-        if (interrupted()) return 130;
-        if (!run) continue;  // another shard's cell
-        const Outcome& o = *run;
-        write(p.name, "xpbd", split, n, si.first, si.second, frame, o);
-        if (n == largest) atLargest[split] = o;
-        if (si.first == defaults.substeps && si.second == defaults.iterations) xpbdDefault = o;
-      }
-    // Fixed budget: do many substeps beat many iterations (constraint error and damping)?
-    const Outcome& many = atLargest["nx1"];
-    const Outcome& iterated = atLargest["1xn"];
-    // Damping compares |energy change|: an unconverged solve can also gain energy.
-    const bool wins = many.constraintError <= iterated.constraintError &&
-                      std::abs(many.energyLoss) <= std::abs(iterated.energyLoss) &&
-                      many.positionError <= iterated.positionError;
-    substepsWinEverywhere &= wins;
-    claimRows.push_back({p.name, std::to_string(largest), general(many.constraintError), general(iterated.constraintError),
-                         general(many.energyLoss), general(iterated.energyLoss), general(many.positionError),
-                         general(iterated.positionError), wins ? "yes" : "no"});
-    recordValue(options, "small_steps." + p.name + ".nx1_constraint_error", general(many.constraintError));
-    recordValue(options, "small_steps." + p.name + ".1xn_constraint_error", general(iterated.constraintError));
+        return outcome;
+      },
+      true);
+  return run;
+}
 
-    // Equal CPU time per simulated second: the force-based run with the
-    // smallest dt whose cost is at most xpbd's default (20 × 1), else the cheapest.
-    familyRows.push_back(row(p.name, "reference: rk4 at dt " + general(p.referenceDt, 2), reference));
-    familyRows.push_back(row(p.name, "xpbd 20x1 at 1/60", xpbdDefault));
-    recordRow(options, p.name, "xpbd", xpbdDefault);
-    recordRow(options, p.name, "reference", reference);
-    const double budget = xpbdDefault.cpuPerSecond;
-    for (const auto& [family, stepsList] : {std::pair{std::string("implicit-euler"), p.implicitSteps},
-                                           std::pair{std::string("rk4"), p.rk4Steps}}) {
-      Outcome chosen;
-      double chosenDt = 0.0;
-      bool any = false;
-      for (double dt : stepsList) {
-        const auto run = measure(family, defaults, dt);
-        if (interrupted()) return 130;
-        if (!run) continue;  // another shard's cell
-        const Outcome& o = *run;
-        write(p.name, family, "-", 0, 1, 1, dt, o);
-        const bool affordable = o.cpuPerSecond <= budget;
-        if (!any || (affordable && (chosen.cpuPerSecond > budget || dt < chosenDt)) ||
-            (!affordable && chosen.cpuPerSecond > budget && o.cpuPerSecond < chosen.cpuPerSecond)) {
-          chosen = o;
-          chosenDt = dt;
-          any = true;
-        }
-      }
-      familyRows.push_back(row(p.name,
-                               family + " at dt " + general(chosenDt, 3) +
-                                   (chosen.failed() ? std::string(" (failed: ") + failureName(chosen.failure) + ")" : ""),
-                               chosen));
-      recordRow(options, p.name, family, chosen);
-      if (family == "implicit-euler")
-        xpbdBeatsImplicitEverywhere &= xpbdDefault.constraintError <= chosen.constraintError &&
-                                       std::abs(xpbdDefault.energyLoss) <= std::abs(chosen.energyLoss);
-    }
-    recordValue(options, "small_steps." + p.name + ".xpbd_cpu_per_second", general(budget));
+void writeRunRows(Csv& csv, const Problem& problem, const ProblemRun& run) {
+  auto write = [&](const std::string& family, const std::string& split, int budget, int substeps, int iterations,
+                   double dt, const Outcome& outcome) {
+    csv << problem.name << family << split << budget << substeps << iterations << dt << outcome.cpuPerSecond
+        << outcome.constraintError << outcome.energyLoss << outcome.positionError
+        << std::string(failureName(outcome.failure));
+    csv.endRow();
+  };
+  if (run.reference) write("reference", "-", 0, 1, 1, problem.referenceDt, *run.reference);
+  for (const auto& [k, outcome] : run.runs) {
+    const RunCell& cell = run.cells[k];
+    write(cell.family, cell.split, cell.budget, cell.substeps(), cell.iterations(), cell.dt, outcome);
   }
+}
+
+// xpbd's runs at the largest budget by split, and at its default settings (20 × 1).
+struct XpbdRuns {
+  std::map<std::string, Outcome> atLargest;
+  Outcome atDefault;
+};
+
+XpbdRuns xpbdRuns(const SmallStepsPlan& plan, const ProblemRun& run) {
+  const particles::IntegratorSettings defaults;
+  XpbdRuns xpbd;
+  for (const auto& [k, outcome] : run.runs) {
+    const RunCell& cell = run.cells[k];
+    if (cell.family != "xpbd") continue;
+    if (cell.budget == plan.budgets.back()) xpbd.atLargest[cell.split] = outcome;
+    if (cell.settings.substeps == defaults.substeps && cell.settings.iterations == defaults.iterations)
+      xpbd.atDefault = outcome;
+  }
+  return xpbd;
+}
+
+// Fixed budget: do many substeps beat many iterations (constraint error and
+// damping)? Damping compares |energy change|: an unconverged solve can also gain energy.
+bool substepsWin(const Outcome& many, const Outcome& iterated) {
+  return many.constraintError <= iterated.constraintError &&
+         std::abs(many.energyLoss) <= std::abs(iterated.energyLoss) && many.positionError <= iterated.positionError;
+}
+
+std::vector<std::string> budgetRow(const SmallStepsPlan& plan, const Problem& problem, XpbdRuns& xpbd) {
+  const Outcome& many = xpbd.atLargest["nx1"];
+  const Outcome& iterated = xpbd.atLargest["1xn"];
+  return {problem.name, std::to_string(plan.budgets.back()), general(many.constraintError),
+          general(iterated.constraintError), general(many.energyLoss), general(iterated.energyLoss),
+          general(many.positionError), general(iterated.positionError), substepsWin(many, iterated) ? "yes" : "no"};
+}
+
+// Equal CPU time per simulated second: the force-based run with the smallest
+// dt whose cost is at most `budget` (xpbd's default), else the cheapest.
+struct Chosen {
+  Outcome outcome;
+  double dt = 0.0;
+};
+
+Chosen chooseAtBudget(const ProblemRun& run, const std::string& family, double budget) {
+  Chosen chosen;
+  bool any = false;
+  for (const auto& [k, outcome] : run.runs) {
+    const RunCell& cell = run.cells[k];
+    if (cell.family != family) continue;
+    const bool affordable = outcome.cpuPerSecond <= budget;
+    const bool chosenOver = chosen.outcome.cpuPerSecond > budget;
+    if (!any || (affordable && (chosenOver || cell.dt < chosen.dt)) ||
+        (!affordable && chosenOver && outcome.cpuPerSecond < chosen.outcome.cpuPerSecond)) {
+      chosen = {outcome, cell.dt};
+      any = true;
+    }
+  }
+  return chosen;
+}
+
+std::string chosenText(const std::string& family, const Chosen& chosen) {
+  const Outcome& outcome = chosen.outcome;
+  return family + " at dt " + general(chosen.dt, 3) +
+         (outcome.failed() ? std::string(" (failed: ") + failureName(outcome.failure) + ")" : "");
+}
+
+// The tables' rows, and whether each claim holds on every scene.
+struct Tabulated {
+  Rows claimRows, familyRows;
+  bool substepsWinEverywhere = true, xpbdBeatsImplicitEverywhere = true;
+};
+
+void tabulateProblem(const LabOptions& options, const SmallStepsPlan& plan, const Problem& problem,
+                     const ProblemRun& run, Tabulated& out) {
+  XpbdRuns xpbd = xpbdRuns(plan, run);
+  out.claimRows.push_back(budgetRow(plan, problem, xpbd));
+  out.substepsWinEverywhere &= substepsWin(xpbd.atLargest["nx1"], xpbd.atLargest["1xn"]);
+  recordValue(options, "small_steps." + problem.name + ".nx1_constraint_error",
+              general(xpbd.atLargest["nx1"].constraintError));
+  recordValue(options, "small_steps." + problem.name + ".1xn_constraint_error",
+              general(xpbd.atLargest["1xn"].constraintError));
+  const Outcome reference = run.reference.value_or(Outcome{});
+  out.familyRows.push_back(row(problem.name, "reference: rk4 at dt " + general(problem.referenceDt, 2), reference));
+  out.familyRows.push_back(row(problem.name, "xpbd 20x1 at 1/60", xpbd.atDefault));
+  recordRow(options, problem.name, "xpbd", xpbd.atDefault);
+  recordRow(options, problem.name, "reference", reference);
+  const double budget = xpbd.atDefault.cpuPerSecond;
+  for (const std::string family : {"implicit-euler", "rk4"}) {
+    const Chosen chosen = chooseAtBudget(run, family, budget);
+    out.familyRows.push_back(row(problem.name, chosenText(family, chosen), chosen.outcome));
+    recordRow(options, problem.name, family, chosen.outcome);
+    if (family == "implicit-euler")
+      out.xpbdBeatsImplicitEverywhere &= xpbd.atDefault.constraintError <= chosen.outcome.constraintError &&
+                                         std::abs(xpbd.atDefault.energyLoss) <= std::abs(chosen.outcome.energyLoss);
+  }
+  recordValue(options, "small_steps." + problem.name + ".xpbd_cpu_per_second", general(budget));
+}
+
+void writeFamilyTables(const LabOptions& options, const Tabulated& t) {
   writeTable(options, "small_steps_budget",
              "Fixed budget n = substeps × iterations at 1/60 s: n substeps of one pass (nx1) against one substep of n "
              "passes (1xn); constraint error = worst relative violation over the run, damping = energy lost per "
              "simulated second over the energy scale, position error at T over the scene's diagonal",
              {"scene", "n", "error nx1", "error 1xn", "damping nx1", "damping 1xn", "position nx1", "position 1xn",
               "nx1 wins all three"},
-             claimRows);
+             t.claimRows);
   writeTable(options, "small_steps_families",
              "Equal CPU time per simulated second: xpbd 20 × 1 at 1/60 s against the force-based run with the "
              "smallest dt that costs no more (else the cheapest run); columns as above (negative damping: energy "
              "gained), CPU in s per simulated s; the reference's violation is the physical stretch of the springs",
-             {"scene", "method", "CPU/s", "constraint error", "damping /s", "position error"}, familyRows);
+             {"scene", "method", "CPU/s", "constraint error", "damping /s", "position error"}, t.familyRows);
   recordValue(options, "small_steps.claim_substeps",
-              substepsWinEverywhere ? "holds on every scene" : "does not hold on every scene");
+              t.substepsWinEverywhere ? "holds on every scene" : "does not hold on every scene");
   recordValue(options, "small_steps.claim_implicit",
-              xpbdBeatsImplicitEverywhere ? "holds on every scene" : "does not hold on every scene");
+              t.xpbdBeatsImplicitEverywhere ? "holds on every scene" : "does not hold on every scene");
+}
 
-  // --- the stiff cloth at 60 Hz ---------------------------------------------
-  const int n = q ? 32 : 128;
-  const int repeats = q ? 3 : 5;
+// --- the stiff cloth at 60 Hz ---------------------------------------------
+
+std::vector<double> frameTimes(scenes::Scene& scene, particles::Integrator& stepper, double dt, int frames) {
+  std::vector<double> ms;
+  for (int k = 0; k < frames; ++k) {
+    const double start = cpuSeconds();
+    scene.system->step(stepper, dt);
+    ms.push_back(1e3 * (cpuSeconds() - start));
+  }
+  return ms;
+}
+
+// The cost of a step does not depend on its size; 5e-5 s is within RK4's
+// stable step on this cloth (about 1e-4 s), so the state stays finite.
+Frames timeRk4Step(const SmallStepsPlan& plan) {
+  scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
+  auto rk4 = particles::makeIntegrator("rk4");
+  Frames out;
+  out.ms = frameTimes(scene, *rk4, 5e-5, 2 * plan.frameRepeats);
+  out.worst = worstViolation(*scene.system);
+  return out;
+}
+
+std::optional<Frames> timeXpbdFrames(const SmallStepsPlan& plan, int substeps) {
+  scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
+  particles::IntegratorSettings settings;
+  settings.substeps = substeps;
+  auto xpbd = particles::makeIntegrator("xpbd", settings);
+  Frames out;
+  for (int k = 0; k < plan.loadFrames && !interrupted(); ++k) {
+    scene.system->step(*xpbd, kFrame);
+    out.worst = std::max(out.worst, worstViolation(*scene.system));
+  }
+  out.ms = frameTimes(scene, *xpbd, kFrame, plan.frameRepeats);
+  out.worst = std::max(out.worst, worstViolation(*scene.system));
+  if (interrupted()) return std::nullopt;
+  return out;
+}
+
+void writeFrames(Csv& csv, const std::string& method, int substeps, const Frames& frames) {
+  const std::vector<double>& ms = frames.ms;
+  csv << method << substeps << median(ms) << *std::min_element(ms.begin(), ms.end())
+      << *std::max_element(ms.begin(), ms.end()) << frames.worst;
+  csv.endRow();
+}
+
+// The target: a frame in at most 16 ms with every spring within 3 %, by the
+// fewest substeps that keep the strain.
+std::string targetText(const SmallStepsPlan& plan, const Results<Frames>& xpbd) {
+  const double targetMs = 16.0, targetStrain = 0.03;
+  for (const auto& [k, frames] : xpbd) {
+    if (frames.worst > targetStrain) continue;
+    const double ms = median(frames.ms);
+    return (ms <= targetMs ? "is met by " : "is not met on this machine: the fewest substeps within 3 %, ") +
+           std::to_string(plan.clothSubsteps[k]) + " of one pass, take " + fixed(ms, 2) +
+           " ms with the worst spring at " + fixed(100 * frames.worst, 2) + " %";
+  }
+  return "is not met: no substep count measured keeps every spring within 3 %";
+}
+
+// Frame time against substeps beside one RK4 step, one at a time on this thread.
+bool runStiffCloth(const LabOptions& options, const SmallStepsPlan& plan) {
+  const auto rk4 = cell<Frames>(options, [&]() -> std::optional<Frames> { return timeRk4Step(plan); });
+  const auto xpbd = resultsInTurn<Frames>(
+      options, plan.clothSubsteps.size(), [&](std::size_t k) { return timeXpbdFrames(plan, plan.clothSubsteps[k]); },
+      true);
   Csv cloth(options, "small_steps_cloth.csv",
             {"method", "substeps", "frame_ms_median", "frame_ms_min", "frame_ms_max", "max_strain"});
-  auto medianFrames = [&](scenes::Scene& scene, particles::Integrator& stepper, double dt, int frames) {
-    std::vector<double> ms;
-    for (int k = 0; k < frames; ++k) {
-      const double start = cpuSeconds();
-      scene.system->step(stepper, dt);
-      ms.push_back(1e3 * (cpuSeconds() - start));
-    }
-    return ms;
-  };
-  if (const auto frames = cell<Frames>(options, [&]() -> std::optional<Frames> {
-        scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(n));
-        auto rk4 = particles::makeIntegrator("rk4");
-        // The cost of a step does not depend on its size; 5e-5 s is within RK4's
-        // stable step on this cloth (about 1e-4 s), so the state stays finite.
-        Frames out;
-        out.ms = medianFrames(scene, *rk4, 5e-5, 2 * repeats);
-        out.worst = worstViolation(*scene.system);
-        return out;
-      })) {
-    const std::vector<double>& ms = frames->ms;
-    cloth << std::string("rk4-step") << 0 << median(ms) << *std::min_element(ms.begin(), ms.end())
-          << *std::max_element(ms.begin(), ms.end()) << frames->worst;
-    cloth.endRow();
-    recordValue(options, "small_steps.cloth.rk4_step_ms", fixed(median(ms), 2));
+  if (rk4) {
+    writeFrames(cloth, "rk4-step", 0, *rk4);
+    recordValue(options, "small_steps.cloth.rk4_step_ms", fixed(median(rk4->ms), 2));
   }
-  // The target: a frame in at most 16 ms with every spring within 3 %,
-  // by the fewest substeps that keep the strain.
-  const double targetMs = 16.0, targetStrain = 0.03;
-  std::string target;
-  for (int substeps : q ? std::vector<int>{10, 30} : std::vector<int>{10, 20, 30, 40, 60}) {
-    const auto frames = cell<Frames>(options, [&]() -> std::optional<Frames> {
-      scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(n));
-      particles::IntegratorSettings settings;
-      settings.substeps = substeps;
-      auto xpbd = particles::makeIntegrator("xpbd", settings);
-      Frames out;
-      for (int k = 0; k < (q ? 10 : 60) && !interrupted(); ++k) {  // one simulated second: the cloth hangs loaded
-        scene.system->step(*xpbd, frame);
-        out.worst = std::max(out.worst, worstViolation(*scene.system));
-      }
-      out.ms = medianFrames(scene, *xpbd, frame, repeats);
-      out.worst = std::max(out.worst, worstViolation(*scene.system));
-      if (interrupted()) return std::nullopt;
-      return out;
-    });
-    if (interrupted()) return 130;
-    if (!frames) continue;  // another shard's cell
-    const std::vector<double>& ms = frames->ms;
-    const double worst = frames->worst;
-    cloth << std::string("xpbd") << substeps << median(ms) << *std::min_element(ms.begin(), ms.end())
-          << *std::max_element(ms.begin(), ms.end()) << worst;
-    cloth.endRow();
-    recordValue(options, "small_steps.cloth.xpbd" + std::to_string(substeps) + "_ms", fixed(median(ms), 2));
-    recordValue(options, "small_steps.cloth.xpbd" + std::to_string(substeps) + "_strain_percent", fixed(100 * worst, 2));
-    if (target.empty() && worst <= targetStrain)
-      target = (median(ms) <= targetMs ? "is met by " : "is not met on this machine: the fewest substeps within 3 %, ") +
-               std::to_string(substeps) + " of one pass, take " + fixed(median(ms), 2) + " ms with the worst spring at " +
-               fixed(100 * worst, 2) + " %";
+  for (const auto& [k, frames] : xpbd) {
+    const std::string key = "small_steps.cloth.xpbd" + std::to_string(plan.clothSubsteps[k]);
+    writeFrames(cloth, "xpbd", plan.clothSubsteps[k], frames);
+    recordValue(options, key + "_ms", fixed(median(frames.ms), 2));
+    recordValue(options, key + "_strain_percent", fixed(100 * frames.worst, 2));
   }
-  if (target.empty()) target = "is not met: no substep count measured keeps every spring within 3 %";
-  recordValue(options, "small_steps.cloth.target", target);
-  recordValue(options, "small_steps.cloth.size", std::to_string(n));
-  return 0;
+  if (interrupted()) return false;
+  recordValue(options, "small_steps.cloth.target", targetText(plan, xpbd));
+  recordValue(options, "small_steps.cloth.size", std::to_string(plan.clothSize));
+  return true;
+}
+
+}  // namespace
+
+int runSmallSteps(const LabOptions& options) {
+  prepareOutput(options);
+  std::cout << describe(options.criterion) << "\n";
+  recordValue(options, "small_steps.failure", describe(options.criterion));
+  const SmallStepsPlan plan = options.quick ? quickPlan() : fullPlan();
+  long total = 0;
+  for (const Problem& p : plan.problems)
+    total +=
+        1 + static_cast<long>(p.rk4Steps.size() + p.implicitSteps.size()) + 3 * static_cast<long>(plan.budgets.size());
+  Progress progress(options, "small-steps", total);
+
+  std::vector<ProblemRun> runs;
+  for (const Problem& problem : plan.problems) {
+    runs.push_back(measureProblem(options, problem, plan, progress));
+    if (interrupted()) break;
+  }
+  Csv csv(options, "small_steps.csv",
+          {"scene", "family", "split", "budget", "substeps", "iterations", "dt", "cpu_per_simulated_second",
+           "constraint_error", "energy_loss_per_second", "position_error", "failure"});
+  for (std::size_t k = 0; k < runs.size(); ++k) writeRunRows(csv, plan.problems[k], runs[k]);
+  if (interrupted()) return 130;
+  Tabulated tabulated;
+  for (std::size_t k = 0; k < runs.size(); ++k) tabulateProblem(options, plan, plan.problems[k], runs[k], tabulated);
+  writeFamilyTables(options, tabulated);
+  return runStiffCloth(options, plan) ? 0 : 130;
 }
 
 }  // namespace lab

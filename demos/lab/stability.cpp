@@ -17,11 +17,77 @@
 #include "lab/experiments.h"
 #include "lab/lab.h"
 #include "lab/cells.h"
+#include "lab/results.h"
 #include "format_number.h"
 
 namespace lab {
 
 namespace {
+
+// What the experiment runs.
+struct StabilityPlan {
+  double duration = 0.0;              // T of Tables 1 and 2, s
+  std::vector<double> durations;      // the boundary against T: T/2, T, 2T, 4T
+  std::vector<int> lengths;           // chain lengths scanned at the default k_s
+  std::set<int> sweepLengths;         // of those, the ones scanned at every duration
+  std::vector<int> feedbackLengths;   // scanned again at 4 k_s
+  std::vector<int> ladder;            // Table 1: the lengths run at dt 0.2, 0.1, 0.05
+  std::vector<int> tableLengths;      // Table 2's columns
+  ScanSettings scan;                  // the dt grid and the ensemble
+  double perturbation = 1e-6;         // of the scene size, the perturbed starts
+};
+
+// Table 1's steps.
+const std::vector<double> kTableSteps = {0.2, 0.1, 0.05};
+
+StabilityPlan planFor(double duration, std::vector<double> grid, int members) {
+  StabilityPlan plan;
+  plan.duration = duration;
+  plan.durations = {0.5 * duration, duration, 2.0 * duration, 4.0 * duration};
+  plan.scan.grid = std::move(grid);
+  plan.scan.members = members;
+  plan.scan.beyond = 2.0;
+  return plan;
+}
+
+// Small grids and T at most 10 s: proves the code runs.
+StabilityPlan quickPlan(const StabilityOptions& stability) {
+  StabilityPlan plan = planFor(std::min(stability.duration, 10.0), stepGrid(0.025, 0.4), 2);
+  plan.lengths = {2, 6};
+  plan.sweepLengths = {6};
+  plan.feedbackLengths = {2};
+  plan.ladder = {2, 3, 6, 12};
+  plan.tableLengths = {2, 6};
+  return plan;
+}
+
+StabilityPlan fullPlan(const StabilityOptions& stability) {
+  StabilityPlan plan = planFor(stability.duration, stepGrid(0.05 / 16, 0.5), 3);
+  plan.lengths = {2, 3, 6, 12, 24, 48, 80};
+  plan.sweepLengths = {6, 12, 24};
+  plan.feedbackLengths = {2, 3, 6};
+  plan.ladder = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 80, 120, 160, 240};
+  plan.tableLengths = {6, 12, 24};
+  return plan;
+}
+
+// The test chain's constants the frequencies are built from.
+struct ChainConstants {
+  double defaultStiffness = 0.0;  // the solver's feedback k_s
+  double stiffFeedback = 0.0;     // 4 k_s: ω_feedback doubles
+  double rod = 0.0;               // rod length r
+  double gravity = 0.0;           // g
+};
+
+ChainConstants chainConstants() {
+  ChainConstants constants;
+  constants.defaultStiffness = buildChain({2}).system->solver().settings.stiffness;
+  constants.stiffFeedback = 4.0 * constants.defaultStiffness;
+  scenes::Scene reference = buildChain({2});
+  constants.rod = chainRodLength(reference);
+  constants.gravity = gravityMagnitude(*reference.system);
+  return constants;
+}
 
 // One scan: an integrator on a chain with the solver's feedback stiffness k_s
 // (0: the scene's default), evaluated at each of `durations`.
@@ -32,6 +98,13 @@ struct Cell {
   std::vector<double> durations;
 };
 
+// One run of Table 1: an integrator on a chain at one of its steps.
+struct LadderCell {
+  std::string integrator;
+  double dt;
+  int length;
+};
+
 scenes::Scene buildCell(int length, double stiffness) {
   scenes::Scene chain = buildChain({length});
   if (stiffness > 0.0) chain.system->solver().settings.stiffness = stiffness;
@@ -40,9 +113,11 @@ scenes::Scene buildCell(int length, double stiffness) {
 
 std::string listText(const std::vector<double>& values) {
   std::string text;
-  for (double v : values) text += (text.empty() ? "" : ";") + general(v, 3);
+  for (double value : values) text += (text.empty() ? "" : ";") + general(value, 3);
   return text;
 }
+
+bool onGrid(const Boundary& boundary) { return !boundary.belowGrid() && !boundary.aboveGrid(); }
 
 // The fastest rotation rate any rod reaches over [0, T], max |d × ḋ| / |d|²
 // (1/s, d = x_i − x_j): the frequency the whip of the chain's tip actually
@@ -66,64 +141,165 @@ double fastestLinkRate(int length, double duration, const FailureCriterion& crit
   return fastest;
 }
 
-}  // namespace
-
-int runStability(const LabOptions& options, const StabilityOptions& so) {
-  prepareOutput(options);
-  const FailureCriterion& criterion = options.criterion;
-  std::cout << describe(criterion) << "\n";
-
-  // An adaptive scheme chooses its own internal step: scanning its call
-  // interval would measure nothing, so it is left out here.
+// An adaptive scheme chooses its own internal step: scanning its call
+// interval would measure nothing, so it is left out here.
+std::vector<std::string> scannedIntegrators(const LabOptions& options) {
   std::vector<std::string> integrators;
-  for (const auto& name : selectedIntegrators(options))
-    if (!particles::requireIntegrator(name).usesTolerance) integrators.push_back(name);
-    else std::cout << name << ": not scanned (its internal step is chosen by --tolerance, dt is only its call interval)\n";
-
-  const bool q = options.quick;
-  const double T = q ? std::min(so.duration, 10.0) : so.duration;
-  const std::vector<double> durations = {0.5 * T, T, 2.0 * T, 4.0 * T};  // the boundary against T
-  const std::vector<int> lengths = q ? std::vector<int>{2, 6} : std::vector<int>{2, 3, 6, 12, 24, 48, 80};
-  const std::set<int> sweepLengths = q ? std::set<int>{6} : std::set<int>{6, 12, 24};
-  const std::vector<int> feedbackLengths = q ? std::vector<int>{2} : std::vector<int>{2, 3, 6};
-  const double defaultStiffness = buildChain({2}).system->solver().settings.stiffness;
-  const double stiffFeedback = 4.0 * defaultStiffness;  // ω_feedback doubles
-  ScanSettings scan;
-  scan.grid = stepGrid(q ? 0.025 : 0.05 / 16, q ? 0.4 : 0.5);
-  scan.members = q ? 2 : 3;
-  scan.beyond = 2.0;
-  const double perturbation = 1e-6;
-
-  std::vector<Cell> cells;
-  for (const auto& name : integrators) {
-    for (int cl : lengths)
-      cells.push_back({name, cl, defaultStiffness, sweepLengths.count(cl) ? durations : std::vector<double>{T}});
-    for (int cl : feedbackLengths) cells.push_back({name, cl, stiffFeedback, {T}});
+  for (const auto& name : selectedIntegrators(options)) {
+    if (!particles::requireIntegrator(name).usesTolerance) {
+      integrators.push_back(name);
+      continue;
+    }
+    std::cout << name << ": not scanned (its internal step is chosen by --tolerance, dt is only its call interval)\n";
   }
+  return integrators;
+}
 
-  scenes::Scene reference = buildChain({2});
-  const double rod = chainRodLength(reference);
-  const double g = gravityMagnitude(*reference.system);
-
+void printGrid(const StabilityPlan& plan) {
+  const ScanSettings& scan = plan.scan;
   std::cout << "grid: " << scan.grid.size() << " dt from " << general(scan.grid.front(), 3) << " to "
             << general(scan.grid.back(), 3) << " s, neighbours " << general(scan.grid[1] / scan.grid[0] - 1, 2)
-            << " apart; scanned up to " << scan.beyond << "x the first failure; " << scenes::plural(scan.members, "start")
-            << " (perturbed by " << perturbation << " of the scene size); T = " << general(T) << " s\n";
+            << " apart; scanned up to " << scan.beyond << "x the first failure; "
+            << scenes::plural(scan.members, "start") << " (perturbed by " << plan.perturbation
+            << " of the scene size); T = " << general(plan.duration) << " s\n";
+}
 
-  // The whip's frequency per chain length, over the longest T each is scanned for.
-  std::vector<int> whipLengths(lengths);
+// The longest T a chain length is scanned for.
+double longestDuration(const StabilityPlan& plan, int length) {
+  return plan.sweepLengths.count(length) ? plan.durations.back() : plan.duration;
+}
+
+std::vector<Cell> scanCells(const StabilityPlan& plan, const std::vector<std::string>& integrators,
+                            const ChainConstants& constants) {
+  std::vector<Cell> cells;
+  for (const auto& name : integrators) {
+    for (int length : plan.lengths)
+      cells.push_back({name, length, constants.defaultStiffness,
+                       plan.sweepLengths.count(length) ? plan.durations : std::vector<double>{plan.duration}});
+    for (int length : plan.feedbackLengths) cells.push_back({name, length, constants.stiffFeedback, {plan.duration}});
+  }
+  return cells;
+}
+
+std::vector<LadderCell> ladderCells(const StabilityPlan& plan, const std::vector<std::string>& integrators) {
+  std::vector<LadderCell> cells;
+  for (const auto& name : integrators)
+    for (double dt : kTableSteps)
+      for (int length : plan.ladder) cells.push_back({name, dt, length});
+  return cells;
+}
+
+// The whip's frequency per chain length, over the longest T each is scanned for.
+std::map<int, double> measureWhipRates(const LabOptions& options, const StabilityPlan& plan) {
   std::map<int, double> whipRate;
-  sweep<double>(
-      options, whipLengths.size(),
-      [&](std::size_t k) -> std::optional<double> {
-        const int cl = whipLengths[k];
-        const double rate = fastestLinkRate(cl, sweepLengths.count(cl) ? durations.back() : T, criterion);
+  const Results<double> rates =
+      sweepResults<double>(options, plan.lengths.size(), [&](std::size_t k) -> std::optional<double> {
+        const int length = plan.lengths[k];
+        const double rate = fastestLinkRate(length, longestDuration(plan, length), options.criterion);
         if (interrupted()) return std::nullopt;
         return rate;
-      },
-      [&](std::size_t k, double& rate) { whipRate[whipLengths[k]] = rate; });
-  if (interrupted()) return 130;
+      });
+  for (const auto& [k, rate] : rates) whipRate[plan.lengths[k]] = rate;
+  return whipRate;
+}
 
+std::optional<std::vector<ScanRun>> scanCell(const Cell& cell, const ScanSettings& scan,
+                                             const FailureCriterion& criterion) {
+  ScanSettings settings = scan;
+  settings.durations = cell.durations;
+  return scanSteps(
+      [&](double dt, int member, double duration) {
+        return runMember([&] { return buildCell(cell.length, cell.stiffness); }, cell.integrator, dt, member, duration,
+                         criterion);
+      },
+      settings);
+}
+
+Results<std::vector<ScanRun>> runScans(const LabOptions& options, const StabilityPlan& plan,
+                                       const std::vector<Cell>& cells) {
+  Progress progress(options, "stability", static_cast<long>(cells.size()));
+  return sweepResults<std::vector<ScanRun>>(
+      options, cells.size(),
+      [&](std::size_t k) {
+        auto runs = scanCell(cells[k], plan.scan, options.criterion);
+        progress.tick();
+        return runs;
+      },
+      [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
+        const Cell& cell = cells[k];
+        return estimatedRunSeconds(buildCell(cell.length, cell.stiffness), cell.integrator, plan.scan.grid.front(),
+                                   cell.durations.back());
+      });
+}
+
+// A member that fails ends the cell: it and every longer chain fail at this dt.
+std::optional<Probe> runLadderCell(const LadderCell& cell, const StabilityPlan& plan,
+                                   const FailureCriterion& criterion) {
+  Probe worst;
+  for (int member = 0; member < plan.scan.members; ++member) {
+    const auto probe = runMember([&] { return buildChain({cell.length}); }, cell.integrator, cell.dt, member,
+                             plan.duration, criterion);
+    if (!probe) return std::nullopt;
+    if (!probe->survives(plan.duration, cell.dt)) return probe;
+    worst = *probe;
+  }
+  return worst;
+}
+
+// Frequencies present: the feedback C̈ = −k_s C − k_d Ċ rings at √k_s;
+// the chain's fastest transverse mode under its top tension
+// (cl − 1) m g is ω ≈ 2 √((cl − 1) g / r) (a beaded string, tension T,
+// bead mass m, spacing r: ω_max = 2 √(T / (m r))).
+// The whip's rate is measured (fastestLinkRate). Which one governs is
+// read off the products dt·ω (constant along a regime), not assumed.
+struct Frequencies {
+  double feedback, chain, whip;
+  std::string stiffest;
+};
+
+Frequencies frequenciesOf(const Cell& cell, const ChainConstants& constants, const std::map<int, double>& whipRate) {
+  Frequencies frequencies;
+  frequencies.feedback = std::sqrt(cell.stiffness);
+  frequencies.chain = 2.0 * std::sqrt((cell.length - 1) * constants.gravity / constants.rod);
+  const auto whip = whipRate.find(cell.length);
+  frequencies.whip = whip != whipRate.end() ? whip->second : 0.0;
+  const double stiffest = std::max({frequencies.feedback, frequencies.chain, frequencies.whip});
+  frequencies.stiffest = stiffest == frequencies.feedback ? "feedback"
+                         : stiffest == frequencies.whip   ? "whip"
+                                                          : "chain";
+  return frequencies;
+}
+
+// What a scan says about one of its T.
+struct Verdict {
+  double duration;
+  std::vector<GridSurvival> survival;
+  Boundary boundary;
+};
+
+std::vector<Verdict> verdictsOf(const Cell& cell, const std::vector<ScanRun>& runs, int members) {
+  std::vector<Verdict> verdicts;
+  for (double duration : cell.durations) {
+    auto survival = survivalAt(runs, duration, members);
+    const Boundary boundary = boundaryOf(survival);
+    verdicts.push_back({duration, std::move(survival), boundary});
+  }
+  return verdicts;
+}
+
+// safe[T][integrator][cl] at the default k_s; the boundaries at 4 k_s.
+struct SafeSteps {
+  std::map<double, std::map<std::string, std::map<int, Boundary>>> byDuration;
+  std::map<std::string, std::map<int, Boundary>> stiff;
+  const Boundary& at(double duration, const std::string& integrator, int length) {
+    return byDuration[duration][integrator][length];
+  }
+};
+
+// stability_boundary.csv and stability_map.csv, every scan's rows in cell order; the safe steps they show.
+SafeSteps writeScanRows(const LabOptions& options, const StabilityPlan& plan, const std::vector<Cell>& cells,
+                        const Results<std::vector<ScanRun>>& scans, const ChainConstants& constants,
+                        const std::map<int, double>& whipRate) {
   Csv boundaryCsv(options, "stability_boundary.csv",
                   {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
                    "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
@@ -131,241 +307,305 @@ int runStability(const LabOptions& options, const StabilityOptions& so) {
   Csv mapCsv(options, "stability_map.csv",
              {"integrator", "chain_length", "feedback_ks", "duration", "dt", "members_run", "survivors", "survived",
               "failure", "max_relative_stretch", "max_energy_rise"});
-  Progress progress(options, "stability", static_cast<long>(cells.size()));
+  SafeSteps safe;
+  for (const auto& [k, runs] : scans) {
+    const Cell& cell = cells[k];
+    const Frequencies frequencies = frequenciesOf(cell, constants, whipRate);
+    for (const Verdict& verdict : verdictsOf(cell, runs, plan.scan.members)) {
+      const Boundary& boundary = verdict.boundary;
+      boundaryCsv << cell.integrator << cell.length << cell.stiffness << verdict.duration << boundary.safeDt
+                  << boundary.firstFailureDt << failureName(boundary.firstFailure) << listText(boundary.survivalAbove)
+                  << boundary.lowest << boundary.highest << static_cast<long>(plan.scan.members) << frequencies.feedback
+                  << frequencies.chain << frequencies.whip << frequencies.stiffest;
+      boundaryCsv.endRow();
+      for (const GridSurvival& point : verdict.survival) {
+        mapCsv << cell.integrator << cell.length << cell.stiffness << verdict.duration << point.dt
+               << static_cast<long>(point.membersRun) << static_cast<long>(point.survivors)
+               << static_cast<long>(point.survived) << failureName(point.survived ? Failure::None : point.failure)
+               << point.maxRelativeStretch << point.maxEnergyRise;
+        mapCsv.endRow();
+      }
+      if (cell.stiffness == constants.defaultStiffness)
+        safe.byDuration[verdict.duration][cell.integrator][cell.length] = boundary;
+      else safe.stiff[cell.integrator][cell.length] = boundary;
+    }
+  }
+  return safe;
+}
 
-  // safe[T][integrator][cl] at the default k_s; safe boundaries at 4 k_s.
-  std::map<double, std::map<std::string, std::map<int, Boundary>>> safe;
-  std::map<std::string, std::map<int, Boundary>> stiffSafe;
-  sweep<std::vector<ScanRun>>(
-      options, cells.size(),
-      [&](std::size_t k) {
-        const Cell& c = cells[k];
-        ScanSettings s = scan;
-        s.durations = c.durations;
-        auto runs = scanSteps(
-            [&](double dt, int member, double duration) {
-              return runMember([&] { return buildCell(c.length, c.stiffness); }, c.integrator, dt, member,
-                               duration, criterion);
-            },
-            s);
-        progress.tick();
-        return runs;
-      },
-      [&](std::size_t k, std::vector<ScanRun>& runs) {
-        const Cell& c = cells[k];
-        // Frequencies present: the feedback C̈ = −k_s C − k_d Ċ rings at √k_s;
-        // the chain's fastest transverse mode under its top tension
-        // (cl − 1) m g is ω ≈ 2 √((cl − 1) g / r) (a beaded string, tension T,
-        // bead mass m, spacing r: ω_max = 2 √(T / (m r))).
-        // The whip's rate is measured (fastestLinkRate). Which one governs is
-        // read off the products dt·ω (constant along a regime), not assumed.
-        const double omegaFeedback = std::sqrt(c.stiffness);
-        const double omegaChain = 2.0 * std::sqrt((c.length - 1) * g / rod);
-        const double omegaWhip = whipRate[c.length];
-        const double stiffest = std::max({omegaFeedback, omegaChain, omegaWhip});
-        const std::string stiffestName = stiffest == omegaFeedback ? "feedback" : stiffest == omegaWhip ? "whip" : "chain";
-        for (double duration : c.durations) {
-          const auto survival = survivalAt(runs, duration, scan.members);
-          const Boundary b = boundaryOf(survival);
-          boundaryCsv << c.integrator << c.length << c.stiffness << duration << b.safeDt << b.firstFailureDt
-                      << failureName(b.firstFailure) << listText(b.survivalAbove) << b.lowest << b.highest
-                      << static_cast<long>(scan.members) << omegaFeedback << omegaChain << omegaWhip << stiffestName;
-          boundaryCsv.endRow();
-          for (const GridSurvival& gs : survival) {
-            mapCsv << c.integrator << c.length << c.stiffness << duration << gs.dt << static_cast<long>(gs.membersRun)
-                   << static_cast<long>(gs.survivors) << static_cast<long>(gs.survived)
-                   << failureName(gs.survived ? Failure::None : gs.failure) << gs.maxRelativeStretch
-                   << gs.maxEnergyRise;
-            mapCsv.endRow();
-          }
-          if (c.stiffness == defaultStiffness) safe[duration][c.integrator][c.length] = b;
-          else stiffSafe[c.integrator][c.length] = b;
-        }
-      },
-      [&](std::size_t k) {  // the scan's steps are dominated by its smallest dt
-        const Cell& c = cells[k];
-        return estimatedRunSeconds(buildCell(c.length, c.stiffness), c.integrator, scan.grid.front(),
-                                   c.durations.back());
-      });
-  if (interrupted()) return 130;  // the rows written are complete scans; no table from a partial set
+// survived[integrator][dt][cl] on Table 1's ladder.
+using LadderSurvival = std::map<std::string, std::map<double, std::map<int, bool>>>;
 
-  // Table 1: the longest chain that survives T at dt 0.2, 0.1, 0.05 — every
-  // length of the ladder up to it survives on every member.
-  const double tableSteps[3] = {0.2, 0.1, 0.05};
-  const std::vector<int> ladder = q ? std::vector<int>{2, 3, 6, 12}
-                                    : std::vector<int>{2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 80, 120, 160, 240};
-  struct LadderCell {
-    std::string integrator;
-    double dt;
-    int length;
-  };
-  std::vector<LadderCell> ladderCells;
-  for (const auto& name : integrators)
-    for (double dt : tableSteps)
-      for (int cl : ladder) ladderCells.push_back({name, dt, cl});
+LadderSurvival writeLadderRows(const LabOptions& options, const StabilityPlan& plan,
+                               const std::vector<LadderCell>& cells, const Results<Probe>& probes) {
   Csv ladderCsv(options, "table1_runs.csv",
                 {"integrator", "dt", "chain_length", "survived", "failure", "failure_time"});
-  std::map<std::string, std::map<double, std::map<int, bool>>> ladderSurvived;
-  sweep<Probe>(
-      options, ladderCells.size(),
-      [&](std::size_t k) -> std::optional<Probe> {
-        const LadderCell& c = ladderCells[k];
-        Probe worst;
-        for (int member = 0; member < scan.members; ++member) {
-          const auto p = runMember([&] { return buildChain({c.length}); }, c.integrator, c.dt, member, T, criterion);
-          if (!p) return std::nullopt;
-          if (!p->survives(T, c.dt)) return p;
-          worst = *p;
-        }
-        return worst;
-      },
-      [&](std::size_t k, Probe& p) {
-        const LadderCell& c = ladderCells[k];
-        const bool ok = p.survives(T, c.dt);
-        ladderCsv << c.integrator << c.dt << static_cast<long>(c.length) << static_cast<long>(ok)
-                  << failureName(ok ? Failure::None : p.failure) << (ok ? T : p.time);
-        ladderCsv.endRow();
-        ladderSurvived[c.integrator][c.dt][c.length] = ok;
-      });
-  if (interrupted()) return 130;
+  LadderSurvival survived;
+  for (const auto& [k, probe] : probes) {
+    const LadderCell& cell = cells[k];
+    const bool ok = probe.survives(plan.duration, cell.dt);
+    ladderCsv << cell.integrator << cell.dt << static_cast<long>(cell.length) << static_cast<long>(ok)
+              << failureName(ok ? Failure::None : probe.failure) << (ok ? plan.duration : probe.time);
+    ladderCsv.endRow();
+    survived[cell.integrator][cell.dt][cell.length] = ok;
+  }
+  return survived;
+}
 
-  // Everything measured: the tables and quoted values.
-  const std::map<std::string, std::vector<std::string>> seedTable1 = {
+// The longest chain that survives at one dt: every length of the ladder up to it survives on every member.
+struct LongestChain {
+  int longest = 0, firstFail = 0;
+  std::vector<double> above;  // lengths past the first failure that survive
+};
+
+LongestChain longestChain(const std::vector<int>& ladder, const std::map<int, bool>& survived) {
+  LongestChain result;
+  for (int length : ladder) {
+    const auto found = survived.find(length);
+    const bool ok = found != survived.end() && found->second;
+    if (result.firstFail == 0 && ok) result.longest = length;
+    else if (result.firstFail == 0) result.firstFail = length;
+    else if (ok) result.above.push_back(length);
+  }
+  return result;
+}
+
+std::string longestChainText(const LongestChain& chain, const std::vector<int>& ladder) {
+  std::string text = chain.firstFail == 0 ? "≥ " + std::to_string(ladder.back())
+                     : chain.longest == 0 ? "< " + std::to_string(ladder.front())
+                                          : std::to_string(chain.longest);
+  if (!chain.above.empty()) text += " (" + listText(chain.above) + " survive)";
+  return text;
+}
+
+// The published tables' values, beside the measured ones.
+void appendSeed(std::vector<std::string>& row, const std::map<std::string, std::vector<std::string>>& seed,
+                const std::string& integrator) {
+  const auto found = seed.find(integrator);
+  for (int k = 0; k < 3; ++k) row.push_back(found != seed.end() ? found->second[k] : "–");
+}
+
+// Table 1's rows, and table1_max_chain_length.csv.
+std::vector<std::vector<std::string>> table1Rows(const LabOptions& options, const StabilityPlan& plan,
+                                                 const std::vector<std::string>& integrators,
+                                                 LadderSurvival& survived) {
+  const std::map<std::string, std::vector<std::string>> seed = {
       {"symplectic-euler", {"0", "2", "2"}}, {"midpoint", {"1", "12", "52"}}, {"rk4", {"15", "40", "72"}}};
-  const std::map<std::string, std::vector<std::string>> seedTable2 = {
+  Csv csv(options, "table1_max_chain_length.csv",
+          {"integrator", "dt", "max_chain_length", "first_failing_length", "survival_above"});
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& name : integrators) {
+    std::vector<std::string> row{name};
+    for (double dt : kTableSteps) {
+      const LongestChain chain = longestChain(plan.ladder, survived[name][dt]);
+      csv << name << dt << static_cast<long>(chain.longest) << static_cast<long>(chain.firstFail)
+          << listText(chain.above);
+      csv.endRow();
+      row.push_back(longestChainText(chain, plan.ladder));
+    }
+    appendSeed(row, seed, name);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<std::vector<std::string>> table2Rows(const LabOptions& options, const StabilityPlan& plan,
+                                                 const std::vector<std::string>& integrators, SafeSteps& safe) {
+  const std::map<std::string, std::vector<std::string>> seed = {
       {"symplectic-euler", {"0.01", "0.01", "0.008"}},
       {"midpoint", {"0.1", "0.1", "0.085"}},
       {"rk4", {"0.25", "0.22", "0.115"}}};
-  const std::vector<int> tableLengths = q ? std::vector<int>{2, 6} : std::vector<int>{6, 12, 24};
-  Csv table1Csv(options, "table1_max_chain_length.csv",
-                {"integrator", "dt", "max_chain_length", "first_failing_length", "survival_above"});
-  std::vector<std::vector<std::string>> table1, table2, details, vsDuration, feedback, frequency;
+  std::vector<std::vector<std::string>> rows;
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
-    for (double dt : tableSteps) {
-      int longest = 0, firstFail = 0;
-      std::vector<double> above;
-      for (int cl : ladder) {
-        const bool ok = ladderSurvived[name][dt][cl];
-        if (firstFail == 0 && ok) longest = cl;
-        else if (firstFail == 0) firstFail = cl;
-        else if (ok) above.push_back(cl);
-      }
-      table1Csv << name << dt << static_cast<long>(longest) << static_cast<long>(firstFail) << listText(above);
-      table1Csv.endRow();
-      std::string cell = firstFail == 0 ? "≥ " + std::to_string(ladder.back())
-                         : longest == 0 ? "< " + std::to_string(ladder.front())
-                                        : std::to_string(longest);
-      if (!above.empty()) cell += " (" + listText(above) + " survive)";
-      row.push_back(cell);
+    for (int length : plan.tableLengths) {
+      row.push_back(safeStepText(safe.at(plan.duration, name, length)));
+      recordValue(options, "stability.safe_dt." + name + ".cl" + std::to_string(length), row.back());
     }
-    const auto seed = seedTable1.find(name);
-    for (int k = 0; k < 3; ++k) row.push_back(seed != seedTable1.end() ? seed->second[k] : "–");
-    table1.push_back(row);
-
-    std::vector<std::string> row2{name};
-    for (int cl : tableLengths) {
-      const Boundary& b = safe[T][name][cl];
-      row2.push_back(safeStepText(b));
-      recordValue(options, "stability.safe_dt." + name + ".cl" + std::to_string(cl), row2.back());
-    }
-    const auto seed2 = seedTable2.find(name);
-    for (int k = 0; k < 3; ++k) row2.push_back(seed2 != seedTable2.end() ? seed2->second[k] : "–");
-    table2.push_back(row2);
-
-    for (int cl : lengths) {
-      const Boundary& b = safe[T][name][cl];
-      details.push_back({name, std::to_string(cl), safeStepText(b),
-                         b.aboveGrid() ? "–" : general(b.firstFailureDt, 3) + " (" + failureName(b.firstFailure) + ")",
-                         b.survivalAbove.empty() ? "–" : listText(b.survivalAbove)});
-    }
-    for (int cl : sweepLengths) {
-      std::vector<std::string> r{name, std::to_string(cl)};
-      for (double d : durations) r.push_back(safeStepText(safe[d][name][cl]));
-      vsDuration.push_back(r);
-    }
-    for (int cl : lengths) {
-      const Boundary& b = safe[T][name][cl];
-      if (b.belowGrid() || b.aboveGrid()) continue;
-      frequency.push_back({name, std::to_string(cl), general(b.safeDt, 2),
-                           general(b.safeDt * std::sqrt(defaultStiffness), 2), general(b.safeDt * whipRate[cl], 2),
-                           general(b.safeDt * 2.0 * std::sqrt((cl - 1) * g / rod), 2)});
-    }
-    for (int cl : feedbackLengths) {
-      const Boundary& a = safe[T][name][cl];
-      const Boundary& b = stiffSafe[name][cl];
-      feedback.push_back({name, std::to_string(cl), safeStepText(a), safeStepText(b),
-                          a.belowGrid() || a.aboveGrid() ? "–" : general(a.safeDt * std::sqrt(defaultStiffness), 3),
-                          b.belowGrid() || b.aboveGrid() ? "–" : general(b.safeDt * std::sqrt(stiffFeedback), 3)});
-    }
+    appendSeed(row, seed, name);
+    rows.push_back(row);
   }
+  return rows;
+}
 
-  // How far the boundary moves from T to 2T: the median ratio over every
-  // integrator and swept length with both boundaries on the grid.
-  std::vector<double> shift;
-  for (std::size_t k = 0; k + 1 < durations.size(); ++k) {
+using Rows = std::vector<std::vector<std::string>>;
+
+// Safe dt, first failure (what fired) and survival above it, per integrator and length.
+Rows boundaryRows(const StabilityPlan& plan, const std::vector<std::string>& integrators, SafeSteps& safe) {
+  Rows rows;
+  for (const auto& name : integrators)
+    for (int length : plan.lengths) {
+      const Boundary& boundary = safe.at(plan.duration, name, length);
+      rows.push_back({name, std::to_string(length), safeStepText(boundary),
+                      boundary.aboveGrid()
+                          ? "–"
+                          : general(boundary.firstFailureDt, 3) + " (" + failureName(boundary.firstFailure) + ")",
+                      boundary.survivalAbove.empty() ? "–" : listText(boundary.survivalAbove)});
+    }
+  return rows;
+}
+
+Rows durationRows(const StabilityPlan& plan, const std::vector<std::string>& integrators, SafeSteps& safe) {
+  Rows rows;
+  for (const auto& name : integrators)
+    for (int length : plan.sweepLengths) {
+      std::vector<std::string> row{name, std::to_string(length)};
+      for (double d : plan.durations) row.push_back(safeStepText(safe.at(d, name, length)));
+      rows.push_back(row);
+    }
+  return rows;
+}
+
+Rows frequencyRows(const StabilityPlan& plan, const std::vector<std::string>& integrators, SafeSteps& safe,
+                   const ChainConstants& constants, std::map<int, double>& whipRate) {
+  Rows rows;
+  for (const auto& name : integrators)
+    for (int length : plan.lengths) {
+      const Boundary& boundary = safe.at(plan.duration, name, length);
+      if (!onGrid(boundary)) continue;
+      rows.push_back({name, std::to_string(length), general(boundary.safeDt, 2),
+                      general(boundary.safeDt * std::sqrt(constants.defaultStiffness), 2),
+                      general(boundary.safeDt * whipRate[length], 2),
+                      general(boundary.safeDt * 2.0 * std::sqrt((length - 1) * constants.gravity / constants.rod), 2)});
+    }
+  return rows;
+}
+
+Rows feedbackRows(const StabilityPlan& plan, const std::vector<std::string>& integrators, SafeSteps& safe,
+                  const ChainConstants& constants) {
+  Rows rows;
+  for (const auto& name : integrators)
+    for (int length : plan.feedbackLengths) {
+      const Boundary& soft = safe.at(plan.duration, name, length);
+      const Boundary& stiff = safe.stiff[name][length];
+      rows.push_back({name, std::to_string(length), safeStepText(soft), safeStepText(stiff),
+                      onGrid(soft) ? general(soft.safeDt * std::sqrt(constants.defaultStiffness), 3) : "–",
+                      onGrid(stiff) ? general(stiff.safeDt * std::sqrt(constants.stiffFeedback), 3) : "–"});
+    }
+  return rows;
+}
+
+// How far the boundary moves from T to 2T: the median ratio over every
+// integrator and swept length with both boundaries on the grid.
+void recordShifts(const LabOptions& options, const StabilityPlan& plan, const std::vector<std::string>& integrators,
+                  SafeSteps& safe) {
+  const char* step[] = {"half_to_T", "T_to_2T", "2T_to_4T"};
+  for (std::size_t k = 0; k + 1 < plan.durations.size(); ++k) {
     std::vector<double> ratios;
     for (const auto& name : integrators)
-      for (int cl : sweepLengths) {
-        const Boundary &a = safe[durations[k]][name][cl], &b = safe[durations[k + 1]][name][cl];
-        if (!a.belowGrid() && !a.aboveGrid() && !b.belowGrid() && !b.aboveGrid()) ratios.push_back(b.safeDt / a.safeDt);
+      for (int length : plan.sweepLengths) {
+        const Boundary& shorter = safe.at(plan.durations[k], name, length);
+        const Boundary& longer = safe.at(plan.durations[k + 1], name, length);
+        if (onGrid(shorter) && onGrid(longer)) ratios.push_back(longer.safeDt / shorter.safeDt);
       }
-    shift.push_back(ratios.empty() ? std::nan("") : median(ratios));
-    const char* step[] = {"half_to_T", "T_to_2T", "2T_to_4T"};
-    recordValue(options, std::string("stability.shift.") + step[k],
-                ratios.empty() ? "–" : fixed(shift.back(), 2));
+    recordValue(options, std::string("stability.shift.") + step[k], ratios.empty() ? "–" : fixed(median(ratios), 2));
   }
+}
 
-  const std::string at = "T = " + general(T) + " s, " + scenes::plural(scan.members, "start") + ", 5% dt grid";
-  writeTable(options, "table1", "Table 1: longest chain (of " + std::to_string(ladder.size()) + " lengths " +
-                                    std::to_string(ladder.front()) + "–" + std::to_string(ladder.back()) +
+std::string conditionsText(const StabilityPlan& plan) {
+  return "T = " + general(plan.duration) + " s, " + scenes::plural(plan.scan.members, "start") + ", 5% dt grid";
+}
+
+void writeSafeStepTables(const LabOptions& options, const StabilityPlan& plan, const Rows& table1, const Rows& table2,
+                         const Rows& boundaries, const Rows& vsDuration) {
+  const std::string at = conditionsText(plan);
+  writeTable(options, "table1", "Table 1: longest chain (of " + std::to_string(plan.ladder.size()) + " lengths " +
+                                    std::to_string(plan.ladder.front()) + "–" + std::to_string(plan.ladder.back()) +
                                     ") such that it and every shorter one survive, " + at,
              {"integrator", "dt 0.2", "dt 0.1", "dt 0.05", "seed dt 0.2", "seed dt 0.1", "seed dt 0.05"}, table1);
   std::vector<std::string> table2Header{"integrator"};
-  for (int cl : tableLengths) table2Header.push_back("cl " + std::to_string(cl));
+  for (int length : plan.tableLengths) table2Header.push_back("cl " + std::to_string(length));
   for (const char* seed : {"seed cl 6", "seed cl 12", "seed cl 24"}) table2Header.push_back(seed);
-  writeTable(options, "table2", "Table 2: safe dt (every grid dt at or below it survives), " + at,
-             table2Header, table2);
+  writeTable(options, "table2", "Table 2: safe dt (every grid dt at or below it survives), " + at, table2Header,
+             table2);
   writeTable(options, "stability_boundary", "Safe dt, first failure (what fired) and survival above it, " + at,
-             {"integrator", "chain length", "safe dt", "first failure", "survives again at"}, details);
+             {"integrator", "chain length", "safe dt", "first failure", "survives again at"}, boundaries);
   std::vector<std::string> header{"integrator", "chain length"};
-  for (double d : durations) header.push_back("T = " + general(d) + " s");
-  writeTable(options, "stability_vs_duration", "Safe dt against T (" + scenes::plural(scan.members, "start") + ")",
+  for (double d : plan.durations) header.push_back("T = " + general(d) + " s");
+  writeTable(options, "stability_vs_duration", "Safe dt against T (" + scenes::plural(plan.scan.members, "start") + ")",
              header, vsDuration);
+}
+
+void writeFrequencyTables(const LabOptions& options, const StabilityPlan& plan, const ChainConstants& constants,
+                          const std::map<int, double>& whipRate, const Rows& feedback, const Rows& frequency) {
+  const std::string at = conditionsText(plan);
+  const std::string soft = general(constants.defaultStiffness), stiff = general(constants.stiffFeedback);
   writeTable(options, "stability_feedback",
-             "Short chains: safe dt at the feedback stiffness k_s = " + general(defaultStiffness) + " and " +
-                 general(stiffFeedback) + " (" + at + "); dt·√k_s constant means the feedback governs",
-             {"integrator", "chain length", "safe dt, k_s " + general(defaultStiffness),
-              "safe dt, k_s " + general(stiffFeedback), "dt·√k_s at " + general(defaultStiffness),
-              "dt·√k_s at " + general(stiffFeedback)},
+             "Short chains: safe dt at the feedback stiffness k_s = " + soft + " and " + stiff + " (" + at +
+                 "); dt·√k_s constant means the feedback governs",
+             {"integrator", "chain length", "safe dt, k_s " + soft, "safe dt, k_s " + stiff, "dt·√k_s at " + soft,
+              "dt·√k_s at " + stiff},
              feedback);
-  std::vector<std::vector<std::string>> whipRows;
-  for (int cl : lengths) whipRows.push_back({std::to_string(cl), general(whipRate[cl], 3)});
+  Rows whipRows;
+  for (int length : plan.lengths) {
+    const auto whip = whipRate.find(length);
+    whipRows.push_back({std::to_string(length), general(whip != whipRate.end() ? whip->second : 0.0, 3)});
+  }
   writeTable(options, "stability_whip",
              "The whip: fastest rod rotation rate max |d × ḋ|/|d|² over the run (RK4, dt 0.005), 1/s",
              {"chain length", "ω_whip"}, whipRows);
   writeTable(options, "stability_frequency",
-             "Safe dt times each frequency present (" + at + "): √k_s = " + general(std::sqrt(defaultStiffness), 3) +
+             "Safe dt times each frequency present (" + at + "): √k_s = " +
+                 general(std::sqrt(constants.defaultStiffness), 3) +
                  " (feedback), ω_whip measured, 2√((cl−1)g/r) (static chain mode); constant down a column: that "
                  "frequency governs",
              {"integrator", "chain length", "safe dt", "dt·√k_s", "dt·ω_whip", "dt·ω_chain"}, frequency);
-  recordValue(options, "stability.duration", general(T));
+}
+
+void recordSettings(const LabOptions& options, const StabilityPlan& plan, const ChainConstants& constants) {
+  const ScanSettings& scan = plan.scan;
+  const FailureCriterion& criterion = options.criterion;
+  recordValue(options, "stability.duration", general(plan.duration));
   std::string durationText;
-  for (double d : durations) durationText += (durationText.empty() ? "" : ", ") + general(d);
+  for (double d : plan.durations) durationText += (durationText.empty() ? "" : ", ") + general(d);
   recordValue(options, "stability.durations", durationText);
   recordValue(options, "stability.members", std::to_string(scan.members));
-  recordValue(options, "stability.perturbation", general(perturbation));
+  recordValue(options, "stability.perturbation", general(plan.perturbation));
   recordValue(options, "stability.grid_lo", general(scan.grid.front(), 3));
   recordValue(options, "stability.grid_hi", general(scan.grid.back(), 3));
   recordValue(options, "stability.grid_ratio", fixed(scan.grid[1] / scan.grid[0], 4));
   recordValue(options, "stability.grid_points", std::to_string(scan.grid.size()));
   recordValue(options, "stability.beyond", general(scan.beyond));
-  recordValue(options, "stability.rod_length", general(rod));
-  recordValue(options, "stability.gravity", general(g));
-  recordValue(options, "stability.feedback_ks", general(defaultStiffness));
+  recordValue(options, "stability.rod_length", general(constants.rod));
+  recordValue(options, "stability.gravity", general(constants.gravity));
+  recordValue(options, "stability.feedback_ks", general(constants.defaultStiffness));
   recordValue(options, "criterion.max_stretch", general(criterion.maxRelativeConstraintError));
   recordValue(options, "criterion.energy_rise", general(criterion.energyRiseFraction));
   recordValue(options, "criterion.text", describe(criterion));
+}
+
+}  // namespace
+
+int runStability(const LabOptions& options, const StabilityOptions& stability) {
+  prepareOutput(options);
+  std::cout << describe(options.criterion) << "\n";
+  const std::vector<std::string> integrators = scannedIntegrators(options);
+  const StabilityPlan plan = options.quick ? quickPlan(stability) : fullPlan(stability);
+  const ChainConstants constants = chainConstants();
+  const std::vector<Cell> cells = scanCells(plan, integrators, constants);
+  printGrid(plan);
+
+  std::map<int, double> whipRate = measureWhipRates(options, plan);
+  if (interrupted()) return 130;
+  const auto scans = runScans(options, plan, cells);
+  SafeSteps safe = writeScanRows(options, plan, cells, scans, constants, whipRate);
+  if (interrupted()) return 130;  // the rows written are complete scans; no table from a partial set
+
+  const std::vector<LadderCell> ladder = ladderCells(plan, integrators);
+  const auto probes = sweepResults<Probe>(options, ladder.size(), [&](std::size_t k) {
+    return runLadderCell(ladder[k], plan, options.criterion);
+  });
+  LadderSurvival survived = writeLadderRows(options, plan, ladder, probes);
+  if (interrupted()) return 130;
+
+  const Rows table1 = table1Rows(options, plan, integrators, survived);
+  const Rows table2 = table2Rows(options, plan, integrators, safe);
+  recordShifts(options, plan, integrators, safe);
+  writeSafeStepTables(options, plan, table1, table2, boundaryRows(plan, integrators, safe),
+                      durationRows(plan, integrators, safe));
+  writeFrequencyTables(options, plan, constants, whipRate, feedbackRows(plan, integrators, safe, constants),
+                       frequencyRows(plan, integrators, safe, constants, whipRate));
+  recordSettings(options, plan, constants);
   return 0;
 }
 
