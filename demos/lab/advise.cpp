@@ -191,6 +191,33 @@ Reference makeReference(const std::function<scenes::Scene()>& build, double hori
   return out;
 }
 
+namespace {
+
+// One integrator's scan: its tolerances (adaptive) or its dt grid. An
+// integrator may refuse a scene it has no form for (implicit Euler and a
+// force without Jacobians): it is listed with its reason, never picked.
+IntegratorSurvey surveyIntegrator(const Measurer& measurer, const SurveySettings& s, const std::string& name,
+                                  const std::function<void(double)>& progress) {
+  IntegratorSurvey out;
+  out.integrator = name;
+  out.adaptive = particles::requireIntegrator(name).usesTolerance;
+  try {
+    if (out.adaptive)
+      scanTolerances(measurer, s, s.horizon / std::max(1L, std::lround(s.horizon / s.adaptiveInterval)), out,
+                     progress);
+    else
+      scanSteps(measurer, s, out, progress);
+  } catch (const std::invalid_argument& e) {
+    out.refused = e.what();
+    out.scanned.clear();
+    out.safeDt = out.firstFailureDt = 0.0;
+    out.safeAtTop = false;
+  }
+  return out;
+}
+
+}  // namespace
+
 double predictableUntil(const Reference& reference, double threshold, double horizon) {
   for (std::size_t k = 0; k < reference.parting.size(); ++k)
     if (!(reference.parting[k] <= threshold)) return k > 0 ? reference.partingTimes[k - 1] : 0.0;
@@ -259,27 +286,10 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
       names.push_back(info.name);
   const Measurer measurer{build, s, reference.trajectory, scale};
   for (std::size_t i = 0; i < names.size() && !cancelled(s); ++i) {
-    IntegratorSurvey out;
-    out.integrator = names[i];
-    out.adaptive = particles::requireIntegrator(names[i]).usesTolerance;
     auto progress = [&](double f) {
       if (s.progress) s.progress((i + f) / names.size());
     };
-    // An integrator may refuse a scene it has no form for (xpbd and a force
-    // without a position form): it is listed with its reason, never picked.
-    try {
-      if (out.adaptive)
-        scanTolerances(measurer, s, s.horizon / std::max(1L, std::lround(s.horizon / s.adaptiveInterval)), out,
-                       progress);
-      else
-        scanSteps(measurer, s, out, progress);
-    } catch (const std::invalid_argument& e) {
-      out.refused = e.what();
-      out.scanned.clear();
-      out.safeDt = out.firstFailureDt = 0.0;
-      out.safeAtTop = false;
-    }
-    survey.integrators.push_back(std::move(out));
+    survey.integrators.push_back(surveyIntegrator(measurer, s, names[i], progress));
   }
   return survey;
 }
