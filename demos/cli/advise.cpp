@@ -32,6 +32,29 @@ struct AdviseOptions {
 
 std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "–"; }
 
+// The table: one line per integrator, its pick or why it has none.
+void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) {
+  std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
+  for (std::size_t k = 0; k < picks.size(); ++k) {
+    const auto& scan = survey.integrators[k];
+    const auto& p = picks[k];
+    const std::string safe = scan.adaptive ? "–" : cell(scan.safeDt) + (scan.safeAtTop ? "+" : "");
+    char line[256];
+    if (!scan.refused.empty())
+      std::snprintf(line, sizeof line, "%-17s refuses the scene: %.180s\n", scan.integrator.c_str(),
+                    scan.refused.c_str());
+    else if (p.found)
+      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-11s %s (%s-%s)\n", scan.integrator.c_str(),
+                    cell(p.candidate.dt).c_str(), scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–",
+                    cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),
+                    cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
+    else
+      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
+                    scan.integrator.c_str(), scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
+    std::cout << line;
+  }
+}
+
 int advise(const AdviseOptions& o) {
   o.source.load();  // bad scene input fails here, before any measurement
 
@@ -66,25 +89,7 @@ int advise(const AdviseOptions& o) {
               << scenes::formatNumber(survey.certifiableHorizon) << "\n";
     return kCannotCertify;
   }
-  std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
-  for (std::size_t k = 0; k < picks.size(); ++k) {
-    const auto& scan = survey.integrators[k];
-    const auto& p = picks[k];
-    const std::string safe = scan.adaptive ? "–" : cell(scan.safeDt) + (scan.safeAtTop ? "+" : "");
-    char line[256];
-    if (!scan.refused.empty())
-      std::snprintf(line, sizeof line, "%-17s refuses the scene: %.180s\n", scan.integrator.c_str(),
-                    scan.refused.c_str());
-    else if (p.found)
-      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-11s %s (%s-%s)\n", scan.integrator.c_str(),
-                    cell(p.candidate.dt).c_str(), scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–",
-                    cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),
-                    cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
-    else
-      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
-                    scan.integrator.c_str(), scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
-    std::cout << line;
-  }
+  printPicks(survey, picks);
   const int best = advice.best;
   if (best < 0) {
     std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)

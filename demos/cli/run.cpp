@@ -107,10 +107,10 @@ int run(const RunOptions& o) {
 
 }  // namespace
 
-Command addRunCommand(CLI::App& app) {
-  auto options = std::make_shared<RunOptions>();
-  CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
-  options->source.addOptions(*sub);
+namespace {
+
+// The options that choose the integrator and its settings, dt and the step count.
+void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options) {
   sub->add_option("--integrator", options->integrator,
                   "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)")
       ->check(options::integratorName());
@@ -133,6 +133,10 @@ Command addRunCommand(CLI::App& app) {
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")
       ->required()
       ->check(options::decimalInteger(0, kMaxSteps));
+}
+
+// The output files, how often they are written, and the thread count.
+void addOutputOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options) {
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
                   "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
@@ -158,14 +162,24 @@ Command addRunCommand(CLI::App& app) {
                   "decimal integer >= 1")
       ->capture_default_str()
       ->check(options::decimalInteger(1, kMaxSteps));
+}
+
+}  // namespace
+
+Command addRunCommand(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* sub = app.add_subcommand("run", "step a scene without a window and write per-step diagnostics");
+  options->source.addOptions(*sub);
+  addSteppingOptions(sub, options);
+  addOutputOptions(sub, options);
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
       "non-finite (|q|^2 or |v|^2 overflows), the total energy rose above E0 + 100 E_ref (the scene's\n"
       "energies and the work of its starting forces across its view: particles/divergence.h), a step\n"
       "failed (a solve with non-finite multipliers, an adaptive step below its floor or over its work\n"
-      "cap, a particle over the contact work cap of 100000 impacts in one step) or a diagnostic is not\n"
-      "finite: the run stops,\n"
+      "cap, a particle over the contact work cap of 100000 impacts in one step), a constraint solve left\n"
+      "a relative residual above 10, or a diagnostic is not finite: the run stops,\n"
       "stderr names the step, time and reason, and the CSV holds every step before it (finite numbers\n"
       "only); 4 an output file or stdout could not be written (disk full); 130 SIGINT, SIGTERM or SIGHUP: the run stops at\n"
       "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"
