@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "join_names.h"
+#include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/solver_names.h"
 #include "scene_file/codecs.h"
@@ -128,6 +129,24 @@ void readCollisionEdges(const JsonNode& list, particles::ParticleSystem& s) {
   }
 }
 
+// A particle that starts inside a collider (deeper than rounding) has no
+// shortest way out that adds no energy (at a disc's centre, none at all): the
+// file is refused at the particle's path, naming the collider.
+void refuseParticlesInsideColliders(const JsonNode& root, const particles::ParticleSystem& s) {
+  std::vector<std::pair<const char*, std::size_t>> paths;  // each collider's list and index, in order
+  for (const char* list : {"walls", "colliders"})
+    for (std::size_t k = 0; k < root[list].arraySize(); ++k) paths.emplace_back(list, k);
+  for (int i = 0; i < s.size(); ++i)
+    for (std::size_t c = 0; c < s.colliders().size() && c < paths.size(); ++c) {
+      const Eigen::Vector2d x = s.position(i);
+      const double depth = -(s.colliders()[c].distance(x).distance - s.radii()[i]);
+      if (depth > 1e-6 * std::max(1.0, x.norm()))
+        root["particles"][static_cast<std::size_t>(i)].reject(
+            "the particle starts inside " + std::string(paths[c].first) + "[" + std::to_string(paths[c].second) +
+            "] (by " + particles::formatValue(depth) + "): a contact cannot push it out without adding energy");
+    }
+}
+
 // An array of at most limit elements (absent: none).
 void requireCount(const JsonNode& node, const char* what, long long limit) {
   const std::size_t count = node.arraySize();
@@ -186,6 +205,7 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
       guarded(node, [&] { s.addCollider(collider); });
     }
   readCollisionEdges(root["collisionEdges"], s);
+  refuseParticlesInsideColliders(root, s);
   return scene;
 }
 
