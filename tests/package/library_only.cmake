@@ -4,13 +4,7 @@
 #   cmake -DSOURCE_TREE=... -DCONSUMER=... -DWORK_DIR=... -DGENERATOR=... -P library_only.cmake
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 run(${CMAKE_COMMAND} -S ${SOURCE_TREE} -B ${WORK_DIR}/engine -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release
     -DBUILD_SHARED_LIBS=ON -DPARTICLES_BUILD_DEMOS=OFF -DPARTICLES_BUILD_TESTS=OFF -DPARTICLES_INSTALL=ON)
 if(out MATCHES "GTest|GLUT|CLI11")
