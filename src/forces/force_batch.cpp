@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "parallel_for.h"
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
@@ -204,9 +205,9 @@ void ForceBatches::apply(const Phase& s, Eigen::VectorXd& f, bool fuseTail) cons
       case Segment::Kind::Springs: springs_.apply(seg.begin, seg.end, s, f); break;
       case Segment::Kind::Field: {
         double* fd = f.data();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n >= kParallelParticles)
-        for (int i = 0; i < n; ++i)
+        parallelFor(n, threads, kParallelParticles, [&](int i) {
           if (s.inverseMass[i] > 0.0) addField(seg.field, i, s, fd);
+        });
         break;
       }
       case Segment::Kind::Virtual: seg.force->apply(s, f); break;
@@ -220,14 +221,13 @@ void ForceBatches::applyTailAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen:
   double* fd = f.data();
   double* ad = a.data();
   const int threads = threadCount();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n >= kParallelParticles)
-  for (int i = 0; i < n; ++i) {
+  parallelFor(n, threads, kParallelParticles, [&](int i) {
     const double w = s.inverseMass[i];
     if (w > 0.0)
       for (const FieldTerm& t : tail_) addField(t, i, s, fd);
     ad[2 * i] = w * fd[2 * i];
     ad[2 * i + 1] = w * fd[2 * i + 1];
-  }
+  });
 }
 
 }  // namespace particles
