@@ -12,12 +12,72 @@ namespace demo {
 
 namespace {
 std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "-"; }
+
+// One integrator's row of the picks table: its name (green for the cheapest),
+// then its dt or tolerance, error and cost, or why it has none.
+void drawPickRow(const lab::IntegratorSurvey& scan, const lab::Pick& p, bool best, int repeats) {
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  if (best) ImGui::TextColored(ImVec4(0.4f, 1.0f, 0.4f, 1.0f), "%s", scan.integrator.c_str());
+  else ImGui::TextUnformatted(scan.integrator.c_str());
+  ImGui::TableNextColumn();
+  if (!scan.refused.empty()) {
+    ImGui::TextDisabled("refuses");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", scan.refused.c_str());
+    return;
+  }
+  if (!p.found) {
+    ImGui::TextDisabled("none");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("nothing within E on the scanned grid (%s)",
+                        scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str());
+    return;
+  }
+  // An adaptive scheme's dt is its call interval; its tolerance sets the steps.
+  ImGui::TextUnformatted(scan.adaptive ? ("tol " + cell(p.candidate.tolerance)).c_str() : cell(p.candidate.dt).c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(scan.adaptive ? "called every %s s" : "safe boundary %s s",
+                      cell(scan.adaptive ? p.candidate.dt : scan.safeDt).c_str());
+  ImGui::TableNextColumn();
+  ImGui::TextUnformatted(cell(p.candidate.maxError).c_str());
+  ImGui::TableNextColumn();
+  ImGui::TextUnformatted(cell(p.cpuPerSimulatedSecond).c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("median of %s, %s to %s", scenes::plural(repeats, "repeat").c_str(), cell(p.cpuMin).c_str(),
+                      cell(p.cpuMax).c_str());
+}
+
+void drawPicksTable(const lab::Advice& a, int repeats) {
+  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
+  if (!ImGui::BeginTable("picks", 4, flags)) return;
+  for (const char* column : {"integrator", "dt / tol", "max error", "CPU s/sim s"}) ImGui::TableSetupColumn(column);
+  ImGui::TableHeadersRow();
+  for (std::size_t k = 0; k < a.picks.size(); ++k)
+    drawPickRow(a.survey.integrators[k], a.picks[k], static_cast<int>(k) == a.best, repeats);
+  ImGui::EndTable();
+}
 }  // namespace
 
 void App::drawAdvicePanel() {
   const bool open = ImGui::CollapsingHeader("Advice: cheapest integrator within an error");
   recordWidget("advice");
   if (!open) return;
+  drawAdviceRequest();
+  const bool running = advice_.running();
+  drawAdviceButtons(running);
+  if (running) {
+    char label[64];
+    std::snprintf(label, sizeof label, advice_.cancelling() ? "cancelling" : "%.0f%%", 100.0 * advice_.progress());
+    ImGui::ProgressBar(static_cast<float>(advice_.progress()), ImVec2(-1.0f, 0.0f), label);
+    return;
+  }
+  if (advice_.state() == AdviceState::Cancelled) ImGui::TextDisabled("cancelled");
+  if (advice_.state() == AdviceState::Failed) ImGui::TextWrapped("failed: %s", advice_.message().c_str());
+  if (advice_.state() == AdviceState::Done) drawAdviceResult();
+}
+
+// What is asked: the error E over the horizon T.
+void App::drawAdviceRequest() {
   ImGui::TextWrapped("Measures a copy of this scene as particle-lab advise --max-steps %ld --repeats %d does: a "
                      "reference, then per integrator the largest safe dt within E over [0, T], timed.",
                      adviceRequest_.maxSteps, adviceRequest_.repeats);
@@ -27,9 +87,10 @@ void App::drawAdvicePanel() {
   ImGui::InputDouble("T (s)", &adviceRequest_.horizon, 0.0, 0.0, "%.3g");
   recordWidget("advise-horizon");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("simulated seconds the error is measured over");
+}
 
-  // The three buttons keep their places whatever the job's state (scripts click them).
-  const bool running = advice_.running();
+// The three buttons keep their places whatever the job's state (scripts click them).
+void App::drawAdviceButtons(bool running) {
   ImGui::BeginDisabled(running);
   if (ImGui::Button("Advise")) guarded([&] { startAdvice(); });
   ImGui::EndDisabled();
@@ -47,61 +108,16 @@ void App::drawAdvicePanel() {
   recordWidget("advise-apply");
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("sets pane 1's integrator, dt and tolerance to the cheapest pick");
+}
 
-  if (running) {
-    char label[64];
-    std::snprintf(label, sizeof label, advice_.cancelling() ? "cancelling" : "%.0f%%", 100.0 * advice_.progress());
-    ImGui::ProgressBar(static_cast<float>(advice_.progress()), ImVec2(-1.0f, 0.0f), label);
-    return;
-  }
-  if (advice_.state() == AdviceState::Cancelled) ImGui::TextDisabled("cancelled");
-  if (advice_.state() == AdviceState::Failed) ImGui::TextWrapped("failed: %s", advice_.message().c_str());
-  if (advice_.state() != AdviceState::Done) return;
-
+// A finished survey: what was measured, the picks, and the cheapest one's options.
+void App::drawAdviceResult() {
   const lab::Advice& a = advice_.advice();
   ImGui::TextWrapped("%s, %s, T = %s s, E = %s; reference: %s%s", advice_.scene().label.c_str(),
                      scenes::plural(a.survey.particles, "particle").c_str(), lab::general(advice_.request().horizon).c_str(),
                      lab::general(advice_.request().error).c_str(), a.survey.reference.c_str(),
                      adviceIsForThisScene() ? "" : " (another scene: advise again to apply)");
-  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
-  if (ImGui::BeginTable("picks", 4, flags)) {
-    for (const char* column : {"integrator", "dt / tol", "max error", "CPU s/sim s"}) ImGui::TableSetupColumn(column);
-    ImGui::TableHeadersRow();
-    for (std::size_t k = 0; k < a.picks.size(); ++k) {
-      const lab::IntegratorSurvey& scan = a.survey.integrators[k];
-      const lab::Pick& p = a.picks[k];
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      if (static_cast<int>(k) == a.best) ImGui::TextColored(ImVec4(0.4f, 1.0f, 0.4f, 1.0f), "%s", scan.integrator.c_str());
-      else ImGui::TextUnformatted(scan.integrator.c_str());
-      ImGui::TableNextColumn();
-      if (!scan.refused.empty()) {
-        ImGui::TextDisabled("refuses");
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", scan.refused.c_str());
-        continue;
-      }
-      if (!p.found) {
-        ImGui::TextDisabled("none");
-        if (ImGui::IsItemHovered())
-          ImGui::SetTooltip("nothing within E on the scanned grid (%s)",
-                            scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str());
-        continue;
-      }
-      // An adaptive scheme's dt is its call interval; its tolerance sets the steps.
-      ImGui::TextUnformatted(scan.adaptive ? ("tol " + cell(p.candidate.tolerance)).c_str() : cell(p.candidate.dt).c_str());
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(scan.adaptive ? "called every %s s" : "safe boundary %s s",
-                          cell(scan.adaptive ? p.candidate.dt : scan.safeDt).c_str());
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(cell(p.candidate.maxError).c_str());
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(cell(p.cpuPerSimulatedSecond).c_str());
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("median of %s, %s to %s", scenes::plural(advice_.request().repeats, "repeat").c_str(),
-                          cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
-    }
-    ImGui::EndTable();
-  }
+  drawPicksTable(a, advice_.request().repeats);
   if (!a.survey.limit.empty())
     ImGui::TextWrapped("cannot certify: %s (longest horizon it can: %.4g s)", a.survey.limit.c_str(),
                        a.survey.certifiableHorizon);

@@ -83,7 +83,25 @@ class App {
   void drawOutOfViewIndicators();
   void drawHelp();
   void drawPanel();
+  // The panel's sections, top to bottom, and their parts.
+  void drawSceneSection();
+  void drawSceneCombo();
+  void drawPresetCombo();
+  void drawSceneParams();
+  void drawRunButtons();
+  void drawIntegrationSection();
+  void drawPaneIntegrator(std::size_t pane);
+  void drawIntegratorSettings();
+  void drawTimeControls();
   void drawAdvicePanel();
+  void drawAdviceRequest();
+  void drawAdviceButtons(bool running);
+  void drawAdviceResult();
+  void drawPlotsSection();
+  void drawSolverSection();
+  void drawSolverSettings();
+  void drawMouseSpringSettings();
+  void drawDisplaySection();
   void recordWidget(const char* name);  // the last ImGui item, for scripted clicks
   void finishFrame();
 

@@ -56,6 +56,112 @@ CLI::Validator comparePane() {
       },
       "INTEGRATOR[:DT]");
 }
+
+// What CLI11 reads into locals before it is checked and copied into
+// DemoOptions, with the options that say whether each was given.
+struct CommandLine {
+  std::string key, integrator;
+  double dt = 0.0;
+  long long frames = 0;
+  std::vector<std::string> compare;
+  std::pair<int, int> window;
+  CLI::Option* keyOption = nullptr;
+  CLI::Option* integratorOption = nullptr;
+  CLI::Option* dtOption = nullptr;
+  CLI::Option* compareOption = nullptr;
+  CLI::Option* framesOption = nullptr;
+};
+
+// The options in --help order, in groups by what they set.
+// The scene: its source (shared with particle-lab) or a number key.
+void addSceneOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
+  o.source.addOptions(cli);
+  c.keyOption = cli.add_option("--key", c.key,
+                               "start with the scene of a number key, 1-9 or 0, as pressing it (0: the stiff "
+                               "64x64 cloth with xpbd at 60 Hz; press h in the window for the list)");
+  for (const char* other : {"--scene", "--scene-file", "--param", "--preset"}) c.keyOption->excludes(cli.get_option(other));
+}
+
+// How the panes step: integrator, dt, compare mode, lockstep.
+void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
+  c.integratorOption = cli.add_option("--integrator", c.integrator, "integrator (default: the scene's)")
+                           ->check(options::integratorName());
+  c.dtOption = cli.add_option("--dt", c.dt, "time step in simulated seconds (default: the scene's)")
+                   ->check(options::positiveNumber());
+  c.compareOption =
+      cli.add_option("--compare", c.compare,
+                     "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or "
+                     "rk4:0.02,rk4:0.005 (2 to 4)")
+          ->delimiter(',')
+          ->expected(2, 4)
+          ->check(comparePane());
+  cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
+}
+
+// How the window starts: panel, pause, pacing, size.
+void addWindowOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
+  cli.add_flag("--no-panel", o.hidePanel, "start with the control panel hidden (key p shows it)");
+  cli.add_flag("--paused", o.startPaused, "start paused");
+  cli.add_flag("--realtime", o.realtime, "with --script or --frames: keep to 60 frames per second instead of running flat out");
+  // WIDTHxHEIGHT: split at the x, each side a decimal integer in its range.
+  cli.add_option("--window", c.window, "window size WIDTHxHEIGHT in pixels, from 200x150 to 8192x8192 (default 1180x760)")
+      ->delimiter('x')
+      ->check(options::decimalInteger(200, 8192).application_index(0))
+      ->check(options::decimalInteger(150, 8192).application_index(1));
+}
+
+// A scripted run and what it writes (with dopri5's tolerance, which --help
+// lists between them).
+void addRunOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
+  cli.add_option("--script", o.script, "timed input events to play (see demos/gui/SCRIPTING.md)");
+  c.framesOption = cli.add_option("--frames", c.frames, "exit after this many frames")
+                       ->check(options::decimalInteger(1, kMaxFrames));
+  cli.add_option("--tolerance", o.tolerance, "local error tolerance of dopri5")
+      ->capture_default_str()
+      ->check(options::integratorTolerance());
+  cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
+  cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
+}
+
+void parseCommandLine(CLI::App& cli, int argc, char** argv) {
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) std::exit(cli.exit(e));  // --help, --version
+    badUsage(e.what());
+  }
+}
+
+// The scene source (shared with particle-lab) and the integrator by its table name.
+void takeSceneAndStepping(DemoOptions& o, const CommandLine& c) {
+  try {
+    o.source.validate();
+    if (*c.integratorOption) o.integrator = particles::requireIntegrator(c.integrator).name;
+    if (*c.dtOption) o.dt = c.dt;
+  } catch (const std::invalid_argument& e) {
+    badUsage(e.what());
+  }
+}
+
+void takeSceneKey(DemoOptions& o, const CommandLine& c) {
+  if (!*c.keyOption) return;
+  std::string keys;
+  for (const SceneKey& k : sceneKeys()) {
+    if (c.key.size() == 1 && static_cast<unsigned char>(c.key[0]) == k.key) o.sceneKey = c.key[0];
+    keys += std::string(keys.empty() ? "" : ", ") + static_cast<char>(k.key);
+  }
+  if (!o.sceneKey) badUsage("--key expects one of " + keys + ", got '" + c.key + "'");
+}
+
+void checkOutputs(const DemoOptions& o) {
+  if (!o.screenshot.empty()) {
+    // The screenshot is written as PNG, so the name must say PNG.
+    if (!endsWith(o.screenshot, ".png"))
+      badUsage("--screenshot writes PNG images: expected a name ending in .png, got '" + o.screenshot + "'");
+    requireWritable("--screenshot", o.screenshot);
+  }
+  if (!o.logState.empty()) requireWritable("--log-state", o.logState);
+}
 }  // namespace
 
 ComparePane parseComparePane(const std::string& entry) {
@@ -73,84 +179,26 @@ ComparePane parseComparePane(const std::string& entry) {
 
 DemoOptions parseOptions(int argc, char** argv) {
   DemoOptions o;
+  CommandLine c;
+  c.window = {o.windowWidth, o.windowHeight};
   CLI::App cli{"particle-demo: the interactive particle-system laboratory (press h in the window for the keys)"};
-  std::vector<std::string> compare;
-  std::pair<int, int> window{o.windowWidth, o.windowHeight};
-  double dt = 0.0;
-  long long frames = 0;
-  std::string integrator;
   o.source.scene = "cloth";
   cli.name("particle-demo");
   cli.set_version_flag("--version", options::versionLine("particle-demo"));
-  o.source.addOptions(cli);
-  std::string key;
-  auto* keyOption = cli.add_option("--key", key,
-                                   "start with the scene of a number key, 1-9 or 0, as pressing it (0: the stiff "
-                                   "64x64 cloth with xpbd at 60 Hz; press h in the window for the list)");
-  for (const char* other : {"--scene", "--scene-file", "--param", "--preset"}) keyOption->excludes(cli.get_option(other));
-  auto* integratorOption = cli.add_option("--integrator", integrator, "integrator (default: the scene's)")
-                               ->check(options::integratorName());
-  auto* dtOption = cli.add_option("--dt", dt, "time step in simulated seconds (default: the scene's)")
-                      ->check(options::positiveNumber());
-  auto* compareOption =
-      cli.add_option("--compare", compare,
-                     "start in compare mode, one pane per integrator, each with an optional dt: e.g. euler,rk4 or "
-                     "rk4:0.02,rk4:0.005 (2 to 4)")
-          ->delimiter(',')
-          ->expected(2, 4)
-          ->check(comparePane());
-  cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
-  cli.add_flag("--no-panel", o.hidePanel, "start with the control panel hidden (key p shows it)");
-  cli.add_flag("--paused", o.startPaused, "start paused");
-  cli.add_flag("--realtime", o.realtime, "with --script or --frames: keep to 60 frames per second instead of running flat out");
-  // WIDTHxHEIGHT: split at the x, each side a decimal integer in its range.
-  cli.add_option("--window", window, "window size WIDTHxHEIGHT in pixels, from 200x150 to 8192x8192 (default 1180x760)")
-      ->delimiter('x')
-      ->check(options::decimalInteger(200, 8192).application_index(0))
-      ->check(options::decimalInteger(150, 8192).application_index(1));
-  cli.add_option("--script", o.script, "timed input events to play (see demos/gui/SCRIPTING.md)");
-  auto* framesOption = cli.add_option("--frames", frames, "exit after this many frames")
-                           ->check(options::decimalInteger(1, kMaxFrames));
-  cli.add_option("--tolerance", o.tolerance, "local error tolerance of dopri5")
-      ->capture_default_str()
-      ->check(options::integratorTolerance());
-  cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
-  cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
-  try {
-    cli.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) std::exit(cli.exit(e));  // --help, --version
-    badUsage(e.what());
-  }
+  addSceneOptions(cli, o, c);
+  addSteppingOptions(cli, o, c);
+  addWindowOptions(cli, o, c);
+  addRunOptions(cli, o, c);
+  parseCommandLine(cli, argc, argv);
 
-  // The scene source (shared with particle-lab) and the integrator by its table name.
-  try {
-    o.source.validate();
-    if (*integratorOption) o.integrator = particles::requireIntegrator(integrator).name;
-    if (*dtOption) o.dt = dt;
-  } catch (const std::invalid_argument& e) {
-    badUsage(e.what());
-  }
-  if (*keyOption) {
-    std::string keys;
-    for (const SceneKey& k : sceneKeys()) {
-      if (key.size() == 1 && static_cast<unsigned char>(key[0]) == k.key) o.sceneKey = key[0];
-      keys += std::string(keys.empty() ? "" : ", ") + static_cast<char>(k.key);
-    }
-    if (!o.sceneKey) badUsage("--key expects one of " + keys + ", got '" + key + "'");
-  }
-  if (*framesOption) o.frames = frames;
-  if (*compareOption)
-    for (const std::string& entry : compare) o.compare.push_back(parseComparePane(entry));
-  if (!o.screenshot.empty()) {
-    // The screenshot is written as PNG, so the name must say PNG.
-    if (!endsWith(o.screenshot, ".png"))
-      badUsage("--screenshot writes PNG images: expected a name ending in .png, got '" + o.screenshot + "'");
-    requireWritable("--screenshot", o.screenshot);
-  }
-  if (!o.logState.empty()) requireWritable("--log-state", o.logState);
-  o.windowWidth = window.first;
-  o.windowHeight = window.second;
+  takeSceneAndStepping(o, c);
+  takeSceneKey(o, c);
+  if (*c.framesOption) o.frames = c.frames;
+  if (*c.compareOption)
+    for (const std::string& entry : c.compare) o.compare.push_back(parseComparePane(entry));
+  checkOutputs(o);
+  o.windowWidth = c.window.first;
+  o.windowHeight = c.window.second;
   return o;
 }
 

@@ -61,195 +61,238 @@ void App::drawPanel() {
                    ImGuiWindowFlags_NoSavedSettings);
   ImGui::PushItemWidth(-110.0f);
 
-  // --- scene ----------------------------------------------------------------
-  if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
-    const std::vector<SceneKey> keys = sceneKeys();
-    const bool sceneListOpen = ImGui::BeginCombo("scene", scene_.label.c_str());
-    recordWidget("scene");
-    if (sceneListOpen) {
-      if (closePopups_) ImGui::CloseCurrentPopup();
-      const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-      widgets_.push_back({"scene-list", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}, ""});
-      for (const SceneKey& k : keys)
-        if (ImGui::Selectable((std::string(1, static_cast<char>(k.key)) + "  " + k.choice.label).c_str(),
-                              k.choice.label == scene_.label))
-          guarded([&] { keyboard(k.key); });
-      ImGui::EndCombo();
-    }
-    // The preset fills every parameter of a built-in scene; choosing one rebuilds it.
-    if (!scene_.name.empty() && ImGui::BeginCombo("preset", scene_.preset.c_str())) {
-      for (const scenes::PresetInfo& preset : scenes::presetTable()) {
-        if (ImGui::Selectable(preset.name, scene_.preset == preset.name) && scene_.preset != preset.name) {
-          SceneChoice changed = scene_;
-          changed.preset = preset.name;
-          try {
-            loadScene(changed, true);
-            setStatus(std::string("preset: ") + preset.name);
-          } catch (const std::exception& e) {
-            setStatus(e.what());
-          }
-        }
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", preset.summary);
-      }
-      ImGui::EndCombo();
-    }
-    // Parameters: changing one rebuilds the scene (grid size, chain length, ...).
-    if (const scenes::SceneInfo* info = findScene(scene_.name)) {
-      for (const scenes::ParamSpec& spec : info->params) {
-        auto it = scene_.params.find(spec.name);
-        char buffer[64];
-        std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.value(scene_.preset).c_str());
-        if (ImGui::InputText(spec.name.c_str(), buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue)) {
-          SceneChoice changed = scene_;
-          changed.params[spec.name] = buffer;
-          try {
-            loadScene(changed, true);
-            setStatus("rebuilt with " + spec.name + " = " + buffer);
-          } catch (const std::exception& e) {
-            setStatus(e.what());
-          }
-        }
-        if (ImGui::IsItemHovered() && !spec.help.empty())
-          ImGui::SetTooltip("%s\n(Enter rebuilds the scene)", spec.help.c_str());
-      }
-    }
-    if (ImGui::Button("Reset (r)")) guarded([&] { resetScene(); });
-    recordWidget("reset");
-    ImGui::SameLine();
-    if (ImGui::Button(paused_ ? "Run (space)" : "Pause (space)")) paused_ = !paused_;
-    recordWidget("pause");
-    ImGui::SameLine();
-    if (ImGui::Button("Step (.)")) keyboard('.');
-    recordWidget("step");
-    ImGui::SameLine();
-    if (ImGui::Button("Rewind (b)")) rewind();
-    recordWidget("rewind");
-  }
-
-  // --- time stepping --------------------------------------------------------
-  if (ImGui::CollapsingHeader("Integration", ImGuiTreeNodeFlags_DefaultOpen)) {
-    const auto& table = particles::integratorTable();
-    for (std::size_t k = 0; k < panes_.size(); ++k) {
-      ImGui::PushID(static_cast<int>(k));
-      const std::string label = panes_.size() > 1 ? "pane " + std::to_string(k + 1) : "integrator";
-      if (ImGui::BeginCombo(label.c_str(), panes_[k]->integratorName())) {
-        if (closePopups_) ImGui::CloseCurrentPopup();
-        for (std::size_t t = 0; t < table.size(); ++t) {
-          if (ImGui::Selectable(table[t].name, static_cast<int>(t) == panes_[k]->integratorIndex()))
-            panes_[k]->setIntegrator(static_cast<int>(t));
-          if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (order %d)", table[t].summary, table[t].order);
-        }
-        ImGui::EndCombo();
-      }
-      // One dt for all panes, or one per pane in compare mode.
-      if (k == 0 || panes_.size() > 1) {
-        double dt = panes_[k]->dt();
-        if (ImGui::InputDouble(panes_.size() > 1 ? "dt" : "dt (s)", &dt, 0.0, 0.0, "%.3e",
-                               ImGuiInputTextFlags_EnterReturnsTrue) && dt > 0.0 && std::isfinite(dt)) {
-          if (panes_.size() > 1) panes_[k]->setDt(dt);
-          else for (auto& pane : panes_) pane->setDt(dt);
-        }
-      }
-      ImGui::PopID();
-    }
-    // Schemes with settings of their own (dopri5's error tolerance).
-    bool anyTolerance = false;
-    for (const auto& pane : panes_) anyTolerance |= table[pane->integratorIndex()].usesTolerance;
-    if (anyTolerance) {
-      float logTolerance = static_cast<float>(std::log10(panes_.front()->integratorSettings().tolerance));
-      if (ImGui::SliderFloat("log10 step tolerance", &logTolerance, -12.0f, -2.0f, "%.1f")) {
-        particles::IntegratorSettings settings = panes_.front()->integratorSettings();
-        settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
-        for (auto& pane : panes_) pane->setIntegratorSettings(settings);
-      }
-    }
-    // xpbd's substeps per step and constraint passes per substep.
-    bool anySubsteps = false;
-    for (const auto& pane : panes_) anySubsteps |= table[pane->integratorIndex()].usesSubsteps;
-    if (anySubsteps) {
-      particles::IntegratorSettings settings = panes_.front()->integratorSettings();
-      const bool substeps = ImGui::SliderInt("substeps", &settings.substeps, 1, 200, "%d", ImGuiSliderFlags_Logarithmic);
-      const bool iterations = ImGui::SliderInt("iterations", &settings.iterations, 1, 64, "%d", ImGuiSliderFlags_Logarithmic);
-      if (substeps || iterations)
-        for (auto& pane : panes_) pane->setIntegratorSettings(settings);
-    }
-    if (ImGui::Button("dt x2 (+)")) guarded([&] { scaleDt(2.0); });
-    ImGui::SameLine();
-    if (ImGui::Button("dt /2 (-)")) guarded([&] { scaleDt(0.5); });
-    float speed = static_cast<float>(speed_);
-    if (ImGui::SliderFloat("speed", &speed, 0.125f, 8.0f, "%.3gx", ImGuiSliderFlags_Logarithmic)) speed_ = speed;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("simulated seconds per second of frames (60 frames)");
-    bool lockstep = stepMode_ == StepMode::Lockstep;
-    if (ImGui::Checkbox("lockstep: one step per frame (l)", &lockstep))
-      stepMode_ = lockstep ? StepMode::Lockstep : StepMode::FixedTime;
-    int paneCount = static_cast<int>(panes_.size());
-    if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) guarded([&] { setPaneCount(paneCount); });
-  }
-
-  // --- advice: the cheapest integrator and dt within an error over a horizon ---
-  drawAdvicePanel();
-
-  // --- live plots -------------------------------------------------------------
-  if (ImGui::CollapsingHeader("Energy and constraint error", ImGuiTreeNodeFlags_DefaultOpen)) {
-    const float height = panes_.size() > 1 ? 36.0f : 60.0f;
-    for (std::size_t k = 0; k < panes_.size(); ++k) {
-      ImGui::PushID(static_cast<int>(k));
-      if (panes_.size() > 1) ImGui::TextDisabled("%s", panes_[k]->integratorName());
-      plot("energy", panes_[k]->trace().energy(), height);
-      plot("max |C|", panes_[k]->trace().constraintError(), height);
-      ImGui::PopID();
-    }
-    ImGui::TextDisabled("last %d frames", Trace::capacity);
-  }
-  // --- constraint solver and mouse spring ------------------------------------
-  if (ImGui::CollapsingHeader("Solver and mouse spring")) {
-    particles::SolverSettings settings = panes_.front()->system().solver().settings;
-    bool changed = choose("constraint solve", particles::solveMethodNames(), settings.method);
-    if (settings.method == particles::SolveMethod::ConjugateGradient)
-      changed |= choose("preconditioner", particles::preconditionerNames(), settings.preconditioner);
-    float logTolerance = static_cast<float>(std::log10(settings.tolerance));
-    if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
-      settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
-      changed = true;
-    }
-    changed |= ImGui::InputInt("iteration cap", &settings.maxIterations);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: 4m + 100 for m constraints");
-    changed |= ImGui::InputDouble("feedback k_s", &settings.stiffness, 1.0, 10.0, "%.3g");
-    changed |= ImGui::InputDouble("feedback k_d", &settings.damping, 0.5, 5.0, "%.3g");
-    if (changed) {
-      try {
-        settings.validate();
-        for (auto& pane : panes_) pane->system().solver().settings = settings;
-      } catch (const std::exception& e) {
-        setStatus(e.what());
-      }
-    }
-    ImGui::Separator();
-    float frequency = static_cast<float>(mouseSettings_.joint.frequency);
-    if (ImGui::SliderFloat("mouse joint f", &frequency, 0.5f, 20.0f, "%.2g Hz", ImGuiSliderFlags_Logarithmic))
-      mouseSettings_.joint.frequency = frequency;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_s = m (2 pi f)^2 for the grabbed mass m (at most w dt = 0.5)");
-    float ratio = static_cast<float>(mouseSettings_.joint.dampingRatio);
-    if (ImGui::SliderFloat("damping ratio", &ratio, 0.0f, 2.0f, "%.2f")) mouseSettings_.joint.dampingRatio = ratio;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_d = 2 m zeta (2 pi f); 1 is critical");
-  }
-
-  // --- display --------------------------------------------------------------
-  if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::Checkbox("forces (f)", &drawOptions_.forces);
-    ImGui::SameLine();
-    ImGui::Checkbox("constraints (c)", &drawOptions_.constraints);
-    ImGui::SameLine();
-    ImGui::Checkbox("help (h)", &showHelp_);
-    ImGui::Checkbox("closed-form ghost (g)", &drawOptions_.ghost);
-    ImGui::SameLine();
-    if (ImGui::Button("frame all (a)")) frameAll();
-  }
+  drawSceneSection();
+  drawIntegrationSection();
+  drawAdvicePanel();  // the cheapest integrator and dt within an error over a horizon
+  drawPlotsSection();
+  drawSolverSection();
+  drawDisplaySection();
 
   ImGui::PopItemWidth();
   const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   overlays_.push_back({"panel", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}, ""});
   ImGui::End();
+}
+
+// --- scene --------------------------------------------------------------------
+void App::drawSceneSection() {
+  if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  drawSceneCombo();
+  drawPresetCombo();
+  drawSceneParams();
+  drawRunButtons();
+}
+
+void App::drawSceneCombo() {
+  const std::vector<SceneKey> keys = sceneKeys();
+  const bool sceneListOpen = ImGui::BeginCombo("scene", scene_.label.c_str());
+  recordWidget("scene");
+  if (!sceneListOpen) return;
+  if (closePopups_) ImGui::CloseCurrentPopup();
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  widgets_.push_back({"scene-list", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}, ""});
+  for (const SceneKey& k : keys)
+    if (ImGui::Selectable((std::string(1, static_cast<char>(k.key)) + "  " + k.choice.label).c_str(),
+                          k.choice.label == scene_.label))
+      guarded([&] { keyboard(k.key); });
+  ImGui::EndCombo();
+}
+
+// The preset fills every parameter of a built-in scene; choosing one rebuilds it.
+void App::drawPresetCombo() {
+  if (scene_.name.empty() || !ImGui::BeginCombo("preset", scene_.preset.c_str())) return;
+  for (const scenes::PresetInfo& preset : scenes::presetTable()) {
+    if (ImGui::Selectable(preset.name, scene_.preset == preset.name) && scene_.preset != preset.name) {
+      SceneChoice changed = scene_;
+      changed.preset = preset.name;
+      try {
+        loadScene(changed, true);
+        setStatus(std::string("preset: ") + preset.name);
+      } catch (const std::exception& e) {
+        setStatus(e.what());
+      }
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", preset.summary);
+  }
+  ImGui::EndCombo();
+}
+
+// Parameters: changing one rebuilds the scene (grid size, chain length, ...).
+void App::drawSceneParams() {
+  const scenes::SceneInfo* info = findScene(scene_.name);
+  if (!info) return;
+  for (const scenes::ParamSpec& spec : info->params) {
+    auto it = scene_.params.find(spec.name);
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.value(scene_.preset).c_str());
+    if (ImGui::InputText(spec.name.c_str(), buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue)) {
+      SceneChoice changed = scene_;
+      changed.params[spec.name] = buffer;
+      try {
+        loadScene(changed, true);
+        setStatus("rebuilt with " + spec.name + " = " + buffer);
+      } catch (const std::exception& e) {
+        setStatus(e.what());
+      }
+    }
+    if (ImGui::IsItemHovered() && !spec.help.empty())
+      ImGui::SetTooltip("%s\n(Enter rebuilds the scene)", spec.help.c_str());
+  }
+}
+
+void App::drawRunButtons() {
+  if (ImGui::Button("Reset (r)")) guarded([&] { resetScene(); });
+  recordWidget("reset");
+  ImGui::SameLine();
+  if (ImGui::Button(paused_ ? "Run (space)" : "Pause (space)")) paused_ = !paused_;
+  recordWidget("pause");
+  ImGui::SameLine();
+  if (ImGui::Button("Step (.)")) keyboard('.');
+  recordWidget("step");
+  ImGui::SameLine();
+  if (ImGui::Button("Rewind (b)")) rewind();
+  recordWidget("rewind");
+}
+
+// --- time stepping ------------------------------------------------------------
+void App::drawIntegrationSection() {
+  if (!ImGui::CollapsingHeader("Integration", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  for (std::size_t k = 0; k < panes_.size(); ++k) drawPaneIntegrator(k);
+  drawIntegratorSettings();
+  drawTimeControls();
+}
+
+// Pane k's integrator, and its dt: one dt for all panes, or one per pane in compare mode.
+void App::drawPaneIntegrator(std::size_t k) {
+  const auto& table = particles::integratorTable();
+  ImGui::PushID(static_cast<int>(k));
+  const std::string label = panes_.size() > 1 ? "pane " + std::to_string(k + 1) : "integrator";
+  if (ImGui::BeginCombo(label.c_str(), panes_[k]->integratorName())) {
+    if (closePopups_) ImGui::CloseCurrentPopup();
+    for (std::size_t t = 0; t < table.size(); ++t) {
+      if (ImGui::Selectable(table[t].name, static_cast<int>(t) == panes_[k]->integratorIndex()))
+        panes_[k]->setIntegrator(static_cast<int>(t));
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (order %d)", table[t].summary, table[t].order);
+    }
+    ImGui::EndCombo();
+  }
+  if (k == 0 || panes_.size() > 1) {
+    double dt = panes_[k]->dt();
+    if (ImGui::InputDouble(panes_.size() > 1 ? "dt" : "dt (s)", &dt, 0.0, 0.0, "%.3e",
+                           ImGuiInputTextFlags_EnterReturnsTrue) && dt > 0.0 && std::isfinite(dt)) {
+      if (panes_.size() > 1) panes_[k]->setDt(dt);
+      else for (auto& pane : panes_) pane->setDt(dt);
+    }
+  }
+  ImGui::PopID();
+}
+
+// Schemes with settings of their own: dopri5's error tolerance, xpbd's
+// substeps per step and constraint passes per substep.
+void App::drawIntegratorSettings() {
+  const auto& table = particles::integratorTable();
+  bool anyTolerance = false;
+  for (const auto& pane : panes_) anyTolerance |= table[pane->integratorIndex()].usesTolerance;
+  if (anyTolerance) {
+    float logTolerance = static_cast<float>(std::log10(panes_.front()->integratorSettings().tolerance));
+    if (ImGui::SliderFloat("log10 step tolerance", &logTolerance, -12.0f, -2.0f, "%.1f")) {
+      particles::IntegratorSettings settings = panes_.front()->integratorSettings();
+      settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
+      for (auto& pane : panes_) pane->setIntegratorSettings(settings);
+    }
+  }
+  bool anySubsteps = false;
+  for (const auto& pane : panes_) anySubsteps |= table[pane->integratorIndex()].usesSubsteps;
+  if (anySubsteps) {
+    particles::IntegratorSettings settings = panes_.front()->integratorSettings();
+    const bool substeps = ImGui::SliderInt("substeps", &settings.substeps, 1, 200, "%d", ImGuiSliderFlags_Logarithmic);
+    const bool iterations = ImGui::SliderInt("iterations", &settings.iterations, 1, 64, "%d", ImGuiSliderFlags_Logarithmic);
+    if (substeps || iterations)
+      for (auto& pane : panes_) pane->setIntegratorSettings(settings);
+  }
+}
+
+// dt scaling, speed, lockstep and the number of compare panes.
+void App::drawTimeControls() {
+  if (ImGui::Button("dt x2 (+)")) guarded([&] { scaleDt(2.0); });
+  ImGui::SameLine();
+  if (ImGui::Button("dt /2 (-)")) guarded([&] { scaleDt(0.5); });
+  float speed = static_cast<float>(speed_);
+  if (ImGui::SliderFloat("speed", &speed, 0.125f, 8.0f, "%.3gx", ImGuiSliderFlags_Logarithmic)) speed_ = speed;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("simulated seconds per second of frames (60 frames)");
+  bool lockstep = stepMode_ == StepMode::Lockstep;
+  if (ImGui::Checkbox("lockstep: one step per frame (l)", &lockstep))
+    stepMode_ = lockstep ? StepMode::Lockstep : StepMode::FixedTime;
+  int paneCount = static_cast<int>(panes_.size());
+  if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) guarded([&] { setPaneCount(paneCount); });
+}
+
+// --- live plots ---------------------------------------------------------------
+void App::drawPlotsSection() {
+  if (!ImGui::CollapsingHeader("Energy and constraint error", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const float height = panes_.size() > 1 ? 36.0f : 60.0f;
+  for (std::size_t k = 0; k < panes_.size(); ++k) {
+    ImGui::PushID(static_cast<int>(k));
+    if (panes_.size() > 1) ImGui::TextDisabled("%s", panes_[k]->integratorName());
+    plot("energy", panes_[k]->trace().energy(), height);
+    plot("max |C|", panes_[k]->trace().constraintError(), height);
+    ImGui::PopID();
+  }
+  ImGui::TextDisabled("last %d frames", Trace::capacity);
+}
+
+// --- constraint solver and mouse spring ---------------------------------------
+void App::drawSolverSection() {
+  if (!ImGui::CollapsingHeader("Solver and mouse spring")) return;
+  drawSolverSettings();
+  ImGui::Separator();
+  drawMouseSpringSettings();
+}
+
+void App::drawSolverSettings() {
+  particles::SolverSettings settings = panes_.front()->system().solver().settings;
+  bool changed = choose("constraint solve", particles::solveMethodNames(), settings.method);
+  if (settings.method == particles::SolveMethod::ConjugateGradient)
+    changed |= choose("preconditioner", particles::preconditionerNames(), settings.preconditioner);
+  float logTolerance = static_cast<float>(std::log10(settings.tolerance));
+  if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
+    settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
+    changed = true;
+  }
+  changed |= ImGui::InputInt("iteration cap", &settings.maxIterations);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: 4m + 100 for m constraints");
+  changed |= ImGui::InputDouble("feedback k_s", &settings.stiffness, 1.0, 10.0, "%.3g");
+  changed |= ImGui::InputDouble("feedback k_d", &settings.damping, 0.5, 5.0, "%.3g");
+  if (!changed) return;
+  try {
+    settings.validate();
+    for (auto& pane : panes_) pane->system().solver().settings = settings;
+  } catch (const std::exception& e) {
+    setStatus(e.what());
+  }
+}
+
+void App::drawMouseSpringSettings() {
+  float frequency = static_cast<float>(mouseSettings_.joint.frequency);
+  if (ImGui::SliderFloat("mouse joint f", &frequency, 0.5f, 20.0f, "%.2g Hz", ImGuiSliderFlags_Logarithmic))
+    mouseSettings_.joint.frequency = frequency;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_s = m (2 pi f)^2 for the grabbed mass m (at most w dt = 0.5)");
+  float ratio = static_cast<float>(mouseSettings_.joint.dampingRatio);
+  if (ImGui::SliderFloat("damping ratio", &ratio, 0.0f, 2.0f, "%.2f")) mouseSettings_.joint.dampingRatio = ratio;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_d = 2 m zeta (2 pi f); 1 is critical");
+}
+
+// --- display ------------------------------------------------------------------
+void App::drawDisplaySection() {
+  if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::Checkbox("forces (f)", &drawOptions_.forces);
+  ImGui::SameLine();
+  ImGui::Checkbox("constraints (c)", &drawOptions_.constraints);
+  ImGui::SameLine();
+  ImGui::Checkbox("help (h)", &showHelp_);
+  ImGui::Checkbox("closed-form ghost (g)", &drawOptions_.ghost);
+  ImGui::SameLine();
+  if (ImGui::Button("frame all (a)")) frameAll();
 }
 
 }  // namespace demo

@@ -64,6 +64,14 @@ void Renderer::clearWindow(int width, int height, Rgb colour) {
 
 void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                         const DrawOptions& options, const GhostFrame* ghost) {
+  collectPane(simulation, view, options, ghost);
+  const bool smooth = beginPane(view, windowHeight);
+  drawBatches(smooth);
+  endPane();
+}
+
+void Renderer::collectPane(const Simulation& simulation, const ViewTransform& view, const DrawOptions& options,
+                           const GhostFrame* ghost) {
   const particles::ParticleSystem& system = simulation.system();
   for (Batch* b : {&walls_, &faces_, &springs_, &constraints_, &arrows_, &ghostLines_, &ghostPoints_}) b->clear();
   for (auto& entry : pointsBySize_) entry.second.clear();
@@ -75,7 +83,9 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   if (options.forces) collectForceArrows(system, view);
   collectParticles(simulation, view);
   if (ghost && options.ghost) collectGhost(*ghost, view, pointDiameter(system, view.pixelsPerUnit));
+}
 
+bool Renderer::beginPane(const ViewTransform& view, int windowHeight) const {
   // GL's window origin is bottom-left, the pane's top-left.
   const PixelRect& p = view.pane;
   glViewport(p.x, windowHeight - p.y - p.height, p.width, p.height);
@@ -100,7 +110,10 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
   if (smooth) glEnable(GL_POINT_SMOOTH); else glDisable(GL_POINT_SMOOTH);
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
+  return smooth;
+}
 
+void Renderer::drawBatches(bool smooth) const {
   draw(faces_, GL_TRIANGLES);
   draw(walls_, GL_TRIANGLES);
   for (const auto& [diameter, batch] : discsBySize_) {
@@ -121,7 +134,9 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
     glPointSize(static_cast<float>(diameter));
     draw(batch, GL_POINTS);
   }
+}
 
+void Renderer::endPane() {
   glDisableClientState(GL_COLOR_ARRAY);
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisable(GL_SCISSOR_TEST);

@@ -53,6 +53,13 @@ class Renderer {
     }
   };
 
+  // drawPane's phases: collect the batches, set up the pane's GL state (true:
+  // antialiased), draw the batches back to front, restore the state.
+  void collectPane(const Simulation& simulation, const ViewTransform& view, const DrawOptions& options,
+                   const GhostFrame* ghost);
+  bool beginPane(const ViewTransform& view, int windowHeight) const;
+  void drawBatches(bool smooth) const;
+  static void endPane();
   void collectWalls(const particles::ParticleSystem& system, const ViewTransform& view);  // colliders
   void collectFaces(const Simulation& simulation, const ViewTransform& view);
   // surface: the springs are drawn faintly over the shaded faces.

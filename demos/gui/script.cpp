@@ -36,6 +36,91 @@ long long parseFrame(const std::string& word) {
     throw std::invalid_argument("expected a frame number >= 0 first, got '" + word + "'");
   return frame;
 }
+
+// The words after "<frame> <action>", one reader per kind of event; each
+// throws std::invalid_argument saying what it expected.
+void readKeyWords(std::istream& in, const std::string& action, ScriptEvent& e) {
+  std::string key;
+  if (!(in >> key)) throw std::invalid_argument("expected a key after '" + action + "'");
+  e.key = parseKey(key);
+}
+
+void readWaitWords(std::istream& in, const std::string&, ScriptEvent&) {
+  std::string what;
+  if (!(in >> what) || what != "advice") throw std::invalid_argument("expected 'advice' after 'wait'");
+}
+
+void readResizeWords(std::istream& in, const std::string&, ScriptEvent& e) {
+  if (!(in >> e.x >> e.y) || e.x < 100 || e.y < 100 || e.x > 8192 || e.y > 8192)
+    throw std::invalid_argument("expected a width and height between 100 and 8192 after 'resize'");
+}
+
+struct ButtonName {
+  const char* name;
+  ScriptButton button;
+};
+constexpr ButtonName buttonNames[] = {{"left", ScriptButton::Left},
+                                      {"right", ScriptButton::Right},
+                                      {"middle", ScriptButton::Middle},
+                                      {"shift-left", ScriptButton::ShiftLeft}};
+
+ScriptButton parseButton(const std::string& word) {
+  for (const ButtonName& b : buttonNames)
+    if (word == b.name) return b.button;
+  throw std::invalid_argument("expected left, right, middle or shift-left, got '" + word + "'");
+}
+
+// down, move, up and wheel: world|window x y, then a button or the wheel's clicks.
+void readPointerWords(std::istream& in, const std::string& action, ScriptEvent& e) {
+  std::string space, button;
+  if (!(in >> space >> e.x >> e.y)) throw std::invalid_argument("expected world|window x y after '" + action + "'");
+  if (!std::isfinite(e.x) || !std::isfinite(e.y)) throw std::invalid_argument("expected finite coordinates");
+  if (space == "world") e.space = ScriptSpace::World;
+  else if (space == "window") e.space = ScriptSpace::Window;
+  else throw std::invalid_argument("expected world or window, got '" + space + "'");
+  if (e.action == ScriptAction::Wheel) {
+    if (!(in >> e.clicks) || e.clicks == 0 || std::abs(e.clicks) > 100)
+      throw std::invalid_argument("expected wheel clicks, a nonzero integer within +-100");
+  } else if (in >> button) {
+    e.button = parseButton(button);
+  }
+}
+
+// Every kind of event: the word that names it, its action and the reader of
+// the words that follow.
+struct EventKind {
+  const char* word;
+  ScriptAction action;
+  void (*readWords)(std::istream& in, const std::string& action, ScriptEvent& e);
+};
+constexpr EventKind eventKinds[] = {
+    {"key", ScriptAction::Key, readKeyWords},           {"keydown", ScriptAction::KeyDown, readKeyWords},
+    {"keyup", ScriptAction::KeyUp, readKeyWords},       {"wait", ScriptAction::WaitAdvice, readWaitWords},
+    {"resize", ScriptAction::Resize, readResizeWords},  {"down", ScriptAction::MouseDown, readPointerWords},
+    {"move", ScriptAction::MouseMove, readPointerWords}, {"up", ScriptAction::MouseUp, readPointerWords},
+    {"wheel", ScriptAction::Wheel, readPointerWords},
+};
+
+const EventKind& findEventKind(const std::string& action) {
+  for (const EventKind& kind : eventKinds)
+    if (action == kind.word) return kind;
+  throw std::invalid_argument("expected key, keydown, keyup, down, move, up, wheel, resize or wait, got '" + action + "'");
+}
+
+// One line without its comment: false for a blank one, else the event in e.
+bool parseLine(const std::string& line, ScriptEvent& e) {
+  std::istringstream in(line);
+  std::string action, frame;
+  if (!(in >> frame)) return false;
+  e.frame = parseFrame(frame);
+  if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up, resize or wait after the frame");
+  const EventKind& kind = findEventKind(action);
+  e.action = kind.action;
+  kind.readWords(in, action, e);
+  std::string extra;
+  if (in >> extra) throw std::invalid_argument("unexpected '" + extra + "' at the end of the line");
+  return true;
+}
 }  // namespace
 
 std::vector<ScriptEvent> readScript(const std::string& path) {
@@ -50,52 +135,9 @@ std::vector<ScriptEvent> readScript(const std::string& path) {
   int lineNumber = 0;
   for (std::string line; std::getline(file, line);) {
     ++lineNumber;
-    line = line.substr(0, line.find('#'));
-    std::istringstream in(line);
-    std::string action, frame;
     ScriptEvent e;
-    if (!(in >> frame)) continue;  // a blank line or only a comment
     try {
-      e.frame = parseFrame(frame);
-      if (!(in >> action)) throw std::invalid_argument("expected key, down, move, up, resize or wait after the frame");
-      if (action == "key" || action == "keydown" || action == "keyup") {
-        std::string key;
-        if (!(in >> key)) throw std::invalid_argument("expected a key after '" + action + "'");
-        e.action = action == "key" ? ScriptAction::Key : action == "keydown" ? ScriptAction::KeyDown : ScriptAction::KeyUp;
-        e.key = parseKey(key);
-      } else if (action == "wait") {
-        std::string what;
-        if (!(in >> what) || what != "advice") throw std::invalid_argument("expected 'advice' after 'wait'");
-        e.action = ScriptAction::WaitAdvice;
-      } else if (action == "resize") {
-        e.action = ScriptAction::Resize;
-        if (!(in >> e.x >> e.y) || e.x < 100 || e.y < 100 || e.x > 8192 || e.y > 8192)
-          throw std::invalid_argument("expected a width and height between 100 and 8192 after 'resize'");
-      } else {
-        if (action == "down") e.action = ScriptAction::MouseDown;
-        else if (action == "move") e.action = ScriptAction::MouseMove;
-        else if (action == "up") e.action = ScriptAction::MouseUp;
-        else if (action == "wheel") e.action = ScriptAction::Wheel;
-        else throw std::invalid_argument("expected key, keydown, keyup, down, move, up, wheel, resize or wait, got '" + action + "'");
-        std::string space, button;
-        if (!(in >> space >> e.x >> e.y)) throw std::invalid_argument("expected world|window x y after '" + action + "'");
-        if (!std::isfinite(e.x) || !std::isfinite(e.y)) throw std::invalid_argument("expected finite coordinates");
-        if (space == "world") e.space = ScriptSpace::World;
-        else if (space == "window") e.space = ScriptSpace::Window;
-        else throw std::invalid_argument("expected world or window, got '" + space + "'");
-        if (e.action == ScriptAction::Wheel) {
-          if (!(in >> e.clicks) || e.clicks == 0 || std::abs(e.clicks) > 100)
-            throw std::invalid_argument("expected wheel clicks, a nonzero integer within +-100");
-        } else if (in >> button) {
-          if (button == "left") e.button = ScriptButton::Left;
-          else if (button == "right") e.button = ScriptButton::Right;
-          else if (button == "middle") e.button = ScriptButton::Middle;
-          else if (button == "shift-left") e.button = ScriptButton::ShiftLeft;
-          else throw std::invalid_argument("expected left, right, middle or shift-left, got '" + button + "'");
-        }
-      }
-      std::string extra;
-      if (in >> extra) throw std::invalid_argument("unexpected '" + extra + "' at the end of the line");
+      if (!parseLine(line.substr(0, line.find('#')), e)) continue;  // a blank line or only a comment
     } catch (const std::invalid_argument& err) {
       throw std::invalid_argument(path + ":" + std::to_string(lineNumber) + ": " + err.what());
     }
