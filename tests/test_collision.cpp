@@ -1,4 +1,4 @@
-// Collisions (issue 13): collider geometry against closed forms; continuous
+// Collisions: collider geometry against closed forms; continuous
 // contact against colliders (energy of an elastic bounce, Coulomb sliding and
 // slopes, closed boxes, tunnelling); disc–disc contacts (momentum, a box of
 // elastic discs, resting stacks); collision edges against a small collider;
@@ -128,9 +128,9 @@ TEST(ColliderGeometry, SweepFindsTheEntryOfTheGrownShape) {
   EXPECT_NEAR(*disc.sweep(Vector2d(-3, 0), Vector2d(3, 0), 0.5, slop), 1.5 / 6, 1e-15);
 }
 
-// --- issue 13 tests 1–5: particles against colliders ------------------------------
+// --- particles against colliders ------------------------------
 
-// Issue 13 test 1: a particle dropped from 1 m on a floor with e = 1 keeps its
+// A particle dropped from 1 m on a floor with e = 1 keeps its
 // energy within 2% over 20 s at dt 0.01. The impulse is applied at the time of
 // impact on the step's path of constant acceleration, which is RK4's exact
 // trajectory in uniform gravity: its energy is kept to round-off, at every
@@ -139,7 +139,7 @@ TEST(ColliderGeometry, SweepFindsTheEntryOfTheGrownShape) {
 // E just above the floor at this dt, with or without contacts; what the
 // contacts must not do is change H̃, which the energy at each apex (v = 0,
 // E = H̃) measures.
-TEST(Issue13ElasticBounce, EnergyKeptWithinTwoPercentOver20SecondsUnderRk4AndSymplecticEuler) {
+TEST(ElasticBounce, EnergyKeptWithinTwoPercentOver20SecondsUnderRk4AndSymplecticEuler) {
   const double dt = 0.01;
   for (const char* name : {"rk4", "symplectic-euler"}) {
     SCOPED_TRACE(name);
@@ -177,7 +177,7 @@ TEST(Issue13ElasticBounce, EnergyKeptWithinTwoPercentOver20SecondsUnderRk4AndSym
 // The old position fix-up gained 48% in 20 s; the contact's own energy error
 // under RK4 is round-off, even with a restitution e < 1 whose loss per bounce
 // is exactly (1 − e²) of the kinetic energy at impact.
-TEST(Issue13ElasticBounce, RestitutionRemovesExactlyOneMinusESquaredOfTheImpactEnergy) {
+TEST(ElasticBounce, RestitutionRemovesExactlyOneMinusESquaredOfTheImpactEnergy) {
   const double e = 0.8, dt = 0.01;
   ParticleSystem s;
   s.addParticle(Vector2d(0.0, 1.0), 2.0);
@@ -189,9 +189,9 @@ TEST(Issue13ElasticBounce, RestitutionRemovesExactlyOneMinusESquaredOfTheImpactE
   EXPECT_NEAR(gravityEnergy(s), e * e * e0, 1e-9 * e0);
 }
 
-// Issue 13 test 2: sliding at 2 m/s on a floor with μ = 0.3 stops after
+// Sliding at 2 m/s on a floor with μ = 0.3 stops after
 // v²/(2 μ g) = 0.680 m, within 10%, at dt 0.01 and 0.001.
-TEST(Issue13CoulombFriction, SlideStopsAtVSquaredOverTwoMuGAtTwoTimeSteps) {
+TEST(CoulombFriction, SlideStopsAtVSquaredOverTwoMuGAtTwoTimeSteps) {
   const double mu = 0.3, v0 = 2.0, expected = v0 * v0 / (2 * mu * g);
   for (const char* name : {"rk4", "symplectic-euler"})
     for (double dt : {0.01, 0.001}) {
@@ -211,7 +211,7 @@ TEST(Issue13CoulombFriction, SlideStopsAtVSquaredOverTwoMuGAtTwoTimeSteps) {
 
 // Resting contact: the normal impulse of a particle at rest is its weight × dt,
 // and the friction impulse of a sliding one is μ times that.
-TEST(Issue13CoulombFriction, RestingNormalImpulseIsWeightTimesDtAndFrictionIsMuTimesIt) {
+TEST(CoulombFriction, RestingNormalImpulseIsWeightTimesDtAndFrictionIsMuTimesIt) {
   const double m = 0.7, dt = 0.01, mu = 0.4;
   for (const Vector2d& v0 : {Vector2d(0.0, 0.0), Vector2d(1.0, 0.0)}) {
     ParticleSystem s;
@@ -229,9 +229,9 @@ TEST(Issue13CoulombFriction, RestingNormalImpulseIsWeightTimesDtAndFrictionIsMuT
   }
 }
 
-// Issue 13 test 3: on a slope steeper than atan μ a particle slides with
+// On a slope steeper than atan μ a particle slides with
 // acceleration g (sin θ − μ cos θ); on a shallower one it holds.
-TEST(Issue13CoulombFriction, SteeperThanAtanMuSlidesShallowerHolds) {
+TEST(CoulombFriction, SteeperThanAtanMuSlidesShallowerHolds) {
   const double mu = 0.5, dt = 0.01, T = 1.0;
   for (double delta : {-0.05, 0.05}) {
     const double theta = std::atan(mu) + delta;
@@ -257,10 +257,10 @@ TEST(Issue13CoulombFriction, SteeperThanAtanMuSlidesShallowerHolds) {
   }
 }
 
-// Issue 13 test 4: 40 point particles at up to 3 m/s (and a second run at up to
+// 40 point particles at up to 3 m/s (and a second run at up to
 // 30 m/s) in a closed box of four abutting slabs stay inside for 20 s at dt
 // 0.005: no seam or corner leaks (the old pass lost 39 of 40).
-TEST(Issue13ClosedBox, PointParticlesAtHighSpeedNeverLeaveTheBoxOfFourSlabs) {
+TEST(ClosedBox, PointParticlesAtHighSpeedNeverLeaveTheBoxOfFourSlabs) {
   for (double speed : {3.0, 30.0}) {
     SCOPED_TRACE("speed " + std::to_string(speed));
     std::mt19937 rng(13);
@@ -287,9 +287,9 @@ TEST(Issue13ClosedBox, PointParticlesAtHighSpeedNeverLeaveTheBoxOfFourSlabs) {
   }
 }
 
-// Issue 13 test 5: at speed × dt = 10 × the thickness of the wall a particle
+// At speed × dt = 10 × the thickness of the wall a particle
 // bounces off every kind of thin collider instead of passing through.
-TEST(Issue13Tunnelling, NoKindOfThinColliderIsPassedAtSpeedTimesDtOfTenThicknesses) {
+TEST(Tunnelling, NoKindOfThinColliderIsPassedAtSpeedTimesDtOfTenThicknesses) {
   const double h = 0.01, dt = 0.01, speed = 10 * h / dt;
   const std::vector<Collider> walls = {
       Collider::box(Vector2d(0.0, -1.0), Vector2d(h, 1.0)),
@@ -338,7 +338,7 @@ TEST(CollidersAtAnyAngle, ElasticContactReflectsAboutTheSurfaceNormal) {
 
 // --- particle–particle ------------------------------------------------------------
 
-// Issue 13 test 7: 20 elastic discs bouncing in a closed box under gravity
+// 20 elastic discs bouncing in a closed box under gravity
 // keep their energy within 2% over 100 s (the old pass doubled it in 1000 s,
 // and gained 30% in 100 s while disc impacts were found on the chord from the
 // step's start, across the walls the discs had already bounced off).
@@ -350,7 +350,7 @@ TEST(CollidersAtAnyAngle, ElasticContactReflectsAboutTheSurfaceNormal) {
 // strikes while it rests is on a path through the step's end that is only
 // close to the one it would have had (seeds 1–3 and 7: worst 0.0–0.2% at
 // dt 0.01, 0.6% at dt 0.02).
-TEST(Issue13BoxOfDiscs, ElasticDiscsKeepTheirEnergyWithinTwoPercentOver100Seconds) {
+TEST(BoxOfDiscs, ElasticDiscsKeepTheirEnergyWithinTwoPercentOver100Seconds) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   ParticleSystem s;
@@ -377,9 +377,9 @@ TEST(Issue13BoxOfDiscs, ElasticDiscsKeepTheirEnergyWithinTwoPercentOver100Second
   EXPECT_LT(worst, 0.02);
 }
 
-// Issue 13 test 6: a stack of 5 discs on a floor comes to rest: it sinks by
+// A stack of 5 discs on a floor comes to rest: it sinks by
 // less than 1% of a radius and shows no visible jitter.
-TEST(Issue13Stack, FiveDiscsRestWithoutSinkingOrJitter) {
+TEST(Stack, FiveDiscsRestWithoutSinkingOrJitter) {
   const double r = 0.1, dt = 0.01;
   for (const char* name : {"rk4", "symplectic-euler"}) {
     SCOPED_TRACE(name);
@@ -654,11 +654,11 @@ TEST(ColliderBroadPhase, EdgesAtMarkedParticlesComeOnceInEdgeOrder) {
 
 // --- edges ------------------------------------------------------------------------
 
-// Issue 13 test 8: a rope of four particles and three colliding edges falls
+// A rope of four particles and three colliding edges falls
 // onto a small disc (a nail) that lies under the middle edge, between its
 // particles: with the edges colliding it hangs over the nail; with the
 // particles alone it falls past.
-TEST(Issue13EdgeContacts, RopeCatchesOnASmallDiscBetweenItsParticles) {
+TEST(EdgeContacts, RopeCatchesOnASmallDiscBetweenItsParticles) {
   for (bool edges : {true, false}) {
     SCOPED_TRACE(edges ? "colliding edges" : "particles only");
     ParticleSystem s;
