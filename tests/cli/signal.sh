@@ -50,7 +50,10 @@ grep -q '"method":"cg"' "$WORK/long-chain.json" || fail "the long chain's solver
 csv="$WORK/long-chain.csv"
 "$PROGRAM" run --scene-file "$WORK/long-chain.json" --steps 1000 --csv "$csv" >"$WORK/long-chain.out" 2>"$WORK/long-chain.err" &
 pid=$!
-sleep 2  # the scene loads in well under a second; then the first step runs for many
+# The output file is opened after the handler is installed (loading takes several
+# seconds under the sanitizers); a second later the first step's solve is running.
+wait_for_rows "$csv.partial" 1 || fail "long-chain: no output file after 30 s"
+sleep 1
 if kill -0 $pid 2>/dev/null; then
   kill -TERM $pid
   code=0
