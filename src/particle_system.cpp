@@ -289,7 +289,7 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
     }
   }
   const int edgeContacts =
-      edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &nearEdges_) : 0;
+      edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, radius_, x_, v_, lastFree_, &nearEdges_) : 0;
   counted.contacts += edgeContacts;
   // Resting contacts push on each other (a stack on a floor, a rope over a
   // nail): Gauss–Seidel passes until none is left, colliders last, as the
@@ -304,7 +304,7 @@ int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd
     double largest = 0.0;
     int resolved = 0;
     if (discs) largest = contacts_.resolveResting(inverseMass_, radius_, contactSettings_, pass % 2 == 0, x_, v_);
-    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, x_, v_, &nearEdges_);
+    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, radius_, x_, v_, lastFree_, &nearEdges_);
     if (walls) {
       const ContactCount pushedOut =
           pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);

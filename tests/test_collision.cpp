@@ -697,6 +697,40 @@ TEST(EdgeContacts, RopeCatchesOnASmallDiscBetweenItsParticles) {
   }
 }
 
+// One edge lies over a capsule (core from (−0.05, 0) to (0.05, 0), radius
+// 2 mm), one end above the core near the right cap; in one step the other end
+// goes round the left cap, outside it, to below the core. The edge's interior
+// would then cross the core away from both corners; the end is taken back
+// along its motion to where the edge passes over the core, outside the capsule.
+TEST(EdgeContacts, AnEndGoingRoundACapsulesCapDoesNotTakeTheEdgeThroughTheCore) {
+  const std::vector<Collider> colliders = {Collider::capsule(Vector2d(-0.05, 0.0), Vector2d(0.05, 0.0), 0.002)};
+  const std::vector<CollisionEdge> edges = {{0, 1}};
+  VectorXd x0(4), v0 = VectorXd::Zero(4), x(4), v(4);
+  x0 << -0.0531, 0.0017, 0.0482, 0.0115;
+  x << -0.0480, -0.0088, 0.0480, 0.0113;  // the ends' places after the step, each outside the capsule
+  v << 2.7, -5.6, -0.2, 0.2;
+  ASSERT_GT(colliders[0].distance(x.segment<2>(0)).distance, 0.0);
+  VectorXd lastFree = x;
+  const VectorXd inverseMass = VectorXd::Constant(2, 200.0), radius = VectorXd::Zero(2);
+  const int contacts = resolveEdgeContacts(colliders, edges, StepStart{x0, v0, 0.002}, inverseMass, radius, x, v,
+                                           lastFree);
+  EXPECT_GE(contacts, 1);
+  const Vector2d p = x.segment<2>(0), q = x.segment<2>(2), e = q - p;
+  EXPECT_EQ(q, Vector2d(0.0480, 0.0113)) << "the end above the core is not moved";
+  EXPECT_GE(colliders[0].distance(p).distance, -1e-12) << "the moved end is outside the capsule";
+  EXPECT_EQ(lastFree.segment<2>(0), p) << "and recorded as free there";
+  // Every core point under the edge is below it, about as far as at the start
+  // (1.985 mm from the left corner: the end grazed the cap).
+  for (int k = 0; k <= 20; ++k) {
+    const Vector2d c(-0.05 + 0.005 * k, 0.0);
+    const double b = (c - p).dot(e) / e.squaredNorm();
+    if (b <= 0.0 || b >= 1.0) continue;
+    const double above = (e.x() * (c - p).y() - e.y() * (c - p).x()) / e.norm();
+    EXPECT_LT(above, -0.0019) << "core point x " << c.x();
+  }
+  EXPECT_GE(v.segment<2>(0).dot(colliders[0].distance(p).normal), 0.0) << "no approach left";
+}
+
 // --- pinned particles -------------------------------------------------------------
 
 // A pinned particle is never moved: not by a collider it sits in, nor by discs

@@ -289,7 +289,9 @@ TEST(Scenes, ExplicitEulerDriftsFurtherOffTheConstraintsThanRk4) {
     std::printf("[ euler    ] %-11s finite=%d max|C|/r=%.3g (rk4 %.3g)\n", info.name, e.finite, e.worstRelativeError,
                 r.worstRelativeError);
     EXPECT_TRUE(r.finite) << info.name;
-    if (e.finite) EXPECT_GT(e.worstRelativeError, r.worstRelativeError) << info.name;
+    if (e.finite) {
+      EXPECT_GT(e.worstRelativeError, r.worstRelativeError) << info.name;
+    }
   }
   EXPECT_GE(constrained, 4);
 }

@@ -159,12 +159,17 @@ struct CollisionEdge {
 // corner on one side of an edge at the step's start may not be on the other
 // side, or nearer than its radius, at the end. The edge is pushed clear with
 // the weights of the point of the edge facing the corner, its approach
-// removed and Coulomb friction applied. Returns the contacts.
+// removed and Coulomb friction applied. A capsule's core may also not cross
+// the edge over one of its ends (an end gone round a cap to the far side):
+// that end is taken back along its step to where the edge passes the core on
+// its starting side, outside every collider (by the particle's radius), and
+// lastFree records it there. Returns the contacts.
 // `candidates` (null: every edge is tested) lists the indices into `edges` to
 // test, ascending: those with an end marked by markNearColliders (EdgeIncidence).
 int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
-                        const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
-                        Eigen::VectorXd& v, const std::vector<int>* candidates = nullptr);
+                        const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                        Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
+                        const std::vector<int>* candidates = nullptr);
 
 // The collision edges at each particle, so that the edges with an end among
 // a few marked particles are found without a pass over every edge.

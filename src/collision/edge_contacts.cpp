@@ -1,6 +1,8 @@
 // Collision edges (segments between two particles) against collider corners.
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "contact_track.h"
@@ -13,11 +15,146 @@ namespace {
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// How far the edge (xi, xj) is past the fixed point q (a corner, or a point
+// of a capsule's core): its interior must stay at least the collider's radius
+// beyond q on the side of the edge q was on at the step's start (si, sj).
+// `ends`: q is over an end of the edge (b = 0 or 1), not inside it.
+struct EdgePenetration {
+  double depth = 0.0;           // > 0: the edge is at or past q
+  double b = 0.0;               // q's place along the edge
+  Eigen::Vector2d N{0.0, 0.0};  // unit normal of the edge pointing away from q's side
+};
+
+std::optional<EdgePenetration> edgePastPoint(double radius, const Eigen::Vector2d& q, bool ends,
+                                             const Eigen::Vector2d& si, const Eigen::Vector2d& sj,
+                                             const Eigen::Vector2d& xi, const Eigen::Vector2d& xj) {
+  const Eigen::Vector2d e = xj - xi;
+  const double length2 = e.squaredNorm();
+  if (length2 == 0.0) return std::nullopt;
+  // q over an end lies at b = 0 or 1 up to rounding.
+  const double b = ends ? std::clamp((q - xi).dot(e) / length2, 0.0, 1.0) : (q - xi).dot(e) / length2;
+  if (!ends && !(b > 0.0 && b < 1.0)) return std::nullopt;
+  const double side0 = cross(sj - si, q - si);
+  if (side0 == 0.0) return std::nullopt;
+  const Eigen::Vector2d left = Eigen::Vector2d(-e.y(), e.x()) / std::sqrt(length2);
+  const Eigen::Vector2d N = side0 > 0.0 ? -left : left;
+  const double depth = radius + N.dot(q - xi);
+  if (!(depth > 0.0)) return std::nullopt;
+  return EdgePenetration{depth, b, N};
+}
+
+// The point of a capsule's core segment on the line through the edge point at
+// b (0 or 1) perpendicular to the edge; none if the core does not reach that line.
+std::optional<Eigen::Vector2d> coreOverEdgePoint(const Collider& c, const Eigen::Vector2d& xi,
+                                                 const Eigen::Vector2d& xj, double b) {
+  const Eigen::Vector2d e = xj - xi, p = xi + b * e, a = c.points[0], d = c.points[1] - c.points[0];
+  const double along = e.dot(d);
+  if (along == 0.0) return std::nullopt;  // the core is perpendicular to the edge: its corners decide
+  const double u = e.dot(p - a) / along;  // e·(a + u d − p) = 0
+  if (!(u >= 0.0 && u <= 1.0)) return std::nullopt;
+  return a + u * d;
+}
+
+// Whether the edge (xi, xj) crosses a capsule's core over one of its ends,
+// judged against the sides at the start (si, sj); the end is returned.
+std::optional<int> capsuleCrossedAtAnEnd(const Collider& c, const Eigen::Vector2d& si, const Eigen::Vector2d& sj,
+                                         const Eigen::Vector2d& xi, const Eigen::Vector2d& xj) {
+  for (const int end : {0, 1})
+    if (const std::optional<Eigen::Vector2d> q = coreOverEdgePoint(c, xi, xj, end))
+      if (edgePastPoint(c.radius, *q, true, si, sj, xi, xj)) return end;
+  return std::nullopt;
+}
+
+// How far the edge is past the deepest of the collider's corners (0: clear of all).
+double deepestCorner(const Collider& c, const Eigen::Vector2d& si, const Eigen::Vector2d& sj,
+                     const Eigen::Vector2d& xi, const Eigen::Vector2d& xj) {
+  double deepest = 0.0;
+  for (const Eigen::Vector2d& corner : c.points)
+    if (const std::optional<EdgePenetration> hit = edgePastPoint(c.radius, corner, false, si, sj, xi, xj))
+      deepest = std::max(deepest, hit->depth);
+  return deepest;
+}
+
+// Pushes the edge clear of a corner with the weights of the edge point
+// facing it; its approach is removed and its sliding limited by Coulomb.
+int pushEdgeOffCorner(const Collider& c, const Eigen::Vector2d& corner, const StepStart& start,
+                      const Eigen::VectorXd& inverseMass, const CollisionEdge& edge, Eigen::VectorXd& x,
+                      Eigen::VectorXd& v) {
+  const int i = edge.a, j = edge.b;
+  const std::optional<EdgePenetration> hit =
+      edgePastPoint(c.radius, corner, false, start.x.segment<2>(2 * i), start.x.segment<2>(2 * j),
+                    x.segment<2>(2 * i), x.segment<2>(2 * j));
+  if (!hit) return 0;
+  // The edge point p = (1 − b) x_i + b x_j moves by depth along N with
+  // the least mass-weighted change: Δx_k = N depth w_k β_k / Σ w β².
+  const double wi = inverseMass[i], wj = inverseMass[j];
+  const double bi = 1.0 - hit->b, bj = hit->b, k = wi * bi * bi + wj * bj * bj;
+  const Eigen::Vector2d& N = hit->N;
+  x.segment<2>(2 * i) += (hit->depth * wi * bi / k) * N;
+  x.segment<2>(2 * j) += (hit->depth * wj * bj / k) * N;
+  const Eigen::Vector2d vp = bi * v.segment<2>(2 * i) + bj * v.segment<2>(2 * j);
+  const double vn = vp.dot(N);
+  if (vn < 0.0) {
+    const Eigen::Vector2d dvp = -vn * N + contact::coulomb(vp - vn * N, vn, c.friction);
+    v.segment<2>(2 * i) += (wi * bi / k) * dvp;
+    v.segment<2>(2 * j) += (wj * bj / k) * dvp;
+  }
+  return 1;
+}
+
+// An end of the edge that went round a cap of a capsule to the far side of
+// its core (while the other end stayed on the near side) cannot be pushed
+// straight back: that would take it through the capsule. It is taken back
+// along its own motion of the step, to the last place (found by bisection) at
+// which the edge still passes the core on its starting side, and its
+// velocity's approach to the core is removed.
+int holdEdgeEndOffCapsule(const std::vector<Collider>& colliders, const Collider& c, const StepStart& start,
+                          const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const CollisionEdge& edge,
+                          Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
+  const int ends[2] = {edge.a, edge.b};
+  const Eigen::Vector2d si = start.x.segment<2>(2 * edge.a), sj = start.x.segment<2>(2 * edge.b);
+  const std::optional<int> crossed = capsuleCrossedAtAnEnd(c, si, sj, x.segment<2>(2 * edge.a), x.segment<2>(2 * edge.b));
+  if (!crossed) return 0;
+  const int moved = ends[*crossed];
+  if (inverseMass[moved] == 0.0) return 0;
+  const Eigen::Vector2d from = start.x.segment<2>(2 * moved), to = x.segment<2>(2 * moved);
+  // Blocked: the edge crosses the core over an end, or is deeper past a
+  // corner than it was with the end at its start (the corners' push deals
+  // with that much), or the end is inside a collider.
+  double cornerDepth = std::numeric_limits<double>::infinity();
+  const auto placed = [&](double s) {
+    x.segment<2>(2 * moved) = from + s * (to - from);
+    for (const Collider& other : colliders)
+      if (other.distance(x.segment<2>(2 * moved)).distance < radius[moved]) return true;
+    const Eigen::Vector2d xi = x.segment<2>(2 * edge.a), xj = x.segment<2>(2 * edge.b);
+    if (capsuleCrossedAtAnEnd(c, si, sj, xi, xj)) return true;
+    return deepestCorner(c, si, sj, xi, xj) > cornerDepth;
+  };
+  if (placed(0.0)) {  // crossed even from the start: the push of the corners is all there is
+    placed(1.0);
+    return 0;
+  }
+  cornerDepth = deepestCorner(c, si, sj, x.segment<2>(2 * edge.a), x.segment<2>(2 * edge.b));
+  double clear = 0.0, crossing = 1.0;
+  for (int k = 0; k < 30; ++k) {
+    const double s = 0.5 * (clear + crossing);
+    (placed(s) ? crossing : clear) = s;
+  }
+  placed(clear);
+  lastFree.segment<2>(2 * moved) = x.segment<2>(2 * moved);  // outside every collider
+  // The approach to the core along the normal from its nearest point is removed.
+  const SurfaceDistance d = c.distance(x.segment<2>(2 * moved));
+  const double vn = v.segment<2>(2 * moved).dot(d.normal);
+  if (vn < 0.0) v.segment<2>(2 * moved) -= vn * d.normal;
+  return 1;
+}
+
 }  // namespace
 
 int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
-                        const StepStart& start, const Eigen::VectorXd& inverseMass, Eigen::VectorXd& x,
-                        Eigen::VectorXd& v, const std::vector<int>* candidates) {
+                        const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                        Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
+                        const std::vector<int>* candidates) {
   int contacts = 0;
   // Broad phase: a collider is tested against an edge only when their boxes
   // overlap (the edge's box spans its start and end, the collider's its
@@ -40,40 +177,12 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
       if (colliders[m].shape == ColliderShape::HalfPlane) continue;
       if (loX > boxes.hi[m].x() || hiX < boxes.lo[m].x() || loY > boxes.hi[m].y() || hiY < boxes.lo[m].y()) continue;
       const Collider& c = colliders[m];
-      for (const Eigen::Vector2d& corner : c.points) {
-        const Eigen::Vector2d xi = x.segment<2>(2 * i), xj = x.segment<2>(2 * j), e = xj - xi;
-        const double length2 = e.squaredNorm();
-        if (length2 == 0.0) continue;
-        // b = the corner's place along the edge at the end; only the edge's interior can catch it.
-        const double b = (corner - xi).dot(e) / length2;
-        if (!(b > 0.0 && b < 1.0)) continue;
-        // The side of the edge the corner was on at the start, σ = ±1.
-        const Eigen::Vector2d si = start.x.segment<2>(2 * i), sj = start.x.segment<2>(2 * j);
-        const double side0 = cross(sj - si, corner - si);
-        if (side0 == 0.0) continue;
-        const double sigma = side0 > 0.0 ? 1.0 : -1.0;
-        // N: unit normal of the edge pointing away from the corner's side;
-        // the edge point must stay at least r = c.radius beyond the corner.
-        const Eigen::Vector2d left = Eigen::Vector2d(-e.y(), e.x()) / std::sqrt(length2);
-        const Eigen::Vector2d N = -sigma * left;
-        const double depth = c.radius + N.dot(corner - xi);  // > 0: the edge is at or past the corner
-        if (!(depth > 0.0)) continue;
-        // The edge point p = (1 − b) x_i + b x_j moves by depth along N with
-        // the least mass-weighted change: Δx_k = N depth w_k β_k / Σ w β².
-        const double bi = 1.0 - b, bj = b, k = wi * bi * bi + wj * bj * bj;
-        x.segment<2>(2 * i) += (depth * wi * bi / k) * N;
-        x.segment<2>(2 * j) += (depth * wj * bj / k) * N;
-        // The same weights for the velocity: the edge point's approach is
-        // removed (an inelastic hold), and its sliding limited by Coulomb.
-        const Eigen::Vector2d vp = bi * v.segment<2>(2 * i) + bj * v.segment<2>(2 * j);
-        const double vn = vp.dot(N);
-        if (vn < 0.0) {
-          const Eigen::Vector2d dvp = -vn * N + contact::coulomb(vp - vn * N, vn, c.friction);
-          v.segment<2>(2 * i) += (wi * bi / k) * dvp;
-          v.segment<2>(2 * j) += (wj * bj / k) * dvp;
-        }
-        ++contacts;
-      }
+      for (const Eigen::Vector2d& corner : c.points)
+        contacts += pushEdgeOffCorner(c, corner, start, inverseMass, edge, x, v);
+      // A capsule's core is a segment: the edge can cross it over one of its
+      // ends as well as at the core's corners.
+      if (c.shape == ColliderShape::Capsule)
+        contacts += holdEdgeEndOffCapsule(colliders, c, start, inverseMass, radius, edge, x, v, lastFree);
     }
   }
   return contacts;
