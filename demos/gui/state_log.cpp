@@ -1,14 +1,16 @@
 #include "state_log.h"
 
 #include <algorithm>
-#include <fstream>
+#include <stdexcept>
+
+#include "output_file.h"
 
 namespace demo {
 
-std::string writeStateFile(const std::string& path, const std::vector<PaneState>& panes,
-                           const StateExtras& extras, long long frames, bool paused) {
-  std::ofstream out(path);
-  if (!out) return "cannot write state log '" + path + "'";
+namespace {
+
+void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, const StateExtras& extras,
+                       long long frames, bool paused) {
   out.precision(17);
   out << "# particle-demo state at exit; format in demos/gui/state_log.h\n";
   out << "frame," << frames << "\npaused," << (paused ? 1 : 0) << "\n";
@@ -63,8 +65,20 @@ std::string writeStateFile(const std::string& path, const std::vector<PaneState>
   out << "advice," << a.state << "," << a.progress << "," << a.integrator << "," << a.dt << "," << a.tolerance << ","
       << a.framesWhileRunning << "," << a.applied << "\n";
   out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
-  out.close();
-  return out ? "" : "error writing state log '" + path + "'";
+}
+
+}  // namespace
+
+std::string writeStateFile(const std::string& path, const std::vector<PaneState>& panes,
+                           const StateExtras& extras, long long frames, bool paused) {
+  try {
+    scenes::OutputFile file(path, "--log-state");
+    writeStateRecords(file.stream(), panes, extras, frames, paused);
+    file.close();
+    return "";
+  } catch (const std::exception& e) {  // cannot open (std::invalid_argument) or write (scenes::WriteError)
+    return e.what();
+  }
 }
 
 }  // namespace demo
