@@ -65,6 +65,15 @@ class Cells {
   explicit Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames = {});
 
   Mode mode() const { return mode_; }
+  // The shard this run computes (1/1 unless Mode::Shard).
+  const ShardSpec& shard() const { return spec_; }
+  // How many of the cells enumerated so far are this shard's (index % N == K − 1).
+  long shardShare() const {
+    const long k = spec_.index - 1, n = spec_.count, total = static_cast<long>(next_);
+    return total > k ? (total - k + n - 1) / n : 0;
+  }
+  // How many cells this shard has computed and recorded.
+  long recorded() const { return owned_; }
   // Whether the experiment writes its CSVs, tables and values (not in a shard).
   bool writesOutputs() const { return mode_ != Mode::Shard; }
   // Takes the next `count` indices; returns the first.

@@ -236,9 +236,15 @@ void recordValue(const LabOptions& options, const std::string& key, const std::s
 Progress::Progress(const LabOptions& options, std::string label, long total)
     : label_(std::move(label)),
       total_(total),
+      cells_(options.cells.get()),
       silent_(options.cells->mode() == Cells::Mode::Replay),
       start_(std::chrono::steady_clock::now()),
-      lastPrint_(start_) {}
+      lastPrint_(start_) {
+  // A shard says which it is, and ends with the count of its own cells.
+  if (options.cells->mode() == Cells::Mode::Shard)
+    label_ += " shard " + std::to_string(options.cells->shard().index) + "/" +
+              std::to_string(options.cells->shard().count);
+}
 
 void Progress::tick(long count) {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -257,7 +263,11 @@ Progress::~Progress() {
   if (silent_) return;
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  std::fprintf(stderr, "[%s] finished %ld/%ld in %.1f s\n", label_.c_str(), done_, total_, elapsed);
+  if (cells_->mode() == Cells::Mode::Shard)
+    std::fprintf(stderr, "[%s] finished in %.1f s: %ld of its %ld cells recorded (of %zu in the sweep)\n",
+                 label_.c_str(), elapsed, cells_->recorded(), cells_->shardShare(), cells_->count());
+  else
+    std::fprintf(stderr, "[%s] finished %ld/%ld in %.1f s\n", label_.c_str(), done_, total_, elapsed);
 }
 
 namespace {

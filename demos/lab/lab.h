@@ -150,6 +150,7 @@ class Progress {
   std::mutex mutex_;
   std::string label_;
   long total_, done_ = 0;
+  const Cells* cells_;
   bool silent_;
   std::chrono::steady_clock::time_point start_, lastPrint_;
 };

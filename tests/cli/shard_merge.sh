@@ -14,11 +14,21 @@ rm -rf "$WORK" && mkdir -p "$WORK"
 for experiment in "$@"; do
   dir=$WORK/$experiment
   "$PROGRAM" "$experiment" --quick --jobs 1 --out "$dir/whole" > /dev/null 2>&1 || fail "$experiment: unsharded run failed"
+  shares=0 sweep=""
   for k in 1 2; do
-    "$PROGRAM" "$experiment" --quick --jobs 2 --shard $k/2 --out "$dir/shard$k" > /dev/null 2>&1 ||
+    "$PROGRAM" "$experiment" --quick --jobs 2 --shard $k/2 --out "$dir/shard$k" > /dev/null 2>"$dir/shard$k.err" ||
       fail "$experiment: shard $k/2 failed"
     [ -e "$dir/shard$k/values.csv" ] && fail "$experiment: shard $k/2 wrote values.csv (a shard writes only its cells)"
+    # The shard's last line counts its own cells: all of its share recorded.
+    line=$(tail -n 1 "$dir/shard$k.err")
+    if [[ $line =~ ^\[$experiment\ shard\ $k/2\]\ finished\ in\ [0-9.]+\ s:\ ([0-9]+)\ of\ its\ ([0-9]+)\ cells\ recorded\ \(of\ ([0-9]+)\ in\ the\ sweep\)$ ]] &&
+       [ "${BASH_REMATCH[1]}" = "${BASH_REMATCH[2]}" ] && [ "${BASH_REMATCH[1]}" -gt 0 ]; then
+      shares=$((shares + BASH_REMATCH[2])) sweep=${BASH_REMATCH[3]}
+    else
+      fail "$experiment: shard $k/2 does not end counting its own cells: $line"
+    fi
   done
+  [ "$shares" = "$sweep" ] || fail "$experiment: the shards' shares ($shares) are not the sweep's $sweep cells"
   "$PROGRAM" merge "$dir/shard1" "$dir/shard2" --out "$dir/merged" > /dev/null 2>&1 || fail "$experiment: merge failed"
   files=$(ls "$dir/whole" | wc -l)
   if [ "$files" -gt 0 ] && diff -r "$dir/whole" "$dir/merged" > "$dir/diff.txt"; then
