@@ -5,6 +5,7 @@
 #include "particles/threads.h"
 #include "cli/command.h"
 #include "cli/run_loop.h"
+#include "cli/run_progress.h"
 #include "cli/step_output.h"
 #include "join_names.h"
 #include "lab/lab.h"
@@ -82,15 +83,19 @@ int run(const RunOptions& o) {
   }
   long long done = 0;
   double doneTime = s.time();
+  RunProgress progress(o.steps, RunProgress::stderrIsTerminal());
   for (long long step = 1; step <= o.steps && !lab::interrupted(); ++step) {
     if (const std::string reason = loop.step(); !reason.empty()) {
+      progress.erase();
       diverge(step, reason);
       return finish(kDiverged);
     }
     if (loop.cancelledStep()) break;
     done = step;
     doneTime = s.time();
+    progress.update(step, doneTime);
   }
+  progress.erase();
   if (lab::interrupted()) {
     std::cerr << "particle-lab: interrupted after step " << done << " (t = " << doneTime
               << "): the output files hold every step up to it\n";
