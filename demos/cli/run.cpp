@@ -179,6 +179,7 @@ Command addRunCommand(CLI::App& app) {
   addOutputOptions(sub, options);
   sub->footer(
       "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
+      "On a terminal, a run that takes over a second shows a progress line on stderr, erased at the end.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
       "non-finite (|q|^2 or |v|^2 overflows), the total energy rose above E0 + 100 E_ref (the scene's\n"
       "energies and the work of its starting forces across its view: particles/divergence.h), a step\n"
