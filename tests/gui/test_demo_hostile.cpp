@@ -120,6 +120,28 @@ TEST(DemoHostile, AnOutputThatFailsAtTheEndExitsNonZero) {
   EXPECT_TRUE(contains(r.err, "/dev/full")) << r.err;
 }
 
+// The screenshot and the state log are written under NAME.partial and renamed
+// when complete: a run whose writes succeed leaves both whole and no partial
+// file; one that cannot write them (here NAME.partial is a directory) says so
+// in one line per file, exits 1 and leaves the previous files as they were.
+TEST(DemoHostile, OutputFilesAreReplacedWholeOrNotAtAll) {
+  const std::string dir = outputDirectory("OutputsWhole");
+  RunResult r = runDemo(dir, "--scene pendulum --frames 2 --screenshot shot.png --log-state state.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(readStateLog(dir + "/state.txt").frames, 2);
+  EXPECT_GT(readPng(dir + "/shot.png").width, 0);
+  EXPECT_FALSE(std::ifstream(dir + "/state.txt.partial").good());
+  EXPECT_FALSE(std::ifstream(dir + "/shot.png.partial").good());
+  ASSERT_EQ(std::system(("mkdir '" + dir + "/state.txt.partial' '" + dir + "/shot.png.partial'").c_str()), 0);
+  r = runDemo(dir, "--scene pendulum --frames 5 --screenshot shot.png --log-state state.txt");
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  ASSERT_EQ(r.errLines().size(), 2u) << r.err;
+  EXPECT_TRUE(contains(r.err, "--screenshot")) << r.err;
+  EXPECT_TRUE(contains(r.err, "--log-state")) << r.err;
+  EXPECT_EQ(readStateLog(dir + "/state.txt").frames, 2) << "the previous state log is kept";
+  EXPECT_GT(readPng(dir + "/shot.png").width, 0) << "the previous screenshot is kept";
+}
+
 // A seeded storm of random scripted events: keys (all but quitting), presses,
 // drags and releases with every button, wheel clicks, resizes, coordinates far
 // outside the window and the world. The demo must end on --frames with exit 0
