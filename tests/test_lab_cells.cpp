@@ -1,9 +1,14 @@
 // The laboratory's cells and shards (lab/cells.h): results survive JSON
 // exactly, the shards of a sweep partition its cells, and a replay of the
 // shards hands every cell its computed result; --shard values are checked.
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <typeinfo>
 #include <limits>
 #include <random>
 #include <set>
@@ -110,4 +115,119 @@ TEST(Shards, ParseShardAcceptsOnlyKOfN) {
   EXPECT_EQ(parseShard("1/1").count, 1);
   for (const char* bad : {"0/2", "3/2", "1/0", "junk", "1/2/3", "/2", "1/", "-1/2", "+1/2", "01/2", "1 /2", ""})
     EXPECT_THROW(parseShard(bad), std::invalid_argument) << bad;
+}
+
+namespace {
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+}
+
+// One random edit of a shard file's text: a byte changed, a range deleted, a
+// hostile token inserted or put in place of a number, the text cut short,
+// or a line repeated.
+std::string mutate(std::string text, std::mt19937& rng) {
+  static const std::vector<std::string> tokens = {
+      "-1", "1e999", "NaN", "null", "\"x\"", "[]", "{}", "18446744073709551616", "-0", "1.5", std::string(1, '\0'),
+      "\xe2\x80\xae", ",", "]", "}", "\"", "{\"cell\":0,\"result\":1}", "99999999999", "\"shard.json\"", "true"};
+  const auto pick = [&](std::size_t n) { return n == 0 ? std::size_t(0) : std::size_t(rng() % n); };
+  switch (pick(6)) {
+    case 0:
+      if (!text.empty()) text[pick(text.size())] = static_cast<char>(rng() & 0xff);
+      break;
+    case 1: {
+      const std::size_t at = pick(text.size() + 1);
+      text.erase(at, pick(std::min<std::size_t>(40, text.size() - at + 1)));
+      break;
+    }
+    case 2:
+      text.insert(pick(text.size() + 1), tokens[pick(tokens.size())]);
+      break;
+    case 3: {  // a number replaced by a token
+      std::vector<std::size_t> digits;
+      for (std::size_t i = 0; i < text.size(); ++i)
+        if (std::isdigit(static_cast<unsigned char>(text[i])) && (i == 0 || !std::isdigit(static_cast<unsigned char>(text[i - 1]))))
+          digits.push_back(i);
+      if (digits.empty()) break;
+      const std::size_t at = digits[pick(digits.size())];
+      std::size_t end = at;
+      while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+      text.replace(at, end - at, tokens[pick(tokens.size())]);
+      break;
+    }
+    case 4:
+      text.resize(pick(text.size() + 1));
+      break;
+    default: {  // a line repeated
+      std::vector<std::size_t> starts = {0};
+      for (std::size_t i = 0; i + 1 < text.size(); ++i)
+        if (text[i] == '\n') starts.push_back(i + 1);
+      const std::size_t k = pick(starts.size());
+      const std::size_t end = k + 1 < starts.size() ? starts[k + 1] : text.size();
+      text.insert(end, text.substr(starts[k], end - starts[k]));
+    }
+  }
+  return text;
+}
+
+}  // namespace
+
+// 600 mutants of a valid two-shard set: one to three edits of one shard's
+// manifest or cells file; for half of the cells edits the manifest's digest
+// is signed again, so that the edited cells reach the parser. Each set is
+// either read or refused with std::invalid_argument and a one-line message
+// (the sanitizer build runs this under ASan and UBSan): no other exception,
+// crash or hang.
+TEST(ShardFuzz, EveryMutatedShardSetIsReadOrRefusedInOneLine) {
+  std::vector<std::string> originals;
+  for (int k = 1; k <= 2; ++k) {
+    LabOptions options;
+    originals.push_back(scratch("fuzz-original" + std::to_string(k)));
+    options.cells = std::make_shared<Cells>(ShardSpec{k, 2}, originals.back());
+    sweep<double>(
+        options, 7, [](std::size_t i) -> std::optional<double> { return 0.5 + static_cast<double>(i); },
+        [](std::size_t, double&) {});
+    options.cells->writeManifest("test", {"test", "--quick"});
+  }
+  ASSERT_NO_THROW(readShards(originals));
+  std::mt19937 rng(20261203);
+  int read = 0, refused = 0;
+  for (int m = 0; m < 600; ++m) {
+    std::vector<std::string> dirs;
+    for (int k = 0; k < 2; ++k) {
+      dirs.push_back(scratch("fuzz-mutant" + std::to_string(k)));
+      std::filesystem::copy(originals[k], dirs.back());
+    }
+    const std::string& dir = dirs[rng() % 2];
+    const bool cells = rng() % 2;
+    const std::string path = dir + "/" + (cells ? kCellsFile : kManifestFile);
+    std::string text = readText(path);
+    for (int edits = 1 + static_cast<int>(rng() % 3); edits > 0; --edits) text = mutate(text, rng);
+    writeText(path, text);
+    if (cells && rng() % 2) {
+      const std::string manifestPath = dir + "/" + kManifestFile;
+      Json manifest = Json::parse(readText(manifestPath));
+      manifest["cells_digest"] = hexDigest(fnv1a(text));
+      writeText(manifestPath, manifest.dump(2) + "\n");
+    }
+    try {
+      readShards(dirs);
+      ++read;
+    } catch (const std::invalid_argument& e) {
+      ++refused;
+      const std::string what = e.what();
+      EXPECT_FALSE(what.empty()) << "mutant " << m;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << "mutant " << m << ": " << what;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "mutant " << m << " (" << path << "): " << typeid(e).name() << ": " << e.what();
+    }
+  }
+  std::printf("[ fuzz     ] 600 mutants: %d read, %d refused\n", read, refused);
+  EXPECT_GT(refused, 300);
+  for (const auto& dir : originals) std::filesystem::remove_all(dir);
 }
