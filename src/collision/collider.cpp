@@ -177,13 +177,34 @@ SurfaceDistance Collider::distance(const Eigen::Vector2d& p) const {
   return {d - radius, d > roundOff ? Eigen::Vector2d((p - nearest) / d) : edgeNormal};
 }
 
+Eigen::Vector2d Collider::entryNormal(const Eigen::Vector2d& p, const Eigen::Vector2d& heading) const {
+  const SurfaceDistance surface = distance(p);
+  if (points.size() < 3 || radius > 0.0) return surface.normal;
+  const double roundOff = 1e-12 * (1.0 + p.cwiseAbs().maxCoeff());
+  Eigen::Vector2d best = surface.normal;
+  double into = surface.normal.dot(heading);
+  forEachEdge(points, [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d e = b - a;
+    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    if ((p - (a + t * e)).norm() > roundOff) return;
+    const Eigen::Vector2d n = outwardNormal(a, b);
+    if (n.dot(heading) < into) {
+      into = n.dot(heading);
+      best = n;
+    }
+  });
+  return best;
+}
+
 std::optional<double> Collider::sweep(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin,
                                       double slop) const {
   const SurfaceDistance start = distance(a);
   const double startGap = start.distance - margin;
   const Eigen::Vector2d d = b - a;
   if (startGap <= slop) {
-    if (start.normal.dot(d) < -slop || distance(b).distance - margin < -slop) return 0.0;
+    // At a corner of a box or polygon the face the path heads into decides.
+    const Eigen::Vector2d n = margin == 0.0 ? entryNormal(a, d) : start.normal;
+    if (n.dot(d) < -slop || distance(b).distance - margin < -slop) return 0.0;
     return std::nullopt;
   }
   if (shape == ColliderShape::HalfPlane) {

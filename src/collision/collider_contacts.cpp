@@ -99,6 +99,7 @@ bool applyColliderImpact(const Collider& c, const ColliderImpact& impact, double
   // point is the curved path's point at τ, put on that face's plane.
   Eigen::Vector2d normal;
   const Eigen::Vector2d entry = ontoSurface(c, from + impact.s * (x1 - from), r, &normal);
+  if (r == 0.0) normal = c.entryNormal(entry, x1 - from);  // a corner: the face the chord goes into
   const Eigen::Vector2d q = path.position(tau), p = q - normal.dot(q - entry) * normal;
   const Eigen::Vector2d u = path.velocity(tau);
   const double un = u.dot(normal), remaining = dt - tau;
