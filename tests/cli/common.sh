@@ -40,11 +40,15 @@ wait_for() {
   return $code
 }
 
-# wait_for_rows FILE ROWS: waits (at most 30 s) until FILE has at least ROWS lines.
+# wait_for_rows FILE ROWS [PID]: waits (at most 30 s) until FILE has at least ROWS lines;
+# fails at once if process PID has ended first.
 wait_for_rows() {
-  local left=300
-  while [ ! -f "$1" ] || [ "$(wc -l <"$1")" -lt "$2" ]; do
+  local left=300 lines
+  while true; do
+    lines=0; [ -f "$1" ] && lines=$(wc -l 2>/dev/null <"$1"); lines=${lines:-0}
+    [ -f "$1" ] && [ "$lines" -ge "$2" ] && return 0
     [ $left -le 0 ] && return 1
+    [ -n "${3:-}" ] && ! kill -0 "$3" 2>/dev/null && return 1
     sleep 0.1
     left=$((left - 1))
   done

@@ -16,7 +16,12 @@ for signal in INT TERM; do
       --csv "$csv" --trajectory "$trajectory" >"$WORK/$name.out" 2>"$WORK/$name.err" &
     pid=$!
     # Each file is written as NAME.partial and renamed when closed.
-    if ! wait_for_rows "$csv.partial" 3; then fail "$name: no rows after 30 s"; kill -KILL $pid; continue; fi
+    if ! wait_for_rows "$csv.partial" 3 $pid; then
+      if kill -0 $pid 2>/dev/null; then kill -KILL $pid; wait $pid 2>/dev/null; fail "$name: no rows after 30 s"
+      else code=0; wait $pid || code=$?; fail "$name: ended (exit $code) before writing rows: $(head -c 300 "$WORK/$name.err"); $(df -h "$WORK" | tail -n 1)"
+      fi
+      continue
+    fi
     sleep "$delay"
     kill -"$signal" $pid
     code=0
@@ -37,6 +42,7 @@ for signal in INT TERM; do
     [ "$(wc -l <"$trajectory")" = $(((last + 1) * particles + 1)) ] ||
       { fail "$name: $trajectory does not hold steps 0..$last"; continue; }
     pass "$name (stopped after step $last)"
+    rm -f "$csv" "$trajectory"  # each run's trajectory is tens of megabytes
   done
 done
 
@@ -52,7 +58,7 @@ csv="$WORK/long-chain.csv"
 pid=$!
 # The output file is opened after the handler is installed (loading takes several
 # seconds under the sanitizers); a second later the first step's solve is running.
-wait_for_rows "$csv.partial" 0 || fail "long-chain: no output file after 30 s"
+wait_for_rows "$csv.partial" 0 $pid || fail "long-chain: no output file after 30 s"
 sleep 1
 if kill -0 $pid 2>/dev/null; then
   kill -TERM $pid
