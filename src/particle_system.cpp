@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <iterator>
 
 #include "particles/check.h"
 #include "particles/forces/spring.h"
@@ -126,7 +125,7 @@ void ParticleSystem::restore(const Snapshot& s) {
   v_ = s.v;
   time_ = s.time;
   solver_.resetWarmStart();
-  coupled_.resetWarmStart();
+  contacts_.resetWarmStart();
 }
 
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
@@ -177,148 +176,27 @@ void ParticleSystem::addEvaluationStats(StepStats& stats) {
 
 StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   requirePositive("dt", dt);
+  // Begin: settings are public fields, checked before anything moves, so a
+  // bad value never leaves a step half done.
   evaluations_ = StepStats{};
-  // Settings are public fields: check them before anything moves, so a bad
-  // value never leaves a step half done.
   solver_.settings.validate();
-  const bool collideAfter = colliding() && !integrator.collidesInSubsteps();
-  if (colliding()) {
-    contactSettings_.validate();
-    if (collidable_.size() > 1)
-      requireInRange("particle contact restitution", contacts_.restitution, 0.0, 1.0);
-  }
-  if (collideAfter) {
-    startX_ = x_;
-    startV_ = v_;
-  }
-  contactsLastStep_ = 0;
-  coupleContacts_ = collideAfter && integrator.couplesContactsWithConstraints();
-  contactStats_ = StepStats{};
-  contactStats_.internalSteps = 0;
+  const ContactScene scene = contactScene();
+  const bool collideAfter = scene.colliding() && !integrator.collidesInSubsteps();
+  contacts_.beginStep(scene, x_, v_, collideAfter);
+  // Integrate.
   StepStats stats = integrator.step(*this, dt);
   addEvaluationStats(stats);  // evaluations the integrator left in the tally
-  if (collideAfter) collideOver(startX_, startV_, dt);
-  coupleContacts_ = false;
-  stats += contactStats_;
+  // Collide.
+  if (collideAfter) contacts_.collideStep(scene, dt, integrator.couplesContactsWithConstraints(), x_, v_);
+  stats += contacts_.stepStats();
+  // Advance the clock.
   time_ += dt;
   lastStepStats_ = stats;
   return stats;
 }
 
-namespace {
-// Every straight path a contact sweeps (particle or edge, from x0 to x) lies
-// in the box around all of x0 and x grown by `grow`: when that box meets no
-// collider's bounds (a half-plane has none), no sweep can hit, and a substep's
-// collision pass over a cloth far from the walls costs one pass over the positions.
-bool pathsMayReachColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0,
-                            const Eigen::VectorXd& x, double grow) {
-  const auto n = static_cast<Eigen::Index>(x.size() / 2);
-  if (n == 0) return false;
-  const Eigen::Map<const Eigen::Array2Xd> start(x0.data(), 2, n), end(x.data(), 2, n);
-  const Eigen::Array2d lo = start.rowwise().minCoeff().min(end.rowwise().minCoeff()) - grow;
-  const Eigen::Array2d hi = start.rowwise().maxCoeff().max(end.rowwise().maxCoeff()) + grow;
-  if (!lo.allFinite() || !hi.allFinite()) return true;  // the per-particle passes deal with it
-  for (const Collider& c : colliders) {
-    Eigen::Vector2d cLo, cHi;
-    if (!c.bounds(cLo, cHi)) return true;
-    if ((lo <= cHi.array()).all() && (hi >= cLo.array()).all()) return true;
-  }
-  return false;
-}
-}  // namespace
-
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
-  if (collidable_.size() < 2 && edges_.empty() &&
-      !pathsMayReachColliders(colliders_, x0, x_, radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0)) {
-    coupled_.resetWarmStart();
-    return 0;
-  }
-  // Each particle's path over the interval runs from (x0, v0) to its state as
-  // the integrator left it (contact_path.h).
-  const StepStart start{x0, v0, dt};
-  const bool discs = collidable_.size() > 1, walls = !colliders_.empty(), edges = walls && !edges_.empty();
-  lastFree_ = x_;
-  ContactCount counted;
-  // Discs meet each other and the colliders in the order of their impacts.
-  if (discs)
-    counted += contacts_.resolve(collidable_, colliders_, start, inverseMass_, radius_, contactSettings_, true, x_,
-                                  v_, &lastFree_);
-  // Every other particle meets only the colliders, on its own, and only if
-  // its path comes near one (as does an edge, only if one of its ends does).
-  if (walls) {
-    double margin = radius_.size() > 0 ? radius_.maxCoeff() + contactSettings_.slop : 0.0;
-    if (edges) margin = std::max(margin, edgeReach(edges_, x0, x_));
-    markNearColliders(colliders_, x0, x_, margin, near_, nearList_);
-    if (discs) {
-      // Discs are resolved with each other, not here (their edges are tested below).
-      for (int i : collidable_) near_[i] = 0;
-      nearList_.erase(std::remove_if(nearList_.begin(), nearList_.end(), [&](int i) { return !near_[i]; }),
-                      nearList_.end());
-    }
-    // Constrained particles that touch a collider, with every particle joined
-    // to them by constraints, are resolved together with those constraints
-    // (coupled_contacts.h); the rest each on their own.
-    const std::vector<int>* singles = &nearList_;
-    const bool coupled = coupleContacts_ && !constraints_.empty();
-    if (coupled) {
-      touching_.clear();
-      for (int i : nearList_)
-        if (touchesCollider(colliders_, x0.segment<2>(2 * i), x_.segment<2>(2 * i), radius_[i], contactSettings_.slop))
-          touching_.push_back(i);
-      const std::vector<int>& island = coupled_.island(constraints_, size(), structureStamp_, touching_);
-      singles_.clear();
-      std::set_difference(nearList_.begin(), nearList_.end(), island.begin(), island.end(),
-                          std::back_inserter(singles_));
-      singles = &singles_;
-    }
-    counted += resolveColliderContacts(colliders_, start, inverseMass_, radius_, contactSettings_, x_, v_,
-                                        lastFree_, singles);
-    if (coupled) {
-      const CoupledSolveStats solved = coupled_.solve(constraints_, colliders_, start, mass_, inverseMass_, radius_,
-                                                      contactSettings_, x_, v_);
-      for (int i : coupled_.lastIsland()) lastFree_.segment<2>(2 * i) = x_.segment<2>(2 * i);
-      contactStats_.contactIterations += solved.iterations;
-      contactStats_.contactResidual = std::max(contactStats_.contactResidual, solved.residual);
-      counted.contacts += solved.contacts;
-    }
-    if (edges) {
-      edgeIncidence_.update(edges_, size(), structureStamp_);
-      edgeIncidence_.mark(nearList_);
-      if (discs) edgeIncidence_.mark(collidable_);
-      edgeIncidence_.takeMarked(nearEdges_);
-    }
-  }
-  const int edgeContacts =
-      edges ? resolveEdgeContacts(colliders_, edges_, start, inverseMass_, radius_, x_, v_, lastFree_, &nearEdges_) : 0;
-  counted.contacts += edgeContacts;
-  // Resting contacts push on each other (a stack on a floor, a rope over a
-  // nail): Gauss–Seidel passes until none is left, colliders last, as the
-  // hard boundary. Without discs left touching or an edge caught, nothing
-  // was pushed after the continuous passes and no pass is needed.
-  // A pass ends the iteration when it changes no speed by more than would
-  // move a particle by the slop in a step.
-  const double settled = contactSettings_.slop / dt;
-  const bool pushed = (discs && contacts_.touchingPairs() > 0) || edgeContacts > 0;
-  const int passes = pushed ? contactSettings_.iterations : 0;
-  for (int pass = 0; pass < passes; ++pass) {
-    double largest = 0.0;
-    int resolved = 0;
-    if (discs) largest = contacts_.resolveResting(inverseMass_, radius_, contactSettings_, pass % 2 == 0, x_, v_);
-    if (edges) resolved += resolveEdgeContacts(colliders_, edges_, start, inverseMass_, radius_, x_, v_, lastFree_, &nearEdges_);
-    if (walls) {
-      const ContactCount pushedOut =
-          pushOutOfColliders(colliders_, inverseMass_, radius_, contactSettings_, x_, v_, lastFree_);
-      resolved += pushedOut.contacts;
-      counted.capped += pushedOut.capped;
-    }
-    if (largest <= settled && resolved == 0) break;
-  }
-  // A particle that ran out of the impact work cap was stopped short of its
-  // motion: the step reports it as failed rather than lose the motion silently.
-  if (counted.capped > 0 && contactStats_.failure == StepFailure::None)
-    contactStats_.failure = StepFailure::ContactCapReached;
-  contactsLastStep_ += counted.contacts;
-  return counted.contacts;
+  return contacts_.collide(contactScene(), StepStart{x0, v0, dt}, false, x_, v_);
 }
 
 double ParticleSystem::kineticEnergy() const {

@@ -42,10 +42,6 @@ struct ContactSettings {
   void validate() const;  // throws naming the bad field
 };
 
-// The state at the start of the step, from which continuous detection sweeps.
-// Each particle's path through the step runs from (x, v) here to its state as
-// the integrator left it (contact_path.h); every contact pass reads it before
-// any contact has changed that particle.
 // What one contact pass did: the contacts it resolved and the particles that
 // ran out of the work cap ContactSettings::maxImpacts (nonzero fails the step).
 struct ContactCount {
@@ -58,6 +54,10 @@ struct ContactCount {
   }
 };
 
+// The state at the start of the step, from which continuous detection sweeps.
+// Each particle's path through the step runs from (x, v) here to its state as
+// the integrator left it (contact_path.h); every contact pass reads it before
+// any contact has changed that particle.
 struct StepStart {
   const Eigen::VectorXd& x;  // 2n positions
   const Eigen::VectorXd& v;  // 2n velocities

@@ -10,7 +10,7 @@
 #include "particles/collision.h"
 #include "particles/constraint.h"
 #include "particles/constraint_solver.h"
-#include "particles/coupled_contacts.h"
+#include "particles/contact_pass.h"
 #include "particles/force.h"
 #include "particles/integrator.h"
 #include "particles/step_stats.h"
@@ -90,10 +90,10 @@ class ParticleSystem {
 
   ConstraintSolver& solver() { return solver_; }
   const ConstraintSolver& solver() const { return solver_; }
-  ParticleContacts& particleContacts() { return contacts_; }
-  const ParticleContacts& particleContacts() const { return contacts_; }
-  ContactSettings& contactSettings() { return contactSettings_; }
-  const ContactSettings& contactSettings() const { return contactSettings_; }
+  ParticleContacts& particleContacts() { return contacts_.particleContacts(); }
+  const ParticleContacts& particleContacts() const { return contacts_.particleContacts(); }
+  ContactSettings& contactSettings() { return contacts_.settings(); }
+  const ContactSettings& contactSettings() const { return contacts_.settings(); }
 
   // --- dynamics -----------------------------------------------------------
   // q̈ at (x, v): clear forces → apply forces → solve λ → add Jᵀλ → a = W(Q + Q̂).
@@ -114,20 +114,19 @@ class ParticleSystem {
   // (stats.internalSteps unchanged); resets the tally.
   void addEvaluationStats(StepStats& stats);
 
-  // One step: keep the start state → integrate by dt → collide (continuous,
-  // from the start state; skipped without colliders or collidable discs, and
-  // left to the integrator when it collides inside its substeps) → advance
-  // the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
+  // One step, as named phases: begin (check the settings, keep the start
+  // state) → integrate by dt → collide (the contact pass, contact_pass.h,
+  // continuous from the start state; skipped without colliders or collidable
+  // discs, and left to the integrator when it collides inside its substeps)
+  // → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
   StepStats step(Integrator& integrator, double dt);
   const StepStats& lastStepStats() const { return lastStepStats_; }
 
   // Colliders or at least two collidable discs: step() has a collision phase.
-  bool colliding() const { return !colliders_.empty() || collidable_.size() > 1; }
-  // The collision phase over an interval dt that began at (x0, v0) and ends at
-  // the present state: colliders (continuous, along each particle's path from
-  // x0) → disc impacts → edges → resting passes over discs and colliders.
-  // step() runs it once over the whole step after the integrator, or an
+  bool colliding() const { return contactScene().colliding(); }
+  // The contact pass over an interval dt that began at (x0, v0) and ends at
+  // the present state, each particle on its own (contact_pass.h). An
   // integrator that collides inside its substeps (Integrator::collidesInSubsteps)
   // runs it after each substep. Returns the contacts, which contactsLastStep() sums.
   int collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt);
@@ -141,7 +140,7 @@ class ParticleSystem {
   // The last constraint solve alone; lastStepStats() sums a whole step.
   const SolveStats& lastSolve() const { return solver_.stats(); }
   bool finite() const;  // every position and velocity finite
-  int contactsLastStep() const { return contactsLastStep_; }
+  int contactsLastStep() const { return contacts_.contactsThisStep(); }
 
  private:
   Eigen::VectorXd x_, v_, f_;
@@ -154,25 +153,14 @@ class ParticleSystem {
   std::vector<CollisionEdge> edges_;
   std::vector<int> collidable_;
   ConstraintSolver solver_;
-  ParticleContacts contacts_;
-  ContactSettings contactSettings_;
-  // Collision scratch: the step's start and the last known free positions.
-  Eigen::VectorXd startX_, startV_, lastFree_;
-  std::vector<char> near_;          // near a collider (markNearColliders) and not a disc
-  std::vector<int> nearList_;       // the same particles, ascending
-  std::vector<int> nearEdges_;      // edges with an end near a collider or at a disc, ascending
-  EdgeIncidence edgeIncidence_;
-  int contactsLastStep_ = 0;
-  // Constrained particles touching colliders, resolved with their constraints
-  // when the step's integrator asks for it (Integrator::couplesContactsWithConstraints).
-  CoupledContacts coupled_;
-  bool coupleContacts_ = false;
-  std::vector<int> touching_, singles_;
-  StepStats contactStats_;
+  ContactPass contacts_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
   std::uint64_t structureStamp_ = nextStructureStamp();
   static std::uint64_t nextStructureStamp();
+  ContactScene contactScene() const {
+    return {colliders_, edges_, collidable_, constraints_, mass_, inverseMass_, radius_, structureStamp_};
+  }
 };
 
 }  // namespace particles
