@@ -293,7 +293,7 @@ TEST(ClosedBox, PointParticlesAtHighSpeedNeverLeaveTheBoxOfFourSlabs) {
 // between the floor's top face and a wall's bottom edge, the line y = −1 they
 // rest on (6 of 40 did, with the wall met at its corner as its bottom face).
 TEST(ClosedBox, ParticlesSlidingOnTheFloorDoNotLeaveAlongTheSeams) {
-  for (const std::string& name : {"rk4", "midpoint", "verlet", "symplectic-euler", "implicit-euler", "dopri5", "xpbd"}) {
+  for (const char* name : {"rk4", "midpoint", "verlet", "symplectic-euler", "implicit-euler", "dopri5", "xpbd"}) {
     SCOPED_TRACE(name);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> speed(0.5, 3.0);

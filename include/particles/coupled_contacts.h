@@ -37,6 +37,7 @@
 //    (contactIterations, contactResidual). Solving velocities last leaves
 //    J v = 0 at the final positions.
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -62,6 +63,11 @@ struct CoupledSolveStats {
 
 class CoupledContacts {
  public:
+  CoupledContacts();
+  ~CoupledContacts();
+  CoupledContacts(CoupledContacts&&) noexcept;
+  CoupledContacts& operator=(CoupledContacts&&) noexcept;
+
   // The islands of the particles in `touching` (ascending or not): those
   // particles and every particle reachable from them through constraints.
   // Returns the island's particles, ascending. Rebuilds its adjacency when
@@ -85,6 +91,10 @@ class CoupledContacts {
 
  private:
   void buildAdjacency(const ConstraintList& constraints, int particles);
+  void collectIslandConstraints(const ConstraintList& constraints);
+  int addContacts(const std::vector<Collider>& colliders, const StepStart& start, const Eigen::VectorXd& inverseMass,
+                  const Eigen::VectorXd& radius, const ContactSettings& settings, const Eigen::VectorXd& x,
+                  const Eigen::VectorXd& v);
 
   std::uint64_t structure_ = 0;
   std::vector<int> first_, ids_;  // particle p's constraints: ids_[first_[p] .. first_[p + 1])
@@ -93,6 +103,8 @@ class CoupledContacts {
   // Last step's impulses: constraint rows keyed −1 − index, contact rows
   // keyed (particle, collider, normal or friction).
   std::unordered_map<std::int64_t, double> previous_;
+  struct Rows;  // the solve's rows and their scratch, kept between steps to avoid allocation
+  std::unique_ptr<Rows> rows_;
 };
 
 }  // namespace particles

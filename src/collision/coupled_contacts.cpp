@@ -90,176 +90,155 @@ const std::vector<int>& CoupledContacts::island(const ConstraintList& constraint
   return island_;
 }
 
-CoupledSolveStats CoupledContacts::solve(const ConstraintList& constraints, const std::vector<Collider>& colliders,
-                                         const StepStart& start, const Eigen::VectorXd& mass,
-                                         const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
-                                         const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v) {
-  CoupledSolveStats stats;
-  if (island_.empty()) {
-    previous_.clear();
-    return stats;
-  }
-  const double dt = start.dt;
-  const int nColliders = static_cast<int>(colliders.size());
+// The rows of one island's solve and the phases that relax them (coupled_contacts.h,
+// steps 1–4), kept between steps so that their arrays are not allocated again.
+struct CoupledContacts::Rows {
+  const ConstraintList* constraints = nullptr;
+  const Eigen::VectorXd* mass = nullptr;
+  const Eigen::VectorXd* inverseMass = nullptr;
   std::vector<Row> rows;
   std::vector<Block> blocks;
   std::vector<Eigen::Vector2d> jScratch, jdotScratch;
-
-  // The island's constraints: each once, from its lowest particle in the island.
   std::vector<int> islandConstraints;
-  for (int p : island_)
-    for (int k = first_[p]; k < first_[p + 1]; ++k) {
-      const int c = ids_[k];
-      const std::vector<int>& ps = constraints[c]->particles();
-      if (*std::min_element(ps.begin(), ps.end()) == p) islandConstraints.push_back(c);
-    }
 
-  // Fills a row's blocks from a constraint's J at x; returns C.
-  const auto evaluateConstraint = [&](int c, const Eigen::VectorXd& at, Row& row) {
-    const Constraint& constraint = *constraints[c];
-    const std::vector<int>& ps = constraint.particles();
-    jScratch.assign(ps.size(), Eigen::Vector2d::Zero());
-    jdotScratch.assign(ps.size(), Eigen::Vector2d::Zero());
-    ConstraintRow out{0.0, 0.0, jScratch.data(), jdotScratch.data()};
-    constraint.evaluate(Phase{at, v, mass, inverseMass}, out);
-    double k = 0.0, norm2 = 0.0;
-    for (std::size_t b = 0; b < ps.size(); ++b) {
-      blocks[row.first + b] = {ps[b], jScratch[b]};
-      k += inverseMass[ps[b]] * jScratch[b].squaredNorm();
-      norm2 += jScratch[b].squaredNorm();
-    }
-    row.invK = k > 0.0 ? 1.0 / k : 0.0;
-    row.norm = std::sqrt(norm2);
-    return out.C;
-  };
+  void begin(const ConstraintList& c, const Eigen::VectorXd& m, const Eigen::VectorXd& w) {
+    constraints = &c;
+    mass = &m;
+    inverseMass = &w;
+    rows.clear();
+    blocks.clear();
+  }
+  double evaluateConstraint(int c, const Eigen::VectorXd& x, const Eigen::VectorXd& v, Row& row);
+  void addConstraintRows(const Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  void addContactRows(int i, int k, int colliders, const Collider& collider, const Eigen::Vector2d& normal,
+                      const Eigen::Vector2d& point, double target);
+  void correctPositions(const ContactSettings& settings, Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  double velocityOf(const Row& row, const Eigen::VectorXd& v) const;
+  void applyImpulse(const Row& row, double impulse, Eigen::VectorXd& v) const;
+  void warmStart(const std::unordered_map<std::int64_t, double>& previous, Eigen::VectorXd& v);
+  void solveVelocities(const ContactSettings& settings, Eigen::VectorXd& v, CoupledSolveStats& stats);
+};
 
-  // 1. Rows: the constraints, then each particle's contact planes.
+CoupledContacts::CoupledContacts() : rows_(std::make_unique<Rows>()) {}
+CoupledContacts::~CoupledContacts() = default;
+CoupledContacts::CoupledContacts(CoupledContacts&&) noexcept = default;
+CoupledContacts& CoupledContacts::operator=(CoupledContacts&&) noexcept = default;
+
+// Fills a row's blocks from its constraint's J at x; returns C.
+double CoupledContacts::Rows::evaluateConstraint(int c, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                                 Row& row) {
+  const Constraint& constraint = *(*constraints)[c];
+  const std::vector<int>& ps = constraint.particles();
+  jScratch.assign(ps.size(), Eigen::Vector2d::Zero());
+  jdotScratch.assign(ps.size(), Eigen::Vector2d::Zero());
+  ConstraintRow out{0.0, 0.0, jScratch.data(), jdotScratch.data()};
+  constraint.evaluate(Phase{x, v, *mass, *inverseMass}, out);
+  double k = 0.0, norm2 = 0.0;
+  for (std::size_t b = 0; b < ps.size(); ++b) {
+    blocks[row.first + b] = {ps[b], jScratch[b]};
+    k += (*inverseMass)[ps[b]] * jScratch[b].squaredNorm();
+    norm2 += jScratch[b].squaredNorm();
+  }
+  row.invK = k > 0.0 ? 1.0 / k : 0.0;
+  row.norm = std::sqrt(norm2);
+  return out.C;
+}
+
+// 1. The island's constraints as bilateral rows, each once.
+void CoupledContacts::Rows::addConstraintRows(const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
   for (int c : islandConstraints) {
     Row row{RowKind::Bilateral};
     row.first = static_cast<int>(blocks.size());
-    row.count = static_cast<int>(constraints[c]->particles().size());
+    row.count = static_cast<int>((*constraints)[c]->particles().size());
     row.constraint = c;
     row.key = -1 - static_cast<std::int64_t>(c);
     blocks.resize(blocks.size() + row.count);
-    evaluateConstraint(c, x, row);
+    evaluateConstraint(c, x, v, row);
     rows.push_back(row);
   }
-  // Nonlinear Gauss–Seidel over the rows' position errors (friction rows have none).
-  const auto correctPositions = [&] {
-    for (int pass = 0; pass < settings.positionIterations; ++pass) {
-      double worst = 0.0;
-      for (Row& row : rows) {
-        if (row.kind == RowKind::Friction) continue;
-        double error;  // C / |J|: a length
-        double correction;
-        if (row.kind == RowKind::Bilateral) {
-          const double C = evaluateConstraint(row.constraint, x, row);
-          if (row.invK == 0.0 || row.norm == 0.0) continue;
-          error = std::abs(C) / row.norm;
-          correction = -C * row.invK;
-        } else {
-          const Eigen::Vector2d& n = blocks[row.first].J;
-          const double C = n.dot(x.segment<2>(2 * blocks[row.first].particle) - row.point);
-          if (C >= 0.0) continue;
-          error = -C;
-          correction = -C * row.invK;
-        }
-        worst = std::max(worst, error);
-        for (int b = row.first; b < row.first + row.count; ++b) {
-          const int p = blocks[b].particle;
-          x.segment<2>(2 * p) += (inverseMass[p] * correction) * blocks[b].J;
-        }
-      }
-      if (!(worst > settings.slop)) break;
-    }
-  };
+}
 
-  // The constraints' own drift first: a contact is judged where the
-  // constraints put the particle (a bead that the integrator let drift off
-  // its wire into a floor tangent to the wire does not touch that floor).
-  correctPositions();
-  const contact::ColliderBoxes boxes(colliders);
-  for (int i : island_) {
-    const double w = inverseMass[i];
-    if (w == 0.0) continue;
-    const double r = radius[i];
-    const Eigen::Vector2d x0 = start.x.segment<2>(2 * i), v0 = start.v.segment<2>(2 * i);
-    const Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
-    if (!boxes.near(colliders, x0, x1, r + settings.slop)) continue;
-    for (int k = 0; k < nColliders; ++k) {
-      const Collider& collider = colliders[k];
-      // The face entered on the step's path, or the one the end touches.
-      Eigen::Vector2d normal, point;
-      if (const std::optional<double> s = collider.sweep(x0, x1, r, settings.slop)) {
-        point = contact::ontoSurface(collider, x0 + *s * (x1 - x0), r, &normal);
-      } else if (collider.distance(x1).distance - r <= settings.slop) {
-        point = contact::ontoSurface(collider, x1, r, &normal);
+// 1. A contact of particle i with collider k: a normal row on the plane of
+// the face (normal, point) with its velocity target, and a friction row along it.
+void CoupledContacts::Rows::addContactRows(int i, int k, int colliders, const Collider& collider,
+                                           const Eigen::Vector2d& normal, const Eigen::Vector2d& point,
+                                           double target) {
+  const double w = (*inverseMass)[i];
+  Row normalRow{RowKind::Normal};
+  normalRow.first = static_cast<int>(blocks.size());
+  normalRow.count = 1;
+  normalRow.invK = 1.0 / w;
+  normalRow.norm = 1.0;
+  normalRow.target = target;
+  normalRow.point = point;
+  normalRow.key = contactKey(i, k, colliders, false);
+  blocks.push_back({i, normal});
+  rows.push_back(normalRow);
+  if (collider.friction <= 0.0) return;
+  Row friction{RowKind::Friction};
+  friction.first = static_cast<int>(blocks.size());
+  friction.count = 1;
+  friction.invK = 1.0 / w;
+  friction.norm = 1.0;
+  friction.mu = collider.friction;
+  friction.normal = static_cast<int>(rows.size()) - 1;
+  friction.key = contactKey(i, k, colliders, true);
+  blocks.push_back({i, Eigen::Vector2d(-normal.y(), normal.x())});
+  rows.push_back(friction);
+}
+
+// 3. Nonlinear Gauss–Seidel over the rows' position errors (friction rows have none).
+void CoupledContacts::Rows::correctPositions(const ContactSettings& settings, Eigen::VectorXd& x,
+                                             const Eigen::VectorXd& v) {
+  const Eigen::VectorXd& w = *inverseMass;
+  for (int pass = 0; pass < settings.positionIterations; ++pass) {
+    double worst = 0.0;
+    for (Row& row : rows) {
+      if (row.kind == RowKind::Friction) continue;
+      double error;  // C / |J|: a length
+      double correction;
+      if (row.kind == RowKind::Bilateral) {
+        const double C = evaluateConstraint(row.constraint, x, v, row);
+        if (row.invK == 0.0 || row.norm == 0.0) continue;
+        error = std::abs(C) / row.norm;
+        correction = -C * row.invK;
       } else {
-        continue;
+        const Eigen::Vector2d& n = blocks[row.first].J;
+        const double C = n.dot(x.segment<2>(2 * blocks[row.first].particle) - row.point);
+        if (C >= 0.0) continue;
+        error = -C;
+        correction = -C * row.invK;
       }
-      // 2. Restitution for a contact new this step, from the impact speed.
-      const std::int64_t key = contactKey(i, k, nColliders, false);
-      const double vn = normal.dot(v1);
-      double target = 0.0;
-      if (vn < 0.0 && previous_.find(key) == previous_.end()) {
-        const double depth = std::max(0.0, -normal.dot(x1 - point));
-        const double an = normal.dot(v1 - v0) / dt;
-        const double impact = std::sqrt(std::max(0.0, vn * vn + 2.0 * an * depth));
-        if (collider.restitution * impact > settings.restitutionThreshold) target = collider.restitution * impact;
-      }
-      Row normalRow{RowKind::Normal};
-      normalRow.first = static_cast<int>(blocks.size());
-      normalRow.count = 1;
-      normalRow.invK = 1.0 / w;
-      normalRow.norm = 1.0;
-      normalRow.target = target;
-      normalRow.point = point;
-      normalRow.key = key;
-      blocks.push_back({i, normal});
-      rows.push_back(normalRow);
-      ++stats.contacts;
-      if (collider.friction > 0.0) {
-        Row friction{RowKind::Friction};
-        friction.first = static_cast<int>(blocks.size());
-        friction.count = 1;
-        friction.invK = 1.0 / w;
-        friction.norm = 1.0;
-        friction.mu = collider.friction;
-        friction.normal = static_cast<int>(rows.size()) - 1;
-        friction.key = contactKey(i, k, nColliders, true);
-        blocks.push_back({i, Eigen::Vector2d(-normal.y(), normal.x())});
-        rows.push_back(friction);
+      worst = std::max(worst, error);
+      for (int b = row.first; b < row.first + row.count; ++b) {
+        const int p = blocks[b].particle;
+        x.segment<2>(2 * p) += (w[p] * correction) * blocks[b].J;
       }
     }
+    if (!(worst > settings.slop)) break;
   }
-  stats.rows = static_cast<int>(rows.size());
+}
 
-  const auto velocityOf = [&](const Row& row) {
-    double jv = 0.0;
-    for (int b = row.first; b < row.first + row.count; ++b) jv += blocks[b].J.dot(v.segment<2>(2 * blocks[b].particle));
-    return jv;
-  };
-  const auto applyImpulse = [&](const Row& row, double impulse) {
-    for (int b = row.first; b < row.first + row.count; ++b) {
-      const int p = blocks[b].particle;
-      v.segment<2>(2 * p) += (inverseMass[p] * impulse) * blocks[b].J;
-    }
-  };
+double CoupledContacts::Rows::velocityOf(const Row& row, const Eigen::VectorXd& v) const {
+  double jv = 0.0;
+  for (int b = row.first; b < row.first + row.count; ++b) jv += blocks[b].J.dot(v.segment<2>(2 * blocks[b].particle));
+  return jv;
+}
 
-  // 3. Position drift of both kinds of rows, corrected together, before the
-  // velocities: the velocity rows are then those of the final positions, so
-  // the velocities leave the step consistent with the constraints where they
-  // are (a correction made after would turn a rod by depth/length and leave
-  // J v ≠ 0 there, a drift the next step carries on).
-  correctPositions();
-  for (Row& row : rows)
-    if (row.kind == RowKind::Bilateral) evaluateConstraint(row.constraint, x, row);
+void CoupledContacts::Rows::applyImpulse(const Row& row, double impulse, Eigen::VectorXd& v) const {
+  const Eigen::VectorXd& w = *inverseMass;
+  for (int b = row.first; b < row.first + row.count; ++b) {
+    const int p = blocks[b].particle;
+    v.segment<2>(2 * p) += (w[p] * impulse) * blocks[b].J;
+  }
+}
 
-  // Warm start: the same rows' impulses of the last step (a bounce starts cold).
+// Warm start: the same rows' impulses of the last step (a bounce starts cold).
+void CoupledContacts::Rows::warmStart(const std::unordered_map<std::int64_t, double>& previous, Eigen::VectorXd& v) {
   for (Row& row : rows) {
     if (row.invK == 0.0 || (row.kind == RowKind::Normal && row.target > 0.0)) continue;
-    const auto found = previous_.find(row.key);
-    if (found == previous_.end()) continue;
+    const auto found = previous.find(row.key);
+    if (found == previous.end()) continue;
     double lambda = found->second;
     if (row.kind == RowKind::Normal) lambda = std::max(0.0, lambda);
     if (row.kind == RowKind::Friction) {
@@ -267,10 +246,13 @@ CoupledSolveStats CoupledContacts::solve(const ConstraintList& constraints, cons
       lambda = std::clamp(lambda, -bound, bound);
     }
     row.lambda = lambda;
-    applyImpulse(row, lambda);
+    applyImpulse(row, lambda, v);
   }
+}
 
-  // 4. Projected Gauss–Seidel: constraints, friction, normals in each sweep.
+// 4. Projected Gauss–Seidel: constraints, friction, normals in each sweep.
+void CoupledContacts::Rows::solveVelocities(const ContactSettings& settings, Eigen::VectorXd& v,
+                                            CoupledSolveStats& stats) {
   const RowKind order[] = {RowKind::Bilateral, RowKind::Friction, RowKind::Normal};
   for (int sweep = 0; sweep < settings.coupledIterations; ++sweep) {
     double largest = 0.0;
@@ -280,21 +262,102 @@ CoupledSolveStats CoupledContacts::solve(const ConstraintList& constraints, cons
         double lo = -kInfinity, hi = kInfinity;
         if (kind == RowKind::Normal) lo = 0.0;
         if (kind == RowKind::Friction) hi = row.mu * rows[row.normal].lambda, lo = -hi;
-        const double next = std::clamp(row.lambda + (row.target - velocityOf(row)) * row.invK, lo, hi);
+        const double next = std::clamp(row.lambda + (row.target - velocityOf(row, v)) * row.invK, lo, hi);
         const double impulse = next - row.lambda;
         if (impulse == 0.0) continue;
         row.lambda = next;
-        applyImpulse(row, impulse);
+        applyImpulse(row, impulse, v);
         largest = std::max(largest, std::abs(impulse) / (row.invK * row.norm));
       }
     stats.iterations = sweep + 1;
     stats.residual = largest;
     if (!(largest > settings.coupledTolerance)) break;
   }
+}
 
+// The island's constraints: each once, from its lowest particle in the island.
+void CoupledContacts::collectIslandConstraints(const ConstraintList& constraints) {
+  std::vector<int>& out = rows_->islandConstraints;
+  out.clear();
+  for (int p : island_)
+    for (int k = first_[p]; k < first_[p + 1]; ++k) {
+      const int c = ids_[k];
+      const std::vector<int>& ps = constraints[c]->particles();
+      if (*std::min_element(ps.begin(), ps.end()) == p) out.push_back(c);
+    }
+}
+
+// 1–2. Each island particle's contacts: the face its path entered or its end
+// touches, with the bounce of a contact new this step from the impact speed.
+int CoupledContacts::addContacts(const std::vector<Collider>& colliders, const StepStart& start,
+                                 const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                                 const ContactSettings& settings, const Eigen::VectorXd& x,
+                                 const Eigen::VectorXd& v) {
+  const int nColliders = static_cast<int>(colliders.size());
+  const contact::ColliderBoxes boxes(colliders);
+  int contacts = 0;
+  for (int i : island_) {
+    if (inverseMass[i] == 0.0) continue;
+    const double r = radius[i];
+    const Eigen::Vector2d x0 = start.x.segment<2>(2 * i), v0 = start.v.segment<2>(2 * i);
+    const Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
+    if (!boxes.near(colliders, x0, x1, r + settings.slop)) continue;
+    for (int k = 0; k < nColliders; ++k) {
+      const Collider& collider = colliders[k];
+      Eigen::Vector2d normal, point;
+      if (const std::optional<double> s = collider.sweep(x0, x1, r, settings.slop)) {
+        point = contact::ontoSurface(collider, x0 + *s * (x1 - x0), r, &normal);
+      } else if (collider.distance(x1).distance - r <= settings.slop) {
+        point = contact::ontoSurface(collider, x1, r, &normal);
+      } else {
+        continue;
+      }
+      const double vn = normal.dot(v1);
+      double target = 0.0;
+      if (vn < 0.0 && previous_.find(contactKey(i, k, nColliders, false)) == previous_.end()) {
+        const double depth = std::max(0.0, -normal.dot(x1 - point));
+        const double an = normal.dot(v1 - v0) / start.dt;
+        const double impact = std::sqrt(std::max(0.0, vn * vn + 2.0 * an * depth));
+        if (collider.restitution * impact > settings.restitutionThreshold) target = collider.restitution * impact;
+      }
+      rows_->addContactRows(i, k, nColliders, collider, normal, point, target);
+      ++contacts;
+    }
+  }
+  return contacts;
+}
+
+CoupledSolveStats CoupledContacts::solve(const ConstraintList& constraints, const std::vector<Collider>& colliders,
+                                         const StepStart& start, const Eigen::VectorXd& mass,
+                                         const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                                         const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  CoupledSolveStats stats;
+  if (island_.empty()) {
+    previous_.clear();
+    return stats;
+  }
+  Rows& R = *rows_;
+  R.begin(constraints, mass, inverseMass);
+  collectIslandConstraints(constraints);
+  R.addConstraintRows(x, v);
+  // The constraints' own drift first: a contact is judged where the
+  // constraints put the particle (a bead that the integrator let drift off
+  // its wire into a floor tangent to the wire does not touch that floor).
+  R.correctPositions(settings, x, v);
+  stats.contacts = addContacts(colliders, start, inverseMass, radius, settings, x, v);
+  stats.rows = static_cast<int>(R.rows.size());
+  // 3. Position drift of both kinds of rows, corrected together, before the
+  // velocities: the velocity rows are then those of the final positions, so
+  // the velocities leave the step consistent with the constraints where they
+  // are (a correction made after would turn a rod by depth/length and leave
+  // J v ≠ 0 there, a drift the next step carries on).
+  R.correctPositions(settings, x, v);
+  for (Row& row : R.rows)
+    if (row.kind == RowKind::Bilateral) R.evaluateConstraint(row.constraint, x, v, row);
+  R.warmStart(previous_, v);
+  R.solveVelocities(settings, v, stats);
   previous_.clear();
-  for (const Row& row : rows) previous_[row.key] = row.lambda;
-
+  for (const Row& row : R.rows) previous_[row.key] = row.lambda;
   return stats;
 }
 
