@@ -187,7 +187,9 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   StepStats stats = integrator.step(*this, dt);
   addEvaluationStats(stats);  // evaluations the integrator left in the tally
   // Collide.
-  if (collideAfter) contacts_.collideStep(scene, dt, integrator.couplesContactsWithConstraints(), x_, v_);
+  if (collideAfter)
+    contacts_.collideStep(scene, dt, {integrator.couplesContactsWithConstraints(), integrator.driftCorrection()}, x_,
+                          v_);
   stats += contacts_.stepStats();
   // Advance the clock.
   time_ += dt;
@@ -196,7 +198,7 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
 }
 
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
-  return contacts_.collide(contactScene(), StepStart{x0, v0, dt}, false, x_, v_);
+  return contacts_.collide(contactScene(), StepStart{x0, v0, dt}, ContactCoupling{}, x_, v_);
 }
 
 double ParticleSystem::kineticEnergy() const {

@@ -44,6 +44,14 @@ struct ContactScene {
   bool colliding() const { return !colliders.empty() || discs.size() > 1; }
 };
 
+// Whether constrained particles that touch a collider are resolved with their
+// constraints (Integrator::couplesContactsWithConstraints), and how that
+// solve corrects the constraints' drift (Integrator::driftCorrection).
+struct ContactCoupling {
+  bool withConstraints = false;
+  DriftCorrection drift = DriftCorrection::AtEnd;
+};
+
 class ContactPass {
  public:
   ParticleContacts& particleContacts() { return discs_; }
@@ -56,11 +64,11 @@ class ContactPass {
   // keeps the start state when `keepStart`, and clears the step's statistics.
   void beginStep(const ContactScene& scene, const Eigen::VectorXd& x, const Eigen::VectorXd& v, bool keepStart);
   // The pass over the whole step from the start kept by beginStep.
-  int collideStep(const ContactScene& scene, double dt, bool couple, Eigen::VectorXd& x, Eigen::VectorXd& v);
-  // The pass over an interval dt from (x0, v0) to (x, v) (phases 1–5 above);
-  // `couple` resolves constrained particles with their constraints. Returns
-  // the contacts resolved.
-  int collide(const ContactScene& scene, const StepStart& start, bool couple, Eigen::VectorXd& x,
+  int collideStep(const ContactScene& scene, double dt, const ContactCoupling& coupling, Eigen::VectorXd& x,
+                  Eigen::VectorXd& v);
+  // The pass over an interval dt from (x0, v0) to (x, v) (phases 1–5 above).
+  // Returns the contacts resolved.
+  int collide(const ContactScene& scene, const StepStart& start, const ContactCoupling& coupling, Eigen::VectorXd& x,
               Eigen::VectorXd& v);
 
   // Since beginStep: the coupled solve's sweeps and residual and the step's
@@ -72,8 +80,8 @@ class ContactPass {
   void resetWarmStart() { coupled_.resetWarmStart(); }
 
  private:
-  ContactCount collideWalls(const ContactScene& scene, const StepStart& start, bool couple, Eigen::VectorXd& x,
-                            Eigen::VectorXd& v);
+  ContactCount collideWalls(const ContactScene& scene, const StepStart& start, const ContactCoupling& coupling,
+                            Eigen::VectorXd& x, Eigen::VectorXd& v);
   ContactCount restingPasses(const ContactScene& scene, const StepStart& start, bool edgesCaught,
                              Eigen::VectorXd& x, Eigen::VectorXd& v);
 

@@ -46,6 +46,7 @@
 #include "particles/collider.h"
 #include "particles/collision.h"
 #include "particles/constraint.h"
+#include "particles/drift_correction.h"
 
 namespace particles {
 
@@ -81,11 +82,12 @@ class CoupledContacts {
   bool constrained(int i) const { return i < static_cast<int>(first_.size()) - 1 && first_[i + 1] > first_[i]; }
 
   // Resolves the island last returned by island() (steps 1–4 above), from
-  // the step's start `start` to the state (x, v) the integrator left.
+  // the step's start `start` to the state (x, v) the integrator left; the
+  // constraints' drift corrected as `drift` says.
   CoupledSolveStats solve(const ConstraintList& constraints, const std::vector<Collider>& colliders,
                           const StepStart& start, const Eigen::VectorXd& mass, const Eigen::VectorXd& inverseMass,
-                          const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
-                          Eigen::VectorXd& v);
+                          const Eigen::VectorXd& radius, const ContactSettings& settings, DriftCorrection drift,
+                          Eigen::VectorXd& x, Eigen::VectorXd& v);
 
   void resetWarmStart() { previous_.clear(); }
 

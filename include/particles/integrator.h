@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "particles/drift_correction.h"
 #include "particles/step_stats.h"
 
 namespace particles {
@@ -73,6 +74,9 @@ class Integrator {
   // (coupled_contacts.h); false for one whose own formulation already keeps
   // its constraints through contacts (implicit Euler's Newton solve).
   virtual bool couplesContactsWithConstraints() const { return true; }
+  // How that coupled solve corrects the constraints' drift (coupled_contacts.h):
+  // DriftCorrection::Shake for a scheme whose step ends with x = x0 + dt v.
+  virtual DriftCorrection driftCorrection() const { return DriftCorrection::AtEnd; }
 
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }

@@ -46,13 +46,13 @@ void ContactPass::beginStep(const ContactScene& scene, const Eigen::VectorXd& x,
   contacts_ = 0;
 }
 
-int ContactPass::collideStep(const ContactScene& scene, double dt, bool couple, Eigen::VectorXd& x,
-                             Eigen::VectorXd& v) {
-  return collide(scene, StepStart{startX_, startV_, dt}, couple, x, v);
+int ContactPass::collideStep(const ContactScene& scene, double dt, const ContactCoupling& coupling,
+                             Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  return collide(scene, StepStart{startX_, startV_, dt}, coupling, x, v);
 }
 
-int ContactPass::collide(const ContactScene& scene, const StepStart& start, bool couple, Eigen::VectorXd& x,
-                         Eigen::VectorXd& v) {
+int ContactPass::collide(const ContactScene& scene, const StepStart& start, const ContactCoupling& coupling,
+                         Eigen::VectorXd& x, Eigen::VectorXd& v) {
   const bool discs = scene.discs.size() > 1, walls = !scene.colliders.empty();
   if (!discs && scene.edges.empty() &&
       !pathsMayReachColliders(scene.colliders, start.x, x, largestRadius(scene.radius) + settings_.slop)) {
@@ -67,7 +67,7 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, bool
                               x, v, &lastFree_);
   // 2–3. Every other particle meets only the colliders, and only if its path
   // comes near one (as does an edge, only if one of its ends does).
-  if (walls) counted += collideWalls(scene, start, couple, x, v);
+  if (walls) counted += collideWalls(scene, start, coupling, x, v);
   // 4. Edges against the colliders' corners and cores.
   const bool edges = walls && !scene.edges.empty();
   const int edgeContacts = edges ? resolveEdgeContacts(scene.colliders, scene.edges, start, scene.inverseMass,
@@ -81,8 +81,8 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, bool
   return counted.contacts;
 }
 
-ContactCount ContactPass::collideWalls(const ContactScene& scene, const StepStart& start, bool couple,
-                                       Eigen::VectorXd& x, Eigen::VectorXd& v) {
+ContactCount ContactPass::collideWalls(const ContactScene& scene, const StepStart& start,
+                                       const ContactCoupling& coupling, Eigen::VectorXd& x, Eigen::VectorXd& v) {
   const bool discs = scene.discs.size() > 1, edges = !scene.edges.empty();
   double margin = largestRadius(scene.radius) + settings_.slop;
   if (edges) margin = std::max(margin, edgeReach(scene.edges, start.x, x));
@@ -97,7 +97,7 @@ ContactCount ContactPass::collideWalls(const ContactScene& scene, const StepStar
   // to them by constraints, are resolved together with those constraints;
   // the rest each on their own.
   const std::vector<int>* singles = &nearList_;
-  const bool coupled = couple && !scene.constraints.empty();
+  const bool coupled = coupling.withConstraints && !scene.constraints.empty();
   if (coupled) {
     touching_.clear();
     for (int i : nearList_)
@@ -115,7 +115,7 @@ ContactCount ContactPass::collideWalls(const ContactScene& scene, const StepStar
                                                  x, v, lastFree_, singles);
   if (coupled) {
     const CoupledSolveStats solved = coupled_.solve(scene.constraints, scene.colliders, start, scene.mass,
-                                                    scene.inverseMass, scene.radius, settings_, x, v);
+                                                    scene.inverseMass, scene.radius, settings_, coupling.drift, x, v);
     for (int i : coupled_.lastIsland()) lastFree_.segment<2>(2 * i) = x.segment<2>(2 * i);
     stats_.contactIterations += solved.iterations;
     stats_.contactResidual = std::max(stats_.contactResidual, solved.residual);

@@ -99,20 +99,28 @@ struct CoupledContacts::Rows {
   std::vector<Row> rows;
   std::vector<Block> blocks;
   std::vector<Eigen::Vector2d> jScratch, jdotScratch;
+  std::vector<Eigen::Vector2d> startJ;  // DriftCorrection::Shake: each block's J at the step's start
   std::vector<int> islandConstraints;
+  DriftCorrection drift = DriftCorrection::AtEnd;
+  double dt = 0.0;
 
-  void begin(const ConstraintList& c, const Eigen::VectorXd& m, const Eigen::VectorXd& w) {
+  void begin(const ConstraintList& c, const Eigen::VectorXd& m, const Eigen::VectorXd& w, DriftCorrection d,
+             double h) {
     constraints = &c;
     mass = &m;
     inverseMass = &w;
+    drift = d;
+    dt = h;
     rows.clear();
     blocks.clear();
+    startJ.clear();
   }
   double evaluateConstraint(int c, const Eigen::VectorXd& x, const Eigen::VectorXd& v, Row& row);
-  void addConstraintRows(const Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  void addConstraintRows(const StepStart& start, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  bool correctConstraint(Row& row, Eigen::VectorXd& x, Eigen::VectorXd& v, double& error);
   void addContactRows(int i, int k, int colliders, const Collider& collider, const Eigen::Vector2d& normal,
                       const Eigen::Vector2d& point, double target);
-  void correctPositions(const ContactSettings& settings, Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  void correctPositions(const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v);
   double velocityOf(const Row& row, const Eigen::VectorXd& v) const;
   void applyImpulse(const Row& row, double impulse, Eigen::VectorXd& v) const;
   void warmStart(const std::unordered_map<std::int64_t, double>& previous, Eigen::VectorXd& v);
@@ -144,8 +152,10 @@ double CoupledContacts::Rows::evaluateConstraint(int c, const Eigen::VectorXd& x
   return out.C;
 }
 
-// 1. The island's constraints as bilateral rows, each once.
-void CoupledContacts::Rows::addConstraintRows(const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+// 1. The island's constraints as bilateral rows, each once (with their J at
+// the step's start for DriftCorrection::Shake).
+void CoupledContacts::Rows::addConstraintRows(const StepStart& start, const Eigen::VectorXd& x,
+                                              const Eigen::VectorXd& v) {
   for (int c : islandConstraints) {
     Row row{RowKind::Bilateral};
     row.first = static_cast<int>(blocks.size());
@@ -153,9 +163,43 @@ void CoupledContacts::Rows::addConstraintRows(const Eigen::VectorXd& x, const Ei
     row.constraint = c;
     row.key = -1 - static_cast<std::int64_t>(c);
     blocks.resize(blocks.size() + row.count);
+    if (drift == DriftCorrection::Shake) {
+      evaluateConstraint(c, start.x, start.v, row);
+      startJ.resize(blocks.size());
+      for (int b = row.first; b < row.first + row.count; ++b) startJ[b] = blocks[b].J;
+    }
     evaluateConstraint(c, x, v, row);
     rows.push_back(row);
   }
+}
+
+// One Newton step of a bilateral row towards C = 0: along W J at the end, or
+// (Shake) along W J₀ at the start, −C / (J · W J₀) of it, the move carried
+// into the velocity. A start gradient nearly normal to the present one (the
+// constraint turned by more than about 75° in the step) falls back to the
+// present one. Returns false for a row that cannot move; `error` is |C| / |J|.
+bool CoupledContacts::Rows::correctConstraint(Row& row, Eigen::VectorXd& x, Eigen::VectorXd& v, double& error) {
+  const Eigen::VectorXd& w = *inverseMass;
+  const double C = evaluateConstraint(row.constraint, x, v, row);
+  if (row.invK == 0.0 || row.norm == 0.0) return false;
+  error = std::abs(C) / row.norm;
+  const bool shake = drift == DriftCorrection::Shake;
+  double along = 0.0, sizes = 0.0;  // J · W J₀ and Σ w |J| |J₀|
+  if (shake)
+    for (int b = row.first; b < row.first + row.count; ++b) {
+      const double wp = w[blocks[b].particle];
+      along += wp * blocks[b].J.dot(startJ[b]);
+      sizes += wp * blocks[b].J.norm() * startJ[b].norm();
+    }
+  const bool useStart = shake && along > 0.25 * sizes;
+  const double scale = useStart ? -C / along : -C * row.invK;
+  for (int b = row.first; b < row.first + row.count; ++b) {
+    const int p = blocks[b].particle;
+    const Eigen::Vector2d move = (w[p] * scale) * (useStart ? startJ[b] : blocks[b].J);
+    x.segment<2>(2 * p) += move;
+    if (shake) v.segment<2>(2 * p) += move / dt;
+  }
+  return true;
 }
 
 // 1. A contact of particle i with collider k: a normal row on the plane of
@@ -189,31 +233,24 @@ void CoupledContacts::Rows::addContactRows(int i, int k, int colliders, const Co
 
 // 3. Nonlinear Gauss–Seidel over the rows' position errors (friction rows have none).
 void CoupledContacts::Rows::correctPositions(const ContactSettings& settings, Eigen::VectorXd& x,
-                                             const Eigen::VectorXd& v) {
+                                             Eigen::VectorXd& v) {
   const Eigen::VectorXd& w = *inverseMass;
   for (int pass = 0; pass < settings.positionIterations; ++pass) {
     double worst = 0.0;
     for (Row& row : rows) {
       if (row.kind == RowKind::Friction) continue;
-      double error;  // C / |J|: a length
-      double correction;
+      double error = 0.0;  // C / |J|: a length
       if (row.kind == RowKind::Bilateral) {
-        const double C = evaluateConstraint(row.constraint, x, v, row);
-        if (row.invK == 0.0 || row.norm == 0.0) continue;
-        error = std::abs(C) / row.norm;
-        correction = -C * row.invK;
+        if (!correctConstraint(row, x, v, error)) continue;
       } else {
         const Eigen::Vector2d& n = blocks[row.first].J;
-        const double C = n.dot(x.segment<2>(2 * blocks[row.first].particle) - row.point);
+        const int p = blocks[row.first].particle;
+        const double C = n.dot(x.segment<2>(2 * p) - row.point);
         if (C >= 0.0) continue;
         error = -C;
-        correction = -C * row.invK;
+        x.segment<2>(2 * p) += (w[p] * (-C * row.invK)) * n;
       }
       worst = std::max(worst, error);
-      for (int b = row.first; b < row.first + row.count; ++b) {
-        const int p = blocks[b].particle;
-        x.segment<2>(2 * p) += (w[p] * correction) * blocks[b].J;
-      }
     }
     if (!(worst > settings.slop)) break;
   }
@@ -330,16 +367,17 @@ int CoupledContacts::addContacts(const std::vector<Collider>& colliders, const S
 CoupledSolveStats CoupledContacts::solve(const ConstraintList& constraints, const std::vector<Collider>& colliders,
                                          const StepStart& start, const Eigen::VectorXd& mass,
                                          const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
-                                         const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v) {
+                                         const ContactSettings& settings, DriftCorrection drift, Eigen::VectorXd& x,
+                                         Eigen::VectorXd& v) {
   CoupledSolveStats stats;
   if (island_.empty()) {
     previous_.clear();
     return stats;
   }
   Rows& R = *rows_;
-  R.begin(constraints, mass, inverseMass);
+  R.begin(constraints, mass, inverseMass, drift, start.dt);
   collectIslandConstraints(constraints);
-  R.addConstraintRows(x, v);
+  R.addConstraintRows(start, x, v);
   // The constraints' own drift first: a contact is judged where the
   // constraints put the particle (a bead that the integrator let drift off
   // its wire into a floor tangent to the wire does not touch that floor).

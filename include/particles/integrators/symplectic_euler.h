@@ -5,7 +5,7 @@
 
 namespace particles {
 
-// v ← v + h a(x, v),  x ← x + h v   
+// v ← v + h a(x, v),  x ← x + h v
 // (position with the new velocity). This is what the seed report calls "Euler".
 // It is first order but symplectic: on a conservative system its energy error
 // stays bounded where explicit Euler's grows.
@@ -13,6 +13,8 @@ class SymplecticEulerIntegrator : public Integrator {
  public:
   const char* name() const override { return "symplectic-euler"; }
   StepStats step(ParticleSystem& system, double dt) override;
+  // x ← x + h v ends the step: constraint drift is corrected as SHAKE does.
+  DriftCorrection driftCorrection() const override { return DriftCorrection::Shake; }
 
  private:
   Eigen::VectorXd a_;
