@@ -37,6 +37,13 @@ Eigen::Vector2d outwardNormal(const Eigen::Vector2d& a, const Eigen::Vector2d& b
   return Eigen::Vector2d(e.y(), -e.x()) / e.norm();
 }
 
+// The point of the segment a → b nearest to p: the one projection that the
+// distance and the entry face both make of every edge.
+Eigen::Vector2d nearestOnSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d e = b - a;
+  return a + std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
+}
+
 // The edges whose offset lines bound the grown shape: a polygon's closed loop;
 // a capsule's segment taken both ways (its two sides); none for a disc.
 template <class Visit>
@@ -157,11 +164,9 @@ SurfaceDistance Collider::distance(const Eigen::Vector2d& p) const {
   Eigen::Vector2d nearest = points[0], edgeNormal(0.0, 1.0);
   bool inside = points.size() >= 3;
   forEachEdge(points, [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d e = b - a;
-    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-    const Eigen::Vector2d q = a + t * e;
+    const Eigen::Vector2d q = nearestOnSegment(p, a, b);
     const double d2 = (p - q).squaredNorm();
-    if (cross(e, p - a) < 0.0) inside = false;  // right of a counter-clockwise edge
+    if (cross(b - a, p - a) < 0.0) inside = false;  // right of a counter-clockwise edge
     if (d2 < best) {
       best = d2;
       nearest = q;
@@ -184,9 +189,7 @@ Eigen::Vector2d Collider::entryNormal(const Eigen::Vector2d& p, const Eigen::Vec
   Eigen::Vector2d best = surface.normal;
   double into = surface.normal.dot(heading);
   forEachEdge(points, [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d e = b - a;
-    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-    if ((p - (a + t * e)).norm() > roundOff) return;
+    if ((p - nearestOnSegment(p, a, b)).norm() > roundOff) return;
     const Eigen::Vector2d n = outwardNormal(a, b);
     if (n.dot(heading) < into) {
       into = n.dot(heading);

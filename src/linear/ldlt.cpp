@@ -19,7 +19,7 @@ bool Ldlt::factorize(const SparseMatrix& upper, double shift) {
   return solver_->info() == Eigen::Success;
 }
 
-double Ldlt::smallestPivot() const { return solver_->vectorD().minCoeff(); }
+double Ldlt::smallestPivot() const { return solver_->diagonal().minCoeff(); }
 
 void Ldlt::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { x = solver_->solve(b); }
 

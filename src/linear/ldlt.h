@@ -38,7 +38,11 @@ class Ldlt {
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 
  private:
-  using Solver = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>;
+  // Eigen's SimplicialLDLT, whose public vectorD() returns D by value (a heap
+  // copy each call); D is read in place here instead.
+  struct Solver : Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> {
+    const Eigen::VectorXd& diagonal() const { return m_diag; }
+  };
   std::unique_ptr<Solver> solver_;  // Eigen's solvers cannot be moved
   bool analysed_ = false;
 };
