@@ -55,14 +55,32 @@ std::optional<Eigen::Vector2d> coreOverEdgePoint(const Collider& c, const Eigen:
   return a + u * d;
 }
 
-// Whether the edge (xi, xj) crosses a capsule's core over one of its ends,
-// judged against the sides at the start (si, sj); the end is returned.
+// Whether the segments p0 p1 and q0 q1 cross at a point inside both.
+bool segmentsCross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Vector2d& q0,
+                   const Eigen::Vector2d& q1) {
+  const Eigen::Vector2d p = p1 - p0, q = q1 - q0;
+  return cross(p, q0 - p0) * cross(p, q1 - p0) < 0.0 && cross(q, p0 - q0) * cross(q, p1 - q0) < 0.0;
+}
+
+// Whether the edge (xi, xj) crosses a capsule's core, judged against the
+// edge at the start (si, sj); the end that went round is returned. Either
+// the core lies past the edge over one of its ends (on the far side of the
+// side it started on), or the edge, clear of the core at the start, now
+// cuts straight through it with both ends outside the capsule: one end went
+// round a cap, and it is the end whose own straight path crosses the core
+// (or, if neither does, the end nearer a cap).
 std::optional<int> capsuleCrossedAtAnEnd(const Collider& c, const Eigen::Vector2d& si, const Eigen::Vector2d& sj,
                                          const Eigen::Vector2d& xi, const Eigen::Vector2d& xj) {
   for (const int end : {0, 1})
     if (const std::optional<Eigen::Vector2d> q = coreOverEdgePoint(c, xi, xj, end))
       if (edgePastPoint(c.radius, *q, true, si, sj, xi, xj)) return end;
-  return std::nullopt;
+  const Eigen::Vector2d& a = c.points[0];
+  const Eigen::Vector2d& b = c.points[1];
+  if (!segmentsCross(xi, xj, a, b) || segmentsCross(si, sj, a, b)) return std::nullopt;
+  if (segmentsCross(si, xi, a, b)) return 0;
+  if (segmentsCross(sj, xj, a, b)) return 1;
+  const auto toCap = [&](const Eigen::Vector2d& p) { return std::min((p - a).norm(), (p - b).norm()); };
+  return toCap(xi) <= toCap(xj) ? 0 : 1;
 }
 
 // How far the edge is past the deepest of the collider's corners (0: clear of all).
