@@ -33,6 +33,14 @@ void addChain(ParticleSystem& s, Vector2d start, Vector2d direction, int links, 
   s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -g)));
 }
 
+// A floor y = height (a half-plane) with restitution e and friction mu.
+void addFloor(ParticleSystem& s, double height, double e, double mu) {
+  Collider floor = Collider::halfPlane(Vector2d(0.0, height), Vector2d(0.0, 1.0));
+  floor.restitution = e;
+  floor.friction = mu;
+  s.addCollider(floor);
+}
+
 struct RunResult {
   double worstStretch = 0.0;  // largest relative rod error at any step's end
   double energyRise = 0.0;    // largest E(t) − E(0)
@@ -71,10 +79,7 @@ TEST(CoupledContacts, PinnedChainLandingOnFloorKeepsRodsAndEnergy) {
     const double ownDrift = runFor(free, name, 0.002, 1500).worstStretch;
     ParticleSystem s;
     addChain(s, Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), 12, true);
-    Collider floor = Collider::halfPlane(Vector2d(0.0, -0.5), Vector2d(0.0, 1.0));
-    floor.restitution = 0.5;
-    floor.friction = 0.3;
-    s.addCollider(floor);
+    addFloor(s, -0.5, 0.5, 0.3);
     const RunResult run = runFor(s, name, 0.002, 1500);
     EXPECT_FALSE(run.failed) << name;
     EXPECT_LT(run.worstStretch, std::max(0.02, ownDrift)) << name;
@@ -97,10 +102,7 @@ TEST(CoupledContacts, PinnedChainWhippingOnAFrictionlessFloorGainsNoEnergy) {
   for (const std::string& name : kExplicit) {
     ParticleSystem s;
     addChain(s, Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), 11, true);
-    Collider floor = Collider::halfPlane(Vector2d(0.0, -0.5), Vector2d(0.0, 1.0));
-    floor.restitution = 0.0;
-    floor.friction = 0.0;
-    s.addCollider(floor);
+    addFloor(s, -0.5, 0.0, 0.0);
     const RunResult run = runFor(s, name, 0.002, 5000);
     EXPECT_FALSE(run.failed) << name;
     EXPECT_LT(run.worstStretch, 0.02) << name;
@@ -139,9 +141,7 @@ TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
     s.addParticle(Vector2d(radius, 0.0), 1.0);
     s.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), radius));
     s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -g)));
-    Collider floor = Collider::halfPlane(Vector2d(0.0, floorY), Vector2d(0.0, 1.0));
-    floor.restitution = 0.5;
-    s.addCollider(floor);
+    addFloor(s, floorY, 0.5, 0.0);
     const double e0 = s.totalEnergy();
     const RunResult run = runFor(s, name, 0.005, 2000);
     EXPECT_FALSE(run.failed) << name;

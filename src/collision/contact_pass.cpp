@@ -84,6 +84,7 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
 ContactCount ContactPass::collideWalls(const ContactScene& scene, const StepStart& start,
                                        const ContactCoupling& coupling, Eigen::VectorXd& x, Eigen::VectorXd& v) {
   const bool discs = scene.discs.size() > 1, edges = !scene.edges.empty();
+  const auto particles = static_cast<int>(scene.mass.size());
   double margin = largestRadius(scene.radius) + settings_.slop;
   if (edges) margin = std::max(margin, edgeReach(scene.edges, start.x, x));
   markNearColliders(scene.colliders, start.x, x, margin, near_, nearList_);
@@ -104,7 +105,6 @@ ContactCount ContactPass::collideWalls(const ContactScene& scene, const StepStar
       if (touchesCollider(scene.colliders, start.x.segment<2>(2 * i), x.segment<2>(2 * i), scene.radius[i],
                           settings_.slop))
         touching_.push_back(i);
-    const auto particles = static_cast<int>(scene.mass.size());
     const std::vector<int>& island = coupled_.island(scene.constraints, particles, scene.structure, touching_);
     singles_.clear();
     std::set_difference(nearList_.begin(), nearList_.end(), island.begin(), island.end(),
@@ -122,7 +122,6 @@ ContactCount ContactPass::collideWalls(const ContactScene& scene, const StepStar
     counted.contacts += solved.contacts;
   }
   if (edges) {
-    const auto particles = static_cast<int>(scene.mass.size());
     edgeIncidence_.update(scene.edges, particles, scene.structure);
     edgeIncidence_.mark(nearList_);
     if (discs) edgeIncidence_.mark(scene.discs);
