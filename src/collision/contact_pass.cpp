@@ -76,6 +76,10 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
   counted.contacts += edgeContacts;
   // 5. Resting contacts push on each other.
   counted += restingPasses(scene, start, edgeContacts > 0, x, v);
+  // 6. No edge is left cut through a capsule's core.
+  if (edges)
+    counted.contacts += holdEdgesOffCores(scene.colliders, scene.edges, start, scene.inverseMass, scene.radius, x, v,
+                                          lastFree_, nearEdges_);
   if (counted.capped > 0 && stats_.failure == StepFailure::None) stats_.failure = StepFailure::ContactCapReached;
   contacts_ += counted.contacts;
   return counted.contacts;

@@ -206,6 +206,78 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
   return contacts;
 }
 
+namespace {
+
+constexpr int kHoldPasses = 16;
+
+// The last guard of a step against an edge cutting through a capsule's core
+// (the contacts after the edge passes, the push out of the colliders above
+// all, may have moved an end across): an edge that crosses the core at the
+// step's end but not at its start has both ends taken back along their
+// motion of the step to the last place (found by bisection) at which it is
+// clear of the core and neither end is inside a collider, and their
+// approach to the core is removed.
+int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, const StepStart& start,
+                    const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const CollisionEdge& edge,
+                    Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
+  const Eigen::Vector2d &a = c.points[0], &b = c.points[1];
+  const int ends[2] = {edge.a, edge.b};
+  Eigen::Vector2d from[2], to[2];
+  for (int k = 0; k < 2; ++k) {
+    from[k] = start.x.segment<2>(2 * ends[k]);
+    to[k] = x.segment<2>(2 * ends[k]);
+  }
+  if (!segmentsCross(to[0], to[1], a, b) || segmentsCross(from[0], from[1], a, b)) return 0;
+  const auto placed = [&](double s) {
+    bool inside = false;
+    for (int k = 0; k < 2; ++k) {
+      if (inverseMass[ends[k]] == 0.0) continue;
+      const Eigen::Vector2d p = from[k] + s * (to[k] - from[k]);
+      x.segment<2>(2 * ends[k]) = p;
+      for (const Collider& other : colliders) inside = inside || other.distance(p).distance < radius[ends[k]];
+    }
+    return segmentsCross(x.segment<2>(2 * edge.a), x.segment<2>(2 * edge.b), a, b) || (s > 0.0 && inside);
+  };
+  double clear = 0.0, crossing = 1.0;
+  for (int k = 0; k < 30; ++k) {
+    const double s = 0.5 * (clear + crossing);
+    (placed(s) ? crossing : clear) = s;
+  }
+  placed(clear);
+  for (const int end : ends) {
+    if (inverseMass[end] == 0.0) continue;
+    lastFree.segment<2>(2 * end) = x.segment<2>(2 * end);
+    const SurfaceDistance d = c.distance(x.segment<2>(2 * end));
+    const double vn = v.segment<2>(2 * end).dot(d.normal);
+    if (vn < 0.0) v.segment<2>(2 * end) -= vn * d.normal;
+  }
+  return 1;
+}
+
+}  // namespace
+
+int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
+                      const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                      Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
+                      const std::vector<int>& candidates) {
+  // An end held back for one edge may leave another edge at it crossing:
+  // passes until none is held.
+  int held = 0;
+  for (int pass = 0; pass < kHoldPasses; ++pass) {
+    int heldNow = 0;
+    for (const int k : candidates) {
+      const CollisionEdge& edge = edges[k];
+      if (inverseMass[edge.a] + inverseMass[edge.b] == 0.0) continue;
+      for (const Collider& c : colliders)
+        if (c.shape == ColliderShape::Capsule)
+          heldNow += holdEdgeOffCore(colliders, c, start, inverseMass, radius, edge, x, v, lastFree);
+    }
+    held += heldNow;
+    if (heldNow == 0) break;
+  }
+  return held;
+}
+
 void EdgeIncidence::update(const std::vector<CollisionEdge>& edges, int particles, std::uint64_t structure) {
   if (structure_ == structure) return;
   structure_ = structure;
