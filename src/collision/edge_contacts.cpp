@@ -260,6 +260,8 @@ int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<
                       const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                       Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
                       const std::vector<int>& candidates) {
+  const auto isCapsule = [](const Collider& c) { return c.shape == ColliderShape::Capsule; };
+  if (std::none_of(colliders.begin(), colliders.end(), isCapsule)) return 0;
   // An end held back for one edge may leave another edge at it crossing:
   // passes until none is held.
   int held = 0;
@@ -269,7 +271,7 @@ int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<
       const CollisionEdge& edge = edges[k];
       if (inverseMass[edge.a] + inverseMass[edge.b] == 0.0) continue;
       for (const Collider& c : colliders)
-        if (c.shape == ColliderShape::Capsule)
+        if (isCapsule(c))
           heldNow += holdEdgeOffCore(colliders, c, start, inverseMass, radius, edge, x, v, lastFree);
     }
     held += heldNow;
