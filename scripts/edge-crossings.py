@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
-"""Counts the collision edges of a scene that cut through a capsule.
+"""Counts the collision edges of a scene that cut through a capsule or a disc.
 
     python3 scripts/edge-crossings.py SCENE.json TRAJECTORY.csv
 
-SCENE.json is a scene file with a capsule collider and collisionEdges;
+SCENE.json is a scene file with a capsule or disc collider and collisionEdges;
 TRAJECTORY.csv is what `particle-lab run --scene-file SCENE.json --trajectory
 TRAJECTORY.csv` wrote (every step). Between two recorded steps the edge's ends
 are moved in a straight line over 32 sub-steps; an edge cuts through when one
 of 19 points spread along the capsule's core changes side of it while lying
-over the edge's interior at both sub-steps. Prints the count and the steps of
+over the edge's interior at both sub-steps (for a disc: its centre). The
+first capsule or disc of the scene is judged. Prints the count and the steps of
 the first cuts. A step's motion that is not straight between records is
 approximated, so record every step (--every 1, the default).
 """
@@ -22,11 +23,14 @@ def main():
     if len(sys.argv) != 3:
         sys.exit("usage: edge-crossings.py SCENE.json TRAJECTORY.csv")
     scene = json.load(open(sys.argv[1]))
-    capsules = [c for c in scene.get("colliders", []) if c.get("type") == "capsule"]
-    if not capsules:
-        sys.exit("edge-crossings: the scene has no capsule")
-    a, b = capsules[0]["from"], capsules[0]["to"]
-    core = [(a[0] + (b[0] - a[0]) * k / 20, a[1] + (b[1] - a[1]) * k / 20) for k in range(1, 20)]
+    cores = [c for c in scene.get("colliders", []) if c.get("type") in ("capsule", "disc")]
+    if not cores:
+        sys.exit("edge-crossings: the scene has no capsule or disc")
+    if cores[0]["type"] == "disc":
+        core = [tuple(cores[0]["centre"])]
+    else:
+        a, b = cores[0]["from"], cores[0]["to"]
+        core = [(a[0] + (b[0] - a[0]) * k / 20, a[1] + (b[1] - a[1]) * k / 20) for k in range(1, 20)]
     edges = [(e[0], e[1]) for e in scene.get("collisionEdges", [])]
     steps = collections.OrderedDict()
     with open(sys.argv[2]) as f:
@@ -62,7 +66,7 @@ def main():
                         break
                     before = now
         previous = x
-    print("%d of %d edges cut through the capsule; first at steps %s" % (len(cut), len(edges), sorted(cut.values())[:8]))
+    print("%d of %d edges cut through the %s; first at steps %s" % (len(cut), len(edges), cores[0]["type"], sorted(cut.values())[:8]))
 
 
 if __name__ == "__main__":

@@ -171,11 +171,12 @@ int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vecto
                         Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
                         const std::vector<int>* candidates = nullptr);
 
-// The last guard against an edge cutting through a capsule's core: each
-// candidate edge (indices into `edges`) that crosses a capsule's core at x
-// but not at the step's start is taken back along the step of its ends to
-// where it is clear (passes until none is, at most 16); returns how many
-// times an edge was held.
+// The last guard against an edge cutting through the core of a capsule or a
+// disc: each candidate edge (indices into `edges`) that crosses a capsule's
+// core at x but not at the step's start, or whose interior passed over a
+// disc's centre (its ends moved in straight lines from the start to x), is
+// taken back along the step of its ends to where it has not (passes until
+// none is held, at most 16); returns how many times an edge was held.
 int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
                       const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                       Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,

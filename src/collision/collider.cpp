@@ -9,6 +9,7 @@
 #include "particles/check.h"
 #include "contact_path.h"
 #include "particles/constants.h"
+#include "plane_geometry.h"
 
 namespace particles {
 
@@ -29,19 +30,10 @@ const char* colliderName(ColliderShape shape) {
 
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Outward normal of the counter-clockwise edge a → b (its right-hand side).
 Eigen::Vector2d outwardNormal(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d e = b - a;
   return Eigen::Vector2d(e.y(), -e.x()) / e.norm();
-}
-
-// The point of the segment a → b nearest to p: the one projection that the
-// distance and the entry face both make of every edge.
-Eigen::Vector2d nearestOnSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d e = b - a;
-  return a + std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
 }
 
 // The edges whose offset lines bound the grown shape: a polygon's closed loop;

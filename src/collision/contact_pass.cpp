@@ -76,7 +76,7 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
   counted.contacts += edgeContacts;
   // 5. Resting contacts push on each other.
   counted += restingPasses(scene, start, edgeContacts > 0, x, v);
-  // 6. No edge is left cut through a capsule's core.
+  // 6. No edge is left cut through the core of a capsule or a disc.
   if (edges)
     counted.contacts += holdEdgesOffCores(scene.colliders, scene.edges, start, scene.inverseMass, scene.radius, x, v,
                                           lastFree_, nearEdges_);

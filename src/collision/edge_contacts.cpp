@@ -8,12 +8,11 @@
 #include "contact_track.h"
 #include "set_flags.h"
 #include "particles/collision.h"
+#include "plane_geometry.h"
 
 namespace particles {
 
 namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // How far the edge (xi, xj) is past the fixed point q (a corner, or a point
 // of a capsule's core): its interior must stay at least the collider's radius
@@ -210,24 +209,73 @@ namespace {
 
 constexpr int kHoldPasses = 16;
 
-// The last guard of a step against an edge cutting through a capsule's core
-// (the contacts after the edge passes, the push out of the colliders above
-// all, may have moved an end across): an edge that crosses the core at the
-// step's end but not at its start has both ends taken back along their
-// motion of the step to the last place (found by bisection) at which it is
-// clear of the core and neither end is inside a collider, and their
-// approach to the core is removed.
+// Whether the interior of the edge, its ends moved in straight lines from
+// (si, sj) to (si + s di, sj + s dj) for s in [0, u], passes over the point q:
+// the side of the edge q is on, f(s) = e(s) × (q − x_i(s)), a quadratic in s,
+// is zero with q over the edge's interior (0 < b < 1).
+bool edgeSweepsOver(const Eigen::Vector2d& q, const Eigen::Vector2d& si, const Eigen::Vector2d& sj,
+                    const Eigen::Vector2d& di, const Eigen::Vector2d& dj, double u) {
+  const Eigen::Vector2d e0 = sj - si, de = dj - di, r0 = q - si;
+  const double c0 = cross(e0, r0), c1 = cross(de, r0) - cross(e0, di), c2 = -cross(de, di);
+  if (c0 == 0.0) return false;  // q on the edge's line at the start: on no side of it
+  const auto overInterior = [&](double s) {
+    if (!(s > 0.0 && s <= u)) return false;
+    const Eigen::Vector2d e = e0 + s * de, r = r0 - s * di;
+    const double length2 = e.squaredNorm(), b = r.dot(e);
+    return length2 > 0.0 && b > 0.0 && b < length2;
+  };
+  const double scale = std::abs(c0) + std::abs(c1) + std::abs(c2);
+  if (std::abs(c2) <= 1e-12 * scale) return c1 != 0.0 && overInterior(-c0 / c1);
+  const double discriminant = c1 * c1 - 4.0 * c2 * c0;
+  if (discriminant < 0.0) return false;
+  // The stable pair of roots: q = −(c1 + sign(c1) √D) / 2, s = q / c2 and c0 / q.
+  const double root = -0.5 * (c1 + std::copysign(std::sqrt(discriminant), c1));
+  return overInterior(root / c2) || (root != 0.0 && overInterior(c0 / root));
+}
+
+// Whether the edge, its ends taken a fraction u of their step (from `from`
+// to `to`), has crossed the core of a capsule or disc: it cuts through a
+// capsule's core at u and did not at the start, or its interior swept over a
+// disc's centre, or (`keep` > 0) has the centre over its interior nearer
+// than `keep` to it.
+bool coreCrossed(const Collider& c, const Eigen::Vector2d from[2], const Eigen::Vector2d to[2], double u,
+                 double keep = 0.0) {
+  const Eigen::Vector2d p = from[0] + u * (to[0] - from[0]), q = from[1] + u * (to[1] - from[1]);
+  if (c.shape == ColliderShape::Disc) {
+    if (edgeSweepsOver(c.points[0], from[0], from[1], to[0] - from[0], to[1] - from[1], u)) return true;
+    const Eigen::Vector2d e = q - p, r = c.points[0] - p;
+    const double length2 = e.squaredNorm(), b = r.dot(e);
+    return length2 > 0.0 && b > 0.0 && b < length2 && std::abs(cross(e, r)) < keep * std::sqrt(length2);
+  }
+  const Eigen::Vector2d &a = c.points[0], &b = c.points[1];
+  return segmentsCross(p, q, a, b) && !segmentsCross(from[0], from[1], a, b);
+}
+
+bool hasCore(const Collider& c) { return c.shape == ColliderShape::Capsule || c.shape == ColliderShape::Disc; }
+
+// The last guard of a step against an edge cutting through the core of a
+// capsule or disc (the contacts after the edge passes, the push out of the
+// colliders above all, may have moved an end across): an edge that crossed
+// the core over the step has both ends taken back along their motion of the
+// step to the last place (found by bisection) at which it has not and
+// neither end is inside a collider, and their approach to the core is
+// removed. A disc's centre is kept off the held edge's line by half its
+// distance from the edge at the start (at most half the radius): an edge
+// left with the centre on its line would start the next step on no side of it.
 int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, const StepStart& start,
                     const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const CollisionEdge& edge,
                     Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
-  const Eigen::Vector2d &a = c.points[0], &b = c.points[1];
   const int ends[2] = {edge.a, edge.b};
   Eigen::Vector2d from[2], to[2];
   for (int k = 0; k < 2; ++k) {
     from[k] = start.x.segment<2>(2 * ends[k]);
-    to[k] = x.segment<2>(2 * ends[k]);
+    to[k] = inverseMass[ends[k]] == 0.0 ? from[k] : Eigen::Vector2d(x.segment<2>(2 * ends[k]));
   }
-  if (!segmentsCross(to[0], to[1], a, b) || segmentsCross(from[0], from[1], a, b)) return 0;
+  if (!coreCrossed(c, from, to, 1.0)) return 0;
+  const double keep =
+      c.shape == ColliderShape::Disc
+          ? 0.5 * std::min(c.radius, (c.points[0] - nearestOnSegment(c.points[0], from[0], from[1])).norm())
+          : 0.0;
   const auto placed = [&](double s) {
     bool inside = false;
     for (int k = 0; k < 2; ++k) {
@@ -236,7 +284,7 @@ int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, c
       x.segment<2>(2 * ends[k]) = p;
       for (const Collider& other : colliders) inside = inside || other.distance(p).distance < radius[ends[k]];
     }
-    return segmentsCross(x.segment<2>(2 * edge.a), x.segment<2>(2 * edge.b), a, b) || (s > 0.0 && inside);
+    return coreCrossed(c, from, to, s, keep) || (s > 0.0 && inside);
   };
   double clear = 0.0, crossing = 1.0;
   for (int k = 0; k < 30; ++k) {
@@ -260,8 +308,7 @@ int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<
                       const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                       Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
                       const std::vector<int>& candidates) {
-  const auto isCapsule = [](const Collider& c) { return c.shape == ColliderShape::Capsule; };
-  if (std::none_of(colliders.begin(), colliders.end(), isCapsule)) return 0;
+  if (std::none_of(colliders.begin(), colliders.end(), hasCore)) return 0;
   // An end held back for one edge may leave another edge at it crossing:
   // passes until none is held.
   int held = 0;
@@ -271,7 +318,7 @@ int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<
       const CollisionEdge& edge = edges[k];
       if (inverseMass[edge.a] + inverseMass[edge.b] == 0.0) continue;
       for (const Collider& c : colliders)
-        if (isCapsule(c))
+        if (hasCore(c))
           heldNow += holdEdgeOffCore(colliders, c, start, inverseMass, radius, edge, x, v, lastFree);
     }
     held += heldNow;

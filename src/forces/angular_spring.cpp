@@ -4,12 +4,9 @@
 
 #include "particles/check.h"
 #include "particles/constants.h"
+#include "plane_geometry.h"
 
 namespace particles {
-
-namespace {
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-}  // namespace
 
 double angleDifference(double angle, double restAngle) {
   double d = std::remainder(angle - restAngle, 2.0 * kPi);  // in [−π, π]

@@ -18,7 +18,8 @@ until grep -q 'particle-lab: step [0-9]*/100000000 ' "$WORK/tty.txt" 2>/dev/null
   sleep 0.1
   left=$((left - 1))
 done
-pkill -INT -f "^$PROGRAM $args" || true
+# The pattern is anchored at both ends: other tests run the same command with more arguments.
+pkill -INT -f "^$PROGRAM $args\$" || true
 code=0
 wait_for $pid 30 || code=$?
 out=$(tr '\r' '\n' <"$WORK/tty.txt")
