@@ -233,20 +233,28 @@ bool edgeSweepsOver(const Eigen::Vector2d& q, const Eigen::Vector2d& si, const E
   return overInterior(root / c2) || (root != 0.0 && overInterior(c0 / root));
 }
 
+// Whether `point` lies over the interior of the edge (p, q), nearer than `keep` to its line.
+bool overInteriorWithin(const Eigen::Vector2d& point, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
+                        double keep) {
+  const Eigen::Vector2d e = q - p, r = point - p;
+  const double length2 = e.squaredNorm(), b = r.dot(e);
+  return length2 > 0.0 && b > 0.0 && b < length2 && std::abs(cross(e, r)) < keep * std::sqrt(length2);
+}
+
 // Whether the edge, its ends taken a fraction u of their step (from `from`
-// to `to`), has crossed the core of a capsule or disc: it cuts through a
-// capsule's core at u and did not at the start, or its interior swept over a
-// disc's centre, or (`keep` > 0) has the centre over its interior nearer
-// than `keep` to it.
+// to `to`), has crossed the core of a capsule or disc: its interior swept
+// over a disc's centre or an end of a capsule's core, or it cuts through a
+// capsule's core at u and did not at the start (an end of the edge moved
+// across it), or (`keep` > 0) it has one of those points over its interior
+// nearer than `keep` to it.
 bool coreCrossed(const Collider& c, const Eigen::Vector2d from[2], const Eigen::Vector2d to[2], double u,
                  double keep = 0.0) {
   const Eigen::Vector2d p = from[0] + u * (to[0] - from[0]), q = from[1] + u * (to[1] - from[1]);
-  if (c.shape == ColliderShape::Disc) {
-    if (edgeSweepsOver(c.points[0], from[0], from[1], to[0] - from[0], to[1] - from[1], u)) return true;
-    const Eigen::Vector2d e = q - p, r = c.points[0] - p;
-    const double length2 = e.squaredNorm(), b = r.dot(e);
-    return length2 > 0.0 && b > 0.0 && b < length2 && std::abs(cross(e, r)) < keep * std::sqrt(length2);
-  }
+  for (const Eigen::Vector2d& point : c.points)
+    if (edgeSweepsOver(point, from[0], from[1], to[0] - from[0], to[1] - from[1], u) ||
+        overInteriorWithin(point, p, q, keep))
+      return true;
+  if (c.shape == ColliderShape::Disc) return false;
   const Eigen::Vector2d &a = c.points[0], &b = c.points[1];
   return segmentsCross(p, q, a, b) && !segmentsCross(from[0], from[1], a, b);
 }
@@ -259,9 +267,10 @@ bool hasCore(const Collider& c) { return c.shape == ColliderShape::Capsule || c.
 // the core over the step has both ends taken back along their motion of the
 // step to the last place (found by bisection) at which it has not and
 // neither end is inside a collider, and their approach to the core is
-// removed. A disc's centre is kept off the held edge's line by half its
-// distance from the edge at the start (at most half the radius): an edge
-// left with the centre on its line would start the next step on no side of it.
+// removed. A disc's centre and the ends of a capsule's core are kept off
+// the held edge's line by half their distance from the edge at the start (at
+// most half the radius): an edge left with such a point on its line would
+// start the next step on no side of it.
 int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, const StepStart& start,
                     const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const CollisionEdge& edge,
                     Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
@@ -272,10 +281,10 @@ int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, c
     to[k] = inverseMass[ends[k]] == 0.0 ? from[k] : Eigen::Vector2d(x.segment<2>(2 * ends[k]));
   }
   if (!coreCrossed(c, from, to, 1.0)) return 0;
-  const double keep =
-      c.shape == ColliderShape::Disc
-          ? 0.5 * std::min(c.radius, (c.points[0] - nearestOnSegment(c.points[0], from[0], from[1])).norm())
-          : 0.0;
+  double keep = c.radius;
+  for (const Eigen::Vector2d& point : c.points)
+    keep = std::min(keep, (point - nearestOnSegment(point, from[0], from[1])).norm());
+  keep *= 0.5;
   const auto placed = [&](double s) {
     bool inside = false;
     for (int k = 0; k < 2; ++k) {
