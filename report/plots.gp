@@ -113,14 +113,21 @@ f = data.'/accuracy.csv'
 problems = system(sprintf("tail -n +2 '%s' | cut -d, -f1 | awk '!seen[$0]++' | tr '\\n' ' '", f))
 schemes = system(sprintf("tail -n +2 '%s' | cut -d, -f2 | awk '!seen[$0]++' | tr '\\n' ' '", f))
 knob(dt, tol) = (tol > 0 ? sprintf('tol %.0e', tol) : sprintf('%.2g', dt))
+# The rows at both ends of each scheme's sweep on a problem (least and largest
+# tolerance, else dt): only those two points are labelled, so labels never pile up.
+sweepEnds(p) = sprintf("< awk -F, 'NR > 1 && $1 == \"%s\" { k = ($4 > 0 ? $4 : $3) + 0; if (!($2 in lo) || k < lo[$2]) { lo[$2] = k; lr[$2] = $0 } if (!($2 in hi) || k > hi[$2]) { hi[$2] = k; hr[$2] = $0 } } END { for (s in lr) { print lr[s]; if (hr[s] != lr[s]) print hr[s] } }' '%s'", p, f)
 do for [p in problems] {
   horizon = system(sprintf("awk -F, '$1==\"accuracy.horizon.%s\"{print $2}' '%s/values.csv'", p, data))
   set output fig.'/accuracy_'.p.'.png'
-  set title sprintf("Work-precision: %s, T = %s s; CPU median of repeats, bars min-max; labels dt or tolerance", p, horizon) font ',10'
+  set title sprintf("Work-precision: %s, T = %s s; CPU median of repeats, bars min-max; each sweep's ends labelled by dt or tolerance", p, horizon) font ',10'
   set xlabel 'CPU seconds per simulated second'
   set ylabel 'max particle position error over [0, T]'
-  plot for [n in schemes] f using (strcol(1) eq p && strcol(2) eq n ? positive($6) : NaN):(positive($5)):10:11 with xerrorbars title n, \
-       for [n in schemes] f using (strcol(1) eq p && strcol(2) eq n ? positive($6) : NaN):(positive($5)):(knob($3, $4)) with labels font ',7' offset 0.5,0.5 left notitle
+  set autoscale fix
+  set offsets graph 0.02, graph 0.12, graph 0.05, graph 0.05
+  plot for [k=1:words(schemes)] f using (strcol(1) eq p && strcol(2) eq word(schemes, k) ? positive($6) : NaN):(positive($5)):10:11 with xerrorbars lc k title word(schemes, k), \
+       for [k=1:words(schemes)] sweepEnds(p) using (strcol(2) eq word(schemes, k) ? positive($6) : NaN):(positive($5)):(knob($3, $4)) with labels tc lt k font ',8' offset 0.6,0.4 left notitle
+  unset offsets
+  set autoscale
   set output fig.'/accuracy_order_'.p.'.png'
   set title sprintf("Max position error against dt: %s, T = %s s (fixed-step schemes)", p, horizon) font ',10'
   set xlabel 'dt (s)'
@@ -209,7 +216,9 @@ tols = system(sprintf("tail -n +2 '%s' | cut -d, -f2 | awk '!seen[$0]++' | tr '\
 do for [warm in "0 1"] {
   set output fig.'/extremes_cg_budget_'.(warm eq "1" ? 'warm' : 'cold').'.png'
   set title 'Plain CG, '.(warm eq "1" ? 'warm' : 'cold').' start, RK4 dt 0.01, '.cgL.'-chain, T = '.cgT.' s: rod stretch against the cap'."\n".'× a failed run (its stretch when it stopped); uncapped shown as a line'
-  plot for [k=1:words(tols)] f using ($3 > 0 ? $3 : NaN):(strcol(1) eq warm && strcol(2) eq word(tols, k) ? positive($6) : NaN) with linespoints lc k pt 7 title 'tol '.word(tols, k), \
+  # Tolerances whose runs coincide (the cap binds before any of them) are
+  # drawn as open symbols of decreasing size, so each stays visible.
+  plot for [k=1:words(tols)] f using ($3 > 0 ? $3 : NaN):(strcol(1) eq warm && strcol(2) eq word(tols, k) ? positive($6) : NaN) with linespoints lc k pt (2 * k + 2) ps (2.6 - 0.35 * k) title 'tol '.word(tols, k), \
        for [k=1:words(tols)] f using ($3 > 0 && $4 == 0 ? $3 : NaN):(strcol(1) eq warm && strcol(2) eq word(tols, k) ? positive($6) : NaN) with points lc k pt 2 ps 2.5 notitle, \
        for [k=1:words(tols)] f using (0.8):(strcol(1) eq warm && strcol(2) eq word(tols, k) && $3 == 0 ? positive($6) : NaN):(199.2):(0) with vectors nohead dt 2 lc k notitle
 }

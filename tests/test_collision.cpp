@@ -831,7 +831,7 @@ double cross2(const Vector2d& p, const Vector2d& q) { return p.x() * q.y() - p.y
 // cutting through the core that it did not cut at the step's start.
 // (Without the contact pass's last guard, holdEdgesOffCores, 8 of these 54
 // runs cut through.)
-TEST(EdgeContacts, ClothThrownAtAThinCapsuleNeverCutsThroughItsCore) {
+TEST(EdgeContactsSweep, ClothThrownAtAThinCapsuleNeverCutsThroughItsCore) {
   const Vector2d a(-0.04, -0.004), b(0.04, 0.004);
   const auto crosses = [&](const Vector2d& p, const Vector2d& q) {
     return cross2(q - p, a - p) * cross2(q - p, b - p) < 0.0 && cross2(b - a, p - a) * cross2(b - a, q - a) < 0.0;
@@ -845,7 +845,7 @@ TEST(EdgeContacts, ClothThrownAtAThinCapsuleNeverCutsThroughItsCore) {
 // sub-steps of each step (a change of side with the centre over the edge's
 // interior at both sub-steps). (Without the guard, 21 of these 54 runs cut
 // through the disc.)
-TEST(EdgeContacts, ClothThrownAtAThinDiscNeverSweepsOverItsCentre) {
+TEST(EdgeContactsSweep, ClothThrownAtAThinDiscNeverSweepsOverItsCentre) {
   const Vector2d centre(0.0, 0.0);
   const auto place = [&](const Vector2d& p, const Vector2d& q, double& b, double& side) {
     const Vector2d e = q - p;

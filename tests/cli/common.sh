@@ -40,10 +40,10 @@ wait_for() {
   return $code
 }
 
-# wait_for_rows FILE ROWS [PID]: waits (at most 30 s) until FILE has at least ROWS lines;
-# fails at once if process PID has ended first.
+# wait_for_rows FILE ROWS [PID [SECONDS]]: waits (at most SECONDS, default 30) until FILE has
+# at least ROWS lines; fails at once if process PID has ended first.
 wait_for_rows() {
-  local left=300 lines
+  local left=$((${4:-30} * 10)) lines
   while true; do
     lines=0; [ -f "$1" ] && lines=$(wc -l 2>/dev/null <"$1"); lines=${lines:-0}
     [ -f "$1" ] && [ "$lines" -ge "$2" ] && return 0
