@@ -10,7 +10,8 @@
 
 namespace demo {
 
-// A scene to build: a built-in by name with parameter overrides, or a file.
+// A scene to build: a built-in by name with parameter overrides, a file, or
+// a scene-file document held in memory (one made in build mode).
 struct SceneChoice {
   std::string label;  // shown on screen: "cloth (8-way)"
   std::string name;   // built-in scene name; empty for a file
@@ -19,6 +20,7 @@ struct SceneChoice {
   std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
   std::string integrator = "";  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
   double dt = 0.0;         // > 0: replaces the scene's dt
+  std::string document = "";  // non-empty: the scene file's text (label names it in errors)
 };
 
 struct SceneKey {
