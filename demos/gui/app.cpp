@@ -307,6 +307,9 @@ bool App::writeStateLog() const {
     extras.advice.tolerance = pick.tolerance;
   }
   extras.advice.framesWhileRunning = adviceFramesWhileRunning_;
+  extras.build = {build_.active(), build_.tool().name, build_.selection ? build_.selection->name() : "scene",
+                  build_.file, build_.history.empty() ? 0 : build_.history.position() + 1, build_.history.size(),
+                  build_.pending().size(), build_.grid};
   extras.advice.applied = adviceApplied_;
   extras.sceneDrawMs = sceneDrawMs_;
   extras.overlayDrawMs = overlayDrawMs_;

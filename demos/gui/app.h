@@ -176,6 +176,8 @@ class App {
   void startBuildFrom(Json document, const std::string& what);
   void showBuildDocument();
   void showBuiltScene(scenes::Scene scene);
+  void chooseBuildTool(std::size_t tool);
+  void showBuildHint();
   double buildPickRadius() const;  // world units
   // target: "selected" (the selection, or the scene), "new" (the tool's fields
   // for what it adds) or "build" (grid, file); text as typed (parseFieldValue).

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "app.h"
@@ -72,6 +73,7 @@ void App::enterBuildMode(bool currentState) {
 
 void App::leaveBuildMode() {
   build_.setActive(false);
+  sceneHint_.clear();
   paused_ = false;
   setStatus("running " + scene_.label + " (e builds again)");
 }
@@ -98,7 +100,7 @@ void App::showBuiltScene(scenes::Scene scene) {
   panes_.push_back(std::move(pane));
   scene_ = documentChoice(build_.history.current());
   exact_ = {};
-  sceneHint_.clear();
+  showBuildHint();
 }
 
 void App::commitBuild(Json document, const std::string& what) {
@@ -108,14 +110,25 @@ void App::commitBuild(Json document, const std::string& what) {
   setStatus(what);
 }
 
+void App::chooseBuildTool(std::size_t tool) {
+  build_.selectTool(tool);
+  showBuildHint();
+  setStatus(std::string("tool: ") + build_.tool().name + " (" + build_.tool().help + ")");
+}
+
+// The top bar's standing line in build mode: the tool in hand and its gesture.
+void App::showBuildHint() {
+  sceneHint_ = std::string("build mode, ") + build_.tool().name + ": " + build_.tool().help + "   (e runs the scene)";
+  hintUntilFrame_ = std::numeric_limits<long long>::max();
+}
+
 double App::buildPickRadius() const { return mouseSettings_.pickPixels / paneViews().front().pixelsPerUnit; }
 
 // --- keys and mouse --------------------------------------------------------------
 
 bool App::buildKeyboard(unsigned char key) {
   if (const std::optional<std::size_t> tool = build_.toolForKey(key)) {
-    build_.selectTool(*tool);
-    setStatus(std::string("tool: ") + build_.tool().name + " (" + build_.tool().help + ")");
+    chooseBuildTool(*tool);
     return true;
   }
   for (const KeyBinding& binding : buildKeyBindings())

@@ -122,7 +122,7 @@ std::optional<ObjectRef> pickObject(const Json& document, const particles::Parti
       // Inside a collider counts as at the edge of the reach: an outline near by wins.
       if (const particles::Collider* c = colliderOf(document, system, ref))
         if (c->distance(p).distance < 0.0) d = std::min(d, radius);
-      if (d <= bestDistance) {
+      if (d < bestDistance || (!best && d <= bestDistance)) {  // a tie goes to the first listed
         bestDistance = d;
         best = ref;
       }

@@ -49,14 +49,15 @@ void App::drawBuildSection() {
   drawBuildObjectList();
 }
 
-// The tools, three to a row, the one in hand's gesture and the fields of what it adds.
+// The tools, two to a row, the one in hand's gesture and the fields of what it adds.
 void App::drawBuildTools() {
   const std::vector<BuildTool>& tools = buildTools();
+  const float column = 0.5f * ImGui::GetContentRegionAvail().x;
   for (std::size_t k = 0; k < tools.size(); ++k) {
     char label[48];
     std::snprintf(label, sizeof label, "%s (%c)", tools[k].name, tools[k].key);
-    if (k % 3 != 0) ImGui::SameLine(static_cast<float>(k % 3) * ImGui::GetContentRegionAvail().x / 3.0f + 8.0f);
-    if (ImGui::RadioButton(label, build_.toolIndex() == k)) build_.selectTool(k);
+    if (k % 2 != 0) ImGui::SameLine(column);
+    if (ImGui::RadioButton(label, build_.toolIndex() == k)) guarded([&] { chooseBuildTool(k); });
   }
   ImGui::TextWrapped("%s", build_.tool().help);
   drawBuildFields("new", build_.fields(build_.toolIndex()));
