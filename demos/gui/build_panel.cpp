@@ -29,7 +29,7 @@ std::string describe(const ObjectRef& ref, const Json& object) {
 
 void App::drawBuildSection() {
   if (build_.active()) ImGui::SetNextItemOpen(true, ImGuiCond_Always);
-  if (!ImGui::CollapsingHeader("Build")) return;
+  if (!ImGui::CollapsingHeader("Build", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (!build_.active()) {
     if (ImGui::Button("Build mode (e)")) guarded([&] { enterBuildMode(false); });
     recordWidget("build");
