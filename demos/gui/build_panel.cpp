@@ -72,7 +72,9 @@ void App::drawBuildTools() {
 // an error and changes nothing.
 void App::drawBuildFields(const char* target, const Json& object) {
   ImGui::PushID(target);
-  for (const auto& [key, value] : object.items()) {
+  for (const auto& item : object.items()) {
+    const std::string& key = item.key();  // named, not a structured binding: lambdas capture it
+    const Json& value = item.value();
     if (key == "type") continue;
     ImGui::PushID(key.c_str());
     if (value.is_boolean()) {

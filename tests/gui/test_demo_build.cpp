@@ -399,3 +399,23 @@ TEST(DemoBuild, ScriptedEditsOutsideBuildModeSaySo) {
   EXPECT_NE(log.overlay("top-bar")->text.find("select and edit act in build mode (e enters it)"), std::string::npos);
   EXPECT_DOUBLE_EQ(log.panes.at(0).dt, 0.005);
 }
+
+// The example of demos/gui/SCRIPTING.md builds what it says and saves it.
+TEST(DemoBuild, TheScriptingGuidesExampleBuildsAndSavesAChain) {
+  const std::string all = readText(SCRIPTING_MD);
+  const auto start = all.find("# build a chain of two rods");
+  ASSERT_NE(start, std::string::npos);
+  const std::string example = all.substr(start, all.find("```", start) - start);
+  const std::string dir = outputDirectory("BuildScriptingExample");
+  const RunResult r = runDemo(dir, "--lockstep --frames 200 --log-state state.txt", example);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const scenes::Json file = readJson(dir + "/chain.json");
+  EXPECT_EQ(file["particles"].size(), 3u);
+  EXPECT_EQ(file["constraints"].size(), 2u);
+  EXPECT_TRUE(file["particles"][0]["pinned"].get<bool>());
+  EXPECT_FALSE(file["particles"][1].contains("pinned"));
+  EXPECT_FALSE(file["particles"][2].contains("pinned"));
+  const StateLog log = readStateLog(dir + "/state.txt");
+  EXPECT_LT(log.panes.at(0).particles.at(2).x.y(), 0.45);  // it swings down
+  expectParticleLabAgrees(dir, "chain.json", log.panes.at(0));
+}
