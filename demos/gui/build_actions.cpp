@@ -22,7 +22,7 @@ constexpr const char* runningKeys = "i+=-_.rbvl";
 SceneChoice documentChoice(const Json& document) {
   SceneChoice choice;
   choice.label = documentName(document);
-  choice.document = document.dump();
+  choice.document = std::make_shared<const Json>(document);
   return choice;
 }
 // A grid spacing as typed: a finite number >= 0 (0: no grid).

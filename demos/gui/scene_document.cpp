@@ -85,7 +85,7 @@ Json emptyDocument() {
 Json documentOf(const scenes::Scene& scene) { return scenes::sceneToJson(scene); }
 
 scenes::Scene buildDocument(const Json& document) {
-  return scenes::readScene(document.dump(), documentName(document));
+  return scenes::readSceneDocument(document, documentName(document));
 }
 
 std::string documentFileText(const Json& document) { return scenes::writeScene(buildDocument(document)); }

@@ -38,7 +38,7 @@ Json emptyDocument();
 // The document of a built scene, in its present state (scenes::sceneToJson).
 Json documentOf(const scenes::Scene& scene);
 
-// Reads the document as the scene-file reader reads a file: throws
+// Reads the document as the scene-file reader reads a file's: throws
 // scenes::SceneFileError with its one-line message for anything it refuses.
 scenes::Scene buildDocument(const Json& document);
 

@@ -3,10 +3,12 @@
 // twice (4-way and 8-way springs), in the order of the scene table, then the
 // scenes paired with an integrator (the stiff 64×64 cloth with xpbd at 60 Hz).
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "scene.h"
+#include "scene_file/json_node.h"
 
 namespace demo {
 
@@ -20,7 +22,9 @@ struct SceneChoice {
   std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
   std::string integrator = "";  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
   double dt = 0.0;         // > 0: replaces the scene's dt
-  std::string document = "";  // non-empty: the scene file's text (label names it in errors)
+  // Set: the scene file's document (label names it in errors); shared, never
+  // changed, so copies of the choice (the advice's worker) read it safely.
+  std::shared_ptr<const scenes::Json> document = nullptr;
 };
 
 struct SceneKey {
