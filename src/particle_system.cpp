@@ -188,8 +188,7 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   addEvaluationStats(stats);  // evaluations the integrator left in the tally
   // Collide.
   if (collideAfter)
-    contacts_.collideStep(scene, dt, {integrator.couplesContactsWithConstraints(), integrator.driftCorrection()}, x_,
-                          v_);
+    contacts_.collideStep(scene, dt, {true, integrator.driftCorrection()}, x_, v_);
   stats += contacts_.stepStats();
   // Advance the clock.
   time_ += dt;

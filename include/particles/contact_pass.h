@@ -45,8 +45,9 @@ struct ContactScene {
 };
 
 // Whether constrained particles that touch a collider are resolved with their
-// constraints (Integrator::couplesContactsWithConstraints), and how that
-// solve corrects the constraints' drift (Integrator::driftCorrection).
+// constraints (after every integrator's step; not in xpbd's substeps, whose
+// constraint passes hold them), and how that solve corrects the constraints'
+// drift (Integrator::driftCorrection).
 struct ContactCoupling {
   bool withConstraints = false;
   DriftCorrection drift = DriftCorrection::AtEnd;

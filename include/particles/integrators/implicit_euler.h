@@ -106,7 +106,6 @@ struct ImplicitEulerSettings {
 
 class ImplicitEulerIntegrator : public Integrator {
  public:
-  bool couplesContactsWithConstraints() const override { return false; }
   ImplicitEulerSettings settings;
 
   ImplicitEulerIntegrator();
