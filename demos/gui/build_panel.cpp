@@ -60,6 +60,11 @@ void App::drawBuildTools() {
     if (ImGui::RadioButton(label, build_.toolIndex() == k)) guarded([&] { chooseBuildTool(k); });
   }
   ImGui::TextWrapped("%s", build_.tool().help);
+  if (ImGui::TreeNode("other keys")) {
+    for (const KeyBinding& binding : buildKeyBindings()) ImGui::BulletText("%s  %s", binding.label, binding.help);
+    ImGui::BulletText("Esc, right click  cancel the gesture, then the selection");
+    ImGui::TreePop();
+  }
   drawBuildFields("new", build_.fields(build_.toolIndex()));
   double grid = build_.grid;
   if (ImGui::InputDouble("grid", &grid, 0.0, 0.0, "%g", ImGuiInputTextFlags_EnterReturnsTrue))

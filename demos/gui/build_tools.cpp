@@ -5,11 +5,12 @@
 
 #include "build_geometry.h"
 #include "particles/forces/angular_spring.h"
+#include "scene_file/codecs.h"
 
 namespace demo {
 
 namespace {
-Json point(const Eigen::Vector2d& p) { return Json::array({p.x(), p.y()}); }
+using scenes::toJson;
 
 // The object's own fields first, then the tool's (stiffness, damping, ...).
 Json withFields(Json object, const Json& fields) {
@@ -115,7 +116,7 @@ std::string addWire(ToolContext& c, const std::vector<BuildPoint>& p) {
   if (radius == 0.0) throw std::invalid_argument("a wire needs a radius: drag from its centre to the bead");
   const int bead = particleAtPoint(c, p[1]);
   return addTo(c, "constraints",
-               withFields({{"type", "circular-wire"}, {"particle", bead}, {"centre", point(p[0].at)}, {"radius", radius}},
+               withFields({{"type", "circular-wire"}, {"particle", bead}, {"centre", toJson(p[0].at)}, {"radius", radius}},
                           c.fields));
 }
 
@@ -127,7 +128,7 @@ std::string addLine(ToolContext& c, const std::vector<BuildPoint>& p) {
   return addTo(c, "constraints",
                withFields({{"type", "line"},
                            {"particle", bead},
-                           {"point", point(particlePosition(c.document, bead))},
+                           {"point", toJson(particlePosition(c.document, bead))},
                            {"angle", std::atan2(along.y(), along.x())}},
                           c.fields));
 }
@@ -137,13 +138,13 @@ std::string addHalfPlane(ToolContext& c, const std::vector<BuildPoint>& p) {
   const Eigen::Vector2d normal = p[1].at - p[0].at;
   if (normal.norm() == 0.0) throw std::invalid_argument("a half-plane needs a normal: drag from its surface outward");
   return addTo(c, "colliders",
-               withFields({{"type", "halfPlane"}, {"point", point(p[0].at)}, {"normal", point(normal)}}, c.fields));
+               withFields({{"type", "halfPlane"}, {"point", toJson(p[0].at)}, {"normal", toJson(normal)}}, c.fields));
 }
 
 std::string addBox(ToolContext& c, const std::vector<BuildPoint>& p) {
   const Eigen::Vector2d lo = p[0].at.cwiseMin(p[1].at), hi = p[0].at.cwiseMax(p[1].at);
   if (!((hi - lo).array() > 0.0).all()) throw std::invalid_argument("a box needs a width and a height: drag corner to corner");
-  return addTo(c, "colliders", withFields({{"type", "box"}, {"min", point(lo)}, {"max", point(hi)}}, c.fields));
+  return addTo(c, "colliders", withFields({{"type", "box"}, {"min", toJson(lo)}, {"max", toJson(hi)}}, c.fields));
 }
 
 std::string addPolygon(ToolContext& c, const std::vector<BuildPoint>& p) {
@@ -152,19 +153,19 @@ std::string addPolygon(ToolContext& c, const std::vector<BuildPoint>& p) {
   const std::vector<Eigen::Vector2d> hull = convexHull(points);
   if (hull.size() < 3) throw std::invalid_argument("a polygon needs three corners not on one line");
   Json vertices = Json::array();
-  for (const Eigen::Vector2d& v : hull) vertices.push_back(point(v));
+  for (const Eigen::Vector2d& v : hull) vertices.push_back(toJson(v));
   return addTo(c, "colliders", withFields({{"type", "polygon"}, {"vertices", vertices}}, c.fields));
 }
 
 std::string addCapsule(ToolContext& c, const std::vector<BuildPoint>& p) {
   if ((p[1].at - p[0].at).norm() == 0.0) throw std::invalid_argument("a capsule needs a length: drag end to end");
-  return addTo(c, "colliders", withFields({{"type", "capsule"}, {"from", point(p[0].at)}, {"to", point(p[1].at)}}, c.fields));
+  return addTo(c, "colliders", withFields({{"type", "capsule"}, {"from", toJson(p[0].at)}, {"to", toJson(p[1].at)}}, c.fields));
 }
 
 std::string addDisc(ToolContext& c, const std::vector<BuildPoint>& p) {
   const double radius = (p[1].at - p[0].at).norm();
   if (radius == 0.0) throw std::invalid_argument("a disc needs a radius: drag from its centre");
-  return addTo(c, "colliders", withFields({{"type", "disc"}, {"centre", point(p[0].at)}, {"radius", radius}}, c.fields));
+  return addTo(c, "colliders", withFields({{"type", "disc"}, {"centre", toJson(p[0].at)}, {"radius", radius}}, c.fields));
 }
 }  // namespace
 

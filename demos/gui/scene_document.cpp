@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "particles/forces/angular_spring.h"
+#include "scene_file/codecs.h"
 #include "scene_file/json_parse.h"
 #include "scene_file/scene_file.h"
 
@@ -14,8 +15,9 @@ namespace {
 // The lists whose objects name particles by index.
 constexpr const char* referringLists[] = {"forces", "constraints", "collisionEdges"};
 
+using scenes::toJson;
+
 Eigen::Vector2d vec2(const Json& value) { return {value.at(0).get<double>(), value.at(1).get<double>()}; }
-Json toJson(const Eigen::Vector2d& p) { return Json::array({p.x(), p.y()}); }
 
 // The fields of an object holding particle indices (see particlesOf).
 std::vector<Json*> indexFields(const std::string& list, Json& object) {

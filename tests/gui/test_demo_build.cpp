@@ -345,6 +345,25 @@ TEST(DemoBuild, ThePanelsButtonsEnterBuildModeStartAfreshAndSave) {
   EXPECT_NE(log.text().find("saved panel.json"), std::string::npos) << log.text();
 }
 
+// "from the state now" edits the scene as it is at that moment: the
+// pendulum's bead where it has swung to, with its velocity, at t = 0.
+TEST(DemoBuild, BuildingFromTheStateNowKeepsThePositionsAndVelocities) {
+  const std::string dir = outputDirectory("BuildNow");
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --frames 2 --log-state layout.txt").exitCode, 0);
+  const LoggedOverlay* now = readStateLog(dir + "/layout.txt").widget("build-now");
+  ASSERT_NE(now, nullptr);
+  Script s;
+  s.wait(40).clickWindow(*now).save("now.json");
+  const StateLog log = runScript(dir, s, "--scene pendulum");
+  EXPECT_TRUE(log.build.active);
+  const scenes::Json bead = readJson(dir + "/now.json")["particles"][0];
+  const scenes::Json start = scenes::parseJson(runParticleLab(dir, "export --scene pendulum").out)["particles"][0];
+  EXPECT_GT((positionOf(bead) - positionOf(start)).norm(), 0.01);  // it swung on for 40 frames
+  EXPECT_GT(std::hypot(bead["velocity"][0].get<double>(), bead["velocity"][1].get<double>()), 0.1);
+  EXPECT_EQ(log.panes.at(0).time, 0.0);
+  EXPECT_EQ(log.panes.at(0).particles.at(0).x, positionOf(bead));
+}
+
 // What cannot be done is said in the top bar, in one line, and changes
 // nothing: the demo runs on and exits 0.
 TEST(DemoBuild, BadFilesAndRefusedEditsGiveAMessageAndChangeNothing) {
