@@ -40,11 +40,6 @@ constexpr ComparePreset comparePresets[] = {
     {"midpoint", 4.0},
 };
 
-// The table position of the integrator named `name`; throws for an unknown one.
-int integratorIndexByName(const std::string& name) {
-  return static_cast<int>(&particles::requireIntegrator(name) - particles::integratorTable().data());
-}
-
 // The scene table's "try this" line, on a table that has one (SceneInfo::hint).
 template <class T, class = void>
 struct HasHint : std::false_type {};
@@ -193,6 +188,10 @@ void App::playScript() {
     }
     const ScriptEvent& e = script_[nextScriptEvent_++];
     if (e.action == ScriptAction::WaitAdvice) continue;
+    if (e.action == ScriptAction::Select || e.action == ScriptAction::Edit) {
+      guarded([&] { scriptBuildEvent(e); });
+      continue;
+    }
     if (e.action == ScriptAction::Key || e.action == ScriptAction::KeyDown) {
       inputKey(e.key);
       if (e.action == ScriptAction::Key) scriptKeysDown_.push_back(e.key);
@@ -227,6 +226,7 @@ void App::playScript() {
 }
 
 void App::advance() {
+  if (build_.active()) return;  // the scene being built stays at t = 0
   const bool run = !paused_ || stepRequested_;
   const double budget = stepBudgetMsPerFrame / static_cast<double>(panes_.size());
   for (auto& pane : panes_) {
@@ -248,6 +248,7 @@ void App::draw() {
     if (exact_) ghost = exact_(panes_[k]->system().time());
     renderer_.drawPane(*panes_[k], views[k], windowHeight_, drawOptions_, exact_ ? &ghost : nullptr);
   }
+  if (build_.active()) drawBuildOverlay(views.front());
   glFinish();  // so that the time includes the GL work, not just its submission
   const auto sceneDone = std::chrono::steady_clock::now();
   sceneDrawMs_ = std::chrono::duration<double, std::milli>(sceneDone - start).count();
@@ -306,6 +307,9 @@ bool App::writeStateLog() const {
     extras.advice.tolerance = pick.tolerance;
   }
   extras.advice.framesWhileRunning = adviceFramesWhileRunning_;
+  extras.build = {build_.active(), build_.tool().name, build_.selection ? build_.selection->name() : "scene",
+                  build_.file, build_.history.empty() ? 0 : build_.history.position() + 1, build_.history.size(),
+                  build_.pending().size(), build_.grid};
   extras.advice.applied = adviceApplied_;
   extras.sceneDrawMs = sceneDrawMs_;
   extras.overlayDrawMs = overlayDrawMs_;
@@ -349,6 +353,7 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   setStatus("scene: " + choice.label);
   statusFrames_ = 0;  // the top bar shows the scene's summary and hint instead
   hintUntilFrame_ = frame_ + hintFramesShown;
+  if (build_.active()) startBuildFrom(documentOf(panes_.front()->scene()), "start from " + choice.label);
 }
 
 // --- advice (advice_job.h; drawn by advice_panel.cpp) -----------------------
@@ -379,7 +384,8 @@ void App::pollAdvice() {
 
 bool App::adviceIsForThisScene() const {
   const SceneChoice& a = advice_.scene();
-  return a.name == scene_.name && a.file == scene_.file && a.params == scene_.params && a.preset == scene_.preset;
+  return a.name == scene_.name && a.file == scene_.file && a.params == scene_.params && a.preset == scene_.preset &&
+         a.document == scene_.document;
 }
 
 // The cheapest pick's integrator, dt and tolerance, on the first pane (the

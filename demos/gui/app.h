@@ -8,6 +8,7 @@
 
 #include "real_time.h"
 #include "advice_job.h"
+#include "build_mode.h"
 #include "camera.h"
 #include "exact_motion.h"
 #include "layout.h"
@@ -103,6 +104,15 @@ class App {
   void drawMouseSpringSettings();
   void drawDisplaySection();
   void recordWidget(const char* name);  // the last ImGui item, for scripted clicks
+  // Build mode's section (build_panel.cpp) and its parts.
+  void drawBuildSection();
+  void drawBuildTools();
+  void drawBuildFields(const char* target, const Json& object);
+  void drawBuildHistory();
+  void drawBuildFile();
+  void drawBuildSelection();
+  void drawBuildObjectList();
+  void drawBuildOverlay(const ViewTransform& view);  // the selection, the gesture, the snap (build_draw.cpp)
   void finishFrame();
 
   // --- the demo's own handling of input ----------------------------------
@@ -150,6 +160,38 @@ class App {
     void (App::*action)();
   };
   static const std::vector<KeyBinding>& keyBindings();
+
+  // --- build mode (build_mode.h; build_actions.cpp) -------------------------
+  // The scene on screen is built from the document being edited, paused at
+  // t = 0; leaving build mode runs it. Every edit is committed through
+  // commitBuild, which the scene-file reader checks before anything changes.
+  void toggleBuildMode();
+  void enterBuildMode(bool currentState);  // from the scene at t = 0, or as it is now
+  void leaveBuildMode();
+  bool buildKeyboard(unsigned char key);  // true when build mode took the key
+  bool buildMouse(int button, int state, int x, int y);  // false: not build mode's (a pan)
+  void buildMotion(int x, int y);
+  void runBuildTool(const std::vector<BuildPoint>& points);
+  void commitBuild(Json document, const std::string& what);
+  void startBuildFrom(Json document, const std::string& what);
+  void showBuildDocument();
+  void showBuiltScene(scenes::Scene scene);
+  void chooseBuildTool(std::size_t tool);
+  void showBuildHint();
+  double buildPickRadius() const;  // world units
+  // target: "selected" (the selection, or the scene), "new" (the tool's fields
+  // for what it adds) or "build" (grid, file); text as typed (parseFieldValue).
+  void editBuildField(const std::string& target, const std::string& field, const std::string& text);
+  void selectBuildObject(const std::optional<ObjectRef>& ref);
+  void scriptBuildEvent(const ScriptEvent& event);
+  void undoBuild();
+  void redoBuild();
+  void newBuild();
+  void saveBuild();
+  void openBuild();
+  void deleteBuildSelection();
+  void finishBuildClicks();
+  static const std::vector<KeyBinding>& buildKeyBindings();
 
   // --- layout -------------------------------------------------------------
   Layout layout() const;
@@ -214,6 +256,7 @@ class App {
   // clock (interactive, or --realtime), not run flat out by a script.
   RealTimeMeter realTime_;
   bool paced_ = true;
+  BuildMode build_;
   bool imguiReady_ = false;
 };
 

@@ -30,6 +30,7 @@ const std::vector<App::KeyBinding>& App::keyBindings() {
       {"v", "v", "compare mode: 2, 3, 4 panes, then back to 1", &App::cyclePaneCount},
       {"l", "l", "lockstep: one step per frame / fixed time per frame", &App::toggleLockstep},
       {"p", "p", "control panel on / off", &App::togglePanel},
+      {"e", "e", "build mode: add, move, delete; save as a scene file (keys in the panel)", &App::toggleBuildMode},
       {"h", "h", "this help", &App::toggleHelp},
       {"\x1bq", "Esc / q", "quit (Esc first closes an open list)", &App::requestQuit},
   };
@@ -99,6 +100,7 @@ void App::inputMotion(int x, int y) {
 
 void App::inputPassiveMotion(int x, int y) {
   if (imguiReady_) ImGui::GetIO().MousePos = ImVec2(static_cast<float>(x), static_cast<float>(y));
+  if (build_.active()) guarded([&] { buildMotion(x, y); });
 }
 
 void App::inputWheel(int direction, int x, int y) {
@@ -117,6 +119,7 @@ void App::inputWheel(int direction, int x, int y) {
 // --- the demo's keys and mouse tools ---------------------------------------
 
 void App::keyboard(unsigned char key) {
+  if (build_.active() && buildKeyboard(key)) return;
   for (const SceneKey& k : sceneKeys())
     if (k.key == key) {
       SceneChoice choice = k.choice;
@@ -137,6 +140,7 @@ void App::toggleLockstep() {
 }
 
 void App::mouse(int button, int state, int x, int y, bool shift) {
+  if (build_.active() && buildMouse(button, state, x, y)) return;
   if (state == GLUT_UP) {
     if (tool_ == MouseTool::Drag)
       for (auto& pane : panes_) pane->release();
@@ -195,6 +199,7 @@ void App::motion(int x, int y) {
     panY_ = y;
     return;
   }
+  if (build_.active()) buildMotion(x, y);
   if (tool_ == MouseTool::None) return;
   const Eigen::Vector2d world = paneViews()[toolPane_].toWorld(x, y);
   for (auto& pane : panes_) {

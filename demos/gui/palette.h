@@ -26,6 +26,8 @@ constexpr Rgb constraintForceArrow{255, 214, 0};  // Jᵀλ, which is no force o
 constexpr Rgb otherForceArrow{200, 200, 200};
 constexpr Rgb divergenceText{255, 92, 150};
 constexpr Rgb hudText{235, 235, 240};
+constexpr Rgb buildSelection{90, 230, 255};  // build mode: the selected object's outline
+constexpr Rgb buildGesture{255, 236, 140};   // build mode: the gesture being drawn, the particle it would snap to
 }  // namespace palette
 
 // Arrow colour of each force type ("f"), by Force::type(); a type not listed

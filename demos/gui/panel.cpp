@@ -62,10 +62,13 @@ void App::drawPanel() {
   ImGui::PushItemWidth(-110.0f);
 
   drawSceneSection();
+  drawBuildSection();
+  ImGui::BeginDisabled(build_.active());  // in build mode the scene's own fields set these
   drawIntegrationSection();
   drawAdvicePanel();  // the cheapest integrator and dt within an error over a horizon
   drawPlotsSection();
   drawSolverSection();
+  ImGui::EndDisabled();
   drawDisplaySection();
 
   ImGui::PopItemWidth();

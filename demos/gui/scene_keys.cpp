@@ -61,6 +61,7 @@ std::vector<SceneKey> sceneKeys() {
 
 namespace demo {
 scenes::Scene buildChoice(const SceneChoice& choice) {
+  if (choice.document) return scenes::readSceneDocument(*choice.document, choice.label);
   if (!choice.file.empty()) return scenes::loadSceneFile(choice.file);
   scenes::Scene scene = scenes::buildScene(choice.name, choice.params, choice.preset);
   if (!choice.integrator.empty()) scene.integrator = choice.integrator;

@@ -3,14 +3,17 @@
 // twice (4-way and 8-way springs), in the order of the scene table, then the
 // scenes paired with an integrator (the stiff 64×64 cloth with xpbd at 60 Hz).
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "scene.h"
+#include "scene_file/json_node.h"
 
 namespace demo {
 
-// A scene to build: a built-in by name with parameter overrides, or a file.
+// A scene to build: a built-in by name with parameter overrides, a file, or
+// a scene-file document held in memory (one made in build mode).
 struct SceneChoice {
   std::string label;  // shown on screen: "cloth (8-way)"
   std::string name;   // built-in scene name; empty for a file
@@ -19,6 +22,9 @@ struct SceneChoice {
   std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
   std::string integrator = "";  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
   double dt = 0.0;         // > 0: replaces the scene's dt
+  // Set: the scene file's document (label names it in errors); shared, never
+  // changed, so copies of the choice (the advice's worker) read it safely.
+  std::shared_ptr<const scenes::Json> document = nullptr;
 };
 
 struct SceneKey {

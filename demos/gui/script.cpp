@@ -55,6 +55,28 @@ void readResizeWords(std::istream& in, const std::string&, ScriptEvent& e) {
     throw std::invalid_argument("expected a width and height between 100 and 8192 after 'resize'");
 }
 
+// select scene | select <list> <index>: the lists of a scene file.
+void readSelectWords(std::istream& in, const std::string&, ScriptEvent& e) {
+  static const char* const lists[] = {"particles", "forces", "constraints", "colliders", "walls", "collisionEdges"};
+  std::string list;
+  if (!(in >> list)) throw std::invalid_argument("expected 'scene' or a list and an index after 'select'");
+  if (list == "scene") return;
+  if (std::find(std::begin(lists), std::end(lists), list) == std::end(lists))
+    throw std::invalid_argument("expected scene, particles, forces, constraints, colliders, walls or collisionEdges, got '" + list + "'");
+  if (!(in >> e.clicks) || e.clicks < 0) throw std::invalid_argument("expected an index >= 0 after '" + list + "'");
+  e.target = list;
+}
+
+// edit selected|new|build <field> <value>: the value is the rest of the line.
+void readEditWords(std::istream& in, const std::string&, ScriptEvent& e) {
+  if (!(in >> e.target >> e.field) || (e.target != "selected" && e.target != "new" && e.target != "build"))
+    throw std::invalid_argument("expected selected, new or build and a field name after 'edit'");
+  std::getline(in, e.text);
+  const std::size_t first = e.text.find_first_not_of(" \t"), last = e.text.find_last_not_of(" \t\r");
+  if (first == std::string::npos) throw std::invalid_argument("expected a value after '" + e.field + "'");
+  e.text = e.text.substr(first, last - first + 1);
+}
+
 struct ButtonName {
   const char* name;
   ScriptButton button;
@@ -98,13 +120,15 @@ constexpr EventKind eventKinds[] = {
     {"keyup", ScriptAction::KeyUp, readKeyWords},       {"wait", ScriptAction::WaitAdvice, readWaitWords},
     {"resize", ScriptAction::Resize, readResizeWords},  {"down", ScriptAction::MouseDown, readPointerWords},
     {"move", ScriptAction::MouseMove, readPointerWords}, {"up", ScriptAction::MouseUp, readPointerWords},
-    {"wheel", ScriptAction::Wheel, readPointerWords},
+    {"wheel", ScriptAction::Wheel, readPointerWords},    {"select", ScriptAction::Select, readSelectWords},
+    {"edit", ScriptAction::Edit, readEditWords},
 };
 
 const EventKind& findEventKind(const std::string& action) {
   for (const EventKind& kind : eventKinds)
     if (action == kind.word) return kind;
-  throw std::invalid_argument("expected key, keydown, keyup, down, move, up, wheel, resize or wait, got '" + action + "'");
+  throw std::invalid_argument("expected key, keydown, keyup, down, move, up, wheel, resize, wait, select or edit, got '" +
+                              action + "'");
 }
 
 // One line without its comment: false for a blank one, else the event in e.

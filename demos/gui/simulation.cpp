@@ -20,6 +20,10 @@ particles::DivergenceLimits demoDivergenceLimits(const scenes::Scene& scene) {
   return limits;
 }
 
+int integratorIndexByName(const std::string& name) {
+  return static_cast<int>(&particles::requireIntegrator(name) - particles::integratorTable().data());
+}
+
 Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
     : scene_(std::move(scene)), integratorIndex_(-1), dt_(0.0), limits_(demoDivergenceLimits(scene_)) {
   setIntegrator(integratorIndex);

@@ -42,6 +42,9 @@ struct FrameStats {
 // The signed area of a quad face, positive when its corners run counter-clockwise.
 double faceArea(const particles::ParticleSystem& system, const std::array<int, 4>& face);
 
+// The table position of the integrator named `name`; throws for an unknown one.
+int integratorIndexByName(const std::string& name);
+
 class Simulation {
  public:
   Simulation(scenes::Scene scene, int integratorIndex, double dt);

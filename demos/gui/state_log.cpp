@@ -64,6 +64,9 @@ void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, c
   const AdviceRecord& a = extras.advice;
   out << "advice," << a.state << "," << a.progress << "," << a.integrator << "," << a.dt << "," << a.tolerance << ","
       << a.framesWhileRunning << "," << a.applied << "\n";
+  const BuildRecord& b = extras.build;
+  out << "build," << (b.active ? 1 : 0) << "," << b.tool << "," << b.selection << "," << b.historyState << ","
+      << b.historyStates << "," << b.gesturePoints << "," << b.grid << "," << b.file << "\n";
   out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
 }
 

@@ -21,6 +21,8 @@
 //     (the panel's advice: idle, running, done, cancelled or failed; the
 //     cheapest pick when done, else empty and 0; the options last applied, if any)
 //   timing,<scene draw ms>,<text and panel draw ms>,<panel shown 0|1>
+//   build,<active 0|1>,<tool>,<selection: list[index], or scene>,<history state>,<history states>,<gesture points>,<grid>,<file>
+//     (build mode: the history's current state counts from 1)
 //   frame-times,<frames>,<median ms>,<10th percentile>,<90th percentile>,<median stepping ms>
 //     (wall time per frame after the first 10: input, stepping, drawing and the buffer swap)
 //   real-time,<simulated over wall time in the last second>,<simulated seconds>,<wall seconds>,<paced 0|1>
@@ -53,9 +55,17 @@ struct AdviceRecord {
   std::string applied;     // "--integrator NAME --dt X [--tolerance Y]" last applied
 };
 
+struct BuildRecord {
+  bool active = false;
+  std::string tool, selection = "scene", file;
+  std::size_t historyState = 0, historyStates = 0, gesturePoints = 0;
+  double grid = 0.0;
+};
+
 struct StateExtras {
   std::vector<Overlay> overlays, widgets;
   AdviceRecord advice;
+  BuildRecord build;
   double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
   bool panelShown = false;
   std::vector<double> frameMs, frameSimulationMs;  // every frame's wall time and its stepping part

@@ -240,11 +240,7 @@ Scene readText(const std::string& text, const std::string& source, bool locateNo
   } catch (const SceneFileError& e) {  // nested too deep, a duplicate key
     throw SceneFileError(source + ": " + e.what());
   }
-  try {
-    return readDocument(JsonNode(&document, "$"), source);
-  } catch (const SceneFileError& e) {
-    throw SceneFileError(source + ": " + e.what());
-  }
+  return readSceneDocument(document, source);
 }
 
 // Closes a file descriptor when it goes out of scope.
@@ -262,6 +258,14 @@ struct FileDescriptor {
 }  // namespace
 
 Scene readScene(const std::string& text, const std::string& source) { return readText(text, source, true); }
+
+Scene readSceneDocument(const Json& document, const std::string& source) {
+  try {
+    return readDocument(JsonNode(&document, "$"), source);
+  } catch (const SceneFileError& e) {
+    throw SceneFileError(source + ": " + e.what());
+  }
+}
 
 Scene loadSceneFile(const std::string& path) {
   // Only a regular file, opened without blocking (a FIFO with no writer would

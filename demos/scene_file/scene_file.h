@@ -15,6 +15,10 @@ namespace scenes {
 // "<source>: <JSON path>: expected <what>, got <value>".
 Scene readScene(const std::string& text, const std::string& source);
 
+// Builds the scene a document already parsed describes (the demo's build
+// mode edits one), as readScene reads the same document's text.
+Scene readSceneDocument(const Json& document, const std::string& source);
+
 // Reads the file at path (SceneFileError also when it cannot be read).
 Scene loadSceneFile(const std::string& path);
 

@@ -173,6 +173,15 @@ StateLog readStateLog(const std::string& path) {
       log.advice.tolerance = number(5);
       log.advice.framesWhileRunning = std::stoll(f.at(6));
       log.advice.applied = field(7);
+    } else if (record == "build") {
+      log.build.active = f.at(1) == "1";
+      log.build.tool = f.at(2);
+      log.build.selection = f.at(3);
+      log.build.historyState = std::stoll(f.at(4));
+      log.build.historyStates = std::stoll(f.at(5));
+      log.build.gesturePoints = std::stoll(f.at(6));
+      log.build.grid = number(7);
+      for (std::size_t k = 8; k < f.size(); ++k) log.build.file += (k > 8 ? "," : "") + f[k];
     } else if (record == "timing") {
       log.sceneDrawMs = number(1);
       log.overlayDrawMs = number(2);

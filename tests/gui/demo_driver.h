@@ -78,9 +78,17 @@ struct LoggedAdvice {
   double progress = 0.0, dt = 0.0, tolerance = 0.0;
   long long framesWhileRunning = 0;
 };
+// Build mode: on or off, the tool in hand, the selection, the edit history.
+struct LoggedBuild {
+  bool active = false;
+  std::string tool, selection, file;
+  long long historyState = 0, historyStates = 0, gesturePoints = 0;
+  double grid = 0.0;
+};
 struct StateLog {
   long long frames = 0;
   LoggedAdvice advice;
+  LoggedBuild build;
   bool paused = false;
   std::vector<LoggedPane> panes;
   std::vector<LoggedOverlay> overlays, widgets;
