@@ -81,6 +81,9 @@ struct Scene {
   // True when the scene wants its face edges, not only its particles, to
   // collide with walls and colliders (the cloth catching the nail).
   bool edgeContacts = false;
+  // The edges wind pushes on when it blows (a cloth's face sides, a
+  // strand's links), whether or not it blows now; empty: no wind reaches it.
+  std::vector<std::array<int, 2>> windEdges;
 };
 
 // The distinct sides of a scene's faces as particle index pairs (i < j), in

@@ -6,6 +6,7 @@
 
 #include "collision/contact_pass.h"
 #include "particles/check.h"
+#include "particles/forces/angular_spring.h"
 #include "particles/forces/spring.h"
 
 namespace particles {
@@ -89,6 +90,10 @@ void ParticleSystem::setCollidable(int i, double radius) {
 
 Force& ParticleSystem::addForce(std::unique_ptr<Force> force) {
   for (int i : force->particles()) requireIndex(force->type(), i, size());
+  if (force->timeDependent()) {
+    force->setTime(time_);
+    clocked_.push_back(force.get());
+  }
   forces_.push_back(std::move(force));
   structureStamp_ = nextStructureStamp();
   return *forces_.back();
@@ -116,6 +121,7 @@ void ParticleSystem::addCollisionEdge(int a, int b) {
 }
 
 void ParticleSystem::removeForce(const Force* force) {
+  clocked_.erase(std::remove(clocked_.begin(), clocked_.end(), force), clocked_.end());
   forces_.erase(std::remove_if(forces_.begin(), forces_.end(),
                                [&](const std::unique_ptr<Force>& f) { return f.get() == force; }),
                 forces_.end());
@@ -125,11 +131,27 @@ void ParticleSystem::removeForce(const Force* force) {
 void ParticleSystem::setSpringEnabled(const Force* spring, bool enabled) {
   const auto found = std::find_if(forces_.begin(), forces_.end(),
                              [&](const std::unique_ptr<Force>& f) { return f.get() == spring; });
-  auto* asSpring = found == forces_.end() ? nullptr : dynamic_cast<SpringForce*>(found->get());
-  if (!asSpring) throw std::invalid_argument("setSpringEnabled: not a spring of this system");
-  if (asSpring->enabled_ == enabled) return;
-  asSpring->enabled_ = enabled;
+  Force* force = found == forces_.end() ? nullptr : found->get();
+  bool* flag = nullptr;
+  if (auto* asSpring = dynamic_cast<SpringForce*>(force)) flag = &asSpring->enabled_;
+  if (auto* asAngle = dynamic_cast<AngularSpringForce*>(force)) flag = &asAngle->enabled_;
+  if (!flag) throw std::invalid_argument("setSpringEnabled: not a spring or angle spring of this system");
+  if (*flag == enabled) return;
+  *flag = enabled;
   structureStamp_ = nextStructureStamp();
+}
+
+int ParticleSystem::breakLinks(const std::vector<std::array<int, 2>>& links) {
+  const LinkSet broken(links);
+  if (broken.empty()) return 0;
+  int changed = 0;
+  for (const auto& force : forces_) changed += force->dropLinks(broken);
+  edges_.erase(std::remove_if(edges_.begin(), edges_.end(),
+                              [&](const CollisionEdge& e) { return broken.contains(e.a, e.b); }),
+               edges_.end());
+  brokenLinks_.insert(brokenLinks_.end(), broken.links().begin(), broken.links().end());
+  structureStamp_ = nextStructureStamp();
+  return changed;
 }
 
 void ParticleSystem::restore(const Snapshot& s) {
@@ -138,6 +160,7 @@ void ParticleSystem::restore(const Snapshot& s) {
   x_ = s.x;
   v_ = s.v;
   time_ = s.time;
+  for (Force* force : clocked_) force->setTime(time_);
   solver_.resetWarmStart();
   contacts_->resetWarmStart();
 }
@@ -194,6 +217,8 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   // bad value never leaves a step half done.
   evaluations_ = StepStats{};
   solver_.settings.validate();
+  tearing_.settings.validate();
+  for (Force* force : clocked_) force->setTime(time_);
   const ContactScene scene = contactScene();
   const bool collideAfter = scene.colliding() && !integrator.collidesInSubsteps();
   contacts_->beginStep(scene, x_, v_, collideAfter);
@@ -204,6 +229,9 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   if (collideAfter)
     contacts_->collideStep(scene, dt, {true, integrator.driftCorrection()}, x_, v_);
   stats += contacts_->stepStats();
+  // Tear: springs stretched past the limit break, decided once from the
+  // step's end state, so every stage of the next step sees the same springs.
+  tearing_.tear(*this);
   // Advance the clock.
   time_ += dt;
   lastStepStats_ = stats;

@@ -21,7 +21,9 @@ using Eigen::VectorXd;
 using test_support::centralGradient;
 using test_support::centralJacobian;
 using test_support::expectRejected;
+using test_support::expectJacobiansMatchFiniteDifference;
 using test_support::forceAt;
+using test_support::randomVector;
 
 namespace {
 
@@ -33,13 +35,6 @@ ParticleSystem makeSystem(int n, std::mt19937& rng) {
   ParticleSystem system;
   for (int i = 0; i < n; ++i) system.addParticle(Vector2d::Zero(), mass(rng));
   return system;
-}
-
-VectorXd randomVector(int size, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  VectorXd y(size);
-  for (int k = 0; k < size; ++k) y[k] = u(rng);
-  return y;
 }
 
 // f(x, v) = −∂E/∂x at v = 0, for a force with a potential, at random positions.
@@ -54,26 +49,6 @@ void expectForceIsMinusEnergyGradient(const ParticleSystem& system, const Force&
         [&](const VectorXd& y) { return force.potential(system.phase(y, v)); }, x);
     EXPECT_LT((f + grad).norm(), 1e-6 * (1.0 + f.norm())) << "f = " << f.transpose()
                                                            << "\n−∂E/∂x = " << -grad.transpose();
-  }
-}
-
-// addJacobians against central differences of apply() in x and in v.
-void expectJacobiansMatchFiniteDifference(const ParticleSystem& system, const Force& force,
-                                          std::mt19937& rng, int trials = 20) {
-  ASSERT_TRUE(force.hasJacobians());
-  const int size = 2 * system.size();
-  for (int trial = 0; trial < trials; ++trial) {
-    const VectorXd x = randomVector(size, rng), v = randomVector(size, rng);
-    Triplets dfdxTriplets, dfdvTriplets;
-    force.addJacobians(system.phase(x, v), dfdxTriplets, dfdvTriplets);
-    const Eigen::MatrixXd dfdx = test_support::denseFromTriplets(dfdxTriplets, size);
-    const Eigen::MatrixXd dfdv = test_support::denseFromTriplets(dfdvTriplets, size);
-    const Eigen::MatrixXd fdx =
-        centralJacobian([&](const VectorXd& y) { return forceAt(force, system.phase(y, v)); }, x);
-    const Eigen::MatrixXd fdv =
-        centralJacobian([&](const VectorXd& y) { return forceAt(force, system.phase(x, y)); }, v);
-    EXPECT_LT((dfdx - fdx).norm(), 1e-6 * (1.0 + fdx.norm())) << "∂f/∂x\n" << dfdx << "\nFD\n" << fdx;
-    EXPECT_LT((dfdv - fdv).norm(), 1e-6 * (1.0 + fdv.norm())) << "∂f/∂v\n" << dfdv << "\nFD\n" << fdv;
   }
 }
 
@@ -283,28 +258,6 @@ TEST(MouseSpringForce, JacobiansMatchFiniteDifference) {
   ParticleSystem system = makeSystem(3, rng);
   const MouseSpringForce mouse(0, Vector2d(-0.4, 0.3), 15.0, 3.0);
   expectJacobiansMatchFiniteDifference(system, mouse, rng);
-}
-
-TEST(MouseSpringGains, FrequencyAndDampingRatioScaleWithTheMass) {
-  // k = m (2 pi f)^2 and c = 2 m zeta (2 pi f): the grabbed particle is a
-  // damped oscillator of frequency f and ratio zeta whatever its mass.
-  MouseJointSettings joint;
-  joint.frequency = 5.0;
-  joint.dampingRatio = 0.7;
-  for (double mass : {1e-3, 0.2, 10.0}) {
-    const MouseSpringGains g = mouseSpringGains(mass, joint);
-    const double omega = std::sqrt(g.stiffness / mass);
-    EXPECT_NEAR(omega / (2.0 * particles::kPi), 5.0, 1e-12);
-    EXPECT_NEAR(g.damping / (2.0 * std::sqrt(g.stiffness * mass)), 0.7, 1e-12);
-  }
-}
-
-TEST(MouseSpringGains, OverflowingStiffnessIsRejectedWithTheMass) {
-  expectRejected([] { mouseSpringGains(7e306, MouseJointSettings{}); }, "overflows for mass 7e+306");
-  expectRejected([] { mouseSpringGains(0.0, MouseJointSettings{}); }, "grabbed mass");
-  MouseJointSettings bad;
-  bad.frequency = std::nan("");
-  expectRejected([&] { mouseSpringGains(1.0, bad); }, "mouse joint frequency");
 }
 
 TEST(DragForce, ZeroAtRestAndOpposesVelocityOfMovableParticles) {

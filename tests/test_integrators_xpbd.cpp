@@ -67,10 +67,10 @@ double fittedSlope(const std::vector<double>& x, const std::vector<double>& y) {
 
 // A user's own force type, unknown to xpbd's table: a steady push F on every
 // particle.
-class WindForce : public Force {
+class SteadyPush : public Force {
  public:
-  explicit WindForce(Eigen::Vector2d push) : push_(push) {}
-  const char* type() const override { return "wind"; }
+  explicit SteadyPush(Eigen::Vector2d push) : push_(push) {}
+  const char* type() const override { return "steady-push"; }
   void apply(const Phase& s, Eigen::VectorXd& f) const override {
     for (Eigen::Index i = 0; i < s.x.size() / 2; ++i) f.segment<2>(2 * i) += push_;
   }
@@ -262,7 +262,7 @@ TEST(Xpbd, AppliesAUserForceWithoutAPositionFormInThePrediction) {
   const int substeps = 20;
   ParticleSystem system;
   system.addParticle(Vector2d::Zero(), m);
-  system.addForce(std::make_unique<WindForce>(Vector2d(F, 0.0)));
+  system.addForce(std::make_unique<SteadyPush>(Vector2d(F, 0.0)));
   auto integrator = xpbd(substeps, 1);
   const int steps = static_cast<int>(std::lround(T / dt));
   for (int k = 0; k < steps; ++k) system.step(*integrator, dt);

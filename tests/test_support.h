@@ -2,6 +2,7 @@
 // Helpers shared by the unit tests: parameter-rejection checks, central finite
 // differences, and dense views of force contributions.
 #include <functional>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -10,6 +11,7 @@
 
 #include "particles/constraint_solver.h"
 #include "particles/force.h"
+#include "particles/particle_system.h"
 
 namespace test_support {
 
@@ -82,6 +84,36 @@ inline Eigen::MatrixXd denseFromTriplets(const particles::Triplets& triplets, in
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(size, size);
   for (const auto& t : triplets) m(t.row(), t.col()) += t.value();
   return m;
+}
+
+// A vector of `size` entries drawn uniformly from [−1, 1].
+inline Eigen::VectorXd randomVector(int size, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd y(size);
+  for (int k = 0; k < size; ++k) y[k] = u(rng);
+  return y;
+}
+
+// addJacobians against central differences of apply() in x and in v, at
+// random positions and velocities of the system's particles.
+inline void expectJacobiansMatchFiniteDifference(const particles::ParticleSystem& system,
+                                                 const particles::Force& force, std::mt19937& rng,
+                                                 int trials = 20) {
+  ASSERT_TRUE(force.hasJacobians());
+  const int size = 2 * system.size();
+  for (int trial = 0; trial < trials; ++trial) {
+    const Eigen::VectorXd x = randomVector(size, rng), v = randomVector(size, rng);
+    particles::Triplets dfdxTriplets, dfdvTriplets;
+    force.addJacobians(system.phase(x, v), dfdxTriplets, dfdvTriplets);
+    const Eigen::MatrixXd dfdx = denseFromTriplets(dfdxTriplets, size);
+    const Eigen::MatrixXd dfdv = denseFromTriplets(dfdvTriplets, size);
+    const Eigen::MatrixXd fdx =
+        centralJacobian([&](const Eigen::VectorXd& y) { return forceAt(force, system.phase(y, v)); }, x);
+    const Eigen::MatrixXd fdv =
+        centralJacobian([&](const Eigen::VectorXd& y) { return forceAt(force, system.phase(x, y)); }, v);
+    EXPECT_LT((dfdx - fdx).norm(), 1e-6 * (1.0 + fdx.norm())) << "∂f/∂x\n" << dfdx << "\nFD\n" << fdx;
+    EXPECT_LT((dfdv - fdv).norm(), 1e-6 * (1.0 + fdv.norm())) << "∂f/∂v\n" << dfdv << "\nFD\n" << fdv;
+  }
 }
 
 }  // namespace test_support

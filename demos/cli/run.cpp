@@ -106,7 +106,10 @@ int run(const RunOptions& o) {
   std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": "
             << scenes::plural(o.steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
             << (seconds > 0.0 ? o.steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
-            << ", max |C| " << s.maxConstraintError() << '\n';
+            << ", max |C| " << s.maxConstraintError();
+  if (s.tearing().on())
+    std::cout << ", " << scenes::plural(static_cast<long long>(s.brokenLinks().size()), "link") << " torn";
+  std::cout << '\n';
   return kSuccess;
 }
 
@@ -178,7 +181,8 @@ Command addRunCommand(CLI::App& app) {
   addSteppingOptions(sub, options);
   addOutputOptions(sub, options);
   sub->footer(
-      "Prints a summary (steps per second of simulation, final energy and constraint error) on stdout.\n"
+      "Prints a summary (steps per second of simulation, final energy and constraint error, and the links torn\n"
+      "when the scene tears) on stdout.\n"
       "On a terminal, a run that takes over a second shows a progress line on stderr, erased at the end.\n"
       "Exit codes: 0 done; 2 bad option value or scene file (one line on stderr); 3 the state became\n"
       "non-finite (|q|^2 or |v|^2 overflows), the total energy rose above E0 + 100 E_ref (the scene's\n"

@@ -120,6 +120,8 @@ App::App(DemoOptions options)
   }
   if (const scenes::SceneInfo* info = findSceneInfo(scene_.name)) sceneHint_ = hintOf(*info);
   exact_ = exactMotion(scene_, *buildChoice(scene_).system);  // a fresh build: the state at t = 0
+  mouseSettings_.joint = options_.grab;
+  takeWindTearFromScene();
 }
 
 App::~App() {
@@ -343,6 +345,7 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   }
   panes_ = std::move(fresh);
   scene_ = choice;
+  takeWindTearFromScene();
   camera_.reset(viewMin, viewMax);
   tool_ = MouseTool::None;
   panning_ = false;
@@ -412,6 +415,7 @@ void App::resetScene() {
     fresh.back()->setIntegratorSettings(pane->integratorSettings());
   }
   panes_ = std::move(fresh);
+  applyWindTear();  // the wind and tearing the user set outlast a reset
   camera_.reset(panes_.front()->scene().viewMin, panes_.front()->scene().viewMax);
   tool_ = MouseTool::None;
   panning_ = false;

@@ -29,11 +29,28 @@ enum class MouseTool {
   Pin,   // the particle is pinned and follows the cursor; a click on a pinned one unpins it
 };
 
-// Mouse settings from the panel: the joint (frequency and damping ratio,
-// scaled by the grabbed mass, particles/forces/mouse_spring.h) and the reach.
+// Mouse settings from the panel and --grab: the joint (frequency, damping
+// ratio and stiffness ratio, applied to what the grabbed particle pulls,
+// particles/grab.h) and the reach.
 struct MouseSettings {
   particles::MouseJointSettings joint;
   double pickPixels = 16;  // a press farther than this from every particle grabs nothing
+};
+
+// The wind and tearing that keys w and t switch and the panel sets
+// (wind_panel.cpp), applied to every pane alike. The wind blows on the
+// scene's wind edges (the cloth's sides, the hair's links).
+struct WindTearControls {
+  bool windOn = false;
+  particles::WindSettings wind = [] {
+    particles::WindSettings w;  // a 5 m/s gusty wind to the right: the cloth leans some 25°
+    w.speed = 5.0;
+    w.drag = 0.02;
+    w.gust = 0.5;
+    return w;
+  }();
+  bool tearOn = false;
+  double tearStrain = 0.5;  // springs stretched by half their rest length tear
 };
 
 class App {
@@ -102,6 +119,7 @@ class App {
   void drawSolverSection();
   void drawSolverSettings();
   void drawMouseSpringSettings();
+  void drawWindTearSection();
   void drawDisplaySection();
   void recordWidget(const char* name);  // the last ImGui item, for scripted clicks
   // Build mode's section (build_panel.cpp) and its parts.
@@ -136,6 +154,12 @@ class App {
   void applyAdvice();
   bool adviceIsForThisScene() const;
   std::string paneStateLine(const Simulation& sim) const;
+  // Wind and tearing (wind_panel.cpp): the controls taken from a new scene,
+  // and pushed to every pane.
+  void takeWindTearFromScene();
+  void applyWindTear();
+  void toggleWind();
+  void toggleTearing();
   std::string realTimeReadout() const;
   // The rest of the keys' actions, one each.
   void doubleDt() { scaleDt(2.0); }
@@ -213,6 +237,7 @@ class App {
   bool showHelp_ = false;
   bool showPanel_ = true;
   MouseSettings mouseSettings_;
+  WindTearControls windTear_;
   Camera camera_;
 
   MouseTool tool_ = MouseTool::None;

@@ -27,6 +27,8 @@ const std::vector<App::KeyBinding>& App::keyBindings() {
       {"f", "f", "force arrows on / off (colour per force type)", &App::toggleForces},
       {"c", "c", "constraint drawing on / off (the constraints always act)", &App::toggleConstraints},
       {"g", "g", "closed-form ghost on / off (oscillator, pendulum)", &App::toggleGhost},
+      {"w", "w", "wind on / off (cloth, hair; the panel sets it)", &App::toggleWind},
+      {"t", "t", "tearing on / off: springs stretched too far break (the panel sets the strain)", &App::toggleTearing},
       {"v", "v", "compare mode: 2, 3, 4 panes, then back to 1", &App::cyclePaneCount},
       {"l", "l", "lockstep: one step per frame / fixed time per frame", &App::toggleLockstep},
       {"p", "p", "control panel on / off", &App::togglePanel},
@@ -184,8 +186,7 @@ void App::mouse(int button, int state, int x, int y, bool shift) {
     return;
   }
   // Every pane's joint first, so that a mass the joint cannot hold leaves no pane grabbed.
-  for (auto& pane : panes_)
-    particles::mouseSpringGains(pane->system().masses()[*particle], mouseSettings_.joint);
+  for (auto& pane : panes_) pane->grabGains(*particle, mouseSettings_.joint);
   for (auto& pane : panes_) pane->grab(*particle, world, mouseSettings_.joint);
   tool_ = MouseTool::Drag;
   grabbedOnce_ = true;

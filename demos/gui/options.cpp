@@ -57,9 +57,25 @@ CLI::Validator comparePane() {
       "INTEGRATOR[:DT]");
 }
 
+// Each --grab entry, checked as CLI11 reads it.
+CLI::Validator grabSetting() {
+  return CLI::Validator(
+      [](std::string& entry) -> std::string {
+        try {
+          particles::MouseJointSettings joint;
+          parseGrabSetting(entry, joint);
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "KEY=VALUE");
+}
+
 // What CLI11 reads into locals before it is checked and copied into
 // DemoOptions, with the options that say whether each was given.
 struct CommandLine {
+  std::vector<std::string> grab;
   std::string key, integrator;
   double dt = 0.0;
   long long frames = 0;
@@ -96,6 +112,10 @@ void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
           ->expected(2, 4)
           ->check(comparePane());
   cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
+  cli.add_option("--grab", c.grab,
+                 "the mouse joint, repeatable: frequency=HZ (default 5), damping-ratio=Z (0.7), stiffness-ratio=R "
+                 "(9: at least R times the grabbed particle's spring stiffness; see demos/gui/SCRIPTING.md)")
+      ->check(grabSetting());
 }
 
 // How the window starts: panel, pause, pacing, size.
@@ -164,6 +184,23 @@ void checkOutputs(const DemoOptions& o) {
 }
 }  // namespace
 
+void parseGrabSetting(const std::string& entry, particles::MouseJointSettings& joint) {
+  const auto equals = entry.find('=');
+  const std::string key = entry.substr(0, equals);
+  double value = 0.0;
+  if (equals == std::string::npos || !CLI::detail::lexical_cast(entry.substr(equals + 1), value) ||
+      !std::isfinite(value))
+    throw std::invalid_argument("--grab expects KEY=NUMBER (frequency, damping-ratio, stiffness-ratio), got '" +
+                                entry + "'");
+  if (key == "frequency") joint.frequency = value;
+  else if (key == "damping-ratio") joint.dampingRatio = value;
+  else if (key == "stiffness-ratio") joint.stiffnessRatio = value;
+  else
+    throw std::invalid_argument("--grab: unknown setting '" + key +
+                                "' (valid: frequency, damping-ratio, stiffness-ratio)");
+  joint.validate();
+}
+
 ComparePane parseComparePane(const std::string& entry) {
   const auto colon = entry.find(':');
   ComparePane pane;
@@ -196,6 +233,7 @@ DemoOptions parseOptions(int argc, char** argv) {
   if (*c.framesOption) o.frames = c.frames;
   if (*c.compareOption)
     for (const std::string& entry : c.compare) o.compare.push_back(parseComparePane(entry));
+  for (const std::string& entry : c.grab) parseGrabSetting(entry, o.grab);
   checkOutputs(o);
   o.windowWidth = c.window.first;
   o.windowHeight = c.window.second;

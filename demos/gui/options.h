@@ -6,6 +6,7 @@
 
 #include "options/scene_source.h"
 #include "options/usage.h"
+#include "particles/grab.h"
 
 namespace demo {
 
@@ -19,6 +20,11 @@ struct ComparePane {
 // Reads one --compare entry; throws std::invalid_argument naming it.
 ComparePane parseComparePane(const std::string& entry);
 
+// Sets one field of the mouse joint from a --grab entry "key=value" (keys
+// frequency, damping-ratio, stiffness-ratio; particles/grab.h); throws
+// std::invalid_argument naming the entry.
+void parseGrabSetting(const std::string& entry, particles::MouseJointSettings& joint);
+
 struct DemoOptions {
   options::SceneSource source;                  // --scene (default cloth), --scene-file, --param, --preset
   std::optional<char> sceneKey;                 // --key K: the scene of number key K instead (scene_keys.h)
@@ -27,6 +33,7 @@ struct DemoOptions {
   double tolerance = particles::IntegratorSettings{}.tolerance;  // --tolerance: dopri5's local error tolerance
   std::vector<ComparePane> compare;             // --compare euler,rk4: start in compare mode, 2 to 4 panes
   bool lockstep = false;
+  particles::MouseJointSettings grab;           // --grab frequency=F, damping-ratio=Z, stiffness-ratio=R
   bool hidePanel = false;
   bool startPaused = false;
   bool realtime = false;                        // scripted runs at 60 frames/s instead of flat out

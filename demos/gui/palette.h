@@ -42,6 +42,7 @@ constexpr ForceColour forceArrowColours[] = {
     {"angular-spring", {200, 120, 255}},
     {"drag", {160, 160, 160}},
     {"mouse-spring", {120, 235, 140}},
+    {"wind", {120, 255, 230}},
 };
 
 inline Rgb forceArrowColour(const char* type) {

@@ -68,6 +68,7 @@ void App::drawPanel() {
   drawAdvicePanel();  // the cheapest integrator and dt within an error over a horizon
   drawPlotsSection();
   drawSolverSection();
+  drawWindTearSection();  // wind_panel.cpp
   ImGui::EndDisabled();
   drawDisplaySection();
 
@@ -279,10 +280,16 @@ void App::drawMouseSpringSettings() {
   float frequency = static_cast<float>(mouseSettings_.joint.frequency);
   if (ImGui::SliderFloat("mouse joint f", &frequency, 0.5f, 20.0f, "%.2g Hz", ImGuiSliderFlags_Logarithmic))
     mouseSettings_.joint.frequency = frequency;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_s = m (2 pi f)^2 for the grabbed mass m (at most w dt = 0.5)");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("k_s = max(M (2 pi f)^2, R K): M the mass the particle drags along (springs and constraints),\n"
+                      "K its springs' stiffness; explicit integrators bound it by sqrt(k_s/m) dt <= 1");
   float ratio = static_cast<float>(mouseSettings_.joint.dampingRatio);
   if (ImGui::SliderFloat("damping ratio", &ratio, 0.0f, 2.0f, "%.2f")) mouseSettings_.joint.dampingRatio = ratio;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_d = 2 m zeta (2 pi f); 1 is critical");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("k_d = 2 zeta sqrt(k_s M); 1 is critical (explicit: k_d dt/m <= 1/2)");
+  float stiffnessRatio = static_cast<float>(mouseSettings_.joint.stiffnessRatio);
+  if (ImGui::SliderFloat("stiffness ratio R", &stiffnessRatio, 0.0f, 50.0f, "%.3g")) mouseSettings_.joint.stiffnessRatio = stiffnessRatio;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("k_s at least R times the grabbed particle's springs: it follows a move within 1/(1 + R)");
 }
 
 // --- display ------------------------------------------------------------------

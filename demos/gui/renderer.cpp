@@ -189,16 +189,19 @@ void Renderer::collectWalls(const particles::ParticleSystem& system, const ViewT
 
 // A surface drawn as shaded quads: its colour brightens where a face is
 // stretched beyond its rest area and darkens where it is compressed; a face
-// turned over (a fold, negative signed area) shows the back colour.
+// turned over (a fold, negative signed area) shows the back colour; a face
+// with a torn side is not drawn.
 void Renderer::collectFaces(const Simulation& simulation, const ViewTransform& view) {
   const particles::ParticleSystem& system = simulation.system();
   const auto& faces = simulation.scene().faces;
   const auto& rest = simulation.restFaceAreas();
+  const std::vector<char>& intact = simulation.intactFaces();  // a face with a torn side is a hole
   const double paneArea = static_cast<double>(view.pane.width) * view.pane.height;
   const double pixelArea = view.pixelsPerUnit * view.pixelsPerUnit;
   double filled = 0.0;  // pixels, each face's clipped to the pane's area
   facesOverBudget_ = 0;
   for (std::size_t k = 0; k < faces.size() && k < rest.size(); ++k) {
+    if (!intact[k]) continue;
     const auto& f = faces[k];
     const double area = faceArea(system, f);
     if (!std::isfinite(area) || !(std::abs(rest[k]) > 0.0)) continue;

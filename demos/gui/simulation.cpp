@@ -30,6 +30,13 @@ Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
   setDt(dt);
   history_.record(frames_, system(), owedTime_, steps_);
   for (const auto& face : scene_.faces) restFaceAreas_.push_back(faceArea(system(), face));
+  intactFaces_.assign(scene_.faces.size(), 1);
+  // A scene file's wind: its edges are where the wind can blow again once stopped.
+  for (const auto& force : system().forceObjects())
+    if (auto* wind = dynamic_cast<particles::WindForce*>(force.get())) {
+      wind_ = wind;
+      if (scene_.windEdges.empty()) scene_.windEdges = wind->edges();
+    }
 }
 
 double faceArea(const particles::ParticleSystem& s, const std::array<int, 4>& f) {
@@ -50,6 +57,7 @@ void Simulation::setIntegrator(int index) {
   integrator_->configure(integratorSettings_);
   integratorIndex_ = index;
   refusal_.reset();
+  retuneGrab();
 }
 
 void Simulation::setIntegratorSettings(const particles::IntegratorSettings& settings) {
@@ -65,6 +73,7 @@ const char* Simulation::integratorName() const {
 void Simulation::setDt(double dt) {
   particles::requirePositive("dt", dt);
   dt_ = dt;
+  retuneGrab();
 }
 
 void Simulation::advanceFrame(double frameTime, StepMode mode, double budgetMs) {
@@ -92,6 +101,10 @@ void Simulation::advanceFrame(double frameTime, StepMode mode, double budgetMs) 
   }
   lastFrame_.simulationMs = elapsedMs();
   if (stopped()) return;
+  if (spring_) {
+    grabTrail_.push_back(system().position(spring_->particle()));
+    if (grabTrail_.size() > grabTrailFrames) grabTrail_.pop_front();
+  }
   ++frames_;
   history_.record(frames_, system(), owedTime_, steps_);
   trace_.add(sceneEnergy(), system().maxConstraintError());
@@ -145,6 +158,9 @@ bool Simulation::rewindTo(long long frame) {
 
 void Simulation::copyStateFrom(const Simulation& other) {
   system().restore(other.system().snapshot());
+  system().breakLinks(other.system().brokenLinks());
+  system().tearing() = other.system().tearing();
+  setWind(other.wind_ ? std::optional<particles::WindSettings>(other.wind_->settings()) : std::nullopt);
   for (int i = 0; i < system().size(); ++i)
     if (system().pinned(i) != other.system().pinned(i)) system().setPinned(i, other.system().pinned(i));
   system().restore(other.system().snapshot());  // pinning zeroes velocities; take them back
@@ -170,26 +186,81 @@ std::optional<int> Simulation::particleNear(const Eigen::Vector2d& world, double
   return best;
 }
 
+particles::MouseSpringGains Simulation::grabGains(int particle, const particles::MouseJointSettings& joint) const {
+  return particles::mouseSpringGains(particles::grabReach(system(), particle, spring_), joint,
+                                     integrator_->explicitForceStep(dt_));
+}
+
 void Simulation::grab(int particle, const Eigen::Vector2d& target, const particles::MouseJointSettings& joint) {
-  // An explicit step follows the joint's oscillation stably only while ω dt is
-  // small (explicit Euler's |1 + λ dt| < 1 at ζ = 0.7 needs ω dt < 1): keep ω dt ≤ 0.5.
-  particles::MouseJointSettings stable = joint;
-  stable.frequency = std::min(joint.frequency, 0.5 / (2.0 * particles::kPi * dt_));
-  const particles::MouseSpringGains gains = particles::mouseSpringGains(system().masses()[particle], stable);
+  const particles::MouseSpringGains gains = grabGains(particle, joint);
+  if (!spring_ || spring_->particle() != particle) grabTrail_.clear();
   release();
   auto spring = std::make_unique<particles::MouseSpringForce>(particle, target, gains.stiffness, gains.damping);
   spring_ = spring.get();
+  joint_ = joint;
   system().addForce(std::move(spring));
+}
+
+void Simulation::retuneGrab() {
+  if (spring_) grab(spring_->particle(), spring_->target(), joint_);
 }
 
 void Simulation::moveGrab(const Eigen::Vector2d& target) {
   if (spring_) spring_->setTarget(target);
 }
 
+Eigen::Vector2d Simulation::grabbedMean() const {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& x : grabTrail_) sum += x;
+  return grabTrail_.empty() ? sum : Eigen::Vector2d(sum / static_cast<double>(grabTrail_.size()));
+}
+
 void Simulation::release() {
   if (!spring_) return;
   system().removeForce(spring_);
   spring_ = nullptr;
+}
+
+void Simulation::setWind(const std::optional<particles::WindSettings>& settings) {
+  if (!settings) {
+    if (wind_) system().removeForce(wind_);
+    wind_ = nullptr;
+    return;
+  }
+  if (wind_) {
+    wind_->setSettings(*settings);
+    return;
+  }
+  if (!takesWind()) throw std::invalid_argument("wind blows on the cloth and the hair: this scene has no edges for it");
+  const particles::LinkSet broken(system().brokenLinks());
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& edge : scene_.windEdges)
+    if (!broken.contains(edge[0], edge[1])) edges.push_back(edge);
+  auto wind = std::make_unique<particles::WindForce>(std::move(edges), *settings);
+  wind_ = wind.get();
+  system().addForce(std::move(wind));
+}
+
+void Simulation::setTearStrain(double strain) {
+  particles::TearSettings tearing;
+  tearing.strain = strain;
+  tearing.validate();
+  system().tearing() = tearing;
+}
+
+const std::vector<char>& Simulation::intactFaces() const {
+  const auto& broken = system().brokenLinks();
+  if (facesCheckedAtBreaks_ != broken.size()) {
+    const particles::LinkSet set(broken);
+    for (std::size_t k = 0; k < scene_.faces.size(); ++k) {
+      const auto& f = scene_.faces[k];
+      bool intact = true;
+      for (int c = 0; c < 4; ++c) intact = intact && !set.contains(f[c], f[(c + 1) % 4]);
+      intactFaces_[k] = intact;
+    }
+    facesCheckedAtBreaks_ = broken.size();
+  }
+  return intactFaces_;
 }
 
 void Simulation::setPinned(int particle, bool pinned) {

@@ -2,6 +2,7 @@
 // One running copy of a scene, as shown in one pane: the built system, its
 // integrator and dt, the user's mouse spring and pins, a rewind history and a
 // divergence watch. No OpenGL here.
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -9,6 +10,8 @@
 
 #include "particles/divergence.h"
 #include "particles/forces/mouse_spring.h"
+#include "particles/forces/wind.h"
+#include "particles/grab.h"
 #include "particles/integrator.h"
 #include "rewind_buffer.h"
 #include "scene.h"
@@ -72,13 +75,38 @@ class Simulation {
   // --- the user's hand ----------------------------------------------------
   // Nearest particle to `world` within `radius` (world units), movable only or any.
   std::optional<int> particleNear(const Eigen::Vector2d& world, double radius, bool movableOnly) const;
-  // Attaches a mouse joint; throws (changing nothing) when its gains overflow.
+  // The mouse joint's gains for grabbing `particle` now (particles/grab.h):
+  // from its tied mass and attached stiffness, bounded by the integrator's
+  // explicit force step at this dt. Throws naming the value when they overflow.
+  particles::MouseSpringGains grabGains(int particle, const particles::MouseJointSettings& joint) const;
+  // Attaches a mouse joint with those gains; throws (changing nothing) when
+  // they overflow. A change of integrator or dt while it holds sets its gains again.
   void grab(int particle, const Eigen::Vector2d& target, const particles::MouseJointSettings& joint);
   void moveGrab(const Eigen::Vector2d& target);
   void release();
   const particles::MouseSpringForce* mouseSpring() const { return spring_; }
+  // The grabbed particle's mean position over the frames it has been held,
+  // at most the last grabTrailFrames (one second at 1x speed), and how many.
+  static constexpr std::size_t grabTrailFrames = 60;
+  Eigen::Vector2d grabbedMean() const;
+  std::size_t grabbedFrames() const { return grabTrail_.size(); }
   void setPinned(int particle, bool pinned);
   void placePinned(int particle, const Eigen::Vector2d& position);  // drags a pinned particle
+
+  // --- wind and tearing (particles/forces/wind.h, particles/tearing.h) -------
+  // The edges the scene's wind pushes on (Scene::windEdges, or those of a
+  // scene file's wind); none: the scene takes no wind.
+  bool takesWind() const { return !scene_.windEdges.empty(); }
+  // The wind that blows, or null.
+  const particles::WindForce* wind() const { return wind_; }
+  // Blows the wind with these settings on the scene's wind edges that are not
+  // torn (or changes the settings of the wind that blows); stops it with
+  // nullopt. Throws naming a bad setting, or when the scene takes no wind.
+  void setWind(const std::optional<particles::WindSettings>& settings);
+  // Springs stretched beyond this strain tear (0: none); throws when < 0.
+  void setTearStrain(double strain);
+  // One flag per scene face: none of its sides has torn (the renderer draws only these).
+  const std::vector<char>& intactFaces() const;
 
   // --- divergence and rewind ------------------------------------------------
   std::optional<double> divergedAt() const { return divergedAt_; }
@@ -118,6 +146,7 @@ class Simulation {
 
  private:
   void stepAndWatch();
+  void retuneGrab();  // the held joint's gains again, for a new integrator or dt
 
   scenes::Scene scene_;
   std::unique_ptr<particles::Integrator> integrator_;
@@ -127,6 +156,11 @@ class Simulation {
   long long steps_ = 0;
   long long frames_ = 0;
   particles::MouseSpringForce* spring_ = nullptr;  // owned by the system
+  particles::MouseJointSettings joint_;            // the settings spring_ was made with
+  std::deque<Eigen::Vector2d> grabTrail_;          // the grabbed particle at each frame's end
+  particles::WindForce* wind_ = nullptr;           // owned by the system
+  mutable std::vector<char> intactFaces_;
+  mutable std::size_t facesCheckedAtBreaks_ = 0;   // broken links when intactFaces_ was made
   particles::DivergenceLimits limits_;
   std::vector<double> restFaceAreas_;
   particles::Divergence divergence_;

@@ -9,6 +9,23 @@ namespace demo {
 
 namespace {
 
+// The pane's mouse joint (while a particle is held), its wind (while it
+// blows) and its tearing.
+void writeWindTearGrab(std::ostream& out, std::size_t k, const Simulation& sim) {
+  if (const particles::MouseSpringForce* spring = sim.mouseSpring()) {
+    const Eigen::Vector2d mean = sim.grabbedMean();
+    out << "grab," << k << "," << spring->particle() << "," << spring->target().x() << "," << spring->target().y()
+        << "," << spring->stiffness() << "," << spring->damping() << "," << sim.grabbedFrames() << "," << mean.x()
+        << "," << mean.y() << "\n";
+  }
+  if (const particles::WindForce* wind = sim.wind()) {
+    const particles::WindSettings& w = wind->settings();
+    out << "wind," << k << "," << w.speed << "," << w.direction << "," << w.drag << "," << w.gust << ","
+        << w.gustPeriod << "," << w.seed << "," << wind->air().x() << "," << wind->air().y() << "\n";
+  }
+  out << "tearing," << k << "," << sim.system().tearing().strain << "," << sim.system().brokenLinks().size() << "\n";
+}
+
 void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, const StateExtras& extras,
                        long long frames, bool paused) {
   out.precision(17);
@@ -36,6 +53,7 @@ void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, c
       Eigen::Vector2d lo, hi;  // a bounded collider's bounding box; a half-plane has none
       if (c.bounds(lo, hi)) out << "wall," << k << "," << lo.x() << "," << lo.y() << "," << hi.x() << "," << hi.y() << "\n";
     }
+    writeWindTearGrab(out, k, sim);
   }
   for (const Overlay& o : extras.overlays) {
     std::string text;

@@ -11,6 +11,12 @@
 //     (the pixel rectangle is where the pane draws the world: no overlay may cover it)
 //   particle,<pane>,<index>,<x>,<y>,<vx>,<vy>,<mass>,<pinned 0|1>
 //   wall,<pane>,<xmin>,<ymin>,<xmax>,<ymax>
+//   grab,<pane>,<particle>,<target x>,<target y>,<stiffness>,<damping>,<frames averaged>,<mean x>,<mean y>
+//     (while the mouse joint holds a particle: its gains, particles/grab.h, and
+//     the particle's mean position over the last frames it was held, at most 60)
+//   wind,<pane>,<speed>,<direction>,<drag>,<gust>,<gust period>,<seed>,<air x>,<air y>
+//     (while the wind blows: its settings and the air velocity of the last step)
+//   tearing,<pane>,<tear strain (0: off)>,<links broken>
 //   overlay,<kind>,<pixel x>,<pixel y>,<pixel width>,<pixel height>,<text>
 //     (text and panels drawn in the last frame: top-bar, hud (the bottom bar),
 //     pane-hud, indicator, help, panel; text's line breaks written as " | ")

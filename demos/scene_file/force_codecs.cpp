@@ -4,7 +4,9 @@
 #include "particles/forces/gravity.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
+#include "particles/forces/wind.h"
 #include "scene_file/codecs.h"
+#include "scene_limits.h"
 
 namespace scenes {
 
@@ -29,36 +31,50 @@ Json writeDrag(const Force& force) {
   return {{"type", f.type()}, {"damping", f.damping()}};
 }
 
+// "torn": true marks a spring (or angle spring) whose link broke: it is read
+// torn (Force::dropLinks on its own link) and written only when torn.
+void readTorn(const JsonNode& node, Force& force, int i, int j) {
+  if (node["torn"].boolean(false)) force.dropLinks(particles::LinkSet({{i, j}}));
+}
+
 std::unique_ptr<Force> readSpring(const JsonNode& node, int n) {
-  node.allowOnly({"type", "particles", "restLength", "stiffness", "damping"});
+  node.allowOnly({"type", "particles", "restLength", "stiffness", "damping", "torn"});
   const std::vector<int> p = node["particles"].particles(2, n);
-  return std::make_unique<particles::SpringForce>(p[0], p[1], node["restLength"].positive(),
-                                                  node["stiffness"].nonNegative(),
-                                                  node["damping"].nonNegative());
+  auto spring = std::make_unique<particles::SpringForce>(p[0], p[1], node["restLength"].positive(),
+                                                         node["stiffness"].nonNegative(),
+                                                         node["damping"].nonNegative());
+  readTorn(node, *spring, p[0], p[1]);
+  return spring;
 }
 Json writeSpring(const Force& force) {
   const auto& f = dynamic_cast<const particles::SpringForce&>(force);
-  return {{"type", f.type()},
-          {"particles", {f.first(), f.second()}},
-          {"restLength", f.restLength()},
-          {"stiffness", f.stiffness()},
-          {"damping", f.damping()}};
+  Json out = {{"type", f.type()},
+              {"particles", {f.first(), f.second()}},
+              {"restLength", f.restLength()},
+              {"stiffness", f.stiffness()},
+              {"damping", f.damping()}};
+  if (!f.enabled()) out["torn"] = true;
+  return out;
 }
 
 std::unique_ptr<Force> readAngularSpring(const JsonNode& node, int n) {
-  node.allowOnly({"type", "particles", "restAngle", "stiffness", "damping"});
+  node.allowOnly({"type", "particles", "restAngle", "stiffness", "damping", "torn"});
   const std::vector<int> p = node["particles"].particles(3, n);
-  return std::make_unique<particles::AngularSpringForce>(p[0], p[1], p[2], node["restAngle"].number(),
-                                                         node["stiffness"].nonNegative(),
-                                                         node["damping"].nonNegative());
+  auto spring = std::make_unique<particles::AngularSpringForce>(p[0], p[1], p[2], node["restAngle"].number(),
+                                                                node["stiffness"].nonNegative(),
+                                                                node["damping"].nonNegative());
+  readTorn(node, *spring, p[0], p[1]);
+  return spring;
 }
 Json writeAngularSpring(const Force& force) {
   const auto& f = dynamic_cast<const particles::AngularSpringForce&>(force);
-  return {{"type", f.type()},
-          {"particles", f.triple()},
-          {"restAngle", f.restAngle()},
-          {"stiffness", f.stiffness()},
-          {"damping", f.damping()}};
+  Json out = {{"type", f.type()},
+              {"particles", f.triple()},
+              {"restAngle", f.restAngle()},
+              {"stiffness", f.stiffness()},
+              {"damping", f.damping()}};
+  if (!f.enabled()) out["torn"] = true;
+  return out;
 }
 
 std::unique_ptr<Force> readMouseSpring(const JsonNode& node, int n) {
@@ -75,6 +91,35 @@ Json writeMouseSpring(const Force& force) {
           {"stiffness", f.stiffness()},
           {"damping", f.damping()}};
 }
+std::unique_ptr<Force> readWind(const JsonNode& node, int n) {
+  node.allowOnly({"type", "edges", "speed", "direction", "drag", "gust", "gustPeriod", "seed"});
+  const JsonNode list = node["edges"];
+  if (!list.present()) list.expected("an array of particle pairs [i, j]");
+  if (list.arraySize() > static_cast<std::size_t>(SceneLimits::forces))
+    list.reject(std::to_string(list.arraySize()) + " edges exceed the limit of " + std::to_string(SceneLimits::forces));
+  std::vector<std::array<int, 2>> edges;
+  for (std::size_t k = 0; k < list.arraySize(); ++k) {
+    const std::vector<int> p = list[k].particles(2, n);
+    edges.push_back({p[0], p[1]});
+  }
+  particles::WindSettings wind;
+  wind.speed = node["speed"].nonNegative();
+  wind.direction = node["direction"].number();
+  wind.drag = node["drag"].nonNegative();
+  if (node["gust"].present()) wind.gust = node["gust"].inRange(0.0, 1.0);
+  if (node["gustPeriod"].present()) wind.gustPeriod = node["gustPeriod"].positive();
+  if (node["seed"].present()) wind.seed = node["seed"].integer(0, 2147483647);
+  return std::make_unique<particles::WindForce>(std::move(edges), wind);
+}
+Json writeWind(const Force& force) {
+  const auto& f = dynamic_cast<const particles::WindForce&>(force);
+  const particles::WindSettings& w = f.settings();
+  Json edges = Json::array();
+  for (const auto& [i, j] : f.edges()) edges.push_back({i, j});
+  return {{"type", f.type()}, {"speed", w.speed},           {"direction", w.direction},
+          {"drag", w.drag},   {"gust", w.gust},             {"gustPeriod", w.gustPeriod},
+          {"seed", w.seed},   {"edges", std::move(edges)}};
+}
 }  // namespace
 
 const std::vector<ForceCodec>& forceCodecs() {
@@ -84,6 +129,7 @@ const std::vector<ForceCodec>& forceCodecs() {
       {"spring", readSpring, writeSpring},
       {"angular-spring", readAngularSpring, writeAngularSpring},
       {"mouse-spring", readMouseSpring, writeMouseSpring},
+      {"wind", readWind, writeWind},
   };
   return table;
 }

@@ -99,6 +99,12 @@ void readSolver(const JsonNode& node, particles::SolverSettings& s) {
   }
 }
 
+void readTearing(const JsonNode& node, particles::TearSettings& tearing) {
+  if (!node.present()) return;
+  node.allowOnly({"strain"});
+  tearing.strain = node["strain"].nonNegative();
+}
+
 void readParticle(const JsonNode& node, particles::ParticleSystem& s) {
   node.allowOnly({"position", "velocity", "mass", "pinned", "radius"});
   const Eigen::Vector2d x = node["position"].vec2();
@@ -155,8 +161,8 @@ void requireCount(const JsonNode& node, const char* what, long long limit) {
 }
 
 Scene readDocument(const JsonNode& root, const std::string& source) {
-  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution", "particles", "forces",
-                  "constraints", "walls", "colliders", "collisionEdges"});
+  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution", "tearing",
+                  "particles", "forces", "constraints", "walls", "colliders", "collisionEdges"});
   Scene scene;
   scene.name = root["name"].present() ? root["name"].text() : source;
   readIntegrator(root["integrator"], scene);
@@ -168,6 +174,7 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   readSolver(root["solver"], s.solver().settings);
   if (root["particleRestitution"].present())
     s.contactSettings().particleRestitution = root["particleRestitution"].inRange(0.0, 1.0);
+  readTearing(root["tearing"], s.tearing());
 
   const JsonNode particleList = root["particles"];
   if (!particleList.present()) particleList.expected("an array of particles");

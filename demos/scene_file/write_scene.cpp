@@ -41,6 +41,7 @@ Json sceneToJson(const Scene& scene) {
                    {"method", particles::nameOf(solver.method)},
                    {"preconditioner", particles::nameOf(solver.preconditioner)}};
   doc["particleRestitution"] = s.contactSettings().particleRestitution;
+  if (s.tearing().on()) doc["tearing"] = {{"strain", s.tearing().strain}};
   doc["particles"] = Json::array();
   for (int i = 0; i < s.size(); ++i) {
     Json p = {{"position", toJson(s.position(i))}, {"velocity", toJson(s.velocity(i))}, {"mass", s.masses()[i]}};

@@ -29,6 +29,7 @@ void ClothParams::validate() const {
   particles::requireNonNegative("drag", drag);
   if (edgeContacts != 0 && edgeContacts != 1)
     throw std::invalid_argument("edge-contacts must be 0 or 1, got " + std::to_string(edgeContacts));
+  validateWindTear();
 }
 
 ClothParams ClothParams::seed() {
@@ -119,6 +120,8 @@ Scene buildCloth(const ClothParams& p) {
   s.addCollider(particles::Collider::box(nail, nail + Eigen::Vector2d::Constant(0.05 * L)));
   if (scene.edgeContacts)
     for (const std::array<int, 2>& edge : faceEdges(scene)) s.addCollisionEdge(edge[0], edge[1]);
+  scene.windEdges = faceEdges(scene);
+  p.addWindAndTearing(s, scene.windEdges);
 
   scene.viewMin = Eigen::Vector2d::Constant(-half);
   scene.viewMax = Eigen::Vector2d::Constant(half);

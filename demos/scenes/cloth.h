@@ -1,5 +1,6 @@
 #pragma once
 #include "scene.h"
+#include "scenes/wind_and_tearing.h"
 #include "scenes/world.h"
 
 namespace scenes {
@@ -25,7 +26,11 @@ namespace scenes {
 // below dt ≈ 0.005 s, and dt = 0.002 s leaves it a factor 2.4. The swing
 // of a 0.45 m curtain takes about 1.1 s; air drag k_d/m = 0.4/s lets it
 // settle within seconds.
-struct ClothParams {
+//
+// Wind and tearing (wind_and_tearing.h) are off by default: the wind pushes
+// on the face sides (the structural springs), and the springs tear beyond
+// tear-strain.
+struct ClothParams : WindTearParams {
   int width = 10, height = 10;
   int links = 4;
   double rest = 0.05;              // m
@@ -51,6 +56,7 @@ struct ClothParams {
     field("swing", swing, "release angle of the cloth's columns from hanging straight, degrees (+: hem to the right; 8-way: hangs straight, released with the push that swings a pinned column to it)");
     field("drag", drag, "air drag k_d on every particle, N s/m (0: none)");
     field("edge-contacts", edgeContacts, "1: the cloth's edges, not only its particles, meet the wall and nail; 0: particles only");
+    visitWindTear(field);
   }
   void validate() const;
   static ClothParams seed();  // preset "seed": the seed report's values

@@ -38,6 +38,7 @@ void HairParams::validate() const {
                                 ", got " + particles::formatValue(radius));
   particles::requireFinite("gravity", gravity);
   particles::requireNonNegative("drag", drag);
+  validateWindTear();
 }
 
 HairParams HairParams::seed() {
@@ -110,8 +111,10 @@ Scene buildHair(const HairParams& p) {
     // The root rides the rail and is no disc: a contact pushing it off the
     // rail would drag the whole strand after it.
     for (int k = root + 1; k < root + p.particles; ++k) s.setCollidable(k, p.radius);
-    for (int k = root; k + 1 < root + p.particles; ++k)
+    for (int k = root; k + 1 < root + p.particles; ++k) {
       s.addForce(std::make_unique<particles::SpringForce>(k, k + 1, p.rest, p.stiffness, p.damping));
+      scene.windEdges.push_back({k, k + 1});
+    }
     for (int k = 1; k + 1 < p.particles; ++k)
       s.addForce(std::make_unique<particles::AngularSpringForce>(root + k - 1, root + k, root + k + 1,
                                                                  hairRestAngle(p, c, k), p.bendStiffness,
@@ -121,6 +124,7 @@ Scene buildHair(const HairParams& p) {
   }
   addGravity(s, p.gravity);
   if (p.drag > 0.0) s.addForce(std::make_unique<particles::DragForce>(p.drag));
+  p.addWindAndTearing(s, scene.windEdges);
   return scene;
 }
 

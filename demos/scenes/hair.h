@@ -2,6 +2,7 @@
 #include <string>
 
 #include "scene.h"
+#include "scenes/wind_and_tearing.h"
 #include "scenes/world.h"
 
 namespace scenes {
@@ -37,7 +38,10 @@ namespace scenes {
 // The bending damping is as stiff: its rate, about 16 k_d/(m rest²), must stay
 // below 2.8/dt, so k_d = 1e-5 is near the most RK4 takes at this dt (4e-5
 // diverges). Air drag k_d/m = 1/s instead settles a bounce within a few seconds.
-struct HairParams {
+//
+// Wind and tearing (wind_and_tearing.h) are off by default: the wind pushes
+// on every link, and a link that tears takes the angle springs across it.
+struct HairParams : WindTearParams {
   int curls = 6;
   int particles = 30;
   double rest = 0.01;                // m
@@ -70,6 +74,7 @@ struct HairParams {
     field("radius", radius, "collision radius of each particle, m");
     field("gravity", gravity, "downward acceleration, m/s^2");
     field("drag", drag, "air drag k_d on every particle, N s/m (0: none)");
+    visitWindTear(field);
   }
   void validate() const;
   static HairParams seed();  // preset "seed": the seed report's values

@@ -75,6 +75,12 @@ class Integrator {
   // DriftCorrection::Shake for a scheme whose step ends with x = x0 + dt v.
   virtual DriftCorrection driftCorrection() const { return DriftCorrection::AtEnd; }
 
+  // The step over which this scheme applies a stiff force on one particle
+  // (the mouse joint) explicitly, which bounds how stiff that force may be
+  // (grab.h): dt for the explicit schemes; 0 for a scheme that takes it
+  // implicitly (implicit Euler through its Jacobians, xpbd in position form).
+  virtual double explicitForceStep(double dt) const { return dt; }
+
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }
 

@@ -14,6 +14,7 @@
 #include "particles/force.h"
 #include "particles/integrator.h"
 #include "particles/step_stats.h"
+#include "particles/tearing.h"
 #include "particles/forces/force_batch.h"
 
 namespace particles {
@@ -59,11 +60,25 @@ class ParticleSystem {
   void addCollisionEdge(int a, int b);
   // Removes a force previously added (e.g. the mouse spring on release).
   void removeForce(const Force* force);
-  // Tears (enabled = false) or mends a spring added to this system: a torn
-  // spring adds no force, potential or Jacobian. Changes the structure stamp
-  // (the spring batch is rebuilt at the next evaluation, O(forces)).
-  // std::invalid_argument if spring is not a SpringForce of this system.
+  // Tears (enabled = false) or mends a spring or angle spring added to this
+  // system: a torn one adds no force, potential or Jacobian. Changes the
+  // structure stamp (the spring batch is rebuilt at the next evaluation,
+  // O(forces)). std::invalid_argument if it is neither of this system.
   void setSpringEnabled(const Force* spring, bool enabled);
+  // Breaks the links between the given particle pairs (either order): every
+  // force drops what hangs on them (Force::dropLinks: the springs on them
+  // tear, angle springs with them as an arm go, the wind stops pushing on
+  // them) and the collision edges on them are removed. Returns how many
+  // forces changed; changes the structure stamp. The tear phase of step()
+  // calls it (tearing.h).
+  int breakLinks(const std::vector<std::array<int, 2>>& links);
+  // Every link broken so far, (min, max), in the order they broke.
+  const std::vector<std::array<int, 2>>& brokenLinks() const { return brokenLinks_; }
+  // Springs that break when stretched too far, decided once per step.
+  TearSettings& tearing() { return tearing_.settings; }
+  const TearSettings& tearing() const { return tearing_.settings; }
+  // Links broken by the tear phase of the last step.
+  int tornLastStep() const { return tearing_.tornLastStep(); }
 
   // --- state --------------------------------------------------------------
   int size() const { return static_cast<int>(mass_.size()); }
@@ -88,6 +103,8 @@ class ParticleSystem {
   void restore(const Snapshot& s);
 
   const std::vector<std::unique_ptr<Force>>& forceObjects() const { return forces_; }
+  // Some force follows the clock (Force::timeDependent): it changes from one step to the next.
+  bool hasTimeDependentForces() const { return !clocked_.empty(); }
   // Changes whenever particles, forces, constraints, pins or collision edges
   // change, and differs between systems: integrators and the contact pass
   // that prepare per-structure data key it on this.
@@ -122,10 +139,11 @@ class ParticleSystem {
   void addEvaluationStats(StepStats& stats);
 
   // One step, as named phases: begin (check the settings, keep the start
-  // state) → integrate by dt → collide (the contact pass, src/collision/contact_pass.h,
-  // continuous from the start state; skipped without colliders or collidable
-  // discs, and left to the integrator when it collides inside its substeps)
-  // → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
+  // state, tell time-dependent forces the clock) → integrate by dt → collide
+  // (the contact pass, src/collision/contact_pass.h, continuous from the start
+  // state; skipped without colliders or collidable discs, and left to the
+  // integrator when it collides inside its substeps) → tear (tearing.h;
+  // skipped when off) → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
   StepStats step(Integrator& integrator, double dt);
   const StepStats& lastStepStats() const { return lastStepStats_; }
@@ -154,13 +172,16 @@ class ParticleSystem {
   Eigen::VectorXd mass_, inverseMass_, radius_;
   double time_ = 0.0;
   std::vector<std::unique_ptr<Force>> forces_;
+  std::vector<Force*> clocked_;  // the time-dependent ones among forces_, told the clock each step
   ForceBatches batches_;  // forces_ as flat arrays, rebuilt on a structure change
   ConstraintList constraints_;
   std::vector<Collider> colliders_;
   std::vector<CollisionEdge> edges_;
+  std::vector<std::array<int, 2>> brokenLinks_;
   std::vector<int> collidable_;
   ConstraintSolver solver_;
   std::unique_ptr<ContactPass> contacts_;
+  Tearing tearing_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
   std::uint64_t structureStamp_ = nextStructureStamp();

@@ -78,6 +78,7 @@ AngularSpringForce::AngularSpringForce(int p1, int p2, int p3, double restAngle,
 }
 
 void AngularSpringForce::apply(const Phase& s, Eigen::VectorXd& f) const {
+  if (!enabled_) return;
   const AngularSpringKernel k =
       angularSpringKernel(s.position(p_[0]), s.position(p_[1]), s.position(p_[2]),
                           s.velocity(p_[0]), s.velocity(p_[1]), s.velocity(p_[2]));
@@ -87,6 +88,7 @@ void AngularSpringForce::apply(const Phase& s, Eigen::VectorXd& f) const {
 
 void AngularSpringForce::addJacobiansImpl(const Phase& s, bool definite, Triplets& dfdx,
                                           Triplets& dfdv) const {
+  if (!enabled_) return;
   Eigen::Matrix<double, 6, 6> jx, jv;
   angularSpringJacobian(s.position(p_[0]), s.position(p_[1]), s.position(p_[2]),
                         s.velocity(p_[0]), s.velocity(p_[1]), s.velocity(p_[2]), restAngle_,
@@ -109,13 +111,21 @@ void AngularSpringForce::addDefiniteJacobians(const Phase& s, Triplets& dfdx, Tr
 }
 
 double AngularSpringForce::potential(const Phase& s) const {
+  if (!enabled_) return 0.0;
   const Eigen::Vector2d a = s.position(p_[0]) - s.position(p_[1]);
   const Eigen::Vector2d b = s.position(p_[2]) - s.position(p_[1]);
   const double d = angleDifference(std::atan2(cross(a, b), a.dot(b)), restAngle_);
   return 0.5 * stiffness_ * d * d;
 }
 
+bool AngularSpringForce::dropLinks(const LinkSet& broken) {
+  if (!enabled_ || !(broken.contains(p_[0], p_[1]) || broken.contains(p_[1], p_[2]))) return false;
+  enabled_ = false;
+  return true;
+}
+
 void AngularSpringForce::sketch(const Phase& s, Sketch& out) const {
+  if (!enabled_) return;
   // The arms, shortened so that they read as an angle marker at the vertex.
   const Eigen::Vector2d v = s.position(p_[1]);
   out.lines.push_back({v, v + 0.3 * (s.position(p_[0]) - v)});

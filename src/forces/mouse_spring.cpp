@@ -8,18 +8,6 @@
 
 namespace particles {
 
-MouseSpringGains mouseSpringGains(double mass, const MouseJointSettings& joint) {
-  requirePositive("grabbed mass", mass);
-  requirePositive("mouse joint frequency", joint.frequency);
-  requireNonNegative("mouse joint damping ratio", joint.dampingRatio);
-  const double omega = 2.0 * kPi * joint.frequency;
-  const MouseSpringGains gains{mass * omega * omega, 2.0 * mass * joint.dampingRatio * omega};
-  if (!std::isfinite(gains.stiffness) || !std::isfinite(gains.damping))
-    throw std::invalid_argument("mouse spring stiffness m (2 pi f)^2 overflows for mass " + formatValue(mass) +
-                                " at " + formatValue(joint.frequency) + " Hz");
-  return gains;
-}
-
 MouseSpringForce::MouseSpringForce(int i, const Eigen::Vector2d& target, double stiffness,
                                    double damping)
     : i_(i), target_(target), stiffness_(stiffness), damping_(damping) {

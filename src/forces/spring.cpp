@@ -115,6 +115,12 @@ void SpringForce::addBlocks(const Eigen::Matrix2d& dl, const Eigen::Matrix2d& dl
         }
 }
 
+bool SpringForce::dropLinks(const LinkSet& broken) {
+  if (!enabled_ || !broken.contains(i_, j_)) return false;
+  enabled_ = false;
+  return true;
+}
+
 void SpringForce::sketch(const Phase& s, Sketch& out) const {
   if (!enabled_) return;
   out.lines.push_back({s.position(i_), s.position(j_)});

@@ -143,10 +143,10 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& v = system.velocities();
   // The internal solution (x0_, kx_[0], lead_ ahead of the output) and k₁ there
   // (FSAL: the last accepted step's k₇) carry on only while the system holds
-  // exactly the state this integrator returned; anything else (a collision, a
-  // drag, a restore) restarts it from the system's state.
-  const bool resume = cached_ && xCached_.size() == x.size() && xCached_ == x && vCached_ == v;
-  if (!resume) {
+  // exactly the state, structure and forces this integrator returned;
+  // anything else (a collision, a drag, a restore, a torn spring, a gust)
+  // restarts it from the system's state.
+  if (!continuation_.matches(system)) {
     x0_ = x;
     kx_[0] = v;
     lead_ = 0.0;
@@ -224,9 +224,7 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
     }
     if (stats.internalSteps == 0) lastStep_ = denseStep_;
   }
-  xCached_ = x;
-  vCached_ = v;
-  cached_ = true;
+  continuation_.keep(system);
   system.addEvaluationStats(stats);
   return stats;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "particles/forces/angular_spring.h"
+#include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
 #include "particles/particle_system.h"
 #include "particles/xpbd/constraint_projection.h"
@@ -18,6 +19,7 @@ namespace {
 // pure damper and is applied as a force instead.
 void adoptSpring(const Force& force, double h, XpbdIntegrator::Forms& forms) {
   const auto* spring = dynamic_cast<const SpringForce*>(&force);
+  if (spring != nullptr && !spring->enabled()) return;  // torn: no form at all
   if (spring == nullptr || spring->stiffness() == 0.0) {
     forms.applied.push_back(&force);
     return;
@@ -32,6 +34,7 @@ void adoptSpring(const Force& force, double h, XpbdIntegrator::Forms& forms) {
 
 void adoptAngularSpring(const Force& force, double h, XpbdIntegrator::Forms& forms) {
   const auto* spring = dynamic_cast<const AngularSpringForce*>(&force);
+  if (spring != nullptr && !spring->enabled()) return;  // an arm torn: no form at all
   if (spring == nullptr || spring->stiffness() == 0.0) {
     forms.applied.push_back(&force);
     return;
@@ -41,6 +44,16 @@ void adoptAngularSpring(const Force& force, double h, XpbdIntegrator::Forms& for
   c.restAngle = spring->restAngle();
   c.compliance = springCompliance(spring->stiffness(), spring->damping(), h);
   forms.angles.push_back(c);
+}
+
+// A mouse joint of positive stiffness is held by a compliant attachment.
+void adoptMouseSpring(const Force& force, double, XpbdIntegrator::Forms& forms) {
+  const auto* mouse = dynamic_cast<const MouseSpringForce*>(&force);
+  if (mouse == nullptr || mouse->stiffness() == 0.0) {
+    forms.applied.push_back(&force);
+    return;
+  }
+  forms.attachments.push_back(mouse);
 }
 
 // The forces with a position form: stiff springs become compliant
@@ -54,6 +67,7 @@ struct ForceForm {
 const ForceForm kForceForms[] = {
     {"spring", adoptSpring},
     {"angular-spring", adoptAngularSpring},
+    {"mouse-spring", adoptMouseSpring},
 };
 
 }  // namespace
@@ -112,6 +126,7 @@ void XpbdIntegrator::prepare(const ParticleSystem& system, double h) {
   forms_ = positionForms(system, h);
   distances_.build(forms_.distances, system.inverseMasses());
   angleLambda_.resize(forms_.angles.size());
+  attachmentLambda_.resize(forms_.attachments.size());
   preparedStamp_ = system.structureStamp();
   preparedStep_ = h;
 }
@@ -135,6 +150,7 @@ void XpbdIntegrator::predict(ParticleSystem& system, double h) {
   xn_ = x;
   x += h * v;
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
+  std::fill(attachmentLambda_.begin(), attachmentLambda_.end(), Eigen::Vector2d::Zero());
 }
 
 // One Gauss–Seidel pass: compliant springs in colour order (xpbd/distance.h),
@@ -146,6 +162,12 @@ void XpbdIntegrator::project(ParticleSystem& system, int pass) {
   distances_.project(xn_.data(), x.data(), pass, iterations);
   for (std::size_t k = 0; k < forms_.angles.size(); ++k)
     projectAngle(forms_.angles[k], w, xn_, x, angleLambda_[k]);
+  for (std::size_t k = 0; k < forms_.attachments.size(); ++k) {
+    const MouseSpringForce& mouse = *forms_.attachments[k];
+    const CompliantAttachment c{mouse.particle(), mouse.target(),
+                                springCompliance(mouse.stiffness(), mouse.damping(), preparedStep_)};
+    projectAttachment(c, w, xn_, x, attachmentLambda_[k]);
+  }
   for (const auto& constraint : system.constraints())
     projectConstraint(*constraint, system.velocities(), system.masses(), w, x, blocks_);
 }

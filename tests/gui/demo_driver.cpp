@@ -152,6 +152,28 @@ StateLog readStateLog(const std::string& path) {
       log.panes.at(std::stoul(f.at(1))).particles.push_back(q);
     } else if (record == "wall") {
       log.panes.at(std::stoul(f.at(1))).walls.push_back({{number(2), number(3)}, {number(4), number(5)}});
+    } else if (record == "grab") {
+      LoggedGrab g;
+      g.particle = std::stoi(f.at(2));
+      g.target = {number(3), number(4)};
+      g.stiffness = number(5);
+      g.damping = number(6);
+      g.framesAveraged = std::stoll(f.at(7));
+      g.mean = {number(8), number(9)};
+      log.panes.at(std::stoul(f.at(1))).grabs.push_back(g);
+    } else if (record == "wind") {
+      LoggedWind& w = log.panes.at(std::stoul(f.at(1))).wind;
+      w.speed = number(2);
+      w.direction = number(3);
+      w.drag = number(4);
+      w.gust = number(5);
+      w.gustPeriod = number(6);
+      w.seed = std::stoi(f.at(7));
+      w.air = {number(8), number(9)};
+    } else if (record == "tearing") {
+      LoggedPane& p = log.panes.at(std::stoul(f.at(1)));
+      p.tearStrain = number(2);
+      p.brokenLinks = std::stoll(f.at(3));
     } else if (record == "overlay" || record == "widget") {
       LoggedOverlay o{f.at(1), std::stoi(f.at(2)), std::stoi(f.at(3)), std::stoi(f.at(4)), std::stoi(f.at(5)), ""};
       for (std::size_t k = 6; k < f.size(); ++k) o.text += (k > 6 ? "," : "") + f[k];

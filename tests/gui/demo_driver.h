@@ -43,6 +43,20 @@ struct LoggedParticle {
 struct LoggedWall {
   Eigen::Vector2d min, max;
 };
+// The mouse joint while it holds a particle: its target and gains, and the
+// particle's mean position over the last frames held (at most 60).
+struct LoggedGrab {
+  int particle = -1;
+  Eigen::Vector2d target, mean;
+  double stiffness = 0.0, damping = 0.0;
+  long long framesAveraged = 0;
+};
+// The wind while it blows (speed 0: none), and the tearing.
+struct LoggedWind {
+  double speed = 0.0, direction = 0.0, drag = 0.0, gust = 0.0, gustPeriod = 0.0;
+  int seed = 0;
+  Eigen::Vector2d air = Eigen::Vector2d::Zero();
+};
 struct LoggedPane {
   std::string scene, integrator;
   double dt = 0.0, time = 0.0, energy = 0.0, maxConstraintError = 0.0;
@@ -56,6 +70,10 @@ struct LoggedPane {
   Eigen::Vector2d worldMin, worldMax;
   std::vector<LoggedParticle> particles;
   std::vector<LoggedWall> walls;
+  std::vector<LoggedGrab> grabs;  // one while the mouse joint holds
+  LoggedWind wind;
+  double tearStrain = 0.0;
+  long long brokenLinks = 0;
   // Window pixel (column, row) of a world point, as the demo's view maps it.
   Eigen::Vector2d toPixel(const Eigen::Vector2d& world) const;
   bool inWorldRect(const Eigen::Vector2d& pixel) const {

@@ -54,11 +54,15 @@ class AngularSpringForce : public Force {
   void addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
   void addDefiniteJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
   void sketch(const Phase& s, Sketch& out) const override;
+  // A link that breaks under an arm (p1–p2 or p2–p3) takes the angle spring with it.
+  bool dropLinks(const LinkSet& broken) override;
 
   const std::array<int, 3>& triple() const { return p_; }
   double restAngle() const { return restAngle_; }
   double stiffness() const { return stiffness_; }
   double damping() const { return damping_; }
+  // A disabled angle spring (an arm torn) adds no force, potential, Jacobian or line.
+  bool enabled() const { return enabled_; }
 
  private:
   void addJacobiansImpl(const Phase& s, bool definite, Triplets& dfdx, Triplets& dfdv) const;
@@ -66,6 +70,8 @@ class AngularSpringForce : public Force {
   double restAngle_;  // θ₀, radians, signed (counter-clockwise from arm a to arm b)
   double stiffness_;  // k_s, energy / rad²
   double damping_;    // k_d, energy·s / rad²
+  bool enabled_ = true;
+  friend class ParticleSystem;
 };
 
 }  // namespace particles

@@ -35,6 +35,7 @@ class SpringForce : public Force {
   void addJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
   void addDefiniteJacobians(const Phase& s, Triplets& dfdx, Triplets& dfdv) const override;
   void sketch(const Phase& s, Sketch& out) const override;
+  bool dropLinks(const LinkSet& broken) override;
 
   int first() const { return i_; }
   int second() const { return j_; }
@@ -46,8 +47,8 @@ class SpringForce : public Force {
   double stiffness() const { return stiffness_; }
   double damping() const { return damping_; }
   // A disabled spring (torn) adds no force, potential, Jacobian or line.
-  // Switched through ParticleSystem::setSpringEnabled, which keeps the
-  // system's spring batch in step.
+  // Torn by ParticleSystem::breakLinks, switched by ParticleSystem::
+  // setSpringEnabled, both of which keep the system's spring batch in step.
   bool enabled() const { return enabled_; }
 
  private:

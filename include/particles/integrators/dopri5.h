@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 
 #include "particles/integrator.h"
+#include "particles/step_continuation.h"
 
 namespace particles {
 
@@ -70,8 +71,7 @@ class Dopri5Integrator : public Integrator {
   double denseStep_ = 0.0;  // length of the last accepted step
   // The output state last returned: the internal solution (and its k₁) is
   // continued only while the system still holds it.
-  Eigen::VectorXd xCached_, vCached_;
-  bool cached_ = false;
+  StepContinuation continuation_;
 };
 
 }  // namespace particles

@@ -44,6 +44,8 @@ struct ImplicitEulerSettings {
 
 class ImplicitEulerIntegrator : public Integrator {
  public:
+  // Every force enters through its Jacobians: the mouse joint may be as stiff as it likes.
+  double explicitForceStep(double) const override { return 0.0; }
   ImplicitEulerSettings settings;
 
   ImplicitEulerIntegrator();

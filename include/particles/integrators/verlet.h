@@ -2,6 +2,7 @@
 #include <Eigen/Core>
 
 #include "particles/integrator.h"
+#include "particles/step_continuation.h"
 
 namespace particles {
 
@@ -16,8 +17,9 @@ namespace particles {
 // terms read q̇); with the predictor the velocity update is Heun's trapezoid
 // and stays second order (measured in tests/test_integrators_implicit.cpp:
 // slope ≈ 2 on the damped oscillator too).
-// a(x⁺, ṽ) is kept for the next step's a(x, v) when the state is untouched in
-// between (no collision, drag or restore): one evaluation per step. Its O(h²)
+// a(x⁺, ṽ) is kept for the next step's a(x, v) when the system is untouched in
+// between (no collision, drag, restore, torn spring or force that follows the
+// clock; step_continuation.h): one evaluation per step. Its O(h²)
 // velocity error enters v⁺ at O(h³) per step, so the order is unchanged.
 class VerletIntegrator : public Integrator {
  public:
@@ -26,8 +28,7 @@ class VerletIntegrator : public Integrator {
 
  private:
   Eigen::VectorXd a0_, a1_, vPredicted_;
-  Eigen::VectorXd xCached_, vCached_;  // state whose acceleration a0_ holds
-  bool cached_ = false;
+  StepContinuation continuation_;  // the system whose acceleration a0_ holds
 };
 
 }  // namespace particles

@@ -7,30 +7,34 @@
 #include "particles/force.h"
 #include "particles/integrator.h"
 #include "particles/xpbd/angle.h"
+#include "particles/xpbd/attachment.h"
 #include "particles/xpbd/distance.h"
 
 namespace particles {
 
 class Constraint;
+class MouseSpringForce;
 
 // Extended position-based dynamics with small steps (Macklin, Müller &
 // Chentanez 2016; Macklin et al. 2019, "Small Steps in Physics Simulation").
 // A step of dt takes `substeps` substeps of h = dt/substeps; each one
-//   applies the forces without a position form (gravity, drag, the mouse spring,
-//     springs of zero stiffness) at (x, v):   v ← v + h W f,  xⁿ ← x,  x ← x + h v;
+//   applies the forces without a position form (gravity, drag, wind, springs
+//     of zero stiffness) at (x, v):   v ← v + h W f,  xⁿ ← x,  x ← x + h v;
 //   projects, `iterations` times in Gauss–Seidel order, the damped springs as
 //     compliant distance constraints (α = 1/k_s, β = k_d; xpbd/distance.h, in
 //     colour order), the
-//     angle springs as compliant angle constraints (xpbd/angle.h), then the rods,
-//     wires and lines as hard constraints through their C and J kernels
+//     angle springs as compliant angle constraints (xpbd/angle.h), the mouse
+//     joint as a compliant attachment to its target (xpbd/attachment.h), then
+//     the rods, wires and lines as hard constraints through their C and J kernels
 //     (xpbd/constraint_projection.h), the multipliers λ starting at 0;
 //   sets v ← (x − xⁿ)/h;
 //   resolves contacts over the substep (ParticleSystem::collideOver, swept
 //     along each particle's path from xⁿ), so that a contact's impulse enters
 //     the next substep's prediction and constraints.
 // The position error is first order in h. A force without a position form in
-// the table in xpbd.cpp (fields, drag, the mouse spring, a user's own force
-// type) is applied in the prediction, explicitly, once per substep.
+// the table in xpbd.cpp (fields, drag, wind, a user's own force type) is
+// applied in the prediction, explicitly, once per substep. Torn springs and
+// angle springs have no form at all.
 class XpbdIntegrator : public Integrator {
  public:
   int substeps = IntegratorSettings{}.substeps;
@@ -38,6 +42,8 @@ class XpbdIntegrator : public Integrator {
 
   const char* name() const override { return "xpbd"; }
   bool collidesInSubsteps() const override { return true; }
+  // The mouse joint is projected as a compliant attachment, stable at any stiffness.
+  double explicitForceStep(double) const override { return 0.0; }
   StepStats step(ParticleSystem& system, double dt) override;
   void configure(const IntegratorSettings& settings) override;
 
@@ -46,6 +52,8 @@ class XpbdIntegrator : public Integrator {
   struct Forms {
     std::vector<CompliantDistance> distances;
     std::vector<CompliantAngle> angles;
+    // Mouse joints, read at each projection (the target moves between steps).
+    std::vector<const MouseSpringForce*> attachments;
     std::vector<const Force*> applied;  // applied as forces in the prediction
   };
   static Forms positionForms(const ParticleSystem& system, double h);
@@ -63,6 +71,7 @@ class XpbdIntegrator : public Integrator {
   double preparedStep_ = 0.0;        // and the substep h
   DistanceBatch distances_;
   std::vector<double> angleLambda_;
+  std::vector<Eigen::Vector2d> attachmentLambda_;
   std::vector<Eigen::Vector2d> blocks_;
   Eigen::VectorXd force_, xn_, vn_;  // f; x and v at the substep's start
 };
