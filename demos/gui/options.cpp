@@ -96,6 +96,11 @@ void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
           ->expected(2, 4)
           ->check(comparePane());
   cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
+  cli.add_option("--step-budget", o.stepBudgetMs,
+                 "wall time in ms a frame may spend stepping, shared by the panes; past it the rest of the frame's "
+                 "simulated time is dropped (slow motion), and a frame takes at least one step")
+      ->capture_default_str()
+      ->check(options::numberInRange(0.0, 1e6));
 }
 
 // How the window starts: panel, pause, pacing, size.

@@ -63,31 +63,40 @@ void Simulation::setDt(double dt) {
   dt_ = dt;
 }
 
-void Simulation::advanceFrame(double frameTime, StepMode mode, double budgetMs) {
+void Simulation::beginFrame(double frameTime, StepMode mode) {
   lastFrame_ = {};
+  frameMode_ = mode;
   if (stopped()) return;
+  // Fixed simulated time per frame: the frame rate changes how often this
+  // runs, never what it computes. Time short of a whole dt carries over.
+  if (mode == StepMode::Lockstep) lockstepOwed_ = true;
+  else owedTime_ += frameTime;
+}
+
+bool Simulation::owesStep() const {
+  if (stopped()) return false;
+  return frameMode_ == StepMode::Lockstep ? lockstepOwed_ : owedTime_ >= dt_ * (1.0 - 1e-9);
+}
+
+double Simulation::takeStep() {
   const auto start = std::chrono::steady_clock::now();
-  auto elapsedMs = [&] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  };
-  if (mode == StepMode::Lockstep) {
-    stepAndWatch();
-  } else {
-    // Fixed simulated time per frame: the frame rate changes how often this
-    // runs, never what it computes. Time short of a whole dt carries over.
-    owedTime_ += frameTime;
-    while (owedTime_ >= dt_ * (1.0 - 1e-9) && !stopped()) {
-      stepAndWatch();
-      owedTime_ -= dt_;
-      if (owedTime_ >= dt_ * (1.0 - 1e-9) && elapsedMs() > budgetMs) {
-        owedTime_ = 0.0;
-        lastFrame_.capped = true;
-        break;
-      }
-    }
-  }
-  lastFrame_.simulationMs = elapsedMs();
+  stepAndWatch();
+  if (frameMode_ == StepMode::Lockstep) lockstepOwed_ = false;
+  else if (!stopped()) owedTime_ -= dt_;
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  lastFrame_.simulationMs += ms;
+  lastFrame_.longestStepMs = std::max(lastFrame_.longestStepMs, ms);
+  return ms;
+}
+
+void Simulation::endFrame(bool budgetSpent) {
   if (stopped()) return;
+  if (budgetSpent && owesStep()) {
+    lastFrame_.capped = true;
+    lastFrame_.waited = lastFrame_.substeps == 0;
+    framesWaited_ += lastFrame_.waited;
+    if (frameMode_ == StepMode::FixedTime) owedTime_ = 0.0;
+  }
   ++frames_;
   history_.record(frames_, system(), owedTime_, steps_);
   trace_.add(sceneEnergy(), system().maxConstraintError());
