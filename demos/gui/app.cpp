@@ -235,6 +235,8 @@ void App::advance() {
     lastBudget_ = stepPanesWithinBudget(panes, speed_ / framesPerSecond, stepMode_, options_.stepBudgetMs);
     budgetTally_.add(lastBudget_);
   }
+  for (auto& pane : panes_)
+    if (const std::string notice = pane->takeNotice(); !notice.empty()) setStatus(notice);
   stepRequested_ = false;
   // A single simulation that diverges pauses the demo; in compare mode the
   // diverged pane stops alone so the others can be watched on.

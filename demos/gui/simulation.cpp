@@ -126,6 +126,11 @@ void Simulation::stepAndWatch() {
   }
   ++steps_;
   ++lastFrame_.substeps;
+  if (stats.directFallbacks > 0 && !noticedFallback_) {
+    noticedFallback_ = true;
+    notice_ = particles::directFallbackMessage(static_cast<int>(system().constraints().size()),
+                                               system().solver().settings);
+  }
   // The energy test is off (energyScale infinite), so E₀ is not needed.
   divergence_ = particles::checkDivergence(system(), limits_, 0.0, stats);
   if (divergence_) {

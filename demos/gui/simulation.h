@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "particles/divergence.h"
@@ -116,6 +117,9 @@ class Simulation {
   long long steps() const { return steps_; }
   // Why the pane diverged (empty reason while it runs).
   const particles::Divergence& divergence() const { return divergence_; }
+  // A message for the top bar, once, empty otherwise: its CG passed the
+  // solver's work bound and was solved directly (particles::directFallbackMessage).
+  std::string takeNotice() { return std::exchange(notice_, {}); }
 
  private:
   void stepAndWatch();
@@ -130,6 +134,8 @@ class Simulation {
   long long steps_ = 0;
   long long frames_ = 0;
   long long framesWaited_ = 0;
+  bool noticedFallback_ = false;
+  std::string notice_;
   particles::MouseSpringForce* spring_ = nullptr;  // owned by the system
   particles::DivergenceLimits limits_;
   std::vector<double> restFaceAreas_;
