@@ -13,6 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include "collision/collider_broad_phase.h"  // the engine's internal contact kernels, tested directly
+#include "collision/edge_contacts.h"
+#include "collision/particle_contacts.h"
 #include "particles/constants.h"
 #include "particles/collision.h"
 #include "particles/divergence.h"
@@ -295,7 +298,8 @@ TEST(ClosedBox, PointParticlesAtHighSpeedNeverLeaveTheBoxOfFourSlabs) {
 // between the floor's top face and a wall's bottom edge, the line y = −1 they
 // rest on (6 of 40 did, with the wall met at its corner as its bottom face).
 TEST(ClosedBox, ParticlesSlidingOnTheFloorDoNotLeaveAlongTheSeams) {
-  for (const char* name : {"rk4", "midpoint", "verlet", "symplectic-euler", "implicit-euler", "dopri5", "xpbd"}) {
+  for (const IntegratorInfo& info : integratorTable()) {
+    const char* name = info.name;
     SCOPED_TRACE(name);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> speed(0.5, 3.0);
@@ -431,7 +435,7 @@ TEST(BoxOfDiscs, ElasticDiscsKeepTheirEnergyWithinTwoPercentOver100Seconds) {
                     2.0 * Vector2d(unit(rng), unit(rng)));
       s.setCollidable(s.size() - 1, r);
     }
-  s.particleContacts().restitution = 1.0;
+  s.contactSettings().particleRestitution = 1.0;
   addGravity(s);
   addClosedBox(s, 0.2, 1.0);
   auto integrator = makeIntegrator("rk4");
@@ -458,7 +462,7 @@ TEST(Stack, FiveDiscsRestWithoutSinkingOrJitter) {
       s.addParticle(Vector2d(0.0, r + 2 * r * k + 0.01 * k), 1.0);  // small gaps: they settle first
       s.setCollidable(k, r);
     }
-    s.particleContacts().restitution = 0.5;
+    s.contactSettings().particleRestitution = 0.5;
     addGravity(s);
     s.addCollider(floorBox(0.5, 0.5));
     auto integrator = makeIntegrator(name);
@@ -490,7 +494,7 @@ TEST(ParticleContacts, MomentumIsConservedThroughManyContacts) {
         s.addParticle(Vector2d(0.25 * col, 0.25 * row), mass(rng), Vector2d(unit(rng), unit(rng)));
         s.setCollidable(s.size() - 1, 0.1);
       }
-    s.particleContacts().restitution = e;
+    s.contactSettings().particleRestitution = e;
     Vector2d p0 = Vector2d::Zero();
     for (int i = 0; i < s.size(); ++i) p0 += s.masses()[i] * s.velocity(i);
     auto integrator = makeIntegrator("rk4");
@@ -512,7 +516,7 @@ TEST(ParticleContacts, HeadOnEqualMassesWithUnitRestitutionExchangeVelocities) {
   system.addParticle(Vector2d(0.5, 0.2), 1.3, Vector2d(-0.4, 0.0));
   system.setCollidable(0, 0.1);
   system.setCollidable(1, 0.1);
-  system.particleContacts().restitution = 1.0;
+  system.contactSettings().particleRestitution = 1.0;
   auto integrator = makeIntegrator("symplectic-euler");
   int contacts = 0;
   for (int step = 0; step < 100; ++step) {
@@ -540,8 +544,9 @@ TEST(ParticleContacts, UnequalMassesConserveMomentumAndScaleRelativeNormalVeloci
   const VectorXd v0 = v, x = x0 + dt * v;  // free flight to the step's end
   VectorXd x1 = x, v1 = v;
   ParticleContacts contacts;
-  contacts.restitution = e;
-  EXPECT_EQ(contacts.resolve({0, 1}, {}, StepStart{x0, v0, dt}, w, radius, ContactSettings{}, true, x1, v1).contacts, 1);
+  ContactSettings settings;
+  settings.particleRestitution = e;
+  EXPECT_EQ(contacts.resolve({0, 1}, {}, StepStart{x0, v0, dt}, w, radius, settings, true, x1, v1).contacts, 1);
   auto momentum = [&](const VectorXd& u) { return Vector2d(m0 * u.segment<2>(0) + m1 * u.segment<2>(2)); };
   EXPECT_LT((momentum(v1) - momentum(v0)).norm(), 1e-14);
   EXPECT_LT((momentum(x1) - momentum(x)).norm(), 1e-14) << "the centre of mass moves on undisturbed";
@@ -633,7 +638,7 @@ TEST(ParticleContacts, FarFlungAndNonFiniteParticlesDoNotBreakTheBroadPhase) {
 
 // markNearColliders tests blocks of consecutive particles by their common box
 // before each particle: it must mark exactly the particles that the
-// per-particle definition (collision.h) marks, whether the particles lie in
+// per-particle definition (collider_broad_phase.h) marks, whether the particles lie in
 // index order along a sheet (most blocks apart from every collider) or at
 // random, at huge or non-finite positions included.
 TEST(ColliderBroadPhase, BlocksMarkExactlyThePathsThatComeNearAColliderOneByOne) {
@@ -981,21 +986,25 @@ struct Wedge {
 // 179 times on its way in and out, dozens of them within one step of 0.2 m
 // (with a budget of 8 impacts a step it lagged the exact billiard by 2.1 m,
 // and by 0.17 m in a 10° wedge). The position follows the unfolded solution
-// within 1 mm at every step of dt 0.001 for 0.02 s (in to the apex and out).
+// within 1 mm at every step of dt 0.001 for 0.02 s (in to the apex and out),
+// under every integrator (with no force, each moves the point straight
+// between impacts).
 TEST(ContactWedge, BilliardFollowsTheUnfoldedExactSolution) {
   const double dt = 0.001;
-  for (const Wedge& wedge : {Wedge{1.0 * M_PI / 180.0, 0.5 * std::tan(1.0 * M_PI / 180.0)},
-                             Wedge{10.0 * M_PI / 180.0, 0.01}}) {
-    ParticleSystem s = wedge.system();
-    auto rk4 = makeIntegrator("rk4");
-    double worst = 0.0;
-    for (int k = 1; k <= 20; ++k) {
-      const StepStats stats = s.step(*rk4, dt);
-      EXPECT_EQ(stats.failure, StepFailure::None);
-      worst = std::max(worst, (s.position(0) - wedge.exact(k * dt)).norm());
+  for (const IntegratorInfo& info : integratorTable()) {
+    for (const Wedge& wedge : {Wedge{1.0 * M_PI / 180.0, 0.5 * std::tan(1.0 * M_PI / 180.0)},
+                               Wedge{10.0 * M_PI / 180.0, 0.01}}) {
+      ParticleSystem s = wedge.system();
+      auto integrator = makeIntegrator(info.name);
+      double worst = 0.0;
+      for (int k = 1; k <= 20; ++k) {
+        const StepStats stats = s.step(*integrator, dt);
+        EXPECT_EQ(stats.failure, StepFailure::None) << info.name;
+        worst = std::max(worst, (s.position(0) - wedge.exact(k * dt)).norm());
+      }
+      EXPECT_LT(worst, 1e-3) << info.name << ", wedge of " << wedge.alpha * 180.0 / M_PI
+                             << " degrees: largest distance from the exact billiard " << worst << " m";
     }
-    EXPECT_LT(worst, 1e-3) << "wedge of " << wedge.alpha * 180.0 / M_PI << " degrees: largest distance from the "
-                           << "exact billiard " << worst << " m";
   }
 }
 
@@ -1056,7 +1065,7 @@ TEST(CollisionParameters, ParticleRestitutionOutsideUnitIntervalIsRejected) {
     system.addParticle(Vector2d(0.15, 0.0), 1.0, Vector2d(-1.0, 0.0));
     system.setCollidable(0, 0.1);
     system.setCollidable(1, 0.1);
-    system.particleContacts().restitution = restitution;
+    system.contactSettings().particleRestitution = restitution;
     auto integrator = makeIntegrator("rk4");
     expectRejected([&] { system.step(*integrator, 0.01); }, "restitution");
   }

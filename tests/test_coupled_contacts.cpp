@@ -23,6 +23,15 @@ namespace {
 constexpr double g = 9.81;
 // The explicit schemes whose post-step contact phase is the coupled solve.
 const std::vector<std::string> kExplicit = {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"};
+// Those and the two schemes that keep contacts inside their own formulation
+// (implicit Euler's Newton solve, xpbd's substeps). Explicit Euler is left
+// out of the chains: a free 12-rod chain gains energy under it until it
+// diverges, floor or no floor.
+const std::vector<std::string> kChainSchemes = {"rk4",    "midpoint",       "verlet", "symplectic-euler",
+                                                "dopri5", "rattle", "implicit-euler", "xpbd"};
+bool couplesAfterTheStep(const std::string& name) {
+  return std::find(kExplicit.begin(), kExplicit.end(), name) != kExplicit.end();
+}
 
 // A chain of `links` rods of length 0.1 m and 0.1 kg beads from `start`
 // along `direction`; the first bead pinned if asked.
@@ -73,7 +82,7 @@ RunResult runFor(ParticleSystem& s, const std::string& integrator, double dt, in
 // same chain swinging free stretches 31% under symplectic Euler at this dt
 // (its acceleration-level constraint force alone), 10% with the floor.
 TEST(CoupledContacts, PinnedChainLandingOnFloorKeepsRodsAndEnergy) {
-  for (const std::string& name : kExplicit) {
+  for (const std::string& name : kChainSchemes) {
     ParticleSystem free;
     addChain(free, Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), 12, true);
     const double ownDrift = runFor(free, name, 0.002, 1500).worstStretch;
@@ -84,7 +93,7 @@ TEST(CoupledContacts, PinnedChainLandingOnFloorKeepsRodsAndEnergy) {
     EXPECT_FALSE(run.failed) << name;
     EXPECT_LT(run.worstStretch, std::max(0.02, ownDrift)) << name;
     EXPECT_LT(run.energyRise, 2e-3) << name;  // of a fall releasing about 4 J
-    EXPECT_GT(run.contactIterations, 0) << name;
+    if (couplesAfterTheStep(name)) EXPECT_GT(run.contactIterations, 0) << name;
     // The bounce steps of a 12-rod chain can reach the 200-sweep cap; what is
     // left is reported, and small.
     EXPECT_LT(run.contactResidual, 1e-3) << name;
@@ -99,13 +108,16 @@ TEST(CoupledContacts, PinnedChainLandingOnFloorKeepsRodsAndEnergy) {
 // the whip's kinetic energy a step (E rose from −4.3 J past +2 J by 2.8 s and
 // the run diverged at 4.6 s); corrected as SHAKE does it keeps E below its start.
 TEST(CoupledContacts, PinnedChainWhippingOnAFrictionlessFloorGainsNoEnergy) {
-  for (const std::string& name : kExplicit) {
+  for (const std::string& name : kChainSchemes) {
+    ParticleSystem free;
+    addChain(free, Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), 11, true);
+    const double ownDrift = runFor(free, name, 0.002, 1500).worstStretch;
     ParticleSystem s;
     addChain(s, Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), 11, true);
     addFloor(s, -0.5, 0.0, 0.0);
     const RunResult run = runFor(s, name, 0.002, 5000);
     EXPECT_FALSE(run.failed) << name;
-    EXPECT_LT(run.worstStretch, 0.02) << name;
+    EXPECT_LT(run.worstStretch, std::max(0.02, ownDrift)) << name;
     EXPECT_LT(run.energyRise, 2e-3) << name;
   }
 }
@@ -115,7 +127,7 @@ TEST(CoupledContacts, PinnedChainWhippingOnAFrictionlessFloorGainsNoEnergy) {
 TEST(CoupledContacts, FreeChainOnSlopeComesToRest) {
   const double angle = 20.0 * M_PI / 180.0;
   const Vector2d normal(-std::sin(angle), std::cos(angle)), along(std::cos(angle), std::sin(angle));
-  for (const std::string& name : kExplicit) {
+  for (const std::string& name : kChainSchemes) {
     ParticleSystem s;
     addChain(s, 0.3 * Vector2d::UnitY() - 0.5 * along, along, 11, false);
     Collider slope = Collider::halfPlane(Vector2d::Zero(), normal);
@@ -134,9 +146,12 @@ TEST(CoupledContacts, FreeChainOnSlopeComesToRest) {
 // A bead on a wire of radius 0.4 m about the origin, released level with the
 // centre; a floor at y = −0.35 cuts the wire's bottom. It comes to rest where
 // wire and floor meet, x = ±√(0.4² − 0.35²), having released m g · 0.35 m.
+// Its energy never rises on the way, except under explicit Euler, which gains
+// energy on a wire by itself (0.15 J before the bead settles here).
 TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
   const double radius = 0.4, floorY = -0.35, xMeet = std::sqrt(radius * radius - floorY * floorY);
-  for (const char* name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
+  for (const char* name :
+       {"euler", "rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle", "implicit-euler", "xpbd"}) {
     ParticleSystem s;
     s.addParticle(Vector2d(radius, 0.0), 1.0);
     s.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), radius));
@@ -145,7 +160,7 @@ TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
     const double e0 = s.totalEnergy();
     const RunResult run = runFor(s, name, 0.005, 2000);
     EXPECT_FALSE(run.failed) << name;
-    EXPECT_LT(run.energyRise, 2e-3) << name;
+    if (std::string(name) != "euler") EXPECT_LT(run.energyRise, 2e-3) << name;
     EXPECT_NEAR(s.totalEnergy() - e0, -g * 1.0 * (0.0 - floorY), 1e-3) << name;
     EXPECT_NEAR(std::abs(s.position(0).x()), xMeet, 1e-3) << name;
     EXPECT_NEAR(s.position(0).y(), floorY, 1e-3) << name;
@@ -154,10 +169,12 @@ TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
 }
 
 // The same wire with the floor exactly tangent to its bottom: the bead swings
-// through the bottom as if the floor were not there.
+// through the bottom as if the floor were not there. (Explicit Euler is left
+// out: it gains energy on the wire by itself, 10 J in 10 s at this dt, so its
+// bead swings through the floor's height.)
 TEST(CoupledContacts, FloorTangentToWireChangesNothing) {
   const double radius = 0.4;
-  for (const char* name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle"}) {
+  for (const char* name : {"rk4", "midpoint", "verlet", "symplectic-euler", "dopri5", "rattle", "implicit-euler", "xpbd"}) {
     std::vector<double> energy[2];
     for (int withFloor = 0; withFloor < 2; ++withFloor) {
       ParticleSystem s;

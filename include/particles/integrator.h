@@ -69,12 +69,9 @@ class Integrator {
   // whole step (ParticleSystem::step) is then skipped.
   virtual bool collidesInSubsteps() const { return false; }
 
-  // True for a scheme whose post-step contact phase resolves the particles
-  // that touch a collider together with the constraints that hold them
-  // (coupled_contacts.h); false for one whose own formulation already keeps
-  // its constraints through contacts (implicit Euler's Newton solve).
-  virtual bool couplesContactsWithConstraints() const { return true; }
-  // How that coupled solve corrects the constraints' drift (coupled_contacts.h):
+  // The post-step contact phase resolves the particles that touch a collider
+  // together with the constraints that hold them (src/collision/coupled_contacts.h).
+  // How that coupled solve corrects the constraints' drift (src/collision/coupled_contacts.h):
   // DriftCorrection::Shake for a scheme whose step ends with x = x0 + dt v.
   virtual DriftCorrection driftCorrection() const { return DriftCorrection::AtEnd; }
 
