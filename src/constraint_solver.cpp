@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <Eigen/IterativeLinearSolvers>
 
 #include "constraint_solver_probe.h"
 #include "linear/linear.h"
+#include "particles/cancel.h"
 #include "particles/check.h"
 
 namespace particles {
@@ -18,6 +20,14 @@ void SolverSettings::validate() const {
                                 std::to_string(maxIterations));
   requireNonNegative("solver feedback stiffness k_s", stiffness);
   requireNonNegative("solver feedback damping k_d", damping);
+  requireNonNegative("solver CG work bound", maxCgWork);
+}
+
+std::string directFallbackMessage(int constraints, const SolverSettings& settings) {
+  char bound[32];
+  std::snprintf(bound, sizeof bound, "%g", settings.maxCgWork);
+  return "CG on " + std::to_string(constraints) + " constraints passed its work bound (" + bound +
+         " products of J's entries in one solve): solved directly (LDLT) instead";
 }
 
 struct ConstraintSolver::Workspace {
@@ -38,6 +48,7 @@ struct ConstraintSolver::Workspace {
   std::unique_ptr<IncompleteCholesky> incompleteCholesky;  // made on first use
   bool incompleteCholeskyUsable = false;
   Eigen::VectorXd stored, storedSolution, product;
+  bool cgPastWorkBound = false;  // CG passed maxCgWork on this structure: solve directly
 };
 
 ConstraintSolver::ConstraintSolver() : work_(std::make_unique<Workspace>()) {}
@@ -60,7 +71,7 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   stats_.constraints = m;
   if (m == 0) return;
   Workspace& w = *work_;
-  if (w.rows.gather(s, constraints)) w.patternValid = false;
+  if (w.rows.gather(s, constraints)) w.patternValid = w.cgPastWorkBound = false;
   w.inverseMass = &s.inverseMass;
   const linear::ConstraintRows& rows = w.rows;
   b_.resize(m);
@@ -78,8 +89,10 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   if (!settings.warmStart || lambda_.size() != m || !lambda_.allFinite()) lambda_.setZero(m);
   double residual = 0.0;
   const double dead = 1e-14 * w.diagonal.maxCoeff();  // a diagonal this small is treated as zero
-  if (settings.method == SolveMethod::Direct && directSolve(dead, residual)) {
+  const bool direct = settings.method == SolveMethod::Direct || w.cgPastWorkBound;
+  if (direct && directSolve(dead, residual)) {
     stats_.iterations = 0;
+    stats_.directFallback = settings.method != SolveMethod::Direct;
   } else {
     if (settings.preconditioner == Preconditioner::IncompleteCholesky) {
       // A near-zero pivot (J W Jᵀ losing rank) would make the preconditioner
@@ -91,7 +104,12 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
       w.incompleteCholeskyUsable = w.incompleteCholesky->info() == Eigen::Success &&
                                    w.incompleteCholesky->matrixL().diagonal().cwiseAbs2().minCoeff() > 1e-10;
     }
-    stats_.iterations = conjugateGradient(dead, residual);
+    bool pastWorkBound = false;
+    stats_.iterations = conjugateGradient(dead, residual, pastWorkBound);
+    if (pastWorkBound && directSolve(dead, residual)) {  // its λ replaces CG's unconverged one
+      w.cgPastWorkBound = true;
+      stats_.directFallback = true;
+    }
   }
   stats_.residual = residual;
   if (!lambda_.allFinite() || !std::isfinite(residual)) {
@@ -107,7 +125,7 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
 // loses rank (a taut chain between two wires) b may have a part outside A's
 // range; CG then meets a direction with pᵀAp ≈ 0 and stops there with the
 // finite λ it has.
-int ConstraintSolver::conjugateGradient(double dead, double& relativeResidual) {
+int ConstraintSolver::conjugateGradient(double dead, double& relativeResidual, bool& pastWorkBound) {
   Workspace& w = *work_;
   const int m = static_cast<int>(b_.size());
   const Preconditioner preconditioner =
@@ -135,9 +153,15 @@ int ConstraintSolver::conjugateGradient(double dead, double& relativeResidual) {
   linear::CgSettings cg;
   cg.tolerance = settings.tolerance;
   cg.maxIterations = settings.maxIterations > 0 ? settings.maxIterations : 4 * m + 100;
+  // The work bound in iterations: each applies J and Jᵀ once.
+  const double perIteration = 2.0 * std::max<std::size_t>(1, w.rows.J.size());
+  const bool bounded = settings.maxCgWork > 0.0 && settings.maxCgWork / perIteration < cg.maxIterations;
+  if (bounded) cg.maxIterations = std::max(1, static_cast<int>(settings.maxCgWork / perIteration));
   cg.curvatureFloor = 1e-14 * diagonal.maxCoeff();
   const linear::CgResult result = linear::conjugateGradient(apply, precondition, b_, lambda_, cg, w.cg);
   relativeResidual = result.relativeResidual;
+  pastWorkBound = bounded && result.iterations >= cg.maxIterations && !(relativeResidual <= settings.tolerance) &&
+                  !cancelRequested();
   return result.iterations;
 }
 

@@ -184,6 +184,7 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
     one.cgIterations = solve.iterations;
     one.maxResidual = solve.residual;
     one.factorizations = solve.factorizations;
+    one.directFallbacks = solve.directFallback;
     one.internalSteps = 0;
     if (solve.failed) one.failure = StepFailure::SolveFailed;
     evaluations_ += one;

@@ -26,6 +26,7 @@ StepStats& StepStats::operator+=(const StepStats& other) {
   rejectedSteps += other.rejectedSteps;
   contactIterations += other.contactIterations;
   contactResidual = std::max(contactResidual, other.contactResidual);
+  directFallbacks += other.directFallbacks;
   if (failure == StepFailure::None) failure = other.failure;
   return *this;
 }

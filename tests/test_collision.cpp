@@ -22,6 +22,7 @@
 #include "particles/forces/drag.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
+#include "particles/integrator.h"
 #include "particles/particle_system.h"
 #include "test_support.h"
 
@@ -315,6 +316,48 @@ TEST(ClosedBox, ParticlesSlidingOnTheFloorDoNotLeaveAlongTheSeams) {
       for (int i = 0; i < s.size(); ++i)
         ASSERT_LE(s.position(i).cwiseAbs().maxCoeff(), 1.0 + 1e-9) << "particle " << i << " at step " << step;
     }
+  }
+}
+
+// At a corner of a box the shape is the intersection of its two faces'
+// half-planes. A point a hair outside the corner (within slop of both faces)
+// heading into the box bounces off one face; its path then leaves that face,
+// though it heads into the other's half-plane, and must fly free (it met the
+// corner again at the same instant until the work cap failed the step).
+TEST(CollidersAtCorners, APathThatLeavesOneFaceOfACornerIsNotStopped) {
+  for (const IntegratorInfo& info : integratorTable()) {
+    SCOPED_TRACE(info.name);
+    ParticleSystem s;
+    const Vector2d v0(25.0, 15.0);
+    s.addParticle(Vector2d(0.5 - 5e-10, 0.25 - 5e-10), 50.0, v0);
+    Collider box = Collider::box(Vector2d(0.5, 0.25), Vector2d(1.5, 0.75));
+    box.restitution = 1.0;
+    s.addCollider(box);
+    auto integrator = makeIntegrator(info.name);
+    for (int step = 0; step < 10; ++step) ASSERT_EQ(s.step(*integrator, 0.001).failure, StepFailure::None);
+    EXPECT_NEAR(s.velocity(0).x(), -v0.x(), 1e-9);  // reflected off the left face
+    EXPECT_NEAR(s.velocity(0).y(), v0.y(), 1e-9);
+    EXPECT_GT(box.distance(s.position(0)).distance, 0.2);
+  }
+}
+
+// A point resting under gravity on the top-left corner of a box, a round-off
+// inside its left face, is held on the top face: pushed back out along the
+// face it rests on, not onto the nearer left face, from where it met the top
+// face again at once until the work cap failed the step.
+TEST(CollidersAtCorners, APointRestingOnACornerStaysOnTheTopFace) {
+  for (const IntegratorInfo& info : integratorTable()) {
+    SCOPED_TRACE(info.name);
+    ParticleSystem s;
+    const Vector2d corner(0.25, 0.75);
+    s.addParticle(Vector2d(std::nextafter(corner.x(), 1.0), corner.y()), 1.0);
+    addGravity(s);
+    s.addCollider(Collider::box(Vector2d(0.25, 0.5), corner + Vector2d(1.0, 0.0)));
+    auto integrator = makeIntegrator(info.name);
+    for (int step = 0; step < 100; ++step) ASSERT_EQ(s.step(*integrator, 0.001).failure, StepFailure::None);
+    EXPECT_NEAR(s.position(0).y(), corner.y(), 1e-9);
+    EXPECT_NEAR(s.position(0).x(), corner.x(), 1e-9);
+    EXPECT_LT(s.velocity(0).norm(), 1e-9);
   }
 }
 

@@ -14,6 +14,7 @@
 #include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
+#include "particles/integrator.h"
 #include "particles/particle_system.h"
 
 using namespace particles;
@@ -201,4 +202,84 @@ TEST(ConstraintSolverMethods, AddedConstraintRebuildsTheAssembledPattern) {
     const Eigen::VectorXd expected = denseLambda(s);
     EXPECT_LT((s.solver().lambda() - expected).norm(), 1e-7 * expected.norm()) << method.name;
   }
+}
+
+namespace {
+
+// A hanging 200-rod chain, bent, under CG without warm start, with a given work bound.
+std::unique_ptr<ParticleSystem> bentChain(double maxCgWork) {
+  auto s = std::make_unique<ParticleSystem>();
+  const int n = 201;
+  for (int i = 0; i < n; ++i)
+    s->addParticle(Vector2d(0.1 * i, 0.03 * (i % 4)), 1.0, Vector2d(0.0, 0.01 * (i % 7)));
+  s->setPinned(0, true);
+  for (int i = 0; i + 1 < n; ++i) s->addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1));
+  s->addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+  SolverSettings& settings = s->solver().settings;
+  settings.method = SolveMethod::ConjugateGradient;
+  settings.preconditioner = Preconditioner::None;
+  settings.warmStart = false;
+  settings.tolerance = 1e-12;
+  settings.maxCgWork = maxCgWork;
+  return s;
+}
+
+}  // namespace
+
+TEST(ConstraintSolverMethods, CgPastItsWorkBoundFallsBackToTheDirectSolve) {
+  // 200 rods: J has 400 entries, an iteration 800 products; a bound of 8,000
+  // allows 10 iterations, far from converged on a chain.
+  auto reference = bentChain(0.0);
+  reference->solver().settings.method = SolveMethod::Direct;
+  auto unbounded = bentChain(0.0);
+  auto bounded = bentChain(8000.0);
+  Eigen::VectorXd a;
+  reference->acceleration(reference->positions(), reference->velocities(), a);
+  unbounded->acceleration(unbounded->positions(), unbounded->velocities(), a);
+  bounded->acceleration(bounded->positions(), bounded->velocities(), a);
+  const Eigen::VectorXd& expected = reference->solver().lambda();
+
+  EXPECT_GT(unbounded->lastSolve().iterations, 10);  // plain CG needs more than the bound allows
+  EXPECT_FALSE(unbounded->lastSolve().directFallback);
+  EXPECT_EQ(bounded->lastSolve().iterations, 10);
+  EXPECT_TRUE(bounded->lastSolve().directFallback);
+  EXPECT_FALSE(bounded->lastSolve().failed);
+  EXPECT_LT((bounded->solver().lambda() - expected).norm(), 1e-8 * expected.norm());
+
+  // The next solve of the same structure goes straight to the direct solve.
+  bounded->acceleration(bounded->positions(), bounded->velocities(), a);
+  EXPECT_EQ(bounded->lastSolve().iterations, 0);
+  EXPECT_TRUE(bounded->lastSolve().directFallback);
+  EXPECT_LT((bounded->solver().lambda() - expected).norm(), 1e-8 * expected.norm());
+
+  // A new constraint is a new structure: CG is tried again (402 entries:
+  // 9 iterations within the bound).
+  bounded->addConstraint(std::make_unique<RodConstraint>(3, 9, 0.5));
+  bounded->acceleration(bounded->positions(), bounded->velocities(), a);
+  EXPECT_EQ(bounded->lastSolve().iterations, 9);
+  EXPECT_TRUE(bounded->lastSolve().directFallback);
+}
+
+TEST(ConstraintSolverMethods, CgWithinItsWorkBoundKeepsCg) {
+  // The default bound (2e7 products) is far above what 200 rods need.
+  auto s = bentChain(SolverSettings{}.maxCgWork);
+  Eigen::VectorXd a;
+  for (int k = 0; k < 2; ++k) {
+    s->acceleration(s->positions(), s->velocities(), a);
+    EXPECT_GT(s->lastSolve().iterations, 10);
+    EXPECT_FALSE(s->lastSolve().directFallback);
+  }
+}
+
+TEST(ConstraintSolverMethods, DirectFallbackIsCountedInTheStepAndNamedInAMessage) {
+  auto s = bentChain(8000.0);
+  auto integrator = makeIntegrator("symplectic-euler");
+  const StepStats stats = s->step(*integrator, 1e-3);
+  EXPECT_EQ(stats.directFallbacks, 1);  // one evaluation a step
+  EXPECT_EQ(directFallbackMessage(200, s->solver().settings),
+            "CG on 200 constraints passed its work bound (8000 products of J's entries in one solve): "
+            "solved directly (LDLT) instead");
+  SolverSettings negative;
+  negative.maxCgWork = -1.0;
+  EXPECT_THROW(negative.validate(), std::exception);
 }

@@ -43,6 +43,7 @@ TEST(SceneFile, EverySolverSettingRoundTripsAndMethodCgSolvesByCg) {
       settings.preconditioner = preconditioner.value;
       settings.tolerance = 1e-9;
       settings.maxIterations = 77;
+      settings.maxCgWork = 12345.0;
       settings.stiffness = 12.5;
       settings.damping = 3.25;
       settings.warmStart = false;
@@ -53,6 +54,7 @@ TEST(SceneFile, EverySolverSettingRoundTripsAndMethodCgSolvesByCg) {
       EXPECT_EQ(read.preconditioner, settings.preconditioner) << preconditioner.name;
       EXPECT_EQ(read.tolerance, settings.tolerance);
       EXPECT_EQ(read.maxIterations, settings.maxIterations);
+      EXPECT_EQ(read.maxCgWork, settings.maxCgWork);
       EXPECT_EQ(read.stiffness, settings.stiffness);
       EXPECT_EQ(read.damping, settings.damping);
       EXPECT_EQ(read.warmStart, settings.warmStart);

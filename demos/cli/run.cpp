@@ -91,6 +91,10 @@ int run(const RunOptions& o) {
       return finish(kDiverged);
     }
     if (loop.cancelledStep()) break;
+    if (const std::string notice = loop.takeNotice(); !notice.empty()) {
+      progress.erase();
+      std::cerr << "particle-lab: note: " << notice << '\n';
+    }
     done = step;
     doneTime = s.time();
     progress.update(step, doneTime);

@@ -35,6 +35,12 @@ std::string RunLoop::step() {
   }
   simulated_ += elapsed;
   const long long step = steps_ + 1;
+  if (stats.directFallbacks > 0 && !noticedFallback_) {
+    noticedFallback_ = true;
+    notice_ = particles::directFallbackMessage(static_cast<int>(system_.constraints().size()),
+                                               system_.solver().settings) +
+              ", from step " + std::to_string(step);
+  }
   // Measured steps: the diagnostics once (each energy is a pass over the
   // forces), the divergence check on the same total energy, the CSV row.
   if (step % outputs_.diagnosticsEvery == 0) {

@@ -5,6 +5,7 @@
 //   on them → CSV row → trajectory rows.
 #include <chrono>
 #include <string>
+#include <utility>
 
 #include "csv_writer.h"
 #include "particles/divergence.h"
@@ -37,6 +38,9 @@ class RunLoop {
   std::string step();
 
   long long steps() const { return steps_; }  // steps completed
+  // A notice for stderr, once, empty otherwise: the first step whose CG
+  // passed its work bound and was solved directly.
+  std::string takeNotice() { return std::exchange(notice_, {}); }
   // The last step() ran while a signal arrived: it was not counted or written.
   bool cancelledStep() const { return cancelledStep_; }
   // Wall time spent in ParticleSystem::step, output excluded.
@@ -51,6 +55,8 @@ class RunLoop {
   double initialEnergy_;
   long long steps_ = 0;
   bool cancelledStep_ = false;
+  bool noticedFallback_ = false;
+  std::string notice_;
   std::chrono::steady_clock::duration simulated_{};
 };
 

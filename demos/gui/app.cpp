@@ -229,12 +229,16 @@ void App::playScript() {
 
 void App::advance() {
   if (build_.active()) return;  // the scene being built stays at t = 0
-  const bool run = !paused_ || stepRequested_;
-  const double budget = stepBudgetMsPerFrame / static_cast<double>(panes_.size());
-  for (auto& pane : panes_) {
-    if (stepRequested_) pane->stepOnce();
-    else if (run) pane->advanceFrame(speed_ / framesPerSecond, stepMode_, budget);
+  if (stepRequested_) {
+    for (auto& pane : panes_) pane->stepOnce();
+  } else if (!paused_) {
+    std::vector<Simulation*> panes;
+    for (auto& pane : panes_) panes.push_back(pane.get());
+    lastBudget_ = stepPanesWithinBudget(panes, speed_ / framesPerSecond, stepMode_, options_.stepBudgetMs);
+    budgetTally_.add(lastBudget_);
   }
+  for (auto& pane : panes_)
+    if (const std::string notice = pane->takeNotice(); !notice.empty()) setStatus(notice);
   stepRequested_ = false;
   // A single simulation that diverges pauses the demo; in compare mode the
   // diverged pane stops alone so the others can be watched on.
@@ -249,6 +253,8 @@ void App::draw() {
     GhostFrame ghost;
     if (exact_) ghost = exact_(panes_[k]->system().time());
     renderer_.drawPane(*panes_[k], views[k], windowHeight_, drawOptions_, exact_ ? &ghost : nullptr);
+    paneFaceFill_.resize(panes_.size());
+    paneFaceFill_[k] = renderer_.faceFill();
   }
   if (build_.active()) drawBuildOverlay(views.front());
   glFinish();  // so that the time includes the GL work, not just its submission
@@ -296,7 +302,8 @@ bool App::writeStateLog() const {
   if (options_.logState.empty()) return true;
   std::vector<PaneState> states;
   const std::vector<ViewTransform> views = paneViews();
-  for (std::size_t k = 0; k < panes_.size(); ++k) states.push_back({scene_.label, panes_[k].get(), views[k]});
+  for (std::size_t k = 0; k < panes_.size(); ++k)
+    states.push_back({scene_.label, panes_[k].get(), views[k], k < paneFaceFill_.size() ? paneFaceFill_[k] : Renderer::FaceFill{}});
   StateExtras extras;
   extras.overlays = overlays_;
   extras.widgets = widgets_;
@@ -318,6 +325,8 @@ bool App::writeStateLog() const {
   extras.panelShown = showPanel_;
   extras.frameMs = frameMs_;
   extras.frameSimulationMs = frameSimulationMs_;
+  extras.lastBudget = lastBudget_;
+  extras.budgetTally = budgetTally_;
   extras.realTime = {realTime_.known() ? realTime_.ratio() : 0.0, realTime_.totalSimSeconds(),
                      realTime_.totalWallSeconds(), paced_};
   const std::string error = writeStateFile(options_.logState, states, extras, frame_, paused_);

@@ -11,6 +11,7 @@
 #include "build_mode.h"
 #include "camera.h"
 #include "exact_motion.h"
+#include "frame_budget.h"
 #include "layout.h"
 #include "options.h"
 #include "state_log.h"
@@ -231,6 +232,8 @@ class App {
 
   StepMode stepMode_ = StepMode::FixedTime;
   double speed_ = 1.0;  // simulated seconds per real second (frames at 60 per second)
+  FrameBudget lastBudget_;  // what the last frame's stepping budget did (frame_budget.h)
+  BudgetTally budgetTally_;
   bool paused_ = false;
   bool stepRequested_ = false;
   DrawOptions drawOptions_;
@@ -258,6 +261,7 @@ class App {
   // Wall times of the last frame's drawing, GL work included: the scene, and
   // the text and panel (ImGui) on top.
   double sceneDrawMs_ = 0.0, overlayDrawMs_ = 0.0;
+  std::vector<Renderer::FaceFill> paneFaceFill_;  // each pane's shaded faces in the last frame
   std::vector<Overlay> overlays_;  // the text and controls drawn in the last frame
   std::vector<Overlay> widgets_;   // the panel's buttons and combos, for scripted clicks
   // Wall time of every frame (input, stepping, drawing, swap) and its

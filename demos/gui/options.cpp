@@ -116,6 +116,11 @@ void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
                  "the mouse joint, repeatable: frequency=HZ (default 5), damping-ratio=Z (0.7), stiffness-ratio=R "
                  "(9: at least R times the grabbed particle's spring stiffness; see demos/gui/SCRIPTING.md)")
       ->check(grabSetting());
+  cli.add_option("--step-budget", o.stepBudgetMs,
+                 "wall time in ms a frame may spend stepping, shared by the panes; past it the rest of the frame's "
+                 "simulated time is dropped (slow motion), and a frame takes at least one step")
+      ->capture_default_str()
+      ->check(options::numberInRange(0.0, 1e6));
 }
 
 // How the window starts: panel, pause, pacing, size.

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_budget.h"
 #include "options/scene_source.h"
 #include "options/usage.h"
 #include "particles/grab.h"
@@ -34,6 +35,7 @@ struct DemoOptions {
   std::vector<ComparePane> compare;             // --compare euler,rk4: start in compare mode, 2 to 4 panes
   bool lockstep = false;
   particles::MouseJointSettings grab;           // --grab frequency=F, damping-ratio=Z, stiffness-ratio=R
+  double stepBudgetMs = defaultStepBudgetMs;    // --step-budget: wall time a frame may spend stepping
   bool hidePanel = false;
   bool startPaused = false;
   bool realtime = false;                        // scripted runs at 60 frames/s instead of flat out

@@ -105,8 +105,14 @@ std::string App::paneStateLine(const Simulation& sim) const {
     return format("diverged at t = {:.3f} s ({}): r resets, b rewinds", *sim.divergedAt(),
                   sim.divergence().message());
   if (sim.refusal()) return *sim.refusal() + ": press i for another integrator";
+  // The frame's stepping budget (frame_budget.h), shared by the panes.
   const FrameStats& f = sim.lastFrame();
-  if (f.capped) return format("slow motion: {} steps/frame fill the {:.0f} ms budget (+ doubles dt)", f.substeps, stepBudgetMsPerFrame / panes_.size());
+  const double budget = options_.stepBudgetMs;
+  if (f.longestStepMs > budget)
+    return format("one step takes {:.3g} ms, more than the {:.3g} ms stepping budget of a frame (slow motion)",
+                  f.longestStepMs, budget);
+  if (f.waited) return format("waiting: the other panes spent this frame's {:.3g} ms stepping budget (slow motion)", budget);
+  if (f.capped) return format("slow motion: {} steps/frame fill the {:.3g} ms stepping budget (+ doubles dt)", f.substeps, budget);
   // Paced frames that fall behind the wall clock for any reason (drawing, a
   // slow machine): said as slow motion, with where the frame's time goes.
   if (paced_ && !paused_ && realTime_.known() && realTime_.ratio() < RealTimeMeter::kSlowMotionBelow)

@@ -199,17 +199,21 @@ void Renderer::collectFaces(const Simulation& simulation, const ViewTransform& v
   const double paneArea = static_cast<double>(view.pane.width) * view.pane.height;
   const double pixelArea = view.pixelsPerUnit * view.pixelsPerUnit;
   double filled = 0.0;  // pixels, each face's clipped to the pane's area
-  facesOverBudget_ = 0;
+  faceFill_ = {};
+  faceFill_.panePixels = paneArea;
   for (std::size_t k = 0; k < faces.size() && k < rest.size(); ++k) {
     if (!intact[k]) continue;
     const auto& f = faces[k];
     const double area = faceArea(system, f);
     if (!std::isfinite(area) || !(std::abs(rest[k]) > 0.0)) continue;
-    filled += std::min(std::abs(area) * pixelArea, paneArea);
+    const double pixels = std::min(std::abs(area) * pixelArea, paneArea);
+    filled += pixels;
     if (filled > faceFillBudget * paneArea) {
-      ++facesOverBudget_;
+      ++faceFill_.leftOut;
       continue;
     }
+    ++faceFill_.shaded;
+    faceFill_.shadedPixels += pixels;
     const double ratio = area / rest[k];
     const Rgb base = ratio >= 0.0 ? palette::clothFront : palette::clothBack;
     const double shade = std::clamp(0.8 + 0.4 * (std::abs(ratio) - 1.0), 0.55, 1.3);

@@ -33,8 +33,14 @@ class Renderer {
   void drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                 const DrawOptions& options, const GhostFrame* ghost = nullptr);
 
-  // Faces the last drawPane left unshaded: a mesh stretched past the fill budget.
-  int facesOverBudget() const { return facesOverBudget_; }
+  // The last drawPane's shaded faces: how many, how many it left unshaded (a
+  // mesh stretched past the fill budget, as a diverged cloth is), and the
+  // pixels they cover (each clipped to the pane's area) against the pane's.
+  struct FaceFill {
+    int shaded = 0, leftOut = 0;
+    double shadedPixels = 0.0, panePixels = 0.0;
+  };
+  const FaceFill& faceFill() const { return faceFill_; }
 
  private:
   // Vertices of one primitive kind: 2 floats and 4 bytes of colour each.
@@ -78,7 +84,7 @@ class Renderer {
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
   Batch ghostPoints_;
   int ghostDiameter_ = minParticlePixels;
-  int facesOverBudget_ = 0;  // the last pane's faces left unshaded by the fill budget
+  FaceFill faceFill_;
   particles::Sketch sketch_;
   std::vector<Eigen::VectorXd> forceByType_;
   Eigen::VectorXd totalForce_;

@@ -76,34 +76,43 @@ void Simulation::setDt(double dt) {
   retuneGrab();
 }
 
-void Simulation::advanceFrame(double frameTime, StepMode mode, double budgetMs) {
+void Simulation::beginFrame(double frameTime, StepMode mode) {
   lastFrame_ = {};
+  frameMode_ = mode;
   if (stopped()) return;
+  // Fixed simulated time per frame: the frame rate changes how often this
+  // runs, never what it computes. Time short of a whole dt carries over.
+  if (mode == StepMode::Lockstep) lockstepOwed_ = true;
+  else owedTime_ += frameTime;
+}
+
+bool Simulation::owesStep() const {
+  if (stopped()) return false;
+  return frameMode_ == StepMode::Lockstep ? lockstepOwed_ : owedTime_ >= dt_ * (1.0 - 1e-9);
+}
+
+double Simulation::takeStep() {
   const auto start = std::chrono::steady_clock::now();
-  auto elapsedMs = [&] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  };
-  if (mode == StepMode::Lockstep) {
-    stepAndWatch();
-  } else {
-    // Fixed simulated time per frame: the frame rate changes how often this
-    // runs, never what it computes. Time short of a whole dt carries over.
-    owedTime_ += frameTime;
-    while (owedTime_ >= dt_ * (1.0 - 1e-9) && !stopped()) {
-      stepAndWatch();
-      owedTime_ -= dt_;
-      if (owedTime_ >= dt_ * (1.0 - 1e-9) && elapsedMs() > budgetMs) {
-        owedTime_ = 0.0;
-        lastFrame_.capped = true;
-        break;
-      }
-    }
-  }
-  lastFrame_.simulationMs = elapsedMs();
+  stepAndWatch();
+  if (frameMode_ == StepMode::Lockstep) lockstepOwed_ = false;
+  else if (!stopped()) owedTime_ -= dt_;
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  lastFrame_.simulationMs += ms;
+  lastFrame_.longestStepMs = std::max(lastFrame_.longestStepMs, ms);
+  return ms;
+}
+
+void Simulation::endFrame(bool budgetSpent) {
   if (stopped()) return;
   if (spring_) {
     grabTrail_.push_back(system().position(spring_->particle()));
     if (grabTrail_.size() > grabTrailFrames) grabTrail_.pop_front();
+  }
+  if (budgetSpent && owesStep()) {
+    lastFrame_.capped = true;
+    lastFrame_.waited = lastFrame_.substeps == 0;
+    framesWaited_ += lastFrame_.waited;
+    if (frameMode_ == StepMode::FixedTime) owedTime_ = 0.0;
   }
   ++frames_;
   history_.record(frames_, system(), owedTime_, steps_);
@@ -134,6 +143,11 @@ void Simulation::stepAndWatch() {
   }
   ++steps_;
   ++lastFrame_.substeps;
+  if (stats.directFallbacks > 0 && !noticedFallback_) {
+    noticedFallback_ = true;
+    notice_ = particles::directFallbackMessage(static_cast<int>(system().constraints().size()),
+                                               system().solver().settings);
+  }
   // The energy test is off (energyScale infinite), so E₀ is not needed.
   divergence_ = particles::checkDivergence(system(), limits_, 0.0, stats);
   if (divergence_) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "particles/divergence.h"
@@ -31,15 +32,13 @@ enum class StepMode {
 // or a particle flung more than 1000 view diagonals away. No energy test.
 particles::DivergenceLimits demoDivergenceLimits(const scenes::Scene& scene);
 
-// Wall time for stepping per frame, shared by the panes: beyond it a frame
-// drops the rest of its simulated time (slow motion) so the window stays live.
-constexpr double stepBudgetMsPerFrame = 40.0;
-
-// Measurements of the last frame, for the HUD.
+// Measurements of the last frame, for the HUD and the state log.
 struct FrameStats {
   int substeps = 0;
-  bool capped = false;        // the wall-time budget cut the frame's simulated time short (slow motion)
-  double simulationMs = 0.0;  // wall time spent stepping this frame
+  bool capped = false;         // the stepping budget ran out with steps still owed: the rest was dropped (slow motion)
+  bool waited = false;         // it owed a step but the frame's budget was spent by the other panes first
+  double simulationMs = 0.0;   // wall time spent stepping this frame
+  double longestStepMs = 0.0;  // its longest single step this frame
 };
 
 // The signed area of a quad face, positive when its corners run counter-clockwise.
@@ -52,13 +51,18 @@ class Simulation {
  public:
   Simulation(scenes::Scene scene, int integratorIndex, double dt);
 
-  // --- stepping: called once per frame ------------------------------------
-  // Advances by frameTime (or one step in lockstep), stopping at once when the
-  // state diverges; records history and the trace. Stepping stops when it has
-  // taken budgetMs of wall time: the simulated time left over is dropped, so
-  // a tiny dt on a big scene runs in slow motion instead of freezing the
-  // window (a single step that never ends is the integrator's work cap's to stop).
-  void advanceFrame(double frameTime, StepMode mode, double budgetMs);
+  // --- stepping: a frame is beginFrame, takeStep while owesStep (as the
+  // frame's budget allows, frame_budget.h), then endFrame ------------------
+  // Owes frameTime more simulated time (or, in lockstep, one step).
+  void beginFrame(double frameTime, StepMode mode);
+  // A whole dt owed (or the lockstep step) and not stopped.
+  bool owesStep() const;
+  // One dt step, stopping at once when the state diverges; returns its wall time in ms.
+  double takeStep();
+  // Ends the frame: with budgetSpent, the simulated time still owed is
+  // dropped (slow motion) instead of piling up behind a window that would
+  // freeze; records history and the trace.
+  void endFrame(bool budgetSpent);
   void stepOnce();  // one dt step (the '.' key)
 
   // --- settings -----------------------------------------------------------
@@ -119,6 +123,7 @@ class Simulation {
   // Frames advanced since the start (the clock every pane shares; a stopped
   // pane's stays at the frame it stopped on).
   long long frames() const { return frames_; }
+  long long framesWaited() const { return framesWaited_; }  // frames it owed a step and took none
   double owedTime() const { return owedTime_; }  // simulated time not yet stepped: t + owed is the shared clock
   const RewindBuffer& history() const { return history_; }
   // Restores the state recorded at `frame` (see history()), clears the
@@ -143,18 +148,26 @@ class Simulation {
   long long steps() const { return steps_; }
   // Why the pane diverged (empty reason while it runs).
   const particles::Divergence& divergence() const { return divergence_; }
+  // A message for the top bar, once, empty otherwise: its CG passed the
+  // solver's work bound and was solved directly (particles::directFallbackMessage).
+  std::string takeNotice() { return std::exchange(notice_, {}); }
 
  private:
   void stepAndWatch();
   void retuneGrab();  // the held joint's gains again, for a new integrator or dt
 
   scenes::Scene scene_;
+  StepMode frameMode_ = StepMode::FixedTime;
+  bool lockstepOwed_ = false;  // lockstep: this frame's step not yet taken
   std::unique_ptr<particles::Integrator> integrator_;
   int integratorIndex_;
   double dt_;
   double owedTime_ = 0.0;  // simulated time accumulated but not yet stepped
   long long steps_ = 0;
   long long frames_ = 0;
+  long long framesWaited_ = 0;
+  bool noticedFallback_ = false;
+  std::string notice_;
   particles::MouseSpringForce* spring_ = nullptr;  // owned by the system
   particles::MouseJointSettings joint_;            // the settings spring_ was made with
   std::deque<Eigen::Vector2d> grabTrail_;          // the grabbed particle at each frame's end

@@ -26,35 +26,42 @@ void writeWindTearGrab(std::ostream& out, std::size_t k, const Simulation& sim) 
   out << "tearing," << k << "," << sim.system().tearing().strain << "," << sim.system().brokenLinks().size() << "\n";
 }
 
+// One pane: its state, view, faces, particles and walls.
+void writePaneRecords(std::ostream& out, std::size_t k, const PaneState& pane) {
+  const Simulation& sim = *pane.simulation;
+  const particles::ParticleSystem& s = sim.system();
+  int springs = 0;
+  for (const auto& f : s.forceObjects()) springs += dynamic_cast<const particles::MouseSpringForce*>(f.get()) != nullptr;
+  out << "pane," << k << "," << pane.sceneLabel << "," << sim.integratorName() << "," << sim.dt() << ","
+      << s.time() << "," << sim.steps() << "," << (sim.divergedAt() ? 1 : 0) << "," << springs << ","
+      << sim.sceneEnergy() << "," << s.maxConstraintError() << "," << sim.mouseSpringEnergy() << ","
+      << (sim.lastFrame().capped ? 1 : 0) << "," << sim.lastFrame().substeps << "," << sim.frames() << "," << sim.owedTime() << ","
+      << sim.trace().energy().size() << "," << (sim.lastFrame().waited ? 1 : 0) << "," << sim.lastFrame().longestStepMs
+      << "," << sim.framesWaited() << "\n";
+  const Renderer::FaceFill& faces = pane.faces;
+  out << "faces," << k << "," << faces.shaded << "," << faces.leftOut << "," << faces.shadedPixels << ","
+      << faces.panePixels << "\n";
+  const ViewTransform& v = pane.view;
+  out << "view," << k << "," << v.pane.x << "," << v.pane.y << "," << v.pane.width << "," << v.pane.height << ","
+      << v.worldMin.x() << "," << v.worldMin.y() << "," << v.worldMax.x() << "," << v.worldMax.y() << "\n";
+  for (int i = 0; i < s.size(); ++i) {
+    const Eigen::Vector2d x = s.position(i), u = s.velocity(i);
+    out << "particle," << k << "," << i << "," << x.x() << "," << x.y() << "," << u.x() << "," << u.y() << ","
+        << s.masses()[i] << "," << (s.pinned(i) ? 1 : 0) << "\n";
+  }
+  for (const particles::Collider& c : s.colliders()) {
+    Eigen::Vector2d lo, hi;  // a bounded collider's bounding box; a half-plane has none
+    if (c.bounds(lo, hi)) out << "wall," << k << "," << lo.x() << "," << lo.y() << "," << hi.x() << "," << hi.y() << "\n";
+  }
+  writeWindTearGrab(out, k, sim);
+}
+
 void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, const StateExtras& extras,
                        long long frames, bool paused) {
   out.precision(17);
   out << "# particle-demo state at exit; format in demos/gui/state_log.h\n";
   out << "frame," << frames << "\npaused," << (paused ? 1 : 0) << "\n";
-  for (std::size_t k = 0; k < panes.size(); ++k) {
-    const Simulation& sim = *panes[k].simulation;
-    const particles::ParticleSystem& s = sim.system();
-    int springs = 0;
-    for (const auto& f : s.forceObjects()) springs += dynamic_cast<const particles::MouseSpringForce*>(f.get()) != nullptr;
-    out << "pane," << k << "," << panes[k].sceneLabel << "," << sim.integratorName() << "," << sim.dt() << ","
-        << s.time() << "," << sim.steps() << "," << (sim.divergedAt() ? 1 : 0) << "," << springs << ","
-        << sim.sceneEnergy() << "," << s.maxConstraintError() << "," << sim.mouseSpringEnergy() << ","
-        << (sim.lastFrame().capped ? 1 : 0) << "," << sim.lastFrame().substeps << "," << sim.frames() << "," << sim.owedTime() << ","
-        << sim.trace().energy().size() << "\n";
-    const ViewTransform& v = panes[k].view;
-    out << "view," << k << "," << v.pane.x << "," << v.pane.y << "," << v.pane.width << "," << v.pane.height << ","
-        << v.worldMin.x() << "," << v.worldMin.y() << "," << v.worldMax.x() << "," << v.worldMax.y() << "\n";
-    for (int i = 0; i < s.size(); ++i) {
-      const Eigen::Vector2d x = s.position(i), u = s.velocity(i);
-      out << "particle," << k << "," << i << "," << x.x() << "," << x.y() << "," << u.x() << "," << u.y() << ","
-          << s.masses()[i] << "," << (s.pinned(i) ? 1 : 0) << "\n";
-    }
-    for (const particles::Collider& c : s.colliders()) {
-      Eigen::Vector2d lo, hi;  // a bounded collider's bounding box; a half-plane has none
-      if (c.bounds(lo, hi)) out << "wall," << k << "," << lo.x() << "," << lo.y() << "," << hi.x() << "," << hi.y() << "\n";
-    }
-    writeWindTearGrab(out, k, sim);
-  }
+  for (std::size_t k = 0; k < panes.size(); ++k) writePaneRecords(out, k, panes[k]);
   for (const Overlay& o : extras.overlays) {
     std::string text;
     for (char c : o.text) text += c == '\n' ? std::string(" | ") : std::string(1, c);
@@ -77,6 +84,12 @@ void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, c
                                      extras.frameSimulationMs.end());
   out << "frame-times," << ms.size() << "," << quantile(ms, 0.5) << "," << quantile(ms, 0.1) << "," << quantile(ms, 0.9)
       << "," << quantile(stepping, 0.5) << "\n";
+  const FrameBudget& b = extras.lastBudget;
+  const BudgetTally& t = extras.budgetTally;
+  out << "budget," << b.budgetMs << "," << b.steps << "," << b.panesStepped << "," << b.panesWaiting << ","
+      << (b.stepOverBudget() ? 1 : 0) << "," << b.steppingMs << "," << b.longestStepMs << "," << t.frames << ","
+      << t.spent << "," << t.withPaneWaiting << "," << t.withStepOverBudget << "," << t.overByMoreThanAStep << ","
+      << t.largestSteppingMs << "," << t.largestStepMs << "\n";
   out << "real-time," << extras.realTime.lastSecond << "," << extras.realTime.simSeconds << ","
       << extras.realTime.wallSeconds << "," << (extras.realTime.paced ? 1 : 0) << "\n";
   const AdviceRecord& a = extras.advice;

@@ -5,8 +5,14 @@
 //   frame,<frames drawn>
 //   paused,<0|1>
 //   pane,<pane>,<scene label>,<integrator>,<dt>,<t>,<steps>,<diverged 0|1>,<mouse springs>,<energy>,<max |C|>,
-//        <mouse spring energy>,<slow motion 0|1>,<substeps last frame>,<frames advanced>,<owed time>,<plot points>
+//        <mouse spring energy>,<slow motion 0|1>,<substeps last frame>,<frames advanced>,<owed time>,<plot points>,
+//        <waited last frame 0|1>,<longest step last frame ms>,<frames waited>
 //     (energy is the scene's, without the mouse spring's)
+//   faces,<pane>,<faces shaded>,<faces left unshaded>,<shaded pixels>,<pane pixels>
+//   budget,<budget ms>,<steps last frame>,<panes stepped>,<panes waiting>,<a step over the budget 0|1>,
+//          <stepping ms>,<longest step ms>,<frames stepped>,<frames the budget ran out>,<frames a pane waited>,
+//          <frames with a step over the budget>,<frames over the budget by more than their longest step>,
+//          <largest stepping ms>,<largest step ms>
 //   view,<pane>,<pixel x>,<pixel y>,<pixel width>,<pixel height>,<world xmin>,<world ymin>,<world xmax>,<world ymax>
 //     (the pixel rectangle is where the pane draws the world: no overlay may cover it)
 //   particle,<pane>,<index>,<x>,<y>,<vx>,<vy>,<mass>,<pinned 0|1>
@@ -40,6 +46,8 @@
 #include <string>
 #include <vector>
 
+#include "frame_budget.h"
+#include "renderer.h"
 #include "simulation.h"
 #include "view.h"
 
@@ -75,6 +83,8 @@ struct StateExtras {
   double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
   bool panelShown = false;
   std::vector<double> frameMs, frameSimulationMs;  // every frame's wall time and its stepping part
+  FrameBudget lastBudget;                          // the last frame's stepping budget (frame_budget.h)
+  BudgetTally budgetTally;                         // and every frame's since the start
   struct {
     double lastSecond = 0.0;             // the HUD's readout (0 before it is known)
     double simSeconds = 0.0, wallSeconds = 0.0;  // every running frame's
@@ -86,6 +96,7 @@ struct PaneState {
   std::string sceneLabel;
   const Simulation* simulation;
   ViewTransform view;
+  Renderer::FaceFill faces;  // its shaded faces in the last frame drawn
 };
 
 // Returns an error message, empty on success.

@@ -79,9 +79,10 @@ void readView(const JsonNode& node, Scene& scene) {
 
 void readSolver(const JsonNode& node, particles::SolverSettings& s) {
   if (!node.present()) return;
-  node.allowOnly({"tolerance", "maxIterations", "stiffness", "damping", "warmStart", "method", "preconditioner"});
+  node.allowOnly({"tolerance", "maxIterations", "maxCgWork", "stiffness", "damping", "warmStart", "method", "preconditioner"});
   if (node["tolerance"].present()) s.tolerance = node["tolerance"].positive();
   if (node["maxIterations"].present()) s.maxIterations = node["maxIterations"].integer(0, 1000000);
+  if (node["maxCgWork"].present()) s.maxCgWork = node["maxCgWork"].nonNegative();
   if (node["stiffness"].present()) s.stiffness = node["stiffness"].nonNegative();
   if (node["damping"].present()) s.damping = node["damping"].nonNegative();
   s.warmStart = node["warmStart"].boolean(s.warmStart);

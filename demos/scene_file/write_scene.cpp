@@ -35,6 +35,7 @@ Json sceneToJson(const Scene& scene) {
   doc["view"] = {{"min", toJson(scene.viewMin)}, {"max", toJson(scene.viewMax)}};
   doc["solver"] = {{"tolerance", solver.tolerance},
                    {"maxIterations", solver.maxIterations},
+                   {"maxCgWork", solver.maxCgWork},
                    {"stiffness", solver.stiffness},
                    {"damping", solver.damping},
                    {"warmStart", solver.warmStart},

@@ -55,12 +55,16 @@ struct Collider {
   // particle's radius) is distance(p).distance − margin.
   SurfaceDistance distance(const Eigen::Vector2d& p) const;
   // The outward normal of the face that a path heading along `heading`
-  // enters at the surface point p: distance(p).normal, except at a corner of
-  // a box or polygon (p on two faces within round-off), where it is the face
-  // the heading goes into most, the least n·heading (a particle sliding along
-  // a floor into a wall that stands on it meets the wall's face, not the
-  // bottom face of the wall it is level with).
-  Eigen::Vector2d entryNormal(const Eigen::Vector2d& p, const Eigen::Vector2d& heading) const;
+  // (a displacement) enters at the surface point p: distance(p).normal,
+  // except at a corner of a box or polygon (p within slop, or round-off, of
+  // two faces), where it is the face the heading goes into most, the least
+  // n·heading (a particle sliding along a floor into a wall that stands on it
+  // meets the wall's face, not the bottom face of the wall it is level with).
+  // A heading that leaves one of the corner's faces (n·heading > slop) does
+  // not enter, since near the corner the shape is the intersection of the
+  // faces' half-planes: that face's normal is returned, and sweep() finds no
+  // hit there.
+  Eigen::Vector2d entryNormal(const Eigen::Vector2d& p, const Eigen::Vector2d& heading, double slop = 0.0) const;
 
   // First fraction s ∈ [0, 1] of the straight path a → b at which the path
   // reaches distance `margin` from the surface, i.e. enters the collider grown

@@ -14,6 +14,7 @@
 // μ = 1e-6·max diag, a bounded approximation of the least-squares λ (see
 // ConstraintSolver::directSolve in the source for its effect on accuracy).
 #include <memory>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -35,6 +36,13 @@ enum class Preconditioner {
 struct SolverSettings {
   double tolerance = 1e-8;       // stop when |r| ≤ tolerance·|b| (relative residual)
   int maxIterations = 0;         // CG iteration cap; 0 means 4m + 100 for m constraints
+  // CG's work bound for one solve, in products of J's entries (an iteration
+  // costs about 2 × J's nonzeros): CG that reaches it unconverged falls back
+  // to the direct solve, for this solve and the later ones of the same
+  // constraint structure (SolveStats::directFallback). CG on a chain takes
+  // about m iterations, 4m² products: at 2e7 a 2,000-rod chain keeps CG
+  // (1.6e7), 3,000 rods and more fall back. 0: no bound.
+  double maxCgWork = 2e7;
   double stiffness = 60.0;       // k_s of the feedback term, 1/s² (squared-rod units aside)
   double damping = 10.0;         // k_d of the feedback term, 1/s
   bool warmStart = true;         // start CG from the previous λ
@@ -56,7 +64,14 @@ struct SolveStats {
   bool failed = false;
   // J W Jᵀ had lost rank and the direct solve was damped (see directSolve).
   bool regularized = false;
+  // CG was asked for but solved directly: its work passed maxCgWork.
+  bool directFallback = false;
 };
+
+// What the tools say when CG falls back to the direct solve: "CG on 8000
+// constraints passed its work bound (2e+07 products of J's entries in one
+// solve): solved directly (LDLT) instead".
+std::string directFallbackMessage(int constraints, const SolverSettings& settings);
 
 class ConstraintSolver {
  public:
@@ -91,7 +106,8 @@ class ConstraintSolver {
   SolveStats stats_;
 
   // Rows whose diagonal is at most `dead` are removed with λ = 0.
-  int conjugateGradient(double dead, double& relativeResidual);
+  // pastWorkBound: it stopped unconverged at SolverSettings::maxCgWork.
+  int conjugateGradient(double dead, double& relativeResidual, bool& pastWorkBound);
   // Fills the assembled P (J W Jᵀ) Pᵀ, rebuilding its pattern when the rows
   // changed structure; dead rows get a unit diagonal.
   void assemble(double dead);

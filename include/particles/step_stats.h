@@ -28,6 +28,7 @@ struct StepStats {
   int rejectedSteps = 0;     // internal steps rejected by an error controller
   int contactIterations = 0;     // sweeps of the coupled contact–constraint solve, summed
   double contactResidual = 0.0;  // largest velocity change (m/s) in the last sweep of any coupled solve
+  int directFallbacks = 0;       // constraint solves asked of CG and solved directly (SolverSettings::maxCgWork)
   StepFailure failure = StepFailure::None;  // the first failure, if any
 
   // Sums the counts, keeps the largest residual and the first failure: the

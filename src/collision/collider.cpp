@@ -49,6 +49,9 @@ void forEachEdge(const std::vector<Eigen::Vector2d>& p, Visit&& visit) {
   }
 }
 
+// Distances within this of p are round-off of p's coordinates.
+double roundOffAt(const Eigen::Vector2d& p) { return 1e-12 * (1.0 + p.cwiseAbs().maxCoeff()); }
+
 }  // namespace
 
 Collider Collider::halfPlane(const Eigen::Vector2d& point, const Eigen::Vector2d& n) {
@@ -170,25 +173,34 @@ SurfaceDistance Collider::distance(const Eigen::Vector2d& p) const {
   // its edge's normal; on (or within round-off of) the boundary the direction
   // p − q is noise, and on a capsule's axis either side will do.
   if (inside) return {-d - radius, edgeNormal};
-  const double roundOff = 1e-12 * (1.0 + p.cwiseAbs().maxCoeff());
-  return {d - radius, d > roundOff ? Eigen::Vector2d((p - nearest) / d) : edgeNormal};
+  return {d - radius, d > roundOffAt(p) ? Eigen::Vector2d((p - nearest) / d) : edgeNormal};
 }
 
-Eigen::Vector2d Collider::entryNormal(const Eigen::Vector2d& p, const Eigen::Vector2d& heading) const {
+Eigen::Vector2d Collider::entryNormal(const Eigen::Vector2d& p, const Eigen::Vector2d& heading, double slop) const {
   const SurfaceDistance surface = distance(p);
   if (points.size() < 3 || radius > 0.0) return surface.normal;
-  const double roundOff = 1e-12 * (1.0 + p.cwiseAbs().maxCoeff());
-  Eigen::Vector2d best = surface.normal;
-  double into = surface.normal.dot(heading);
+  // Among the faces passing within slop of p: the one the heading goes into
+  // most, unless it leaves one of them (near a corner the shape is the
+  // intersection of its faces' half-planes, so such a path stays outside).
+  const double near = std::max(slop, roundOffAt(p)), leaving = std::max(slop, 1e-12 * heading.norm());
+  Eigen::Vector2d into = surface.normal, out = surface.normal;
+  double least = 0.0, most = 0.0;
+  bool found = false;
   forEachEdge(points, [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    if ((p - nearestOnSegment(p, a, b)).norm() > roundOff) return;
+    if ((p - nearestOnSegment(p, a, b)).norm() > near) return;
     const Eigen::Vector2d n = outwardNormal(a, b);
-    if (n.dot(heading) < into) {
-      into = n.dot(heading);
-      best = n;
+    const double along = n.dot(heading);
+    if (!found || along < least) {
+      least = along;
+      into = n;
     }
+    if (!found || along > most) {
+      most = along;
+      out = n;
+    }
+    found = true;
   });
-  return best;
+  return found && most > leaving ? out : into;
 }
 
 std::optional<double> Collider::sweep(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin,
@@ -197,8 +209,9 @@ std::optional<double> Collider::sweep(const Eigen::Vector2d& a, const Eigen::Vec
   const double startGap = start.distance - margin;
   const Eigen::Vector2d d = b - a;
   if (startGap <= slop) {
-    // At a corner of a box or polygon the face the path heads into decides.
-    const Eigen::Vector2d n = margin == 0.0 ? entryNormal(a, d) : start.normal;
+    // At a corner of a box or polygon the face the path heads into decides,
+    // and a path that leaves either face misses.
+    const Eigen::Vector2d n = margin == 0.0 ? entryNormal(a, d, slop) : start.normal;
     if (n.dot(d) < -slop || distance(b).distance - margin < -slop) return 0.0;
     return std::nullopt;
   }
@@ -221,8 +234,10 @@ std::optional<double> Collider::sweep(const Eigen::Vector2d& a, const Eigen::Vec
     if (gap < 0.0) return;  // behind this offset line: entry is through another piece
     const double s = gap / -approach;
     if (s > 1.0) return;
+    // Within the edge's extent, its ends included to round-off: a path along
+    // the line of the next face enters at the corner.
     const double t = (a + s * d - p).dot(e) / e.squaredNorm();
-    if (t >= 0.0 && t <= 1.0) keep(s);
+    if (t >= -1e-12 && t <= 1.0 + 1e-12) keep(s);
   });
   // Entering a vertex's circle of radius R (the rounded corners and ends).
   if (R > 0.0)

@@ -100,7 +100,7 @@ bool applyColliderImpact(const Collider& c, const ColliderImpact& impact, double
   // point is the curved path's point at τ, put on that face's plane.
   Eigen::Vector2d normal;
   const Eigen::Vector2d entry = ontoSurface(c, from + impact.s * (x1 - from), r, &normal);
-  if (r == 0.0) normal = c.entryNormal(entry, x1 - from);  // a corner: the face the chord goes into
+  if (r == 0.0) normal = c.entryNormal(entry, x1 - from, slop);  // a corner: the face the chord goes into
   const Eigen::Vector2d q = path.position(tau), p = q - normal.dot(q - entry) * normal;
   const Eigen::Vector2d u = path.velocity(tau);
   const double un = u.dot(normal), remaining = dt - tau;
@@ -133,7 +133,14 @@ bool applyColliderImpact(const Collider& c, const ColliderImpact& impact, double
       x1 = p + normal.dot(x1 - p) * normal;
     else
       x1 += 0.5 * remaining * dvt;
-    if (c.distance(x1).distance < r) x1 = ontoSurface(c, x1, r, nullptr);
+    // Back onto the surface. At a corner of a box or polygon the nearest
+    // surface point may lie on the other face, which would leave the particle
+    // off the face it rests on, to meet that again at once: it backs out along
+    // the normal of the face it rests on instead.
+    if (c.distance(x1).distance < r) {
+      const bool flat = r == 0.0 && c.radius == 0.0 && c.points.size() >= 3;  // a box or polygon
+      x1 = flat ? Eigen::Vector2d(x1 + std::max(0.0, normal.dot(entry - x1)) * normal) : ontoSurface(c, x1, r, nullptr);
+    }
     path = remaining > 0.0 ? Path{p, (x1 - p) / remaining - 0.5 * path.a * remaining, path.a, tau}
                            : Path{p, v1, path.a, tau};
   }

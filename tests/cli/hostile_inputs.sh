@@ -124,4 +124,17 @@ else
   kill -KILL "$pid" 2>/dev/null
   fail "whole-file-sigkill: the run wrote no rows"
 fi
+# CG whose work passes the solver's bound falls back to the direct solve and says so once.
+cat >"$WORK/cg-chain.json" <<'JSON'
+{"solver": {"method": "cg", "preconditioner": "none", "warmStart": false, "maxCgWork": 20},
+ "dt": 0.01,
+ "particles": [{"position": [0, 0], "mass": 1, "pinned": true}, {"position": [0.5, 0], "mass": 1},
+               {"position": [1, 0.1], "mass": 1}, {"position": [1.5, 0], "mass": 1}],
+ "forces": [{"type": "gravity", "acceleration": [0, -9.81]}],
+ "constraints": [{"type": "rod", "particles": [0, 1], "length": 0.5},
+                 {"type": "rod", "particles": [1, 2], "length": 0.5},
+                 {"type": "rod", "particles": [2, 3], "length": 0.5}]}
+JSON
+expect cg-work-bound 0 "^particle-lab: note: CG on 3 constraints passed its work bound \(20 products of J's entries in one solve\): solved directly \(LDLT\) instead, from step 1$" -- \
+  run --scene-file "$WORK/cg-chain.json" --integrator rk4 --steps 20
 finish

@@ -134,7 +134,27 @@ StateLog readStateLog(const std::string& path) {
       p.framesAdvanced = std::stoll(f.at(14));
       p.owedTime = number(15);
       p.plotPoints = std::stoi(f.at(16));
+      p.waited = f.at(17) == "1";
+      p.longestStepMs = number(18);
+      p.framesWaited = std::stoll(f.at(19));
       log.panes.push_back(p);
+    } else if (record == "faces") {
+      LoggedPane& p = log.panes.at(std::stoul(f.at(1)));
+      p.facesShaded = std::stoi(f.at(2));
+      p.facesLeftOut = std::stoi(f.at(3));
+      p.shadedPixels = number(4);
+      p.panePixels = number(5);
+    } else if (record == "budget") {
+      LoggedBudget& b = log.budget;
+      b.budgetMs = number(1);
+      b.steps = std::stoi(f.at(2));
+      b.panesStepped = std::stoi(f.at(3));
+      b.panesWaiting = std::stoi(f.at(4));
+      b.stepOverBudget = f.at(5) == "1";
+      b.framesStepped = std::stoll(f.at(8));
+      b.framesSpent = std::stoll(f.at(9));
+      b.framesWithPaneWaiting = std::stoll(f.at(10));
+      b.framesWithStepOverBudget = std::stoll(f.at(11));
     } else if (record == "view") {
       LoggedPane& p = log.panes.at(std::stoul(f.at(1)));
       p.pixelX = std::stoi(f.at(2));

@@ -66,6 +66,15 @@ struct LoggedPane {
   long long steps = 0, framesAdvanced = 0;
   bool diverged = false, slowMotion = false;
   int mouseSprings = 0, substeps = 0;
+  // The frame's stepping budget: the pane owed a step and took none last
+  // frame (waited), its longest step then, and the frames it waited in all.
+  bool waited = false;
+  double longestStepMs = 0.0;
+  long long framesWaited = 0;
+  // Its shaded faces last frame: drawn, left out by the fill budget, and the
+  // pixels they cover against the pane's.
+  int facesShaded = 0, facesLeftOut = 0;
+  double shadedPixels = 0.0, panePixels = 0.0;
   int pixelX = 0, pixelY = 0, pixelWidth = 0, pixelHeight = 0;
   Eigen::Vector2d worldMin, worldMax;
   std::vector<LoggedParticle> particles;
@@ -103,7 +112,16 @@ struct LoggedBuild {
   long long historyState = 0, historyStates = 0, gesturePoints = 0;
   double grid = 0.0;
 };
+// The frame's stepping budget (demos/gui/frame_budget.h): the last frame's,
+// then counts over every frame that stepped. No times: they vary by machine.
+struct LoggedBudget {
+  double budgetMs = 0.0;
+  int steps = 0, panesStepped = 0, panesWaiting = 0;
+  bool stepOverBudget = false;
+  long long framesStepped = 0, framesSpent = 0, framesWithPaneWaiting = 0, framesWithStepOverBudget = 0;
+};
 struct StateLog {
+  LoggedBudget budget;
   long long frames = 0;
   LoggedAdvice advice;
   LoggedBuild build;
