@@ -96,6 +96,11 @@ void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
           ->expected(2, 4)
           ->check(comparePane());
   cli.add_flag("--lockstep", o.lockstep, "one dt step per frame instead of a fixed simulated time per frame");
+  cli.add_option("--threads", o.threads,
+                 "threads of the engine's parallel loops (the same results on any count; 1 starts no thread; "
+                 "default: the CPUs of the affinity mask), a decimal integer in [1, 1024]")
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, 1024));
 }
 
 // How the window starts: panel, pause, pacing, size.

@@ -6,6 +6,7 @@
 
 #include "options/scene_source.h"
 #include "options/usage.h"
+#include "particles/threads.h"
 
 namespace demo {
 
@@ -27,6 +28,7 @@ struct DemoOptions {
   double tolerance = particles::IntegratorSettings{}.tolerance;  // --tolerance: dopri5's local error tolerance
   std::vector<ComparePane> compare;             // --compare euler,rk4: start in compare mode, 2 to 4 panes
   bool lockstep = false;
+  int threads = particles::affinityCpuCount();  // --threads: the engine's parallel loops (panel: "threads")
   bool hidePanel = false;
   bool startPaused = false;
   bool realtime = false;                        // scripted runs at 60 frames/s instead of flat out

@@ -5,9 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "parallel_for.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/spring.h"
 #include "particles/particle_system.h"
+#include "particles/threads.h"
 #include "particles/xpbd/constraint_projection.h"
 
 namespace particles {
@@ -127,13 +129,22 @@ void XpbdIntegrator::applyForces(ParticleSystem& system) {
 // (before the forces) for the contacts.
 void XpbdIntegrator::predict(ParticleSystem& system, double h) {
   if (system.colliding()) vn_ = system.velocities();
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
-  const auto n = static_cast<Eigen::Index>(system.size());
-  Eigen::Map<Eigen::Array2Xd>(v.data(), 2, n) +=
-      Eigen::Map<const Eigen::Array2Xd>(force_.data(), 2, n).rowwise() * (h * system.inverseMasses().array()).transpose();
-  xn_ = x;
-  x += h * v;
+  xn_.resize(system.positions().size());
+  double* x = system.positions().data();
+  double* v = system.velocities().data();
+  double* xn = xn_.data();
+  const double* f = force_.data();
+  const double* w = system.inverseMasses().data();
+  parallelRanges(system.size(), threadCount(), kParallelParticles, [&](int begin, int end) {
+#pragma omp simd
+    for (int i = begin; i < end; ++i)
+      for (int c = 0; c < 2; ++c) {
+        const int k = 2 * i + c;
+        v[k] += f[k] * (h * w[i]);
+        xn[k] = x[k];
+        x[k] += h * v[k];
+      }
+  });
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
 }
 
@@ -157,7 +168,13 @@ void XpbdIntegrator::collide(ParticleSystem& system, double h) {
 
 // v ← (x − xⁿ)/h; pinned particles (w = 0) never moved and keep v = 0.
 void XpbdIntegrator::updateVelocities(ParticleSystem& system, double h) {
-  system.velocities() = (system.positions() - xn_) / h;
+  const double* x = system.positions().data();
+  const double* xn = xn_.data();
+  double* v = system.velocities().data();
+  parallelRanges(static_cast<int>(xn_.size()), threadCount(), kParallelEntries, [&](int begin, int end) {
+#pragma omp simd
+    for (int k = begin; k < end; ++k) v[k] = (x[k] - xn[k]) / h;
+  });
 }
 
 }  // namespace particles

@@ -5,6 +5,8 @@
 #include <map>
 #include <tuple>
 
+#include "particles/threads.h"
+
 namespace particles {
 
 namespace {
@@ -12,6 +14,7 @@ namespace {
 constexpr int kColours = 63;        // colours of independent constraints; the rest are serial
 constexpr std::size_t kBlock = 64;  // constraints whose lengths are taken together
 constexpr double kLargest = std::numeric_limits<double>::max();
+constexpr std::size_t kParallelConstraints = 4096;  // fewer: one thread whatever the count
 
 // Greedy colouring in the given order: each constraint takes the lowest colour
 // neither of its particles has yet; kColours for none free.
@@ -82,6 +85,26 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
   };
   const Multipliers lambda = passes == 1 ? Multipliers::None : pass == 0 ? Multipliers::Start : Multipliers::Accumulate;
   const Range run = variants[damped_ ? 1 : 0][static_cast<int>(lambda)];
+  const int threads = threadCount();
+  if (threads > 1 && size() >= kParallelConstraints) {
+    // Within a colour no two constraints share a particle: its blocks are
+    // projected on any thread with the same bits; the colours stay in order.
+#pragma omp parallel num_threads(threads)
+    {
+      std::size_t begin = 0;
+      for (std::size_t end : colourEnd_) {
+        const long blocks = static_cast<long>((end - begin + kBlock - 1) / kBlock);
+#pragma omp for schedule(static)
+        for (long b = 0; b < blocks; ++b)
+          (this->*run)(begin + static_cast<std::size_t>(b) * kBlock,
+                       std::min(end, begin + static_cast<std::size_t>(b + 1) * kBlock), kBlock, xn, x);
+        begin = end;
+      }
+#pragma omp single
+      (this->*run)(serialBegin_, size(), 1, xn, x);
+    }
+    return;
+  }
   std::size_t begin = 0;
   for (std::size_t end : colourEnd_) {
     (this->*run)(begin, end, kBlock, xn, x);
