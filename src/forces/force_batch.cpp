@@ -79,6 +79,13 @@ const Batcher kBatchers[] = {
 
 void ForceBatches::update(const std::vector<std::unique_ptr<Force>>& forces, std::uint64_t stamp) {
   if (built_ && stamp == stamp_) return;
+  std::vector<const Force*> list;
+  for (const auto& force : forces) list.push_back(force.get());
+  update(list, stamp);
+}
+
+void ForceBatches::update(const std::vector<const Force*>& forces, std::uint64_t stamp) {
+  if (built_ && stamp == stamp_) return;
   segments_.clear();
   tail_.clear();
   springs_.clear();
@@ -98,7 +105,7 @@ void ForceBatches::update(const std::vector<std::unique_ptr<Force>>& forces, std
     if (taken && !isField) continue;  // a spring: consecutive springs share one segment
     closeSprings();
     if (!taken)
-      segments_.push_back({Segment::Kind::Virtual, 0, field, force.get()});
+      segments_.push_back({Segment::Kind::Virtual, 0, field, force});
     else
       segments_.push_back({Segment::Kind::Field, 0, field, nullptr});
   }

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "particles/threads.h"
+#include "strided_runs.h"
 #include "vector_kernels.h"
 
 namespace particles {
@@ -85,42 +85,13 @@ void SpringBatch::add(int i, int j, double rest, double stiffness, double dampin
 }
 
 void SpringBatch::build() {
-  const int n = size();
-  std::vector<int> sorted(n);
-  std::iota(sorted.begin(), sorted.end(), 0);
-  auto stride = [&](int k) { return second_[k] - first_[k]; };
-  std::stable_sort(sorted.begin(), sorted.end(), [&](int a, int b) {
-    return stride(a) != stride(b) ? stride(a) < stride(b) : first_[a] < first_[b];
-  });
-  // Cut the sorted list into runs; what is left is gathered, in its own order.
-  std::vector<Run> found;
-  std::vector<int> order, gathered;
-  for (int s = 0; s < n;) {
-    int e = s + 1;
-    while (e < n && e - s < kRunLength && stride(sorted[e]) == stride(sorted[s]) &&
-           first_[sorted[e]] == first_[sorted[e - 1]] + 1)
-      ++e;
-    if (e - s >= kMinRun && stride(sorted[s]) != 0) {
-      found.push_back({s, first_[sorted[s]], stride(sorted[s]), e - s, false});
-    } else {
-      gathered.insert(gathered.end(), sorted.begin() + s, sorted.begin() + e);
-    }
-    s = e;
-  }
-  std::sort(gathered.begin(), gathered.end());
-  std::stable_sort(found.begin(), found.end(), [](const Run& a, const Run& b) {
-    return a.first != b.first ? a.first < b.first : a.stride < b.stride;
-  });
+  const StridedRuns found = findStridedRuns(first_, second_, kRunLength, kMinRun);
   runs_.clear();
-  for (const Run& r : found) {
-    runs_.push_back({static_cast<int>(order.size()), r.first, r.stride, r.length, true});
-    order.insert(order.end(), sorted.begin() + r.begin, sorted.begin() + r.begin + r.length);
-  }
-  gatherBegin_ = static_cast<int>(order.size());
-  order.insert(order.end(), gathered.begin(), gathered.end());
+  for (const StridedRun& r : found.runs) runs_.push_back({r.begin, r.first, r.stride, r.length, true});
+  gatherBegin_ = found.leftBegin;
   auto permute = [&](auto& values) {
     auto old = values;
-    for (int k = 0; k < n; ++k) values[k] = old[order[k]];
+    for (int k = 0; k < size(); ++k) values[k] = old[found.order[k]];
   };
   permute(first_);
   permute(second_);

@@ -113,37 +113,39 @@ void XpbdIntegrator::prepare(const ParticleSystem& system, double h) {
   preparedStamp_ = 0;  // a refusal below leaves nothing prepared
   forms_ = positionForms(system, h);
   distances_.build(forms_.distances, system.inverseMasses());
+  applied_.update(forms_.applied, ++appliedStamp_);
   angleLambda_.resize(forms_.angles.size());
   preparedStamp_ = system.structureStamp();
   preparedStep_ = h;
 }
 
-// f = Σ of the forces without a position form, at the substep's start.
+// f = Σ of the forces without a position form at the substep's start, and
+// a = W f (force batches: fields and springs of zero stiffness as flat arrays).
 void XpbdIntegrator::applyForces(ParticleSystem& system) {
-  force_.setZero(system.positions().size());
-  const Phase s = system.phase();
-  for (const Force* f : forms_.applied) f->apply(s, force_);
+  applied_.applyAndDivide(system.phase(), force_, acceleration_);
 }
 
-// v ← v + h W f,  xⁿ ← x,  x ← x + h v; the multipliers restart at 0; vⁿ ← v
+// v ← v + h a,  xⁿ ← x,  x ← x + h v; the multipliers restart at 0; vⁿ ← v
 // (before the forces) for the contacts.
 void XpbdIntegrator::predict(ParticleSystem& system, double h) {
-  if (system.colliding()) vn_ = system.velocities();
-  xn_.resize(system.positions().size());
+  const bool colliding = system.colliding();
+  const int m = static_cast<int>(system.positions().size());
+  xn_.resize(m);
+  if (colliding) vn_.resize(m);
   double* x = system.positions().data();
   double* v = system.velocities().data();
   double* xn = xn_.data();
-  const double* f = force_.data();
-  const double* w = system.inverseMasses().data();
-  parallelRanges(system.size(), threadCount(), kParallelParticles, [&](int begin, int end) {
+  double* vn = vn_.data();
+  const double* a = acceleration_.data();
+  parallelRanges(m, threadCount(), kParallelEntries, [&](int begin, int end) {
+    if (colliding)
+      std::copy(v + begin, v + end, vn + begin);
 #pragma omp simd
-    for (int i = begin; i < end; ++i)
-      for (int c = 0; c < 2; ++c) {
-        const int k = 2 * i + c;
-        v[k] += f[k] * (h * w[i]);
-        xn[k] = x[k];
-        x[k] += h * v[k];
-      }
+    for (int k = begin; k < end; ++k) {
+      v[k] += h * a[k];
+      xn[k] = x[k];
+      x[k] += h * v[k];
+    }
   });
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
 }

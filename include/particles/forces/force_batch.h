@@ -39,6 +39,7 @@ class ForceBatches {
  public:
   // Rebuilds the segments when stamp differs from the one last built for.
   void update(const std::vector<std::unique_ptr<Force>>& forces, std::uint64_t stamp);
+  void update(const std::vector<const Force*>& forces, std::uint64_t stamp);
 
   // f = Σ forces at s (f sized 2n here).
   void apply(const Phase& s, Eigen::VectorXd& f) const;

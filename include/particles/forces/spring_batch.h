@@ -4,18 +4,19 @@
 //
 // Runs: springs (a, a + d), (a + 1, a + 1 + d), …, (a + L − 1, a + L − 1 + d)
 // with one stride d read their particles from two contiguous stretches of x
-// and v, so a run's forces are one vectorisable loop, and its additions are
-// two more: f[a + t] += F_t for every t, then f[a + d + t] −= F_t (within each
-// of the two no particle appears twice, so there is no scatter conflict).
-// build() finds the runs in any order of the springs: it sorts them by stride
-// and first particle, cuts the sorted list into maximal runs of at most
-// kRunLength, and orders the runs by first particle and stride, so that the
-// runs of one region of a grid are evaluated together. Springs outside runs
-// of kMinRun or more keep their order and are evaluated one by one after the
-// runs (the gather loop).
+// and v, so a run's forces F_t are one vectorisable loop into a scratch
+// array, and its additions two more, f[a + t] += F_t and f[a + d + t] −= F_t
+// (within each of the two no particle appears twice: no scatter conflict).
+// build() finds the runs in any order of the springs (strided_runs.h: sorted
+// by stride and first particle, cut into runs of at most kRunLength, the
+// runs ordered by first particle and stride, so that the runs of one region
+// of a grid are evaluated together). Springs outside runs of kMinRun or more
+// keep their order and are evaluated one by one after the runs (the gather
+// loop).
 //
-// Order of the additions: particle p receives its terms run by run, + before
-// − within a run, then from the other springs in order. The order differs
+// Order of the additions: particle p receives its terms run by run (within a
+// run in the springs' order: for d > 0 the − of spring t − d before the + of
+// spring t), then from the other springs in order. The order differs
 // from the plain loop over the force objects, so f differs from it by
 // rounding (|Δf_p| ≤ (m_p − 1) ε Σ |terms of p|, m_p terms); it does not
 // depend on the thread count: with several threads, every spring's force is
