@@ -5,6 +5,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 
+#include "constraint_solver_probe.h"
 #include "linear/linear.h"
 #include "particles/check.h"
 
@@ -247,9 +248,11 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
   return true;
 }
 
-Eigen::MatrixXd ConstraintSolver::denseJ(int particleCount) const { return work_->rows.denseJ(particleCount); }
-Eigen::MatrixXd ConstraintSolver::denseJdot(int particleCount) const {
-  return work_->rows.denseJdot(particleCount);
+Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, int particleCount) {
+  return solver.work_->rows.denseJ(particleCount);
+}
+Eigen::MatrixXd ConstraintSolverProbe::denseJdot(const ConstraintSolver& solver, int particleCount) {
+  return solver.work_->rows.denseJdot(particleCount);
 }
 
 }  // namespace particles

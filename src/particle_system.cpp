@@ -4,10 +4,24 @@
 #include <atomic>
 #include <cmath>
 
+#include "collision/contact_pass.h"
 #include "particles/check.h"
 #include "particles/forces/spring.h"
 
 namespace particles {
+
+ParticleSystem::ParticleSystem() : contacts_(std::make_unique<ContactPass>()) {}
+ParticleSystem::~ParticleSystem() = default;
+ParticleSystem::ParticleSystem(ParticleSystem&&) noexcept = default;
+ParticleSystem& ParticleSystem::operator=(ParticleSystem&&) noexcept = default;
+
+ContactSettings& ParticleSystem::contactSettings() { return contacts_->settings(); }
+const ContactSettings& ParticleSystem::contactSettings() const { return contacts_->settings(); }
+bool ParticleSystem::colliding() const { return contactScene().colliding(); }
+int ParticleSystem::contactsLastStep() const { return contacts_->contactsThisStep(); }
+ContactScene ParticleSystem::contactScene() const {
+  return {colliders_, edges_, collidable_, constraints_, mass_, inverseMass_, radius_, structureStamp_};
+}
 
 std::uint64_t ParticleSystem::nextStructureStamp() {
   static std::atomic<std::uint64_t> counter{0};
@@ -125,7 +139,7 @@ void ParticleSystem::restore(const Snapshot& s) {
   v_ = s.v;
   time_ = s.time;
   solver_.resetWarmStart();
-  contacts_.resetWarmStart();
+  contacts_->resetWarmStart();
 }
 
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
@@ -181,14 +195,14 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   solver_.settings.validate();
   const ContactScene scene = contactScene();
   const bool collideAfter = scene.colliding() && !integrator.collidesInSubsteps();
-  contacts_.beginStep(scene, x_, v_, collideAfter);
+  contacts_->beginStep(scene, x_, v_, collideAfter);
   // Integrate.
   StepStats stats = integrator.step(*this, dt);
   addEvaluationStats(stats);  // evaluations the integrator left in the tally
   // Collide.
   if (collideAfter)
-    contacts_.collideStep(scene, dt, {true, integrator.driftCorrection()}, x_, v_);
-  stats += contacts_.stepStats();
+    contacts_->collideStep(scene, dt, {true, integrator.driftCorrection()}, x_, v_);
+  stats += contacts_->stepStats();
   // Advance the clock.
   time_ += dt;
   lastStepStats_ = stats;
@@ -196,7 +210,7 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
 }
 
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
-  return contacts_.collide(contactScene(), StepStart{x0, v0, dt}, ContactCoupling{}, x_, v_);
+  return contacts_->collide(contactScene(), StepStart{x0, v0, dt}, ContactCoupling{}, x_, v_);
 }
 
 double ParticleSystem::kineticEnergy() const {

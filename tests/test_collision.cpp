@@ -13,6 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include "collision/collider_broad_phase.h"  // the engine's internal contact kernels, tested directly
+#include "collision/edge_contacts.h"
+#include "collision/particle_contacts.h"
 #include "particles/constants.h"
 #include "particles/collision.h"
 #include "particles/divergence.h"
@@ -389,7 +392,7 @@ TEST(BoxOfDiscs, ElasticDiscsKeepTheirEnergyWithinTwoPercentOver100Seconds) {
                     2.0 * Vector2d(unit(rng), unit(rng)));
       s.setCollidable(s.size() - 1, r);
     }
-  s.particleContacts().restitution = 1.0;
+  s.contactSettings().particleRestitution = 1.0;
   addGravity(s);
   addClosedBox(s, 0.2, 1.0);
   auto integrator = makeIntegrator("rk4");
@@ -416,7 +419,7 @@ TEST(Stack, FiveDiscsRestWithoutSinkingOrJitter) {
       s.addParticle(Vector2d(0.0, r + 2 * r * k + 0.01 * k), 1.0);  // small gaps: they settle first
       s.setCollidable(k, r);
     }
-    s.particleContacts().restitution = 0.5;
+    s.contactSettings().particleRestitution = 0.5;
     addGravity(s);
     s.addCollider(floorBox(0.5, 0.5));
     auto integrator = makeIntegrator(name);
@@ -448,7 +451,7 @@ TEST(ParticleContacts, MomentumIsConservedThroughManyContacts) {
         s.addParticle(Vector2d(0.25 * col, 0.25 * row), mass(rng), Vector2d(unit(rng), unit(rng)));
         s.setCollidable(s.size() - 1, 0.1);
       }
-    s.particleContacts().restitution = e;
+    s.contactSettings().particleRestitution = e;
     Vector2d p0 = Vector2d::Zero();
     for (int i = 0; i < s.size(); ++i) p0 += s.masses()[i] * s.velocity(i);
     auto integrator = makeIntegrator("rk4");
@@ -470,7 +473,7 @@ TEST(ParticleContacts, HeadOnEqualMassesWithUnitRestitutionExchangeVelocities) {
   system.addParticle(Vector2d(0.5, 0.2), 1.3, Vector2d(-0.4, 0.0));
   system.setCollidable(0, 0.1);
   system.setCollidable(1, 0.1);
-  system.particleContacts().restitution = 1.0;
+  system.contactSettings().particleRestitution = 1.0;
   auto integrator = makeIntegrator("symplectic-euler");
   int contacts = 0;
   for (int step = 0; step < 100; ++step) {
@@ -498,8 +501,9 @@ TEST(ParticleContacts, UnequalMassesConserveMomentumAndScaleRelativeNormalVeloci
   const VectorXd v0 = v, x = x0 + dt * v;  // free flight to the step's end
   VectorXd x1 = x, v1 = v;
   ParticleContacts contacts;
-  contacts.restitution = e;
-  EXPECT_EQ(contacts.resolve({0, 1}, {}, StepStart{x0, v0, dt}, w, radius, ContactSettings{}, true, x1, v1).contacts, 1);
+  ContactSettings settings;
+  settings.particleRestitution = e;
+  EXPECT_EQ(contacts.resolve({0, 1}, {}, StepStart{x0, v0, dt}, w, radius, settings, true, x1, v1).contacts, 1);
   auto momentum = [&](const VectorXd& u) { return Vector2d(m0 * u.segment<2>(0) + m1 * u.segment<2>(2)); };
   EXPECT_LT((momentum(v1) - momentum(v0)).norm(), 1e-14);
   EXPECT_LT((momentum(x1) - momentum(x)).norm(), 1e-14) << "the centre of mass moves on undisturbed";
@@ -591,7 +595,7 @@ TEST(ParticleContacts, FarFlungAndNonFiniteParticlesDoNotBreakTheBroadPhase) {
 
 // markNearColliders tests blocks of consecutive particles by their common box
 // before each particle: it must mark exactly the particles that the
-// per-particle definition (collision.h) marks, whether the particles lie in
+// per-particle definition (collider_broad_phase.h) marks, whether the particles lie in
 // index order along a sheet (most blocks apart from every collider) or at
 // random, at huge or non-finite positions included.
 TEST(ColliderBroadPhase, BlocksMarkExactlyThePathsThatComeNearAColliderOneByOne) {
@@ -1018,7 +1022,7 @@ TEST(CollisionParameters, ParticleRestitutionOutsideUnitIntervalIsRejected) {
     system.addParticle(Vector2d(0.15, 0.0), 1.0, Vector2d(-1.0, 0.0));
     system.setCollidable(0, 0.1);
     system.setCollidable(1, 0.1);
-    system.particleContacts().restitution = restitution;
+    system.contactSettings().particleRestitution = restitution;
     auto integrator = makeIntegrator("rk4");
     expectRejected([&] { system.step(*integrator, 0.01); }, "restitution");
   }

@@ -60,7 +60,7 @@ TEST(ParticleSystem, StepRejectsBadSettingsBeforeAnythingMoves) {
   system.solver().settings.tolerance = 1e-8;
   system.setCollidable(1, 0.05);
   system.setCollidable(2, 0.05);
-  system.particleContacts().restitution = 1.5;
+  system.contactSettings().particleRestitution = 1.5;
   expectRejected([&] { system.step(*integrator, 0.01); }, "particle contact restitution");
   EXPECT_EQ(system.positions(), before.x);
   EXPECT_EQ(system.velocities(), before.v);

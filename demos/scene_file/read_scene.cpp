@@ -167,7 +167,7 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   particles::ParticleSystem& s = *scene.system;
   readSolver(root["solver"], s.solver().settings);
   if (root["particleRestitution"].present())
-    s.particleContacts().restitution = root["particleRestitution"].inRange(0.0, 1.0);
+    s.contactSettings().particleRestitution = root["particleRestitution"].inRange(0.0, 1.0);
 
   const JsonNode particleList = root["particles"];
   if (!particleList.present()) particleList.expected("an array of particles");

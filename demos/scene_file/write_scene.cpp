@@ -40,7 +40,7 @@ Json sceneToJson(const Scene& scene) {
                    {"warmStart", solver.warmStart},
                    {"method", particles::nameOf(solver.method)},
                    {"preconditioner", particles::nameOf(solver.preconditioner)}};
-  doc["particleRestitution"] = s.particleContacts().restitution;
+  doc["particleRestitution"] = s.contactSettings().particleRestitution;
   doc["particles"] = Json::array();
   for (int i = 0; i < s.size(); ++i) {
     Json p = {{"position", toJson(s.position(i))}, {"velocity", toJson(s.velocity(i))}, {"mass", s.masses()[i]}};

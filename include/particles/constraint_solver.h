@@ -74,14 +74,15 @@ class ConstraintSolver {
   const Eigen::VectorXd& lambda() const { return lambda_; }
   void resetWarmStart() { lambda_.resize(0); }
 
-  // The pieces of the last solve, for tests: the gathered rows as dense J and
-  // J̇ (m × 2n), the right-hand side b, and A·y = J W Jᵀ y applied matrix-free.
-  Eigen::MatrixXd denseJ(int particleCount) const;
-  Eigen::MatrixXd denseJdot(int particleCount) const;
+  // The right-hand side b of the last solve (m).
   const Eigen::VectorXd& rhs() const { return b_; }
-  void applyOperator(const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
 
  private:
+  // Dense J and J̇ of the last solve, for the tests (src/constraint_solver_probe.h).
+  friend struct ConstraintSolverProbe;
+
+  // A·y = J W Jᵀ y applied matrix-free, from the gathered rows.
+  void applyOperator(const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
   // The rows, the assembled J W Jᵀ, its factorisations and the CG scratch
   // (src/linear; defined in src/constraint_solver.cpp).
   struct Workspace;

@@ -1,5 +1,5 @@
 #pragma once
-// How the contact pass's coupled solve (coupled_contacts.h) corrects the
+// How the contact pass's coupled solve (src/collision/coupled_contacts.h) corrects the
 // constraints' position drift, as each integrator asks (Integrator::driftCorrection).
 
 namespace particles {

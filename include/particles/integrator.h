@@ -70,8 +70,8 @@ class Integrator {
   virtual bool collidesInSubsteps() const { return false; }
 
   // The post-step contact phase resolves the particles that touch a collider
-  // together with the constraints that hold them (coupled_contacts.h).
-  // How that coupled solve corrects the constraints' drift (coupled_contacts.h):
+  // together with the constraints that hold them (src/collision/coupled_contacts.h).
+  // How that coupled solve corrects the constraints' drift (src/collision/coupled_contacts.h):
   // DriftCorrection::Shake for a scheme whose step ends with x = x0 + dt v.
   virtual DriftCorrection driftCorrection() const { return DriftCorrection::AtEnd; }
 

@@ -7,10 +7,10 @@
 
 #include <Eigen/Core>
 
+#include "particles/collider.h"
 #include "particles/collision.h"
 #include "particles/constraint.h"
 #include "particles/constraint_solver.h"
-#include "particles/contact_pass.h"
 #include "particles/force.h"
 #include "particles/integrator.h"
 #include "particles/step_stats.h"
@@ -24,8 +24,16 @@ struct Snapshot {
   double time = 0.0;
 };
 
+class ContactPass;  // the collision phase of a step (src/collision/contact_pass.h)
+struct ContactScene;
+
 class ParticleSystem {
  public:
+  ParticleSystem();
+  ~ParticleSystem();
+  ParticleSystem(ParticleSystem&&) noexcept;
+  ParticleSystem& operator=(ParticleSystem&&) noexcept;
+
   // --- building -----------------------------------------------------------
   // Returns the new particle's index. mass must be finite and > 0.
   int addParticle(const Eigen::Vector2d& position, double mass,
@@ -90,10 +98,9 @@ class ParticleSystem {
 
   ConstraintSolver& solver() { return solver_; }
   const ConstraintSolver& solver() const { return solver_; }
-  ParticleContacts& particleContacts() { return contacts_.particleContacts(); }
-  const ParticleContacts& particleContacts() const { return contacts_.particleContacts(); }
-  ContactSettings& contactSettings() { return contacts_.settings(); }
-  const ContactSettings& contactSettings() const { return contacts_.settings(); }
+  // Contact settings, particleRestitution among them (checked at the next step).
+  ContactSettings& contactSettings();
+  const ContactSettings& contactSettings() const;
 
   // --- dynamics -----------------------------------------------------------
   // q̈ at (x, v): clear forces → apply forces → solve λ → add Jᵀλ → a = W(Q + Q̂).
@@ -115,7 +122,7 @@ class ParticleSystem {
   void addEvaluationStats(StepStats& stats);
 
   // One step, as named phases: begin (check the settings, keep the start
-  // state) → integrate by dt → collide (the contact pass, contact_pass.h,
+  // state) → integrate by dt → collide (the contact pass, src/collision/contact_pass.h,
   // continuous from the start state; skipped without colliders or collidable
   // discs, and left to the integrator when it collides inside its substeps)
   // → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
@@ -124,9 +131,9 @@ class ParticleSystem {
   const StepStats& lastStepStats() const { return lastStepStats_; }
 
   // Colliders or at least two collidable discs: step() has a collision phase.
-  bool colliding() const { return contactScene().colliding(); }
+  bool colliding() const;
   // The contact pass over an interval dt that began at (x0, v0) and ends at
-  // the present state, each particle on its own (contact_pass.h). An
+  // the present state, each particle on its own. An
   // integrator that collides inside its substeps (Integrator::collidesInSubsteps)
   // runs it after each substep. Returns the contacts, which contactsLastStep() sums.
   int collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt);
@@ -140,7 +147,7 @@ class ParticleSystem {
   // The last constraint solve alone; lastStepStats() sums a whole step.
   const SolveStats& lastSolve() const { return solver_.stats(); }
   bool finite() const;  // every position and velocity finite
-  int contactsLastStep() const { return contacts_.contactsThisStep(); }
+  int contactsLastStep() const;
 
  private:
   Eigen::VectorXd x_, v_, f_;
@@ -153,14 +160,12 @@ class ParticleSystem {
   std::vector<CollisionEdge> edges_;
   std::vector<int> collidable_;
   ConstraintSolver solver_;
-  ContactPass contacts_;
+  std::unique_ptr<ContactPass> contacts_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
   std::uint64_t structureStamp_ = nextStructureStamp();
   static std::uint64_t nextStructureStamp();
-  ContactScene contactScene() const {
-    return {colliders_, edges_, collidable_, constraints_, mass_, inverseMass_, radius_, structureStamp_};
-  }
+  ContactScene contactScene() const;
 };
 
 }  // namespace particles

@@ -7,7 +7,7 @@
 
 #include "contact_track.h"
 #include "particles/check.h"
-#include "particles/collision.h"
+#include "collider_contacts.h"
 
 namespace particles {
 
@@ -27,6 +27,7 @@ void ContactSettings::validate() const {
                                 std::to_string(positionIterations));
   requireNonNegative("contact coupledTolerance", coupledTolerance);
   requireNonNegative("contact restitutionThreshold", restitutionThreshold);
+  requireInRange("particle contact restitution", particleRestitution, 0.0, 1.0);
 }
 
 namespace {

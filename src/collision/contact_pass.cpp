@@ -1,4 +1,8 @@
-#include "particles/contact_pass.h"
+#include "contact_pass.h"
+
+#include "collider_broad_phase.h"
+#include "collider_contacts.h"
+#include "edge_contacts.h"
 
 #include <algorithm>
 #include <iterator>
@@ -33,10 +37,7 @@ double largestRadius(const Eigen::VectorXd& radius) { return radius.size() > 0 ?
 
 void ContactPass::beginStep(const ContactScene& scene, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                             bool keepStart) {
-  if (scene.colliding()) {
-    settings_.validate();
-    if (scene.discs.size() > 1) requireInRange("particle contact restitution", discs_.restitution, 0.0, 1.0);
-  }
+  if (scene.colliding()) settings_.validate();
   if (keepStart) {
     startX_ = x;
     startV_ = v;

@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include "contact_types.h"
+#include "particles/collider.h"
 #include "particles/collision.h"
 
 namespace particles::contact {

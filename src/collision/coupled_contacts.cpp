@@ -1,5 +1,5 @@
 // Contacts and constraints of an island resolved together (coupled_contacts.h).
-#include "particles/coupled_contacts.h"
+#include "coupled_contacts.h"
 
 #include <algorithm>
 #include <cmath>

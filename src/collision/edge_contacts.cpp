@@ -7,7 +7,7 @@
 
 #include "contact_track.h"
 #include "set_flags.h"
-#include "particles/collision.h"
+#include "edge_contacts.h"
 #include "plane_geometry.h"
 
 namespace particles {
@@ -334,48 +334,6 @@ int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<
     if (heldNow == 0) break;
   }
   return held;
-}
-
-void EdgeIncidence::update(const std::vector<CollisionEdge>& edges, int particles, std::uint64_t structure) {
-  if (structure_ == structure) return;
-  structure_ = structure;
-  first_.assign(particles + 1, 0);
-  for (const CollisionEdge& e : edges) {
-    ++first_[e.a + 1];
-    ++first_[e.b + 1];
-  }
-  for (int p = 0; p < particles; ++p) first_[p + 1] += first_[p];
-  ids_.resize(first_[particles]);
-  std::vector<int> fill(first_.begin(), first_.end() - 1);
-  for (int k = 0; k < static_cast<int>(edges.size()); ++k) {
-    ids_[fill[edges[k].a]++] = k;
-    ids_[fill[edges[k].b]++] = k;
-  }
-  marked_.assign(edges.size(), 0);
-}
-
-void EdgeIncidence::mark(const std::vector<int>& particles) {
-  for (int p : particles)
-    for (int k = first_[p]; k < first_[p + 1]; ++k) marked_[ids_[k]] = 1;
-}
-
-void EdgeIncidence::takeMarked(std::vector<int>& out) {
-  // Edge contacts move particles one edge after another: the edge order is kept.
-  out.clear();
-  contact::appendSetFlags(marked_, out);
-  for (int e : out) marked_[e] = 0;
-}
-
-double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) {
-  // Each side of an edge's box is at most the edge's extent along it at the
-  // end plus the travel of its two ends: |x_i − x_j|∞ + 2 max_k |x1_k − x0_k|∞.
-  // (Both axes at once; with a coordinate not finite the reach may be any value.)
-  using Point = Eigen::Map<const Eigen::Array2d>;
-  const double* X = x1.data();
-  Eigen::Array2d extent = Eigen::Array2d::Zero();
-  for (const CollisionEdge& edge : edges) extent = extent.max((Point(X + 2 * edge.a) - Point(X + 2 * edge.b)).abs());
-  const double travel = x1.size() > 0 ? (x1 - x0).cwiseAbs().maxCoeff() : 0.0;
-  return extent.maxCoeff() + 2.0 * travel;
 }
 
 }  // namespace particles

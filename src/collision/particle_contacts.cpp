@@ -6,7 +6,7 @@
 
 #include "contact_track.h"
 #include "particles/check.h"
-#include "particles/collision.h"
+#include "particle_contacts.h"
 
 namespace particles {
 
@@ -115,8 +115,6 @@ ContactCount ParticleContacts::resolve(const std::vector<int>& collidable, const
                                        const StepStart& start, const Eigen::VectorXd& inverseMass,
                                        const Eigen::VectorXd& radius, const ContactSettings& settings, bool impacts,
                                        Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd* lastFree) {
-  // A public field rather than a constructor argument, so it is checked where it is used.
-  requireInRange("particle contact restitution", restitution, 0.0, 1.0);
   const Scratch& S = *scratch_;
   const int count = static_cast<int>(collidable.size());
   touching_.clear();
@@ -243,7 +241,8 @@ ContactCount ParticleContacts::resolveImpacts(const std::vector<int>& collidable
     if (inverseMass[collidable[a]] + inverseMass[collidable[b]] == 0.0) return;
     if (S.tracks[a].impacts >= settings.maxImpacts || S.tracks[b].impacts >= settings.maxImpacts) return;
     const std::optional<PairImpact> hit =
-        nextPairImpact(S.tracks[a], S.tracks[b], radius[collidable[a]] + radius[collidable[b]], restitution,
+        nextPairImpact(S.tracks[a], S.tracks[b], radius[collidable[a]] + radius[collidable[b]],
+                       settings.particleRestitution,
                        settings.slop, dt);
     if (hit) push({hit->tau, a, b, S.stamp[a], S.stamp[b], {}, *hit});
   };

@@ -21,10 +21,13 @@
 
 #include <Eigen/Core>
 
+#include "collider_broad_phase.h"
+#include "contact_types.h"
+#include "coupled_contacts.h"
+#include "particle_contacts.h"
 #include "particles/collider.h"
 #include "particles/collision.h"
 #include "particles/constraint.h"
-#include "particles/coupled_contacts.h"
 #include "particles/step_stats.h"
 
 namespace particles {
@@ -55,8 +58,6 @@ struct ContactCoupling {
 
 class ContactPass {
  public:
-  ParticleContacts& particleContacts() { return discs_; }
-  const ParticleContacts& particleContacts() const { return discs_; }
   ContactSettings& settings() { return settings_; }
   const ContactSettings& settings() const { return settings_; }
 

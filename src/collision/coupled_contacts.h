@@ -43,6 +43,7 @@
 
 #include <Eigen/Core>
 
+#include "contact_types.h"
 #include "particles/collider.h"
 #include "particles/collision.h"
 #include "particles/constraint.h"
