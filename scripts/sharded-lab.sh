@@ -18,9 +18,11 @@
 # compose; the results do not depend on either).
 #
 # As a Slurm job array instead (one shard per array task, then the merge):
-#   SLURM=1 scripts/sharded-lab.sh EXPERIMENT OUTDIR N [options...]
-# submits `sbatch --array=1-N` running `--shard $SLURM_ARRAY_TASK_ID/N`, and a
-# merge job that starts when every task succeeded (--dependency=afterok).
+#   SLURM=1 [CPUS=C] scripts/sharded-lab.sh EXPERIMENT OUTDIR N [options...]
+# submits `sbatch --array=1-N --cpus-per-task=C` (C default 1) running
+# `--shard $SLURM_ARRAY_TASK_ID/N --jobs $SLURM_CPUS_PER_TASK` (unless the
+# options give --jobs), so each task runs its cells on the C CPUs Slurm gave
+# it, and a merge job that starts when every task succeeded (--dependency=afterok).
 set -euo pipefail
 if [ $# -lt 3 ]; then
   echo "usage: $0 EXPERIMENT OUTDIR N [experiment options...]" >&2
@@ -29,6 +31,8 @@ fi
 experiment=$1 out=$2 shards=$3
 shift 3
 case $shards in '' | *[!0-9]* | 0*) echo "$0: N must be a positive integer, got '$shards'" >&2; exit 2 ;; esac
+cpus=${CPUS:-1}
+case $cpus in '' | *[!0-9]* | 0*) echo "$0: CPUS must be a positive integer, got '$cpus'" >&2; exit 2 ;; esac
 here=$(cd "$(dirname "$0")/.." && pwd)
 program=${PROGRAM:-}
 if [ -z "$program" ]; then
@@ -38,8 +42,11 @@ mkdir -p "$out/shards"
 out=$(cd "$out" && pwd)  # absolute: the same path on every host
 
 if [ "${SLURM:-0}" = 1 ]; then
-  array=$(sbatch --parsable --array=1-"$shards" --job-name="lab-$experiment" --output="$out/shards/%a.log" \
-    --wrap "'$program' '$experiment' $* --shard \$SLURM_ARRAY_TASK_ID/$shards --out '$out/shards/'\$SLURM_ARRAY_TASK_ID")
+  jobs='--jobs $SLURM_CPUS_PER_TASK'
+  for option in "$@"; do case $option in --jobs | --jobs=*) jobs= ;; esac; done
+  array=$(sbatch --parsable --array=1-"$shards" --cpus-per-task="$cpus" --job-name="lab-$experiment" \
+    --output="$out/shards/%a.log" \
+    --wrap "'$program' '$experiment' $*${jobs:+ $jobs} --shard \$SLURM_ARRAY_TASK_ID/$shards --out '$out/shards/'\$SLURM_ARRAY_TASK_ID")
   sbatch --dependency=afterok:"$array" --job-name="lab-$experiment-merge" --output="$out/merge.log" \
     --wrap "'$program' merge \$(seq -f '$out/shards/%g' $shards) --out '$out'"
   echo "submitted array job $array ($shards shards) and its merge; results in $out"

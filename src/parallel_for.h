@@ -1,10 +1,14 @@
 #pragma once
-// The engine's one parallel loop: body(i) for every i in [0, n), on `threads`
+// The engine's parallel loops: body(i) for every i in [0, n), or
+// body(begin, end) over contiguous ranges covering [0, n), on `threads`
 // OpenMP threads when threads > 1 and n >= grain, else as a plain loop on the
 // calling thread. The plain loop enters no parallel region at all: an OpenMP
 // region switched off by an if clause still builds a team and makes a futex
 // call each time, which cost a 12-rod chain's step a third of its time.
 namespace particles {
+
+// Below kParallelEntries entries a pass over a vector runs serially.
+constexpr int kParallelEntries = 8192;
 
 template <class Body>
 void parallelFor(int n, int threads, int grain, const Body& body) {
@@ -14,6 +18,20 @@ void parallelFor(int n, int threads, int grain, const Body& body) {
     return;
   }
   for (int i = 0; i < n; ++i) body(i);
+}
+
+// Thread id of team gets [n·id/team, n·(id + 1)/team): one range each, so
+// the body's inner loop over its range can be vectorised.
+template <class Body>
+void parallelRanges(int n, int threads, int grain, const Body& body) {
+  if (threads > 1 && n >= grain) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int id = 0; id < threads; ++id)
+      body(static_cast<int>(static_cast<long long>(n) * id / threads),
+           static_cast<int>(static_cast<long long>(n) * (id + 1) / threads));
+    return;
+  }
+  body(0, n);
 }
 
 }  // namespace particles

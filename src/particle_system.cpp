@@ -169,13 +169,12 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
                                   Eigen::VectorXd& a) {
   const Phase s = phase(x, v);
   batches_.update(forces_, structureStamp_);
-  const bool fuseTail = constraints_.empty();  // nothing is added to f after the forces
-  batches_.apply(s, f_, fuseTail);
   ++evaluations_.forceEvaluations;
-  if (fuseTail) {
-    batches_.applyTailAndDivide(s, f_, a);
+  if (constraints_.empty()) {  // nothing is added to f after the forces
+    batches_.applyAndDivide(s, f_, a);
     return;
   }
+  batches_.apply(s, f_);
   {
     solver_.addConstraintForces(s, constraints_, f_);
     const SolveStats& solve = solver_.stats();
@@ -195,7 +194,7 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
 
 void ParticleSystem::appliedForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
   batches_.update(forces_, structureStamp_);
-  batches_.apply(phase(x, v), f, false);
+  batches_.apply(phase(x, v), f);
   ++evaluations_.forceEvaluations;
 }
 

@@ -2,6 +2,7 @@
 
 #include <sched.h>
 
+#include <atomic>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -9,15 +10,16 @@
 namespace particles {
 
 namespace {
-int gThreads = 1;
+// Atomic: the demo's panel sets it while its advice worker thread steps a copy of the scene.
+std::atomic<int> gThreads{1};
 }  // namespace
 
 void setThreadCount(int count) {
   if (count < 1) throw std::invalid_argument("thread count must be >= 1, got " + std::to_string(count));
-  gThreads = count;
+  gThreads.store(count, std::memory_order_relaxed);
 }
 
-int threadCount() { return gThreads; }
+int threadCount() { return gThreads.load(std::memory_order_relaxed); }
 
 int affinityCpuCount() {
   cpu_set_t set;

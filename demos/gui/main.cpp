@@ -9,6 +9,7 @@
 
 #include "app.h"
 #include "backends/imgui_impl_glut.h"
+#include "particles/threads.h"
 
 namespace {
 
@@ -73,6 +74,7 @@ void onIdle() {
 
 int main(int argc, char** argv) {
   const demo::DemoOptions options = demo::parseOptions(argc, argv);
+  particles::setThreadCount(options.threads);
   std::unique_ptr<demo::App> application;
   try {
     application = std::make_unique<demo::App>(options);

@@ -121,6 +121,11 @@ void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
                  "simulated time is dropped (slow motion), and a frame takes at least one step")
       ->capture_default_str()
       ->check(options::numberInRange(0.0, 1e6));
+  cli.add_option("--threads", o.threads,
+                 "threads of the engine's parallel loops (the same results on any count; 1 starts no thread; "
+                 "default: the CPUs of the affinity mask), a decimal integer in [1, 1024]")
+      ->capture_default_str()
+      ->check(options::decimalInteger(1, 1024));
 }
 
 // How the window starts: panel, pause, pacing, size.

@@ -8,6 +8,7 @@
 #include "options/scene_source.h"
 #include "options/usage.h"
 #include "particles/grab.h"
+#include "particles/threads.h"
 
 namespace demo {
 
@@ -36,6 +37,7 @@ struct DemoOptions {
   bool lockstep = false;
   particles::MouseJointSettings grab;           // --grab frequency=F, damping-ratio=Z, stiffness-ratio=R
   double stepBudgetMs = defaultStepBudgetMs;    // --step-budget: wall time a frame may spend stepping
+  int threads = particles::affinityCpuCount();  // --threads: the engine's parallel loops (panel: "threads")
   bool hidePanel = false;
   bool startPaused = false;
   bool realtime = false;                        // scripted runs at 60 frames/s instead of flat out

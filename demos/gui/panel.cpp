@@ -8,6 +8,7 @@
 
 #include "app.h"
 #include "particles/solver_names.h"
+#include "particles/threads.h"
 
 namespace demo {
 
@@ -229,6 +230,11 @@ void App::drawTimeControls() {
     stepMode_ = lockstep ? StepMode::Lockstep : StepMode::FixedTime;
   int paneCount = static_cast<int>(panes_.size());
   if (ImGui::SliderInt("compare panes", &paneCount, 1, 4)) guarded([&] { setPaneCount(paneCount); });
+  int threads = particles::threadCount();
+  if (ImGui::SliderInt("threads", &threads, 1, std::max(2, particles::affinityCpuCount())))
+    particles::setThreadCount(std::max(1, threads));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("threads of the engine's parallel loops (the same results on any count)");
+  recordWidget("threads");
 }
 
 // --- live plots ---------------------------------------------------------------

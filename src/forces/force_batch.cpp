@@ -1,6 +1,6 @@
 #include "particles/forces/force_batch.h"
 
-#include <cmath>
+#include <algorithm>
 
 #include "parallel_for.h"
 #include "particles/forces/drag.h"
@@ -10,124 +10,36 @@
 
 namespace particles {
 
-void SpringBatch::clear() {
-  incidenceBegin_ = incidenceEnd_ = incidenceParticles_ = -1;
-  first.clear();
-  second.clear();
-  rest.clear();
-  stiffness.clear();
-  damping.clear();
-}
-
-void SpringBatch::add(int i, int j, double r, double ks, double kd) {
-  first.push_back(i);
-  second.push_back(j);
-  rest.push_back(r);
-  stiffness.push_back(ks);
-  damping.push_back(kd);
-}
-
-// springForce() written out on scalars, operation for operation (|l| as
-// sqrt(lx² + ly²), u = l/|l| by division, s = k_s(|l| − r) + k_d l̇·u,
-// f_i = −s u), so that the batch and the virtual call give the same bits.
-inline bool SpringBatch::force(int k, const double* x, const double* v, double& fx, double& fy) const {
-  const int i = 2 * first[k], j = 2 * second[k];
-  const double lx = x[i] - x[j], ly = x[i + 1] - x[j + 1];
-  const double length = std::sqrt(lx * lx + ly * ly);
-  if (length == 0.0) {  // direction undefined: no force
-    fx = fy = 0.0;
-    return false;
-  }
-  const double ux = lx / length, uy = ly / length;
-  const double ldotu = (v[i] - v[j]) * ux + (v[i + 1] - v[j + 1]) * uy;
-  const double m = -(stiffness[k] * (length - rest[k]) + damping[k] * ldotu);
-  fx = m * ux;
-  fy = m * uy;
-  return true;
-}
-
-void SpringBatch::apply(int begin, int end, const Phase& s, Eigen::VectorXd& f) const {
-  const int threads = threadCount();
-  if (threads > 1 && end - begin >= kParallelSprings) {
-    applyParallel(begin, end, s, f, threads);
-    return;
-  }
-  const double* x = s.x.data();
-  const double* v = s.v.data();
-  double* out = f.data();
-  for (int k = begin; k < end; ++k) {
-    const int i = 2 * first[k], j = 2 * second[k];
-    double fx, fy;
-    if (!force(k, x, v, fx, fy)) continue;
-    out[i] += fx;
-    out[i + 1] += fy;
-    out[j] -= fx;
-    out[j + 1] -= fy;
-  }
-}
-
-void SpringBatch::buildIncidence(int begin, int end, int particles) const {
-  if (begin == incidenceBegin_ && end == incidenceEnd_ && particles == incidenceParticles_) return;
-  incidenceStart_.assign(particles + 1, 0);
-  for (int k = begin; k < end; ++k) {
-    ++incidenceStart_[first[k] + 1];
-    ++incidenceStart_[second[k] + 1];
-  }
-  for (int p = 0; p < particles; ++p) incidenceStart_[p + 1] += incidenceStart_[p];
-  incidence_.resize(incidenceStart_[particles]);
-  std::vector<int> fill(incidenceStart_.begin(), incidenceStart_.end() - 1);
-  for (int k = begin; k < end; ++k) {  // ascending k within each particle's list
-    incidence_[fill[first[k]]++] = k;
-    incidence_[fill[second[k]]++] = ~k;
-  }
-  forces_.resize(2 * static_cast<std::size_t>(first.size()));
-  incidenceBegin_ = begin;
-  incidenceEnd_ = end;
-  incidenceParticles_ = particles;
-}
-
-void SpringBatch::applyParallel(int begin, int end, const Phase& s, Eigen::VectorXd& f, int threads) const {
-  const int n = s.size();
-  buildIncidence(begin, end, n);
-  const double* x = s.x.data();
-  const double* v = s.v.data();
-  double* out = f.data();
-  double* fs = forces_.data();
-  const int* start = incidenceStart_.data();
-  const int* list = incidence_.data();
-#pragma omp parallel num_threads(threads)
-  {
-#pragma omp for schedule(static)
-    for (int k = begin; k < end; ++k) force(k, x, v, fs[2 * k], fs[2 * k + 1]);
-#pragma omp for schedule(static)
-    for (int p = 0; p < n; ++p) {
-      double fx = out[2 * p], fy = out[2 * p + 1];
-      for (int e = start[p]; e < start[p + 1]; ++e) {
-        const int k = list[e];
-        if (k >= 0) {
-          fx += fs[2 * k];
-          fy += fs[2 * k + 1];
-        } else {
-          fx -= fs[2 * ~k];
-          fy -= fs[2 * ~k + 1];
-        }
-      }
-      out[2 * p] = fx;
-      out[2 * p + 1] = fy;
-    }
-  }
-}
-
 namespace {
 
-// f_i += term on movable particle i (as GravityForce::apply / DragForce::apply).
-inline void addField(const FieldTerm& t, int i, const Phase& s, double* f) {
+// Particles per block of the per-particle passes: one block's f, a, x and v
+// stay in the first-level cache between the passes of its field terms.
+constexpr int kParticleBlock = 512;
+
+// f_i += term on movable particles i in [begin, end) (as GravityForce::apply
+// and DragForce::apply). The term is multiplied by 1 on a movable particle
+// (exact) and by 0 on a pinned one, whose f_i + 0 equals f_i: a branch would
+// keep the loops from being vectorised.
+void addField(const FieldTerm& t, int begin, int end, const Phase& s, double* f) {
+  const double* w = s.inverseMass.data();
   if (t.kind == FieldTerm::Kind::Gravity) {
-    f[2 * i] += s.mass[i] * t.gravity.x();
-    f[2 * i + 1] += s.mass[i] * t.gravity.y();
+    const double* m = s.mass.data();
+    const double gx = t.gravity.x(), gy = t.gravity.y();
+#pragma omp simd
+    for (int i = begin; i < end; ++i) {
+      const double movable = w[i] > 0.0 ? 1.0 : 0.0;
+      f[2 * i] += movable * (m[i] * gx);
+      f[2 * i + 1] += movable * (m[i] * gy);
+    }
   } else {
-    f[2 * i] -= t.drag * s.v[2 * i];
-    f[2 * i + 1] -= t.drag * s.v[2 * i + 1];
+    const double* v = s.v.data();
+    const double k = t.drag;
+#pragma omp simd
+    for (int i = begin; i < end; ++i) {
+      const double movable = w[i] > 0.0 ? 1.0 : 0.0;
+      f[2 * i] -= movable * (k * v[2 * i]);
+      f[2 * i + 1] -= movable * (k * v[2 * i + 1]);
+    }
   }
 }
 
@@ -167,27 +79,37 @@ const Batcher kBatchers[] = {
 
 void ForceBatches::update(const std::vector<std::unique_ptr<Force>>& forces, std::uint64_t stamp) {
   if (built_ && stamp == stamp_) return;
+  std::vector<const Force*> list;
+  for (const auto& force : forces) list.push_back(force.get());
+  update(list, stamp);
+}
+
+void ForceBatches::update(const std::vector<const Force*>& forces, std::uint64_t stamp) {
+  if (built_ && stamp == stamp_) return;
   segments_.clear();
   tail_.clear();
   springs_.clear();
+  SpringBatch open;  // springs since the last other force
+  auto closeSprings = [&]() {
+    if (open.size() == 0) return;
+    open.build();
+    segments_.push_back({Segment::Kind::Springs, static_cast<int>(springs_.size()), {}, nullptr});
+    springs_.push_back(std::move(open));
+    open = SpringBatch();
+  };
   for (const auto& force : forces) {
     FieldTerm field{FieldTerm::Kind::Gravity, Eigen::Vector2d::Zero(), 0.0};
     bool isField = false, taken = false;
-    const int before = springs_.size();
     for (const Batcher& b : kBatchers)
-      if ((taken = b.take(*force, springs_, field, isField))) break;
-    if (!taken) {
-      segments_.push_back({Segment::Kind::Virtual, 0, 0, field, force.get()});
-    } else if (isField) {
-      segments_.push_back({Segment::Kind::Field, 0, 0, field, nullptr});
-    } else if (springs_.size() > before) {
-      // Consecutive springs share one segment.
-      if (!segments_.empty() && segments_.back().kind == Segment::Kind::Springs)
-        segments_.back().end = springs_.size();
-      else
-        segments_.push_back({Segment::Kind::Springs, before, springs_.size(), field, nullptr});
-    }
+      if ((taken = b.take(*force, open, field, isField))) break;
+    if (taken && !isField) continue;  // a spring: consecutive springs share one segment
+    closeSprings();
+    if (!taken)
+      segments_.push_back({Segment::Kind::Virtual, 0, field, force});
+    else
+      segments_.push_back({Segment::Kind::Field, 0, field, nullptr});
   }
+  closeSprings();
   headSegments_ = static_cast<int>(segments_.size());
   while (headSegments_ > 0 && segments_[headSegments_ - 1].kind == Segment::Kind::Field) --headSegments_;
   for (int k = headSegments_; k < static_cast<int>(segments_.size()); ++k) tail_.push_back(segments_[k].field);
@@ -195,39 +117,56 @@ void ForceBatches::update(const std::vector<std::unique_ptr<Force>>& forces, std
   built_ = true;
 }
 
-void ForceBatches::apply(const Phase& s, Eigen::VectorXd& f, bool fuseTail) const {
-  f.setZero(s.x.size());
+int ForceBatches::springCount() const {
+  int count = 0;
+  for (const SpringBatch& b : springs_) count += b.size();
+  return count;
+}
+
+void ForceBatches::applySegments(int begin, int end, const Phase& s, Eigen::VectorXd& f,
+                                 const SpringBatch::ParticleRange& finish) const {
   const int n = s.size(), threads = threadCount();
-  const int last = fuseTail ? headSegments_ : static_cast<int>(segments_.size());
-  for (int k = 0; k < last; ++k) {
+  if (begin == end || segments_[begin].kind != Segment::Kind::Springs) f.setZero(2 * n);
+  bool finished = false;
+  for (int k = begin; k < end; ++k) {
     const Segment& seg = segments_[k];
     switch (seg.kind) {
-      case Segment::Kind::Springs: springs_.apply(seg.begin, seg.end, s, f); break;
+      case Segment::Kind::Springs:
+        finished = k == end - 1;
+        springs_[seg.springs].apply(s, f, k == 0, finished ? finish : SpringBatch::ParticleRange{});
+        break;
       case Segment::Kind::Field: {
         double* fd = f.data();
-        parallelFor(n, threads, kParallelParticles, [&](int i) {
-          if (s.inverseMass[i] > 0.0) addField(seg.field, i, s, fd);
-        });
+        parallelRanges(n, threads, kParallelParticles, [&](int from, int to) { addField(seg.field, from, to, s, fd); });
         break;
       }
       case Segment::Kind::Virtual: seg.force->apply(s, f); break;
     }
   }
+  if (finish && !finished) parallelRanges(n, threads, kParallelParticles, finish);
 }
 
-void ForceBatches::applyTailAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a) const {
-  const int n = s.size();
-  a.resize(2 * n);
-  double* fd = f.data();
+void ForceBatches::apply(const Phase& s, Eigen::VectorXd& f) const {
+  applySegments(0, static_cast<int>(segments_.size()), s, f, {});
+}
+
+void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, double* a) const {
+  const double* w = s.inverseMass.data();
+  for (int b = begin; b < end; b += kParticleBlock) {
+    const int e = std::min(end, b + kParticleBlock);
+    for (const FieldTerm& t : tail_) addField(t, b, e, s, f);
+#pragma omp simd
+    for (int i = b; i < e; ++i) {
+      a[2 * i] = w[i] * f[2 * i];
+      a[2 * i + 1] = w[i] * f[2 * i + 1];
+    }
+  }
+}
+
+void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a) const {
+  a.resize(s.x.size());
   double* ad = a.data();
-  const int threads = threadCount();
-  parallelFor(n, threads, kParallelParticles, [&](int i) {
-    const double w = s.inverseMass[i];
-    if (w > 0.0)
-      for (const FieldTerm& t : tail_) addField(t, i, s, fd);
-    ad[2 * i] = w * fd[2 * i];
-    ad[2 * i + 1] = w * fd[2 * i + 1];
-  });
+  applySegments(0, headSegments_, s, f, [&](int begin, int end) { tailAndDivide(begin, end, s, f.data(), ad); });
 }
 
 }  // namespace particles

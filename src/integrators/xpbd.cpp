@@ -5,10 +5,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "parallel_for.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
 #include "particles/particle_system.h"
+#include "particles/threads.h"
 #include "particles/xpbd/constraint_projection.h"
 
 namespace particles {
@@ -125,30 +127,41 @@ void XpbdIntegrator::prepare(const ParticleSystem& system, double h) {
   preparedStamp_ = 0;  // a refusal below leaves nothing prepared
   forms_ = positionForms(system, h);
   distances_.build(forms_.distances, system.inverseMasses());
+  applied_.update(forms_.applied, ++appliedStamp_);
   angleLambda_.resize(forms_.angles.size());
   attachmentLambda_.resize(forms_.attachments.size());
   preparedStamp_ = system.structureStamp();
   preparedStep_ = h;
 }
 
-// f = Σ of the forces without a position form, at the substep's start.
+// f = Σ of the forces without a position form at the substep's start, and
+// a = W f (force batches: fields and springs of zero stiffness as flat arrays).
 void XpbdIntegrator::applyForces(ParticleSystem& system) {
-  force_.setZero(system.positions().size());
-  const Phase s = system.phase();
-  for (const Force* f : forms_.applied) f->apply(s, force_);
+  applied_.applyAndDivide(system.phase(), force_, acceleration_);
 }
 
-// v ← v + h W f,  xⁿ ← x,  x ← x + h v; the multipliers restart at 0; vⁿ ← v
+// v ← v + h a,  xⁿ ← x,  x ← x + h v; the multipliers restart at 0; vⁿ ← v
 // (before the forces) for the contacts.
 void XpbdIntegrator::predict(ParticleSystem& system, double h) {
-  if (system.colliding()) vn_ = system.velocities();
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
-  const auto n = static_cast<Eigen::Index>(system.size());
-  Eigen::Map<Eigen::Array2Xd>(v.data(), 2, n) +=
-      Eigen::Map<const Eigen::Array2Xd>(force_.data(), 2, n).rowwise() * (h * system.inverseMasses().array()).transpose();
-  xn_ = x;
-  x += h * v;
+  const bool colliding = system.colliding();
+  const int m = static_cast<int>(system.positions().size());
+  xn_.resize(m);
+  if (colliding) vn_.resize(m);
+  double* x = system.positions().data();
+  double* v = system.velocities().data();
+  double* xn = xn_.data();
+  double* vn = vn_.data();
+  const double* a = acceleration_.data();
+  parallelRanges(m, threadCount(), kParallelEntries, [&](int begin, int end) {
+    if (colliding)
+      std::copy(v + begin, v + end, vn + begin);
+#pragma omp simd
+    for (int k = begin; k < end; ++k) {
+      v[k] += h * a[k];
+      xn[k] = x[k];
+      x[k] += h * v[k];
+    }
+  });
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
   std::fill(attachmentLambda_.begin(), attachmentLambda_.end(), Eigen::Vector2d::Zero());
 }
@@ -179,7 +192,13 @@ void XpbdIntegrator::collide(ParticleSystem& system, double h) {
 
 // v ← (x − xⁿ)/h; pinned particles (w = 0) never moved and keep v = 0.
 void XpbdIntegrator::updateVelocities(ParticleSystem& system, double h) {
-  system.velocities() = (system.positions() - xn_) / h;
+  const double* x = system.positions().data();
+  const double* xn = xn_.data();
+  double* v = system.velocities().data();
+  parallelRanges(static_cast<int>(xn_.size()), threadCount(), kParallelEntries, [&](int begin, int end) {
+#pragma omp simd
+    for (int k = begin; k < end; ++k) v[k] = (x[k] - xn[k]) / h;
+  });
 }
 
 }  // namespace particles

@@ -1,9 +1,15 @@
 #include "particles/xpbd/distance.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <tuple>
+
+#include "particles/threads.h"
+#include "strided_runs.h"
+#include "vector_kernels.h"
 
 namespace particles {
 
@@ -12,41 +18,101 @@ namespace {
 constexpr int kColours = 63;        // colours of independent constraints; the rest are serial
 constexpr std::size_t kBlock = 64;  // constraints whose lengths are taken together
 constexpr double kLargest = std::numeric_limits<double>::max();
+constexpr std::size_t kParallelConstraints = 4096;  // fewer: one thread whatever the count
+constexpr int kRunLength = 256, kMinRun = 8;        // strided runs (strided_runs.h)
 
-// Greedy colouring in the given order: each constraint takes the lowest colour
-// neither of its particles has yet; kColours for none free.
-std::vector<int> greedyColours(const std::vector<CompliantDistance>& constraints, int particles) {
-  std::vector<std::uint64_t> used(particles, 0);
-  std::vector<int> colour(constraints.size());
-  for (std::size_t k = 0; k < constraints.size(); ++k) {
-    const int i = constraints[k].i, j = constraints[k].j;
-    const std::uint64_t free = ~(used[i] | used[j]) & ((std::uint64_t{1} << kColours) - 1);
+// Greedy colouring: each item takes the lowest of the kColours colours none
+// of its particles has yet, and marks them; kColours when none is free.
+class GreedyColours {
+ public:
+  explicit GreedyColours(int particles) : used_(particles, 0) {}
+  template <class Particles>
+  int take(const Particles& particles) {
+    std::uint64_t taken = 0;
+    for (int p : particles) taken |= used_[p];
+    const std::uint64_t free = ~taken & ((std::uint64_t{1} << kColours) - 1);
     const int c = free == 0 ? kColours : __builtin_ctzll(free);
-    if (c < kColours) {
-      used[i] |= std::uint64_t{1} << c;
-      used[j] |= std::uint64_t{1} << c;
-    }
-    colour[k] = c;
+    if (c < kColours)
+      for (int p : particles) used_[p] |= std::uint64_t{1} << c;
+    return c;
   }
-  return colour;
+
+ private:
+  std::vector<std::uint64_t> used_;
+};
+
+// A strided run cut into pieces whose constraints share no particle (see
+// DistanceBatch): stride ≥ length, one piece; an odd stride, the even and the
+// odd constraints (step 2); an even one, pieces of |stride| constraints.
+// Members are indices into the found runs' order.
+struct Piece {
+  int first, stride, step, length;
+  std::vector<int> members;
+};
+
+std::vector<Piece> independentPieces(const StridedRuns& found) {
+  std::vector<Piece> pieces;
+  for (const StridedRun& r : found.runs) {
+    const int d = std::abs(r.stride);
+    auto piece = [&](int t0, int step, int length) {
+      Piece p{r.first + t0, r.stride, step, length, {}};
+      for (int t = 0; t < length; ++t) p.members.push_back(found.order[r.begin + t0 + step * t]);
+      pieces.push_back(std::move(p));
+    };
+    if (d >= r.length) {
+      piece(0, 1, r.length);
+    } else if (d % 2 == 1) {
+      piece(0, 2, (r.length + 1) / 2);
+      piece(1, 2, r.length / 2);
+    } else {
+      for (int t0 = 0; t0 < r.length; t0 += d) piece(t0, 1, std::min(d, r.length - t0));
+    }
+  }
+  return pieces;
+}
+
+// One run of constraints t < length joining the particles at x + 2·step·t
+// and x + 2·step·t + 2·stride, no two sharing a particle, with one entry's
+// parameters: projectRange's formulas (below), operation for operation, as a
+// vectorisable loop. kLambda: 0 not kept, 1 started, 2 accumulated; kStep 1 or 2.
+template <bool kDamped, int kLambda, int kStep>
+PARTICLES_VECTOR_CLONES void projectRun(int length, int stride, const double* xn, double* x, double* lambda,
+                                        double rest, double wi, double wj, double alphaTilde, double gamma,
+                                        double inverseDenominator) {
+  const int s = 2 * kStep, d = 2 * stride;
+#pragma omp simd
+  for (int t = 0; t < length; ++t) {
+    const int i = s * t, j = s * t + d;
+    const double dx = x[i] - x[j], dy = x[i + 1] - x[j + 1];
+    const double squared = dx * dx + dy * dy;
+    const double inverse = 1.0 / std::sqrt(squared);
+    const double inverseLength = inverse < kLargest ? inverse : kLargest;
+    const double ux = dx * inverseLength, uy = dy * inverseLength;
+    double numerator = rest - squared * inverseLength;
+    if constexpr (kDamped)
+      numerator -= gamma * (ux * (dx - (xn[i] - xn[j])) + uy * (dy - (xn[i + 1] - xn[j + 1])));
+    if constexpr (kLambda == 2) numerator -= alphaTilde * lambda[t];
+    const double dl = numerator * inverseDenominator;
+    if constexpr (kLambda == 1) lambda[t] = dl;
+    if constexpr (kLambda == 2) lambda[t] += dl;
+    const double si = wi * dl, sj = wj * dl;
+    x[i] += si * ux;
+    x[i + 1] += si * uy;
+    x[j] -= sj * ux;
+    x[j + 1] -= sj * uy;
+  }
 }
 
 }  // namespace
 
+// Entries (parameters shared by equal constraints), then runs of one entry,
+// cut into independent pieces and coloured; what no run takes is coloured
+// constraint by constraint. Layout: the runs colour by colour, then the
+// other constraints colour by colour, then the serial ones.
 void DistanceBatch::build(const std::vector<CompliantDistance>& constraints, const Eigen::VectorXd& inverseMass) {
-  const std::vector<int> colour = greedyColours(constraints, static_cast<int>(inverseMass.size()));
-  std::vector<std::size_t> start(kColours + 2, 0);
-  for (int c : colour) ++start[c + 1];
-  for (int c = 0; c <= kColours; ++c) start[c + 1] += start[c];
-  colourEnd_.clear();
-  for (int c = 1; c <= kColours; ++c)
-    if (start[c] > start[c - 1]) colourEnd_.push_back(start[c]);
-  serialBegin_ = start[kColours];
-
   const std::size_t n = constraints.size();
-  first_.assign(n, 0);
-  second_.assign(n, 0);
-  entry_.assign(n, 0);
+  const int particles = static_cast<int>(inverseMass.size());
+  std::vector<int> entryOf(n), firsts(n), seconds(n);
   entries_.clear();
   damped_ = false;
   std::map<std::tuple<double, double, double, double, double>, std::int32_t> shared;
@@ -62,12 +128,84 @@ void DistanceBatch::build(const std::vector<CompliantDistance>& constraints, con
     const auto [it, added] = shared.emplace(key, static_cast<std::int32_t>(entries_.size()));
     if (added) entries_.push_back(e);
     damped_ |= e.compliance.gamma != 0.0;
-    const std::size_t at = start[colour[k]]++;
-    first_[at] = 2 * c.i;
-    second_[at] = 2 * c.j;
-    entry_[at] = it->second;
+    entryOf[k] = it->second;
+    firsts[k] = c.i;
+    seconds[k] = c.j;
+  }
+
+  // Runs: pieces coloured in their order; a piece with no free colour is left to the others.
+  std::vector<Piece> pieces = independentPieces(findStridedRuns(firsts, seconds, kRunLength, kMinRun, entryOf));
+  std::stable_sort(pieces.begin(), pieces.end(),
+                   [](const Piece& a, const Piece& b) { return std::abs(a.stride) < std::abs(b.stride); });
+  GreedyColours runColours(particles);
+  std::vector<std::vector<const Piece*>> byColour(kColours);
+  std::vector<bool> inRun(n, false);
+  for (const Piece& p : pieces) {
+    std::vector<int> touched;
+    for (int t = 0; t < p.length; ++t) {
+      touched.push_back(p.first + p.step * t);
+      touched.push_back(p.first + p.step * t + p.stride);
+    }
+    const int c = runColours.take(touched);
+    if (c == kColours) continue;
+    byColour[c].push_back(&p);
+    for (int k : p.members) inRun[k] = true;
+  }
+  order_.clear();
+  runs_.clear();
+  runColourEnd_.clear();
+  for (const auto& colour : byColour) {
+    if (colour.empty()) continue;
+    for (const Piece* p : colour) {
+      runs_.push_back({order_.size(), p->first, p->stride, p->step, p->length, entryOf[p->members[0]]});
+      order_.insert(order_.end(), p->members.begin(), p->members.end());
+    }
+    runColourEnd_.push_back(runs_.size());
+  }
+  runConstraints_ = order_.size();
+
+  // The rest, constraint by constraint in their order.
+  GreedyColours colours(particles);
+  std::vector<std::vector<int>> rest(kColours + 1);
+  for (std::size_t k = 0; k < n; ++k)
+    if (!inRun[k]) rest[colours.take(std::array<int, 2>{constraints[k].i, constraints[k].j})].push_back(static_cast<int>(k));
+  colourEnd_.clear();
+  for (int c = 0; c <= kColours; ++c) {
+    if (c == kColours) serialBegin_ = order_.size();
+    order_.insert(order_.end(), rest[c].begin(), rest[c].end());
+    if (c < kColours && !rest[c].empty()) colourEnd_.push_back(order_.size());
+  }
+
+  first_.resize(n);
+  second_.resize(n);
+  entry_.resize(n);
+  for (std::size_t at = 0; at < n; ++at) {
+    const int k = order_[at];
+    first_[at] = 2 * constraints[k].i;
+    second_[at] = 2 * constraints[k].j;
+    entry_[at] = entryOf[k];
   }
   lambda_.assign(n, 0.0);
+}
+
+void DistanceBatch::projectRuns(std::size_t begin, std::size_t end, const double* xn, double* x, int lambdaMode) {
+  using Kernel = void (*)(int, int, const double*, double*, double*, double, double, double, double, double, double);
+  static constexpr Kernel variants[2][3][2] = {
+      {{&projectRun<false, 0, 1>, &projectRun<false, 0, 2>},
+       {&projectRun<false, 1, 1>, &projectRun<false, 1, 2>},
+       {&projectRun<false, 2, 1>, &projectRun<false, 2, 2>}},
+      {{&projectRun<true, 0, 1>, &projectRun<true, 0, 2>},
+       {&projectRun<true, 1, 1>, &projectRun<true, 1, 2>},
+       {&projectRun<true, 2, 1>, &projectRun<true, 2, 2>}},
+  };
+  const auto& kernels = variants[damped_ ? 1 : 0][lambdaMode];
+  for (std::size_t r = begin; r < end; ++r) {
+    const Run& run = runs_[r];
+    const Entry& e = entries_[run.entry];
+    const std::size_t offset = 2 * static_cast<std::size_t>(run.first);
+    kernels[run.step - 1](run.length, run.stride, xn + offset, x + offset, lambda_.data() + run.begin, e.rest, e.wi,
+                          e.wj, e.compliance.alphaTilde, e.compliance.gamma, e.inverseDenominator);
+  }
 }
 
 void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
@@ -81,8 +219,37 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
        &DistanceBatch::projectRange<true, Multipliers::Accumulate>},
   };
   const Multipliers lambda = passes == 1 ? Multipliers::None : pass == 0 ? Multipliers::Start : Multipliers::Accumulate;
-  const Range run = variants[damped_ ? 1 : 0][static_cast<int>(lambda)];
-  std::size_t begin = 0;
+  const int lambdaMode = static_cast<int>(lambda);
+  const Range run = variants[damped_ ? 1 : 0][lambdaMode];
+  const int threads = threadCount();
+  if (threads > 1 && size() >= kParallelConstraints) {
+    // Within a colour no two runs or constraints share a particle: its runs
+    // and blocks are projected on any thread with the same bits; the colours
+    // stay in order.
+#pragma omp parallel num_threads(threads)
+    {
+      std::size_t begin = 0;
+      for (std::size_t end : runColourEnd_) {
+#pragma omp for schedule(static)
+        for (std::size_t r = begin; r < end; ++r) projectRuns(r, r + 1, xn, x, lambdaMode);
+        begin = end;
+      }
+      begin = runConstraints_;
+      for (std::size_t end : colourEnd_) {
+        const long blocks = static_cast<long>((end - begin + kBlock - 1) / kBlock);
+#pragma omp for schedule(static)
+        for (long b = 0; b < blocks; ++b)
+          (this->*run)(begin + static_cast<std::size_t>(b) * kBlock,
+                       std::min(end, begin + static_cast<std::size_t>(b + 1) * kBlock), kBlock, xn, x);
+        begin = end;
+      }
+#pragma omp single
+      (this->*run)(serialBegin_, size(), 1, xn, x);
+    }
+    return;
+  }
+  projectRuns(0, runs_.size(), xn, x, lambdaMode);
+  std::size_t begin = runConstraints_;
   for (std::size_t end : colourEnd_) {
     (this->*run)(begin, end, kBlock, xn, x);
     begin = end;

@@ -12,7 +12,7 @@ class Rk4Integrator : public Integrator {
   StepStats step(ParticleSystem& system, double dt) override;
 
  private:
-  Eigen::VectorXd x0_, v0_, xs_, vs_, a_, dx_, dv_;
+  Eigen::VectorXd xs_, vs_, a_, dx_, dv_;
 };
 
 }  // namespace particles

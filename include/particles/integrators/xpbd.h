@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "particles/force.h"
+#include "particles/forces/force_batch.h"
 #include "particles/integrator.h"
 #include "particles/xpbd/angle.h"
 #include "particles/xpbd/attachment.h"
@@ -73,7 +74,9 @@ class XpbdIntegrator : public Integrator {
   std::vector<double> angleLambda_;
   std::vector<Eigen::Vector2d> attachmentLambda_;
   std::vector<Eigen::Vector2d> blocks_;
-  Eigen::VectorXd force_, xn_, vn_;  // f; x and v at the substep's start
+  ForceBatches applied_;             // forms_.applied as batches
+  std::uint64_t appliedStamp_ = 0;   // applied_ rebuilt at each prepare()
+  Eigen::VectorXd force_, acceleration_, xn_, vn_;  // f, W f; x and v at the substep's start
 };
 
 }  // namespace particles
