@@ -93,7 +93,9 @@ TEST(CoupledContacts, PinnedChainLandingOnFloorKeepsRodsAndEnergy) {
     EXPECT_FALSE(run.failed) << name;
     EXPECT_LT(run.worstStretch, std::max(0.02, ownDrift)) << name;
     EXPECT_LT(run.energyRise, 2e-3) << name;  // of a fall releasing about 4 J
-    if (couplesAfterTheStep(name)) EXPECT_GT(run.contactIterations, 0) << name;
+    if (couplesAfterTheStep(name)) {
+      EXPECT_GT(run.contactIterations, 0) << name;
+    }
     // The bounce steps of a 12-rod chain can reach the 200-sweep cap; what is
     // left is reported, and small.
     EXPECT_LT(run.contactResidual, 1e-3) << name;
@@ -160,7 +162,9 @@ TEST(CoupledContacts, WireBeadSettlesWhereFloorCutsWire) {
     const double e0 = s.totalEnergy();
     const RunResult run = runFor(s, name, 0.005, 2000);
     EXPECT_FALSE(run.failed) << name;
-    if (std::string(name) != "euler") EXPECT_LT(run.energyRise, 2e-3) << name;
+    if (std::string(name) != "euler") {
+      EXPECT_LT(run.energyRise, 2e-3) << name;
+    }
     EXPECT_NEAR(s.totalEnergy() - e0, -g * 1.0 * (0.0 - floorY), 1e-3) << name;
     EXPECT_NEAR(std::abs(s.position(0).x()), xMeet, 1e-3) << name;
     EXPECT_NEAR(s.position(0).y(), floorY, 1e-3) << name;

@@ -84,10 +84,10 @@ void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, c
                                      extras.frameSimulationMs.end());
   out << "frame-times," << ms.size() << "," << quantile(ms, 0.5) << "," << quantile(ms, 0.1) << "," << quantile(ms, 0.9)
       << "," << quantile(stepping, 0.5) << "\n";
-  const FrameBudget& b = extras.lastBudget;
+  const FrameBudget& budget = extras.lastBudget;
   const BudgetTally& t = extras.budgetTally;
-  out << "budget," << b.budgetMs << "," << b.steps << "," << b.panesStepped << "," << b.panesWaiting << ","
-      << (b.stepOverBudget() ? 1 : 0) << "," << b.steppingMs << "," << b.longestStepMs << "," << t.frames << ","
+  out << "budget," << budget.budgetMs << "," << budget.steps << "," << budget.panesStepped << "," << budget.panesWaiting << ","
+      << (budget.stepOverBudget() ? 1 : 0) << "," << budget.steppingMs << "," << budget.longestStepMs << "," << t.frames << ","
       << t.spent << "," << t.withPaneWaiting << "," << t.withStepOverBudget << "," << t.overByMoreThanAStep << ","
       << t.largestSteppingMs << "," << t.largestStepMs << "\n";
   out << "real-time," << extras.realTime.lastSecond << "," << extras.realTime.simSeconds << ","
