@@ -55,11 +55,12 @@ GrabReach grabReach(const ParticleSystem& system, int particle, const Force* ign
     tie(a, b);
     if (a == particle && b == particle) block(t.row() % 2, t.col() % 2) -= t.value();
   }
+  GrabReach reach;
   for (const auto& constraint : system.constraints()) {
     const std::vector<int>& p = constraint->particles();
     for (std::size_t k = 1; k < p.size(); ++k) tie(p[0], p[k]);
+    reach.constrained = reach.constrained || std::find(p.begin(), p.end(), particle) != p.end();
   }
-  GrabReach reach;
   reach.mass = system.masses()[particle];
   const int group = groups.find(particle);
   for (int i = 0; i < n; ++i)
@@ -80,7 +81,8 @@ MouseSpringGains mouseSpringGains(const GrabReach& reach, const MouseJointSettin
   double stiffness = std::max(reach.tiedMass * omega * omega, joint.stiffnessRatio * reach.stiffness);
   double damping = 2.0 * joint.dampingRatio * std::sqrt(stiffness * reach.tiedMass);
   if (explicitStep > 0.0) {
-    stiffness = std::min(stiffness, reach.mass / (explicitStep * explicitStep));
+    const double rate = reach.constrained ? kExplicitJointRate : 1.0;
+    stiffness = std::min(stiffness, rate * rate * reach.mass / (explicitStep * explicitStep));
     damping = std::min(damping, 0.5 * reach.mass / explicitStep);
   }
   if (!std::isfinite(stiffness) || !std::isfinite(damping))

@@ -43,6 +43,8 @@ TEST(GrabReach, TiedMassCountsWhatSpringsAndConstraintsJoinButNotPinsOrWind) {
   const GrabReach three = grabReach(system, 3);
   EXPECT_EQ(three.tiedMass, 9.0);
   EXPECT_EQ(three.stiffness, 0.0);  // a rod is a constraint, not a stiffness
+  EXPECT_TRUE(three.constrained);
+  EXPECT_FALSE(one.constrained);  // springs only; the rod holds 2 and 3
   const GrabReach four = grabReach(system, 4);
   EXPECT_EQ(four.tiedMass, 5.0);  // the wind pushes, it does not tie
   EXPECT_EQ(four.stiffness, 0.0);
@@ -68,6 +70,10 @@ TEST(MouseSpringGains, TheLargerOfTheTiedBodysJointAndTheAttachedStiffnessWithin
   // Applied explicitly over h = 2 ms: √(k/m) h ≤ 1 and c h/m ≤ 1/2.
   g = mouseSpringGains(reach, joint, 0.002);
   EXPECT_NEAR(g.stiffness, 0.01 / (0.002 * 0.002), 1e-9);
+  // ... and √(k/m) h ≤ 0.4 where a constraint holds the particle.
+  reach.constrained = true;
+  EXPECT_NEAR(mouseSpringGains(reach, joint, 0.002).stiffness, 0.16 * 0.01 / (0.002 * 0.002), 1e-9);
+  reach.constrained = false;
   EXPECT_NEAR(g.damping, 0.5 * 0.01 / 0.002, 1e-12);
   // A ratio of 0 and a heavy particle: Box2D's joint, within the bounds.
   joint.stiffnessRatio = 0.0;

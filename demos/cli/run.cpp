@@ -49,16 +49,34 @@ std::unique_ptr<scenes::CsvWriter> openOutput(const std::string& path, const cha
   return std::make_unique<scenes::CsvWriter>(path, option, columns);
 }
 
-int run(const RunOptions& o) {
-  // Check every input before the first output.
-  particles::setThreadCount(o.threads);
-  scenes::Scene scene = o.source.load();
+// The scene's integrator and settings, with those the command line gives instead.
+std::unique_ptr<particles::Integrator> chosenIntegrator(const RunOptions& o, const scenes::Scene& scene) {
   const std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
   particles::IntegratorSettings settings = scene.integratorSettings;
   if (o.toleranceOption->count()) settings.tolerance = o.integratorSettings.tolerance;
   if (o.substepsOption->count()) settings.substeps = o.integratorSettings.substeps;
   if (o.iterationsOption->count()) settings.iterations = o.integratorSettings.iterations;
-  const std::unique_ptr<particles::Integrator> integrator = particles::makeIntegrator(integratorName, settings);
+  return particles::makeIntegrator(integratorName, settings);
+}
+
+// The line a finished run prints on standard output.
+void printSummary(const scenes::Scene& scene, const particles::Integrator& integrator, double dt, long long steps,
+                  double seconds) {
+  const particles::ParticleSystem& s = *scene.system;
+  std::cout << scenes::printable(scene.name) << " with " << integrator.name() << " at dt " << dt << ": "
+            << scenes::plural(steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
+            << (seconds > 0.0 ? steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
+            << ", max |C| " << s.maxConstraintError();
+  if (s.tearing().on())
+    std::cout << ", " << scenes::plural(static_cast<long long>(s.brokenLinks().size()), "link") << " torn";
+  std::cout << '\n';
+}
+
+int run(const RunOptions& o) {
+  // Check every input before the first output.
+  particles::setThreadCount(o.threads);
+  scenes::Scene scene = o.source.load();
+  const std::unique_ptr<particles::Integrator> integrator = chosenIntegrator(o, scene);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;  // both checked > 0 as read
   // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
   // step boundary and the files are closed with complete rows.
@@ -106,14 +124,7 @@ int run(const RunOptions& o) {
     return finish(kInterrupted);
   }
   finish(kSuccess);
-  const double seconds = loop.simulatedSeconds();
-  std::cout << scenes::printable(scene.name) << " with " << integrator->name() << " at dt " << dt << ": "
-            << scenes::plural(o.steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
-            << (seconds > 0.0 ? o.steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
-            << ", max |C| " << s.maxConstraintError();
-  if (s.tearing().on())
-    std::cout << ", " << scenes::plural(static_cast<long long>(s.brokenLinks().size()), "link") << " torn";
-  std::cout << '\n';
+  printSummary(scene, *integrator, dt, o.steps, loop.simulatedSeconds());
   return kSuccess;
 }
 

@@ -24,16 +24,25 @@
 //
 // An integrator that applies the joint as an explicit force over a step h
 // (Integrator::explicitForceStep; 0 for implicit Euler and xpbd, which take
-// it implicitly) bounds both for stability on p's own mass m:
-//   √(k/m) h ≤ 1,   c h/m ≤ 1/2
-// (measured on the built-in scenes: velocity Verlet on the cloth diverges at
-// c h/m = 1 and holds at 1/2; every scene an integrator steps without a grab
-// it also steps with one).
+// it implicitly) bounds both on p's own mass m:
+//   √(k/m) h ≤ 1 (kExplicitJointRate = 0.4 where a constraint holds p),
+//   c h/m ≤ 1/2
+// (measured: velocity Verlet on the cloth diverges at c h/m = 1 and holds at
+// 1/2; the linear limit √(k/m) h ≤ 1 is not enough where p turns rods, whose
+// error grows with the square of the angle a rod turns in a step, and the
+// cloth's springs need the whole of it to keep the 10% gap: the seed
+// test chain (rods of 0.1 m, dt 0.01) dragged 0.28 m at its tip diverges
+// under midpoint, RK4 and symplectic Euler at √(k/m) h = 1 and 0.52 and holds
+// at 0.42 and below, the demo's DemoCompare.MouseDragReachesEveryPane).
 #include "particles/forces/mouse_spring.h"
 
 namespace particles {
 
 class ParticleSystem;
+
+// The largest √(k/m) h of a joint applied explicitly over a step h to a
+// particle that a constraint holds (1 for one that none holds).
+inline constexpr double kExplicitJointRate = 0.4;
 
 struct MouseJointSettings {
   double frequency = 5.0;       // f, Hz: how briskly the grabbed body follows
@@ -47,6 +56,7 @@ struct GrabReach {
   double mass = 0.0;       // m, the particle's own
   double tiedMass = 0.0;   // M ≥ m
   double stiffness = 0.0;  // K, force / length
+  bool constrained = false;  // a constraint holds the particle
 };
 
 // M and K of particle p at the system's present state; the force `ignore`

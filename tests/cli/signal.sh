@@ -51,8 +51,11 @@ done
 # each iteration, so the run answers within a few seconds, not after the
 # step; the cut step is not written: the CSV ends with the step before it.
 "$PROGRAM" export --scene test-chain --param cl=16000 >"$WORK/long-chain.json" || fail "export of the long chain failed"
-sed -i 's/"method":"direct"/"method":"cg"/' "$WORK/long-chain.json"
+# CG without its work bound (maxCgWork 0), so that one solve takes seconds and
+# the signal arrives inside it.
+sed -i -e 's/"method":"direct"/"method":"cg"/' -e 's/"maxCgWork":[0-9.e+]*/"maxCgWork":0/' "$WORK/long-chain.json"
 grep -q '"method":"cg"' "$WORK/long-chain.json" || fail "the long chain's solver is not CG"
+grep -q '"maxCgWork":0[,}]' "$WORK/long-chain.json" || fail "the long chain's CG keeps its work bound"
 csv="$WORK/long-chain.csv"
 "$PROGRAM" run --scene-file "$WORK/long-chain.json" --steps 1000 --csv "$csv" >"$WORK/long-chain.out" 2>"$WORK/long-chain.err" &
 pid=$!
@@ -70,7 +73,7 @@ if kill -0 $pid 2>/dev/null; then
   elif ! grep -Eq '^particle-lab: interrupted after step [0-9]+ ' "$WORK/long-chain.err"; then
     fail "long-chain: no interrupt line: $(head -c 300 "$WORK/long-chain.err")"
   else
-    last=$(sed -E 's/.*after step ([0-9]+) .*/\1/' "$WORK/long-chain.err")
+    last=$(grep -E '^particle-lab: interrupted after step' "$WORK/long-chain.err" | sed -E 's/.*after step ([0-9]+) .*/\1/')
     complete_csv "$csv" && [ "$(tail -n 1 "$csv" | cut -d, -f1)" = "$last" ] &&
       [ "$(wc -l <"$csv")" = $((last + 2)) ] && pass "long-chain (stopped inside step $((last + 1)))" ||
       fail "long-chain: $csv does not end whole at step $last"

@@ -35,7 +35,7 @@ std::string typeInto(long long frame, const LoggedOverlay& w, const std::string&
 // The panel's advice section, opened by a click on its header: where its
 // fields and buttons are.
 StateLog adviceLayout(const std::string& dir, const std::string& scene) {
-  const std::string window = " --window 1180x900";
+  const std::string window = " --window 1180x1010";
   EXPECT_EQ(runDemo(dir, "--scene " + scene + window + " --frames 2 --log-state closed.txt").exitCode, 0);
   const StateLog closed = readStateLog(dir + "/closed.txt");
   const LoggedOverlay* header = closed.widget("advice");
@@ -60,7 +60,7 @@ TEST(DemoAdvice, AdviceRunsOffTheMainLoopAndApplySetsTheAdvisedIntegratorAndDt) 
                              clickAt(30, *layout.widget("advise")) + "34 wait advice\n" +
                              clickAt(40, *layout.widget("advise-apply")) + "60 key q\n";
   const RunResult run = runDemo(dir,
-                                "--scene pendulum --window 1180x900 --integrator euler --dt 0.001 --frames 1000000 "
+                                "--scene pendulum --window 1180x1010 --integrator euler --dt 0.001 --frames 1000000 "
                                 "--log-state state.txt --screenshot advice.png",
                                 script);
   ASSERT_EQ(run.exitCode, 0) << run.err;
@@ -84,14 +84,15 @@ TEST(DemoAdvice, CancelStopsTheSurveyAndChangesNothing) {
   const std::string dir = outputDirectory("AdviceCancel");
   const StateLog layout = adviceLayout(dir, "cloth");
   ASSERT_NE(layout.widget("advise-cancel"), nullptr);
-  // A survey of the cloth to a tight budget over 30 s takes far longer than
+  // The window is tall enough for the cloth's parameters and the open advice
+  // section together. A survey of the cloth to a tight budget over 30 s takes far longer than
   // the few frames before the cancel.
   const std::string script = clickAt(2, *layout.widget("advice")) +
                              typeInto(10, *layout.widget("advise-horizon"), "30") +
                              typeInto(20, *layout.widget("advise-error"), "1e-7") +
                              clickAt(30, *layout.widget("advise")) + clickAt(36, *layout.widget("advise-cancel")) +
                              "40 wait advice\n" + clickAt(44, *layout.widget("advise-apply")) + "50 key q\n";
-  const RunResult run = runDemo(dir, "--scene cloth --window 1180x900 --frames 1000000 --log-state state.txt", script);
+  const RunResult run = runDemo(dir, "--scene cloth --window 1180x1010 --frames 1000000 --log-state state.txt", script);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const StateLog log = readStateLog(dir + "/state.txt");
   EXPECT_EQ(log.advice.state, "cancelled");
@@ -108,7 +109,7 @@ TEST(DemoAdvice, QuittingWhileTheSurveyRunsExitsCleanly) {
                              typeInto(10, *layout.widget("advise-horizon"), "30") +
                              typeInto(20, *layout.widget("advise-error"), "1e-7") +
                              clickAt(30, *layout.widget("advise")) + "40 key q\n";
-  const RunResult run = runDemo(dir, "--scene cloth --window 1180x900 --frames 1000000 --log-state state.txt", script);
+  const RunResult run = runDemo(dir, "--scene cloth --window 1180x1010 --frames 1000000 --log-state state.txt", script);
   EXPECT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(readStateLog(dir + "/state.txt").advice.state, "running");
 }
