@@ -14,9 +14,12 @@ if [ "${1:-}" = "--sanitize" ]; then
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPARTICLES_SANITIZE=ON \
         "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DPARTICLES_BUILD_GUI=OFF -DPARTICLES_BUILD_BENCHMARKS=OFF
   cmake --build build-sanitize -j"$jobs"
-  # Suites named *Sweep repeat full simulations over integrators and cases
-  # (the code paths the other unit tests reach); the Release run keeps them.
-  ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -E 'Sweep\.' --output-on-failure -j"$jobs"
+  # Suites named *Sweep, and the long simulations listed here, repeat many
+  # seconds of stepping through code paths that the other unit tests reach;
+  # the Release run keeps them.
+  long='Sweep\.|^HairScene\.(APulled|Ringlets)|^CoupledContacts\.Pinned|^Grab\.Follows|^SceneDefaults\.EveryScene'
+  long+='|^Rattle\.ChainEnergy|^ImplicitEuler\.ChainEnergyNever'
+  ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -E "$long" --output-on-failure -j"$jobs"
 else
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
   cmake --build build -j"$jobs"
