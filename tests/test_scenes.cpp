@@ -309,24 +309,22 @@ struct SeedScene {
 };
 // The wind and tearing parameters of the cloth and the hair, added since: their
 // seed values (no wind, no tearing) keep the seed's scenes.
-const std::pair<const std::string, std::string> kNoWindNoTearing[] = {
-    {"wind", "0"}, {"wind-angle", "0"}, {"wind-drag", "0.02"}, {"gust", "0.5"},
-    {"gust-period", "2"}, {"wind-seed", "1"}, {"tear-strain", "0"}};
+std::map<std::string, std::string> withNoWindNoTearing(std::map<std::string, std::string> values) {
+  values.insert({{"wind", "0"}, {"wind-angle", "0"}, {"wind-drag", "0.02"}, {"gust", "0.5"},
+                 {"gust-period", "2"}, {"wind-seed", "1"}, {"tear-strain", "0"}});
+  return values;
+}
 
 const std::vector<SeedScene>& seedScenes() {
   static const std::vector<SeedScene> table = {
-      {"cloth", 0.01, {{"width", "10"}, {"height", "10"}, {"links", "4"}, {"rest", "0.05"}, {"stiffness", "0.9"},
-                       {"damping", "0.6"}, {"mass", "0.2"}, {"gravity", "0.05"},
-                       // parameters added since, whose seed values keep the seed's scene
-                       {"swing", "0"}, {"drag", "0"}, {"edge-contacts", "0"}, kNoWindNoTearing[0], kNoWindNoTearing[1],
-                       kNoWindNoTearing[2], kNoWindNoTearing[3], kNoWindNoTearing[4], kNoWindNoTearing[5],
-                       kNoWindNoTearing[6]}},
-      {"hair", 0.002, {{"curls", "6"}, {"particles", "25"}, {"rest", "0.08"}, {"mass", "10"}, {"stiffness", "300"},
-                       {"damping", "1"}, {"bend-angle", "90"}, {"bend-stiffness", "1"}, {"bend-damping", "3"},
-                       {"radius", "0.025"}, {"gravity", "0.005"},
-                       {"shape", "zigzag"}, {"root", "rail"}, {"drag", "0"}, kNoWindNoTearing[0], kNoWindNoTearing[1],
-                       kNoWindNoTearing[2], kNoWindNoTearing[3], kNoWindNoTearing[4], kNoWindNoTearing[5],
-                       kNoWindNoTearing[6]}},
+      {"cloth", 0.01, withNoWindNoTearing({{"width", "10"}, {"height", "10"}, {"links", "4"}, {"rest", "0.05"},
+                                           {"stiffness", "0.9"}, {"damping", "0.6"}, {"mass", "0.2"}, {"gravity", "0.05"},
+                                           // parameters added since, whose seed values keep the seed's scene
+                                           {"swing", "0"}, {"drag", "0"}, {"edge-contacts", "0"}})},
+      {"hair", 0.002, withNoWindNoTearing({{"curls", "6"}, {"particles", "25"}, {"rest", "0.08"}, {"mass", "10"},
+                                           {"stiffness", "300"}, {"damping", "1"}, {"bend-angle", "90"},
+                                           {"bend-stiffness", "1"}, {"bend-damping", "3"}, {"radius", "0.025"},
+                                           {"gravity", "0.005"}, {"shape", "zigzag"}, {"root", "rail"}, {"drag", "0"}})},
       {"wire", 0.01, {{"beads", "3"}, {"radius", "0.25"}, {"mass", "1"}, {"coupling", "0.2"}, {"gravity", "0.05"}}},
       {"rod-chain", 0.01, {{"links", "6"}, {"length", "0.12"}, {"radius", "0.25"}, {"mass", "1"}, {"rod", "squared"},
                            {"gravity", "0.05"}}},
