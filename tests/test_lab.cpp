@@ -331,6 +331,26 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
       ++checked;
     }
   EXPECT_GT(checked, 20);
+  // Table 2's certificates: one per integrator and table length, each below
+  // its smallest failure with a whole decade of survival under that failure.
+  const Table certified = readCsv(
+      o.outDir + "/stability_certified.csv",
+      {"integrator", "chain_length", "duration", "safe_dt", "smallest_failure_dt", "smallest_failure", "grid_lo",
+       "grid_hi", "resolution", "members", "points", "runs", "full_decades", "points_1_1.1", "failed_1_1.1",
+       "points_1.1_1.25", "failed_1.1_1.25", "points_1.25_1.5", "failed_1.25_1.5", "points_1.5_2", "failed_1.5_2"});
+  EXPECT_EQ(certified.size(), 2 * safe.size());
+  for (const auto& row : certified) {
+    EXPECT_EQ(row.at("members"), "10");
+    EXPECT_EQ(row.at("resolution"), "0.01");
+    const double smallest = std::stod(row.at("smallest_failure_dt"));
+    if (smallest == 0.0 || row.at("full_decades") != "1") continue;
+    EXPECT_LT(std::stod(row.at("safe_dt")), smallest) << row.at("integrator");
+    EXPECT_LE(std::stod(row.at("grid_lo")), smallest / 10.0 * (1 + 1e-9)) << row.at("integrator");
+    // Every start ran at every grid dt (70 per octave) from the bottom up to the certified one.
+    const long below = std::lround(70.0 * std::log2(std::stod(row.at("safe_dt")) / std::stod(row.at("grid_lo")))) + 1;
+    EXPECT_GE(std::stol(row.at("runs")), 10 * below) << row.at("integrator");
+  }
+  EXPECT_TRUE(std::filesystem::exists(o.outDir + "/stability_certified.md"));
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/table1.md"));
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/table2.md"));
 }

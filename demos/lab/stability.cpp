@@ -13,6 +13,7 @@
 #include <set>
 #include <tuple>
 
+#include "lab/certify.h"
 #include "lab/chain.h"
 #include "lab/experiments.h"
 #include "lab/lab.h"
@@ -34,6 +35,9 @@ struct StabilityPlan {
   std::vector<int> ladder;            // Table 1: the lengths run at dt 0.2, 0.1, 0.05
   std::vector<int> tableLengths;      // Table 2's columns
   ScanSettings scan;                  // the dt grid and the ensemble
+  int ladderMembers = 10;             // Table 1's ensemble
+  CertifySettings certify;            // Table 2: certified safe steps (certify.h) at T
+  long certifyMaxSteps = 0;           // the certification's floor is T / this
   double perturbation = 1e-6;         // of the scene size, the perturbed starts
 };
 
@@ -50,6 +54,12 @@ StabilityPlan planFor(double duration, std::vector<double> grid, int members) {
   return plan;
 }
 
+void setCertification(StabilityPlan& plan, double top, long maxSteps) {
+  plan.certify.top = top;
+  plan.certify.floor = plan.duration / static_cast<double>(maxSteps);
+  plan.certifyMaxSteps = maxSteps;
+}
+
 // Small grids and T at most 10 s: proves the code runs.
 StabilityPlan quickPlan(const StabilityOptions& stability) {
   StabilityPlan plan = planFor(std::min(stability.duration, 10.0), stepGrid(0.025, 0.4), 2);
@@ -58,6 +68,7 @@ StabilityPlan quickPlan(const StabilityOptions& stability) {
   plan.feedbackLengths = {2};
   plan.ladder = {2, 3, 6, 12};
   plan.tableLengths = {2, 6};
+  setCertification(plan, 0.4, 20000);
   return plan;
 }
 
@@ -68,6 +79,7 @@ StabilityPlan fullPlan(const StabilityOptions& stability) {
   plan.feedbackLengths = {2, 3, 6};
   plan.ladder = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 80, 120, 160, 240};
   plan.tableLengths = {6, 12, 24};
+  setCertification(plan, 0.5, 200000);
   return plan;
 }
 
@@ -236,7 +248,7 @@ Results<std::vector<ScanRun>> runScans(const LabOptions& options, const Stabilit
 std::optional<Probe> runLadderCell(const LadderCell& cell, const StabilityPlan& plan,
                                    const FailureCriterion& criterion) {
   Probe worst;
-  for (int member = 0; member < plan.scan.members; ++member) {
+  for (int member = 0; member < plan.ladderMembers; ++member) {
     const auto probe = runMember([&] { return buildChain({cell.length}); }, cell.integrator, cell.dt, member,
                              plan.duration, criterion);
     if (!probe) return std::nullopt;
@@ -333,6 +345,79 @@ SafeSteps writeScanRows(const LabOptions& options, const StabilityPlan& plan, co
   return safe;
 }
 
+// Table 2's cells: every integrator at every table length, certified at T.
+struct CertifyCell {
+  std::string integrator;
+  int length;
+};
+
+std::vector<CertifyCell> certifyCells(const StabilityPlan& plan, const std::vector<std::string>& integrators) {
+  std::vector<CertifyCell> cells;
+  for (const auto& name : integrators)
+    for (int length : plan.tableLengths) cells.push_back({name, length});
+  return cells;
+}
+
+Results<Certificate> runCertifications(const LabOptions& options, const StabilityPlan& plan,
+                                       const std::vector<CertifyCell>& cells, SafeSteps& safe) {
+  Progress progress(options, "stability certification", static_cast<long>(cells.size()));
+  return sweepResults<Certificate>(
+      options, cells.size(),
+      [&](std::size_t k) {
+        const CertifyCell& cell = cells[k];
+        auto certificate = certifySafeStep(
+            [&](double dt, int member) {
+              return runMember([&] { return buildChain({cell.length}); }, cell.integrator, dt, member, plan.duration,
+                               options.criterion);
+            },
+            plan.duration, plan.certify);
+        progress.tick();
+        return certificate;
+      },
+      [&](std::size_t k) {  // most steps go to the decade below the coarse scan's boundary
+        const CertifyCell& cell = cells[k];
+        const double coarse = safe.at(plan.duration, cell.integrator, cell.length).safeDt;
+        return estimatedRunSeconds(buildChain({cell.length}), cell.integrator,
+                                   std::max(coarse > 0.0 ? coarse / 10.0 : plan.certify.floor, plan.certify.floor),
+                                   plan.duration);
+      });
+}
+
+// certified[integrator][cl]: Table 2.
+using Certified = std::map<std::string, std::map<int, Certificate>>;
+
+std::string bandName(const FailureBand& band) { return general(band.lo, 3) + "_" + general(band.hi, 3); }
+
+// stability_certified.csv, a row per certification; the certificates by integrator and length.
+Certified writeCertificationRows(const LabOptions& options, const StabilityPlan& plan,
+                                 const std::vector<CertifyCell>& cells, const Results<Certificate>& results) {
+  std::vector<std::string> columns{"integrator", "chain_length", "duration",   "safe_dt", "smallest_failure_dt",
+                                   "smallest_failure", "grid_lo", "grid_hi", "resolution", "members",
+                                   "points", "runs", "full_decades"};
+  const std::vector<double>& edges = plan.certify.bandEdges;
+  for (std::size_t k = 0; k + 1 < edges.size(); ++k) {
+    const std::string name = bandName({edges[k], edges[k + 1]});
+    columns.push_back("points_" + name);
+    columns.push_back("failed_" + name);
+  }
+  Csv csv(options, "stability_certified.csv", columns);
+  Certified certified;
+  for (const auto& [k, c] : results) {
+    const CertifyCell& cell = cells[k];
+    csv << cell.integrator << static_cast<long>(cell.length) << plan.duration << c.safeDt << c.smallestFailureDt
+        << failureName(c.smallestFailure) << c.lowest << c.highest << plan.certify.resolution
+        << static_cast<long>(plan.certify.members) << static_cast<long>(c.points) << c.runs
+        << static_cast<long>(c.fullDecades);
+    for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
+      const FailureBand band = b < c.bands.size() ? c.bands[b] : FailureBand{};
+      csv << static_cast<long>(band.points) << static_cast<long>(band.failed);
+    }
+    csv.endRow();
+    certified[cell.integrator][cell.length] = c;
+  }
+  return certified;
+}
+
 // survived[integrator][dt][cl] on Table 1's ladder.
 using LadderSurvival = std::map<std::string, std::map<double, std::map<int, bool>>>;
 
@@ -410,7 +495,7 @@ std::vector<std::vector<std::string>> table1Rows(const LabOptions& options, cons
 }
 
 std::vector<std::vector<std::string>> table2Rows(const LabOptions& options, const StabilityPlan& plan,
-                                                 const std::vector<std::string>& integrators, SafeSteps& safe) {
+                                                 const std::vector<std::string>& integrators, Certified& certified) {
   const std::map<std::string, std::vector<std::string>> seed = {
       {"symplectic-euler", {"0.01", "0.01", "0.008"}},
       {"midpoint", {"0.1", "0.1", "0.085"}},
@@ -419,7 +504,7 @@ std::vector<std::vector<std::string>> table2Rows(const LabOptions& options, cons
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
     for (int length : plan.tableLengths) {
-      row.push_back(safeStepText(safe.at(plan.duration, name, length)));
+      row.push_back(certifiedText(certified[name][length]));
       recordValue(options, "stability.safe_dt." + name + ".cl" + std::to_string(length), row.back());
     }
     appendSeed(row, seed, name);
@@ -441,6 +526,30 @@ Rows boundaryRows(const StabilityPlan& plan, const std::vector<std::string>& int
                           ? "–"
                           : general(boundary.firstFailureDt, 3) + " (" + failureName(boundary.firstFailure) + ")",
                       boundary.survivalAbove.empty() ? "–" : listText(boundary.survivalAbove)});
+    }
+  return rows;
+}
+
+// Each certification: the certified step, the smallest failure, the scanned range, the failing
+// fraction of grid points in each band above the certified step, and the coarse scan's safe dt.
+Rows certifiedRows(const StabilityPlan& plan, const std::vector<std::string>& integrators, Certified& certified,
+                   SafeSteps& safe) {
+  Rows rows;
+  for (const auto& name : integrators)
+    for (int length : plan.tableLengths) {
+      const Certificate& c = certified[name][length];
+      std::vector<std::string> row{
+          name, std::to_string(length), certifiedText(c),
+          c.aboveGrid() ? "–" : general(c.smallestFailureDt, 4) + " (" + failureName(c.smallestFailure) + ")",
+          general(c.lowest, 3) + "–" + general(c.highest, 3) + " (" + std::to_string(c.points) + " dt, " +
+              std::to_string(c.runs) + " runs)",
+          c.fullDecades ? "yes" : "no (floor)"};
+      for (std::size_t b = 0; b + 1 < plan.certify.bandEdges.size(); ++b)
+        row.push_back(b < c.bands.size() && c.bands[b].points > 0
+                          ? std::to_string(c.bands[b].failed) + "/" + std::to_string(c.bands[b].points)
+                          : "–");
+      row.push_back(safeStepText(safe.at(plan.duration, name, length)));
+      rows.push_back(row);
     }
   return rows;
 }
@@ -506,18 +615,40 @@ std::string conditionsText(const StabilityPlan& plan) {
   return "T = " + general(plan.duration) + " s, " + scenes::plural(plan.scan.members, "start") + ", 5% dt grid";
 }
 
+// Table 2's conditions: the certification's grid, ensemble and decade.
+std::string certifiedConditionsText(const StabilityPlan& plan) {
+  const CertifySettings& c = plan.certify;
+  return "T = " + general(plan.duration) + " s, " + scenes::plural(c.members, "start") + ", " +
+         general(100.0 * c.resolution) + "% dt grid descending from " + general(c.top) + " s until " +
+         general(c.decades) + (c.decades == 1.0 ? " decade" : " decades") +
+         " below the smallest failure survives (floor T/" + std::to_string(plan.certifyMaxSteps) + ")";
+}
+
 void writeSafeStepTables(const LabOptions& options, const StabilityPlan& plan, const Rows& table1, const Rows& table2,
-                         const Rows& boundaries, const Rows& vsDuration) {
+                         const Rows& certified, const Rows& boundaries, const Rows& vsDuration) {
   const std::string at = conditionsText(plan);
   writeTable(options, "table1", "Table 1: longest chain (of " + std::to_string(plan.ladder.size()) + " lengths " +
                                     std::to_string(plan.ladder.front()) + "–" + std::to_string(plan.ladder.back()) +
-                                    ") such that it and every shorter one survive, " + at,
+                                    ") such that it and every shorter one survive, T = " + general(plan.duration) +
+                                    " s, " + scenes::plural(plan.ladderMembers, "start"),
              {"integrator", "dt 0.2", "dt 0.1", "dt 0.05", "seed dt 0.2", "seed dt 0.1", "seed dt 0.05"}, table1);
   std::vector<std::string> table2Header{"integrator"};
   for (int length : plan.tableLengths) table2Header.push_back("cl " + std::to_string(length));
   for (const char* seed : {"seed cl 6", "seed cl 12", "seed cl 24"}) table2Header.push_back(seed);
-  writeTable(options, "table2", "Table 2: safe dt (every grid dt at or below it survives), " + at, table2Header,
-             table2);
+  writeTable(options, "table2",
+             "Table 2: certified safe dt (every grid dt from the scan's bottom up to it survives on every start), " +
+                 certifiedConditionsText(plan),
+             table2Header, table2);
+  std::vector<std::string> certifiedHeader{"integrator", "chain length", "certified dt", "smallest failure",
+                                           "scanned", "a decade below"};
+  const std::vector<double>& edges = plan.certify.bandEdges;
+  for (std::size_t b = 0; b + 1 < edges.size(); ++b)
+    certifiedHeader.push_back("failing in (" + general(edges[b]) + ", " + general(edges[b + 1]) + "] × dt");
+  certifiedHeader.push_back("coarse scan (" + scenes::plural(plan.scan.members, "start") + ", 5%)");
+  writeTable(options, "stability_certified",
+             "Certified safe dt, the smallest failure, and the failing fraction of grid dts in bands above the "
+             "certified dt, " + certifiedConditionsText(plan),
+             certifiedHeader, certified);
   writeTable(options, "stability_boundary", "Safe dt, first failure (what fired) and survival above it, " + at,
              {"integrator", "chain length", "safe dt", "first failure", "survives again at"}, boundaries);
   std::vector<std::string> header{"integrator", "chain length"};
@@ -560,6 +691,13 @@ void recordSettings(const LabOptions& options, const StabilityPlan& plan, const 
   for (double d : plan.durations) durationText += (durationText.empty() ? "" : ", ") + general(d);
   recordValue(options, "stability.durations", durationText);
   recordValue(options, "stability.members", std::to_string(scan.members));
+  recordValue(options, "stability.ladder_members", std::to_string(plan.ladderMembers));
+  recordValue(options, "stability.certify.members", std::to_string(plan.certify.members));
+  recordValue(options, "stability.certify.resolution_percent", general(100.0 * plan.certify.resolution));
+  recordValue(options, "stability.certify.top", general(plan.certify.top));
+  recordValue(options, "stability.certify.decades", general(plan.certify.decades));
+  recordValue(options, "stability.certify.max_steps", std::to_string(plan.certifyMaxSteps));
+  recordValue(options, "stability.certify.floor", general(plan.certify.floor, 3));
   recordValue(options, "stability.perturbation", general(plan.perturbation));
   recordValue(options, "stability.grid_lo", general(scan.grid.front(), 3));
   recordValue(options, "stability.grid_hi", general(scan.grid.back(), 3));
@@ -598,11 +736,16 @@ int runStability(const LabOptions& options, const StabilityOptions& stability) {
   LadderSurvival survived = writeLadderRows(options, plan, ladder, probes);
   if (interrupted()) return 130;
 
+  const std::vector<CertifyCell> certifying = certifyCells(plan, integrators);
+  Certified certified =
+      writeCertificationRows(options, plan, certifying, runCertifications(options, plan, certifying, safe));
+  if (interrupted()) return 130;
+
   const Rows table1 = table1Rows(options, plan, integrators, survived);
-  const Rows table2 = table2Rows(options, plan, integrators, safe);
+  const Rows table2 = table2Rows(options, plan, integrators, certified);
   recordShifts(options, plan, integrators, safe);
-  writeSafeStepTables(options, plan, table1, table2, boundaryRows(plan, integrators, safe),
-                      durationRows(plan, integrators, safe));
+  writeSafeStepTables(options, plan, table1, table2, certifiedRows(plan, integrators, certified, safe),
+                      boundaryRows(plan, integrators, safe), durationRows(plan, integrators, safe));
   writeFrequencyTables(options, plan, constants, whipRate, feedbackRows(plan, integrators, safe, constants),
                        frequencyRows(plan, integrators, safe, constants, whipRate));
   recordSettings(options, plan, constants);
