@@ -331,6 +331,12 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
       ++checked;
     }
   EXPECT_GT(checked, 20);
+  // Each row's maxima are over its own T: a row that survived stayed within the criterion up to T.
+  for (const auto& row : map)
+    if (row.at("survived") == "1") {
+      EXPECT_LE(std::stod(row.at("max_energy_rise")), o.criterion.energyRiseFraction) << row.at("dt");
+      EXPECT_LE(std::stod(row.at("max_relative_stretch")), o.criterion.maxRelativeConstraintError) << row.at("dt");
+    }
   // Table 2's certificates: one per integrator and table length, each below
   // its smallest failure with a whole decade of survival under that failure.
   const Table certified = readCsv(

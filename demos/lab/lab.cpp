@@ -33,7 +33,8 @@ int defaultJobs() { return particles::affinityCpuCount(); }
 
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const FailureCriterion& criterion,
-                   const std::function<bool(const ParticleSystem&)>& observe) {
+                   const std::function<bool(const ParticleSystem&)>& observe,
+                   const std::vector<double>& checkpoints) {
   ParticleSystem& system = *scene.system;
   RunResult result;
   result.energyStart = system.totalEnergy();
@@ -76,6 +77,9 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
       const double rise = (system.totalEnergy() - result.energyStart) / result.energyScale;
       if (std::isfinite(rise)) result.maxEnergyRise = std::max(result.maxEnergyRise, rise);
     }
+    for (std::size_t c = result.maximaAt.size(); c < checkpoints.size() && result.time >= checkpoints[c] - 0.5 * dt;
+         ++c)
+      result.maximaAt.push_back({checkpoints[c], result.maxRelativeStretch, result.maxEnergyRise});
     const Failure failure = checkFailure(system, limits, result.energyStart, stats);
     if (failure != Failure::None) {
       fail(failure);
@@ -92,13 +96,13 @@ RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, doub
 
 std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, const std::string& integrator,
                                double dt, int member, double duration, const FailureCriterion& criterion,
-                               const std::atomic<bool>* cancel) {
+                               const std::atomic<bool>* cancel, const std::vector<double>& checkpoints) {
   scenes::Scene scene = build();
   perturbStart(scene, member);
   auto stepper = particles::makeIntegrator(integrator);
   std::function<bool(const particles::ParticleSystem&)> carryOn;
   if (cancel) carryOn = [cancel](const particles::ParticleSystem&) { return !cancel->load(); };
-  const RunResult r = simulate(scene, *stepper, dt, duration, criterion, carryOn);
+  const RunResult r = simulate(scene, *stepper, dt, duration, criterion, carryOn, checkpoints);
   if (r.cutShort || r.stopped) return std::nullopt;
   Probe p;
   p.failed = r.failed;
@@ -106,6 +110,7 @@ std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, cons
   p.time = r.time;
   p.maxRelativeStretch = r.maxRelativeStretch;
   p.maxEnergyRise = r.maxEnergyRise;
+  p.maximaAt = r.maximaAt;
   return p;
 }
 

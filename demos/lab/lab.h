@@ -53,6 +53,7 @@ struct RunResult {
   double energyStart = 0.0, energyEnd = 0.0;
   double energyScale = 0.0;  // E_s, releasableEnergy() of the start
   bool stopped = false;      // the observer ended the run before T
+  std::vector<Maxima> maximaAt;  // maxStretch and maxEnergyRise so far at each checkpoint reached
   bool blewUp() const { return failed && isBlowUp(failure); }
 };
 // The fields a cell's result keeps (lab/cell_json.h); cutShort is never kept.
@@ -71,16 +72,20 @@ void fields(Io& io, RunResult& r) {
 // at an interrupt (then cutShort is set and callers discard the result).
 // `observe` (optional) runs after each step that did not fail; returning
 // false ends the run there (RunResult::stopped).
+// `checkpoints` (ascending times): the maxima so far are kept at each one reached (RunResult::maximaAt).
 RunResult simulate(scenes::Scene& scene, particles::Integrator& integrator, double dt,
                    double duration, const FailureCriterion& criterion = {},
-                   const std::function<bool(const particles::ParticleSystem&)>& observe = {});
+                   const std::function<bool(const particles::ParticleSystem&)>& observe = {},
+                   const std::vector<double>& checkpoints = {});
 
 // One scan run: ensemble member `member` (perturbStart) of a freshly built
 // scene under the integrator for `duration`; nullopt when an interrupt (or
-// `cancel`, checked every step) cut it short.
+// `cancel`, checked every step) cut it short. The maxima are kept at each of
+// `checkpoints` the run reaches (Probe::maximaAt).
 std::optional<Probe> runMember(const std::function<scenes::Scene()>& build, const std::string& integrator,
                                double dt, int member, double duration, const FailureCriterion& criterion,
-                               const std::atomic<bool>* cancel = nullptr);
+                               const std::atomic<bool>* cancel = nullptr,
+                               const std::vector<double>& checkpoints = {});
 
 // The safe boundary of one scene under one integrator at T = duration: a scan
 // (scanSteps) of `settings.grid` over `settings.members` starts; nullopt when

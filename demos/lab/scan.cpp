@@ -6,6 +6,12 @@
 
 namespace lab {
 
+Maxima Probe::maximaUpTo(double duration, double dt) const {
+  for (const Maxima& m : maximaAt)
+    if (std::abs(m.time - duration) <= 0.5 * dt) return m;
+  return {time, maxRelativeStretch, maxEnergyRise};
+}
+
 int stepsPerOctave(double resolution) { return static_cast<int>(std::ceil(std::log(2.0) / std::log1p(resolution))); }
 
 std::vector<double> stepGrid(double lo, double hi, double resolution, double anchor) {
@@ -67,8 +73,9 @@ std::vector<GridSurvival> survivalAt(const std::vector<ScanRun>& runs, double du
     const bool ok = r.probe.survives(duration, r.dt);
     g.survivors += ok;
     if (!ok && r.probe.time < earliest) earliest = r.probe.time, g.failure = r.probe.failure;
-    g.maxRelativeStretch = std::max(g.maxRelativeStretch, r.probe.maxRelativeStretch);
-    g.maxEnergyRise = std::max(g.maxEnergyRise, r.probe.maxEnergyRise);
+    const Maxima upTo = r.probe.maximaUpTo(duration, r.dt);
+    g.maxRelativeStretch = std::max(g.maxRelativeStretch, upTo.stretch);
+    g.maxEnergyRise = std::max(g.maxEnergyRise, upTo.rise);
   }
   // A dt survives only if every member was run and survived (the scan skips
   // the members after one that failed).

@@ -25,6 +25,15 @@ int stepsPerOctave(double resolution);
 std::vector<double> stepGridDividing(double duration, double lo, double hi, double resolution = 0.05,
                                      double anchor = 0.05);
 
+// A run's maxima up to a checkpoint time: max |C|/r and max (E − E(0)) / E_s.
+struct Maxima {
+  double time = 0.0, stretch = 0.0, rise = 0.0;
+};
+template <class Io>
+void fields(Io& io, Maxima& m) {
+  io("time", m.time), io("stretch", m.stretch), io("rise", m.rise);
+}
+
 // One run of one ensemble member at one dt, stopped at its first failure.
 struct Probe {
   bool failed = false;
@@ -32,13 +41,17 @@ struct Probe {
   double time = 0.0;         // simulated time reached (the failing step's time when failed)
   double maxRelativeStretch = 0.0;
   double maxEnergyRise = 0.0;  // max (E − E(0)) / E_s
+  std::vector<Maxima> maximaAt;  // the maxima up to each checkpoint the run reached (runMember's checkpoints)
   bool survives(double duration, double dt) const { return !failed || time > duration + 0.5 * dt; }
+  // The maxima over [0, duration]: a checkpoint's when one was kept there, else the whole run's.
+  Maxima maximaUpTo(double duration, double dt) const;
 };
 // The fields a cell's result keeps (lab/cell_json.h).
 template <class Io>
 void fields(Io& io, Probe& p) {
   io("failed", p.failed), io("failure", p.failure), io("time", p.time);
   io("max_relative_stretch", p.maxRelativeStretch), io("max_energy_rise", p.maxEnergyRise);
+  io("maxima_at", p.maximaAt);
 }
 
 // Every run of a scan, in the order made: ascending dt, members 0.. at each.
@@ -74,7 +87,7 @@ struct GridSurvival {
   bool survived;                  // every member survived T
   int membersRun = 0, survivors = 0;
   Failure failure = Failure::None;  // what fired first (earliest failure) when not survived
-  double maxRelativeStretch = 0.0, maxEnergyRise = 0.0;  // over the members' whole runs (to the longest T)
+  double maxRelativeStretch = 0.0, maxEnergyRise = 0.0;  // over the members' runs up to this T
 };
 std::vector<GridSurvival> survivalAt(const std::vector<ScanRun>& runs, double duration, int members);
 

@@ -222,7 +222,7 @@ std::optional<std::vector<ScanRun>> scanCell(const Cell& cell, const ScanSetting
   return scanSteps(
       [&](double dt, int member, double duration) {
         return runMember([&] { return buildCell(cell.length, cell.stiffness); }, cell.integrator, dt, member, duration,
-                         criterion);
+                         criterion, nullptr, settings.durations);
       },
       settings);
 }
