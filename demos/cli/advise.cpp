@@ -28,13 +28,14 @@ struct AdviseOptions {
   int repeats = 5;
   long maxSteps = 100000;
   double referenceTolerance = lab::SurveySettings{}.referenceTolerance;
+  int certifyStarts = lab::SurveySettings{}.certifyMembers;
 };
 
 std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "–"; }
 
 // The table: one line per integrator, its pick or why it has none.
 void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) {
-  std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)\n";
+  std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)   certified margin\n";
   for (std::size_t k = 0; k < picks.size(); ++k) {
     const auto& scan = survey.integrators[k];
     const auto& p = picks[k];
@@ -44,10 +45,15 @@ void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) 
       std::snprintf(line, sizeof line, "%-17s refuses the scene: %.180s\n", scan.integrator.c_str(),
                     scan.refused.c_str());
     else if (p.found)
-      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-11s %s (%s-%s)\n", scan.integrator.c_str(),
+      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-11s %-27s %s%s\n", scan.integrator.c_str(),
                     cell(p.candidate.dt).c_str(), scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–",
-                    cell(p.candidate.maxError).c_str(), safe.c_str(), cell(p.cpuPerSimulatedSecond).c_str(),
-                    cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str());
+                    cell(p.candidate.maxError).c_str(), safe.c_str(),
+                    (cell(p.cpuPerSimulatedSecond) + " (" + cell(p.cpuMin) + "-" + cell(p.cpuMax) + ")").c_str(),
+                    p.certifiedHi > 0.0 ? (cell(p.certifiedLo) + "-" + cell(p.certifiedHi)).c_str() : "not run",
+                    p.tie ? "  (tie)" : "");
+    else if (!p.uncertified.empty())
+      std::snprintf(line, sizeof line, "%-17s none certified: %.200s\n", scan.integrator.c_str(),
+                    p.uncertified.c_str());
     else
       std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
                     scan.integrator.c_str(), scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
@@ -65,6 +71,7 @@ int advise(const AdviseOptions& o) {
   settings.repeats = o.repeats;
   settings.maxSteps = o.maxSteps;
   settings.referenceTolerance = o.referenceTolerance;
+  settings.certifyMembers = o.certifyStarts;
   lab::installInterruptHandler();
   double lastReport = -1.0;
   settings.progress = [&](double fraction) {
@@ -90,12 +97,23 @@ int advise(const AdviseOptions& o) {
     return kCannotCertify;
   }
   printPicks(survey, picks);
+  if (settings.certifyMembers > 0)
+    std::cout << "certified margin: every dt (adaptive: tolerance) " << lab::general(100.0 * settings.certifyResolution)
+              << "% apart in it survives T on " << scenes::plural(settings.certifyMembers, "start")
+              << " (adaptive: within E from the start as built); a pick is at most "
+              << lab::general(settings.safeFraction) << " of its margin's top\n";
   const int best = advice.best;
   if (best < 0) {
     std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)
               << " s within its safe range\n";
     return 1;
   }
+  std::string ties;
+  for (const lab::Pick& p : picks)
+    if (p.tie) ties += (ties.empty() ? "" : ", ") + p.candidate.integrator;
+  if (!ties.empty())
+    std::cout << "advise: within the timing spread of " << picks[best].candidate.integrator << " (a tie, "
+              << scenes::plural(o.repeats, "interleaved repeat") << "): " << ties << "\n";
   std::cout << "advise: " << lab::pickArguments(picks[best].candidate) << "\n";
   return kSuccess;
 }
@@ -126,6 +144,10 @@ Command addAdviseCommand(CLI::App& app) {
                       "odeint's error tolerance per step for the reference (checked at 100x it), in [1e-13, 1]")
       ->capture_default_str()
       ->check(options::numberInRange(lab::kMinReferenceTolerance, 1.0));
+  command->add_option("--certify-starts", options->certifyStarts,
+                      "starts on which every dt of a pick's margin must survive (0: picks are not certified)")
+      ->capture_default_str()
+      ->check(options::decimalInteger(0, 1000));
   return {command, [=] { return advise(*options); }};
 }
 

@@ -40,12 +40,13 @@ void AdviceJob::start(const SceneChoice& scene, const AdviceRequest& request) {
   message_.clear();
   state_ = AdviceState::Running;
   worker_ = std::thread([this, scene, request] {
-    // The settings `particle-lab advise --error E --horizon T --max-steps N --repeats R` uses.
+    // The settings `particle-lab advise --error E --horizon T --max-steps N --repeats R --certify-starts S` uses.
     lab::SurveySettings settings;
     settings.horizon = request.horizon;
     settings.targetError = settings.abortError = request.error;
     settings.maxSteps = request.maxSteps;
     settings.repeats = request.repeats;
+    settings.certifyMembers = request.certifyStarts;
     settings.cancel = &cancel_;
     settings.progress = [this](double f) { progress_ = f; };
     try {

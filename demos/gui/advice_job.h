@@ -21,6 +21,7 @@ struct AdviceRequest {
   double horizon = 10.0;  // T, simulated seconds
   long maxSteps = 20000;  // the smallest dt scanned is T / maxSteps (the command line's --max-steps)
   int repeats = 3;        // timed repeats of each pick; the median is reported
+  int certifyStarts = lab::SurveySettings{}.certifyMembers;  // the command line's --certify-starts
 };
 
 enum class AdviceState { Idle, Running, Done, Cancelled, Failed };

@@ -26,6 +26,11 @@ void drawPickRow(const lab::IntegratorSurvey& scan, const lab::Pick& p, bool bes
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", scan.refused.c_str());
     return;
   }
+  if (!p.found && !p.uncertified.empty()) {
+    ImGui::TextDisabled("uncertified");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.uncertified.c_str());
+    return;
+  }
   if (!p.found) {
     ImGui::TextDisabled("none");
     if (ImGui::IsItemHovered())
@@ -36,15 +41,17 @@ void drawPickRow(const lab::IntegratorSurvey& scan, const lab::Pick& p, bool bes
   // An adaptive scheme's dt is its call interval; its tolerance sets the steps.
   ImGui::TextUnformatted(scan.adaptive ? ("tol " + cell(p.candidate.tolerance)).c_str() : cell(p.candidate.dt).c_str());
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(scan.adaptive ? "called every %s s" : "safe boundary %s s",
-                      cell(scan.adaptive ? p.candidate.dt : scan.safeDt).c_str());
+    ImGui::SetTooltip("%s %s s; certified margin %s to %s", scan.adaptive ? "called every" : "scan's safe boundary",
+                      cell(scan.adaptive ? p.candidate.dt : scan.safeDt).c_str(), cell(p.certifiedLo).c_str(),
+                      cell(p.certifiedHi).c_str());
   ImGui::TableNextColumn();
   ImGui::TextUnformatted(cell(p.candidate.maxError).c_str());
   ImGui::TableNextColumn();
-  ImGui::TextUnformatted(cell(p.cpuPerSimulatedSecond).c_str());
+  ImGui::TextUnformatted((cell(p.cpuPerSimulatedSecond) + (p.tie ? " (tie)" : "")).c_str());
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("median of %s, %s to %s", scenes::plural(repeats, "repeat").c_str(), cell(p.cpuMin).c_str(),
-                      cell(p.cpuMax).c_str());
+    ImGui::SetTooltip("median of %s (interleaved across the picks), %s to %s%s",
+                      scenes::plural(repeats, "repeat").c_str(), cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str(),
+                      p.tie ? "; overlaps the cheapest's range: a tie" : "");
 }
 
 void drawPicksTable(const lab::Advice& a, int repeats) {

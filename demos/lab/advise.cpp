@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "particles/check.h"
@@ -102,13 +103,19 @@ void scanSteps(const Measurer& m, const SurveySettings& s, IntegratorSurvey& out
   out.safeAtTop = boundary.aboveGrid() && boundary.safeDt > 0.0;
 }
 
-// Adaptive schemes: the tolerance descends at a fixed call interval.
-void scanTolerances(const Measurer& m, const SurveySettings& s, double interval, IntegratorSurvey& out,
-                    const std::function<void(double)>& progress) {
+// The tolerances an adaptive scheme is scanned at, loosest first: the settings', else 1e-2 … 1e-12 by √10.
+std::vector<double> toleranceLadder(const SurveySettings& s) {
   std::vector<double> tolerances = s.tolerances;
   if (tolerances.empty())
     for (int k = 0; k <= 20; ++k) tolerances.push_back(1e-2 * std::pow(10.0, -0.5 * k));
   std::sort(tolerances.rbegin(), tolerances.rend());
+  return tolerances;
+}
+
+// Adaptive schemes: the tolerance descends at a fixed call interval.
+void scanTolerances(const Measurer& m, const SurveySettings& s, double interval, IntegratorSurvey& out,
+                    const std::function<void(double)>& progress) {
+  const std::vector<double> tolerances = toleranceLadder(s);
   for (std::size_t j = 0; j < tolerances.size() && !cancelled(s); ++j) {
     Candidate c = m.run(out.integrator, interval, tolerances[j], true);
     if (cancelled(s)) break;
@@ -271,20 +278,22 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   if (s.progress) s.progress(0.0);  // valid: the reference starts
   const double scale = releasableEnergy(*first.system);
 
-  const Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm, s.cancel);
+  Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm, s.cancel);
   survey.referenceAgreement = reference.agreement;
   survey.reference = reference.description;
   survey.size = reference.trajectory.size();
   survey.touchedWall = reference.trajectory.touchedWall;
+  survey.energyScale = scale;
   if (s.relativeToSize) s.abortError *= survey.size, s.targetError *= survey.size;
   limitOfReference(reference, s.targetError, s.horizon, survey);
   if (!survey.limit.empty()) return survey;
+  survey.referenceTrajectory = std::make_shared<const Trajectory>(std::move(reference.trajectory));
 
   std::vector<std::string> names;
   for (const auto& info : particles::integratorTable())
     if (s.integrators.empty() || std::count(s.integrators.begin(), s.integrators.end(), info.name))
       names.push_back(info.name);
-  const Measurer measurer{build, s, reference.trajectory, scale};
+  const Measurer measurer{build, s, *survey.referenceTrajectory, scale};
   for (std::size_t i = 0; i < names.size() && !cancelled(s); ++i) {
     auto progress = [&](double f) {
       if (s.progress) s.progress((i + f) / names.size());
@@ -294,40 +303,149 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   return survey;
 }
 
+namespace {
+
+// The largest scanned candidate within the budget: fixed-step ones at most safeFraction × the safe boundary.
+Pick firstPick(const IntegratorSurvey& scan, const SurveySettings& s, double error) {
+  Pick pick;
+  for (const auto& c : scan.scanned) {
+    const bool safe = scan.adaptive || c.dt <= s.safeFraction * scan.safeDt * (1 + 1e-12);
+    if (!c.survived || !safe || !(c.maxError <= error)) continue;
+    const bool better = !pick.found || (scan.adaptive ? c.tolerance > pick.candidate.tolerance
+                                                      : c.dt > pick.candidate.dt);
+    if (better) pick.found = true, pick.candidate = c;
+  }
+  return pick;
+}
+
+// A pick's certification: grid points of its window, each checked once.
+struct Certifier {
+  const std::function<scenes::Scene()>& build;
+  const Measurer& measurer;
+  const SurveySettings& s;
+  double error;
+  std::map<double, bool> known;  // grid point → it passed
+  long runs = 0;
+
+  // Fixed step: every start survives T at dt (members after a failure are not run).
+  bool passesStep(const std::string& name, double dt) {
+    for (int member = 0; member < s.certifyMembers; ++member) {
+      const auto probe = runMember(build, name, dt, member, s.horizon, s.failure, s.cancel);
+      ++runs;
+      if (!probe || !probe->survives(s.horizon, dt)) return false;
+    }
+    return true;
+  }
+  // Adaptive: the start as built survives T within the budget at this tolerance.
+  bool passesTolerance(const Candidate& pick, double tolerance) {
+    ++runs;
+    const Candidate c = measurer.run(pick.integrator, pick.dt, tolerance, true);
+    return c.survived && c.maxError <= error;
+  }
+  bool passes(const Candidate& pick, double value) {
+    const auto found = known.find(value);
+    if (found != known.end()) return found->second;
+    const bool ok = pick.tolerance > 0.0 ? passesTolerance(pick, value) : passesStep(pick.integrator, value);
+    return known[value] = ok;
+  }
+};
+
+// The grid point below `failed`: the pick whose window top, value / safeFraction, lies under it.
+double belowFailure(double failed, double anchor, const SurveySettings& s) {
+  const std::vector<double> grid =
+      stepGrid(failed * s.safeFraction * 0.5, failed * s.safeFraction / (1.0 + 1e-9), s.certifyResolution, anchor);
+  return grid.empty() ? 0.0 : grid.back();
+}
+
+// Certifies a pick: every grid point (certifyResolution apart, anchored at the
+// first pick) of [safeFraction × v, v / safeFraction] passes, v its dt (its
+// tolerance for an adaptive scheme). A failure moves the pick down to the grid
+// point whose window lies below it; a moved pick is measured again, and one
+// that fails or misses the budget counts as a failure there. Ends uncertified
+// below the survey's smallest dt (T / maxSteps) or tolerance.
+void certifyPick(Certifier& certifier, Pick& pick) {
+  const SurveySettings& s = certifier.s;
+  const bool adaptive = pick.candidate.tolerance > 0.0;
+  const auto value = [&](const Candidate& c) { return adaptive ? c.tolerance : c.dt; };
+  const double anchor = value(pick.candidate);
+  const double floor = adaptive ? toleranceLadder(s).back() : s.horizon / static_cast<double>(s.maxSteps);
+  double failed = 0.0;  // the lowest failure so far
+  while (!cancelled(s)) {
+    if (failed > 0.0) {
+      const double next = belowFailure(failed, anchor, s);
+      if (next < floor * (1 - 1e-12)) break;
+      const Candidate moved = certifier.measurer.run(pick.candidate.integrator, adaptive ? pick.candidate.dt : next,
+                                                     adaptive ? next : 0.0, true);
+      ++certifier.runs;
+      if (!moved.survived || !(moved.maxError <= certifier.error)) {
+        failed = next;
+        continue;
+      }
+      pick.candidate = moved;
+    }
+    const double v = value(pick.candidate);
+    const std::vector<double> window = stepGrid(v * s.safeFraction, v / s.safeFraction, s.certifyResolution, anchor);
+    failed = 0.0;
+    for (auto point = window.rbegin(); point != window.rend() && failed == 0.0 && !cancelled(s); ++point)
+      if (!certifier.passes(pick.candidate, *point)) failed = *point;
+    if (failed == 0.0) {
+      pick.certifiedLo = window.front(), pick.certifiedHi = window.back();
+      return;
+    }
+  }
+  pick.found = false;
+  pick.uncertified = std::string("every ") + (adaptive ? "tolerance" : "dt") + " from the pick down to " +
+                     scenes::formatNumber(floor) + " has a failure within its margin (the lowest at " +
+                     scenes::formatNumber(failed) + ")";
+}
+
+// `repeats` timed runs of every found pick, interleaved (pick 1, 2, ..., 1, 2, ...) so that a load
+// change on the machine falls on all of them alike; the median and range of each.
+void timePicks(const std::function<scenes::Scene()>& build, double horizon, const SurveySettings& s,
+               std::vector<Pick>& picks) {
+  std::function<bool(const particles::ParticleSystem&)> carryOn;  // a cancellable run checks every step
+  if (s.cancel) carryOn = [&](const particles::ParticleSystem&) { return !s.cancel->load(); };
+  std::vector<std::vector<double>> perSecond(picks.size());
+  for (int r = 0; r < s.repeats && !cancelled(s); ++r)
+    for (std::size_t k = 0; k < picks.size() && !cancelled(s); ++k) {
+      if (!picks[k].found) continue;
+      const Candidate& c = picks[k].candidate;
+      scenes::Scene scene = build();
+      particles::IntegratorSettings integratorSettings;
+      if (c.tolerance > 0.0) integratorSettings.tolerance = c.tolerance;
+      auto stepper = particles::makeIntegrator(c.integrator, integratorSettings);
+      const RunResult run = simulate(scene, *stepper, c.dt, horizon, s.failure, carryOn);
+      if (!run.stopped && !run.cutShort) perSecond[k].push_back(run.seconds / horizon);
+    }
+  for (std::size_t k = 0; k < picks.size(); ++k) {
+    if (!picks[k].found) continue;
+    if (perSecond[k].empty()) perSecond[k].push_back(picks[k].candidate.seconds / horizon);
+    picks[k].cpuPerSimulatedSecond = median(perSecond[k]);
+    picks[k].cpuMin = *std::min_element(perSecond[k].begin(), perSecond[k].end());
+    picks[k].cpuMax = *std::max_element(perSecond[k].begin(), perSecond[k].end());
+  }
+}
+
+}  // namespace
+
 std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
                                     const SurveySettings& settings, double error) {
   std::vector<Pick> picks;
-  // A cancellable run checks the flag every step; the others are timed without an observer.
-  std::function<bool(const particles::ParticleSystem&)> carryOn;
-  if (settings.cancel) carryOn = [&](const particles::ParticleSystem&) { return !settings.cancel->load(); };
+  SurveySettings s = settings;
+  s.horizon = survey.horizon;
+  s.abortError = error;  // a moved pick's run ends once it misses the budget
   for (const auto& scan : survey.integrators) {
-    if (settings.progress) settings.progress(static_cast<double>(picks.size()) / survey.integrators.size());
-    Pick pick;
-    for (const auto& c : scan.scanned) {
-      const bool safe = scan.adaptive || c.dt <= settings.safeFraction * scan.safeDt * (1 + 1e-12);
-      if (!c.survived || !safe || !(c.maxError <= error)) continue;
-      const bool better = !pick.found || (scan.adaptive ? c.tolerance > pick.candidate.tolerance
-                                                        : c.dt > pick.candidate.dt);
-      if (better) pick.found = true, pick.candidate = c;
-    }
-    if (pick.found) {
-      std::vector<double> perSecond;
-      for (int r = 0; r < settings.repeats && !cancelled(settings); ++r) {
-        scenes::Scene scene = build();
-        particles::IntegratorSettings integratorSettings;
-        if (pick.candidate.tolerance > 0.0) integratorSettings.tolerance = pick.candidate.tolerance;
-        auto stepper = particles::makeIntegrator(pick.candidate.integrator, integratorSettings);
-        const RunResult run = simulate(scene, *stepper, pick.candidate.dt, survey.horizon, settings.failure, carryOn);
-        if (run.stopped || run.cutShort) break;
-        perSecond.push_back(run.seconds / survey.horizon);
-      }
-      if (perSecond.empty()) perSecond.push_back(pick.candidate.seconds / survey.horizon);
-      pick.cpuPerSimulatedSecond = median(perSecond);
-      pick.cpuMin = *std::min_element(perSecond.begin(), perSecond.end());
-      pick.cpuMax = *std::max_element(perSecond.begin(), perSecond.end());
+    if (settings.progress) settings.progress(0.8 * static_cast<double>(picks.size()) / survey.integrators.size());
+    Pick pick = firstPick(scan, s, error);
+    if (pick.found && s.certifyMembers > 0 && survey.referenceTrajectory && !cancelled(s)) {
+      const Measurer measurer{build, s, *survey.referenceTrajectory, survey.energyScale};
+      Certifier certifier{build, measurer, s, error, {}, 0};
+      certifyPick(certifier, pick);
+      pick.certifyRuns = certifier.runs;
     }
     picks.push_back(pick);
   }
+  timePicks(build, survey.horizon, s, picks);
   return picks;
 }
 
@@ -351,9 +469,16 @@ Advice advise(const std::function<scenes::Scene()>& build, const SurveySettings&
   out.picks = pickPerIntegrator(build, out.survey, s, budget);
   if (cancelled(s)) return out;
   out.best = cheapest(out.picks);
+  markTies(out.picks, out.best);
   out.complete = true;
   if (settings.progress) settings.progress(1.0);
   return out;
+}
+
+void markTies(std::vector<Pick>& picks, int best) {
+  if (best < 0) return;
+  for (int k = 0; k < static_cast<int>(picks.size()); ++k)
+    picks[k].tie = k != best && picks[k].found && picks[k].cpuMin <= picks[best].cpuMax;
 }
 
 int cheapest(const std::vector<Pick>& picks) {

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,12 @@ struct SurveySettings {
   double interval = 0.0;            // reference sample spacing; 0: the scene's dt
   double adaptiveInterval = 0.1;    // an adaptive scheme's call (output) interval, simulated seconds:
                                     // long enough that its tolerance, not the call, limits its step
-  int repeats = 5;                  // timed repeats of each pick; the median is reported
+  int repeats = 5;                  // timed repeats of each pick, interleaved across picks; the median is reported
+  // Certification of each pick (certifyPick): every dt of a grid certifyResolution apart in
+  // [safeFraction × dt, dt / safeFraction] (tolerances: [safeFraction × tol, tol / safeFraction])
+  // survives T on certifyMembers starts, and a tolerance's error stays within the budget across it.
+  int certifyMembers = 10;          // 0: picks are not certified
+  double certifyResolution = 0.01;
   FailureCriterion failure;         // the failure criterion (lab/failure.h)
   double referenceTolerance = 1e-11;  // odeint's, in [kMinReferenceTolerance, 1]; the check run uses 100× this
   std::function<void(double)> progress;        // fraction done, 0..1, on the calling thread
@@ -107,6 +113,9 @@ struct Survey {
   std::string limit;
   double certifiableHorizon = 0.0;
   std::vector<IntegratorSurvey> integrators;
+  // What the scans measured against, kept for certifying the picks (pickPerIntegrator).
+  std::shared_ptr<const Trajectory> referenceTrajectory;
+  double energyScale = 0.0;
 };
 
 // A closed-form reference: the trajectory over [0, duration] sampled every interval.
@@ -142,21 +151,34 @@ struct Pick {
   bool found = false;
   Candidate candidate;
   double cpuPerSimulatedSecond = 0.0, cpuMin = 0.0, cpuMax = 0.0;  // median and spread of repeats
+  // The certified window around the pick (dt, or the tolerance of an adaptive
+  // scheme): every grid point in [certifiedLo, certifiedHi] survived on every
+  // start; 0 when not certified. certifyRuns: the runs it took (the picks moved
+  // down past failures included).
+  double certifiedLo = 0.0, certifiedHi = 0.0;
+  long certifyRuns = 0;
+  std::string uncertified;  // why no pick could be certified ("" when one was or none was tried)
+  bool tie = false;         // within the timing spread of the cheapest (their repeats' ranges overlap)
 };
 template <class Io>
 void fields(Io& io, Pick& p) {
   io("found", p.found), io("candidate", p.candidate), io("cpu_per_simulated_second", p.cpuPerSimulatedSecond);
-  io("cpu_min", p.cpuMin), io("cpu_max", p.cpuMax);
+  io("cpu_min", p.cpuMin), io("cpu_max", p.cpuMax), io("certified_lo", p.certifiedLo);
+  io("certified_hi", p.certifiedHi), io("certify_runs", p.certifyRuns), io("uncertified", p.uncertified);
+  io("tie", p.tie);
 }
 
 // Per integrator, the largest scanned safe dt (fixed-step: dt ≤ safeFraction ×
-// safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`
-// (settings.progress: the fraction of integrators timed).
+// safeDt) or loosest tolerance whose maxError ≤ error, certified (certifyPick:
+// moved down past any failure in its window), then timed over `repeats`
+// interleaved across the picks (settings.progress: the fraction done).
 std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
                                     const SurveySettings& settings, double error);
 
 // Index of the cheapest found pick by median CPU time, −1 if none is found.
 int cheapest(const std::vector<Pick>& picks);
+// Marks the found picks whose timing range (min–max of the repeats) overlaps the cheapest's as ties.
+void markTies(std::vector<Pick>& picks, int best);
 
 // The whole advice for one scene, as `particle-lab advise` and the demo's
 // panel give it: surveyScene with the budget settings.targetError (the scan's

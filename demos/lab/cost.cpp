@@ -127,6 +127,8 @@ void recordSettings(const LabOptions& options, const CostPlan& plan) {
   recordValue(options, "cost.safe_fraction", general(defaults.safeFraction));
   recordValue(options, "cost.grid_ratio", fixed(std::pow(2.0, 1.0 / stepsPerOctave(defaults.gridResolution)), 3));
   recordValue(options, "cost.members", std::to_string(defaults.members));
+  recordValue(options, "cost.certify_members", std::to_string(defaults.certifyMembers));
+  recordValue(options, "cost.certify_resolution_percent", general(100.0 * defaults.certifyResolution));
   recordValue(options, "cost.reference_tolerance", general(defaults.referenceTolerance));
   recordValue(options, "cost.repeats", std::to_string(plan.repeats));
   recordValue(options, "cost.failure", describe(options.criterion));
@@ -149,31 +151,41 @@ void writePickRows(Csv& csv, const CostScene& scene, const Surveyed& survey, dou
     csv << scene.label << static_cast<long>(survey.particles) << scene.horizon << survey.size << relative << budget
         << candidate.integrator << candidate.dt << candidate.tolerance << candidate.maxError
         << survey.integrators[k].safeDt << picks[k].cpuPerSimulatedSecond << picks[k].cpuMin << picks[k].cpuMax
-        << survey.referenceAgreement;
+        << survey.referenceAgreement << picks[k].certifiedLo << picks[k].certifiedHi << static_cast<long>(picks[k].tie);
     csv.endRow();
   }
 }
 
 // The table's columns after scene and budget: the cheapest pick, or why there is none.
 std::vector<std::string> cheapestText(const CostScene& scene, const Surveyed& survey, double budget,
-                                      const std::vector<Pick>& picks) {
+                                      std::vector<Pick> picks) {
   if (!measurable(budget, survey.referenceAgreement))
     return {"reference not converged (tolerances differ by " + general(survey.referenceAgreement, 2) + ")", "–", "–",
-            "–"};
+            "–", "–"};
   const int best = cheapest(picks);
   if (best < 0) return {"none within budget (grid down to dt = " + general(scene.horizon / scene.maxSteps) + ")", "–",
-                        "–", "–"};
+                        "–", "–", "–"};
+  markTies(picks, best);
   const auto& pick = picks[best];
+  std::string name = pick.candidate.integrator, ties;
+  for (const Pick& p : picks)
+    if (p.tie) ties += (ties.empty() ? "" : ", ") + p.candidate.integrator;
+  if (!ties.empty()) name += " (tie: " + ties + ")";
   const std::string step =
       general(pick.candidate.dt) + (pick.candidate.tolerance > 0 ? ", tol " + general(pick.candidate.tolerance) : "");
-  return {pick.candidate.integrator, step, general(pick.candidate.maxError),
-          general(pick.cpuPerSimulatedSecond) + " (" + general(pick.cpuMin, 2) + "–" + general(pick.cpuMax, 2) + ")"};
+  const std::string margin = pick.certifiedHi > 0.0 ? (pick.candidate.tolerance > 0 ? "tol " : "dt ") +
+                                                          general(pick.certifiedLo, 3) + "–" + general(pick.certifiedHi, 3)
+                                                    : "–";
+  return {name, step, general(pick.candidate.maxError),
+          general(pick.cpuPerSimulatedSecond) + " (" + general(pick.cpuMin, 2) + "–" + general(pick.cpuMax, 2) + ")",
+          margin};
 }
 
 void writeResults(const LabOptions& options, const CostPlan& plan, const Results<Surveyed>& surveys) {
   Csv picksCsv(options, "cost_of_accuracy.csv",
                {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",
-                "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
+                "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement",
+                "certified_lo", "certified_hi", "tie"});
   Csv safeCsv(options, "cost_safe_dt.csv",
               {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs", "ensemble_runs"});
   std::vector<std::vector<std::string>> table;
@@ -195,8 +207,12 @@ void writeResults(const LabOptions& options, const CostPlan& plan, const Results
   writeTable(options, "cost_of_accuracy",
              "The cost of accuracy: cheapest integrator and dt whose max particle position error over [0, T] "
              "against the reference is within the budget (relative to the scene's size; absolute in brackets), "
-             "at dt <= 0.8 x its safe boundary; CPU seconds per simulated second, median of repeats (min–max)",
-             {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s"}, table);
+             "at dt <= 0.8 x its safe boundary, certified: every dt (adaptive: tolerance) " +
+                 general(100.0 * SurveySettings{}.certifyResolution) + "% apart in its margin survives on " +
+                 scenes::plural(SurveySettings{}.certifyMembers, "start") +
+                 "; CPU seconds per simulated second, median of repeats interleaved across the picks (min–max); a "
+                 "tie: a pick whose range overlaps the cheapest's",
+             {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s", "certified margin"}, table);
 }
 
 }  // namespace
