@@ -270,6 +270,25 @@ TEST(RenderTemplate, FillsTablesAndValuesAndRejectsMissingOnes) {
   EXPECT_THROW(renderTemplate("{{value:speed", dir), std::runtime_error);
 }
 
+// Every image the report shows exists beside it, once.
+TEST(RenderReport, RefusesAMissingOrRepeatedFigure) {
+  const std::string dir = quickOptions("render-figures").outDir;
+  std::filesystem::create_directories(dir + "/figures");
+  std::ofstream(dir + "/values.csv") << "key,value\n";
+  std::ofstream(dir + "/figures/a.png") << "png";
+  RenderOptions options;
+  options.dataDir = dir;
+  options.templatePath = dir + "/template.md";
+  options.outPath = dir + "/README.md";
+  const auto renders = [&](const std::string& text) {
+    std::ofstream(options.templatePath) << text;
+    return renderReport(options);
+  };
+  EXPECT_EQ(renders("![a](figures/a.png) and a [link](figures/b.png)\n"), 0);
+  EXPECT_EQ(renders("![a](figures/a.png)\n![b](figures/b.png)\n"), 1);
+  EXPECT_EQ(renders("![a](figures/a.png)\n![a again](figures/a.png)\n"), 1);
+}
+
 std::string fileText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -1,8 +1,10 @@
 #include "lab/render.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -79,11 +81,33 @@ std::size_t firstDifferentLine(const std::string& a, const std::string& b) {
   return line;
 }
 
+// The first image the text shows that is missing beside `outPath` or shown
+// twice, as a message; empty when every image exists once.
+std::string figureProblem(const std::string& text, const std::string& outPath) {
+  const std::string base = std::filesystem::path(outPath).parent_path().string();
+  std::set<std::string> seen;
+  for (std::size_t at = text.find("]("); at != std::string::npos; at = text.find("](", at + 2)) {
+    const std::size_t open = text.rfind('[', at);
+    if (open == std::string::npos || open == 0 || text[open - 1] != '!') continue;  // a link, not an image
+    const std::size_t close = text.find(')', at);
+    const std::string target = text.substr(at + 2, close - at - 2);
+    if (target.find("://") != std::string::npos) continue;
+    if (!seen.insert(target).second) return "shows " + target + " twice";
+    if (!std::filesystem::exists(std::filesystem::path(base.empty() ? "." : base) / target))
+      return "shows " + target + ", which does not exist";
+  }
+  return "";
+}
+
 }  // namespace
 
 int renderReport(const RenderOptions& options) {
   std::string rendered = renderTemplate(readFile(options.templatePath), options.dataDir);
   if (!options.section.empty()) rendered = spliceSection(options.outPath, options.section, rendered);
+  if (const std::string problem = figureProblem(rendered, options.outPath); !problem.empty()) {
+    std::fprintf(stderr, "render-report: %s %s\n", options.outPath.c_str(), problem.c_str());
+    return 1;
+  }
   if (options.check) {
     const std::string current = readFile(options.outPath);
     if (current == rendered) return 0;
