@@ -398,6 +398,33 @@ TEST(StabilityQuick, OneJobAndTwoJobsWriteIdenticalData) {
   EXPECT_GE(files, 8);
 }
 
+// Energy drift on constrained scenes: with Baumgarte feedback symplectic
+// Euler drifts at a rate proportional to dt and Verlet to dt²; RATTLE, which
+// projects onto the constraints, drifts far less than either.
+TEST(LongtimeQuick, DriftRatesOfTheSymplecticFamilies) {
+  LabOptions o = quickOptions("longtime");
+  ASSERT_EQ(runLongtime(o), 0);
+  const Table rows = readCsv(o.outDir + "/longtime_drift.csv", {"problem", "integrator", "dt", "duration", "failed",
+                                                                "time", "drift_per_100s", "max_abs_change"});
+  std::map<std::string, std::map<std::string, std::map<double, double>>> rate;  // problem, integrator, dt
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.at("failed"), "0") << row.at("problem") << " " << row.at("integrator") << " " << row.at("dt");
+    rate[row.at("problem")][row.at("integrator")][std::stod(row.at("dt"))] = std::stod(row.at("drift_per_100s"));
+  }
+  ASSERT_EQ(rate.size(), 3u);
+  for (auto& [problem, schemes] : rate) {
+    const auto order = [&](const std::string& name) {
+      const auto& r = schemes[name];
+      return std::log(r.rbegin()->second / r.begin()->second) / std::log(r.rbegin()->first / r.begin()->first);
+    };
+    EXPECT_NEAR(order("symplectic-euler"), 1.0, 0.2) << problem;
+    const double h = schemes["rattle"].begin()->first;
+    EXPECT_GT(schemes["symplectic-euler"][h], 0.0) << problem << ": symplectic Euler gains energy";
+    EXPECT_LT(std::abs(schemes["rattle"][h]), 0.05 * std::abs(schemes["symplectic-euler"][h])) << problem;
+    EXPECT_NEAR(order("verlet"), 2.0, 0.3) << problem;
+  }
+}
+
 TEST(AccuracyQuick, OscillatorSlopesAreTheIntegratorsOrders) {
   LabOptions o = quickOptions("accuracy");
   ASSERT_EQ(runAccuracy(o), 0);

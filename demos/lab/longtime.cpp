@@ -4,6 +4,7 @@
 // dt on the pendulum.
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "lab/cells.h"
 #include "lab/chain.h"
@@ -59,6 +60,49 @@ LongtimePlan fullPlan() { return {500.0, 1.0, logSpace(0.005, 0.5, 7), 5.0, 60.0
 
 const std::vector<LongRun> kLongRuns = {{"pendulum", "pendulum", {}, 0.05},
                                         {"6-chain", "test-chain", {{"cl", "6"}}, 0.01}};
+
+// The drift runs: constrained scenes under the schemes that keep energy
+// bounded without constraints (symplectic Euler, Verlet) and the one that
+// projects onto the constraints (RATTLE), each at a dt and its halvings.
+struct DriftScene {
+  LongRun run;               // run.dt: the largest of the halvings
+  std::vector<double> steps;
+};
+const std::vector<std::string> kDriftIntegrators = {"symplectic-euler", "verlet", "rattle"};
+
+std::vector<DriftScene> driftScenes(bool quick) {
+  const int halvings = quick ? 2 : 3;
+  std::vector<DriftScene> scenes = {{{"pendulum", "pendulum", {}, 0.05}, {}},
+                                    {{"bead on a wire", "wire", {{"beads", "1"}}, 0.05}, {}},
+                                    {{"6-chain", "test-chain", {{"cl", "6"}}, 0.01}, {}}};
+  for (DriftScene& scene : scenes)
+    for (int k = 0; k < halvings; ++k) scene.steps.push_back(scene.run.dt / std::pow(2.0, k));
+  return scenes;
+}
+
+// One drift cell: scene, integrator, dt.
+struct DriftCell {
+  std::size_t scene;
+  std::string integrator;
+  double dt;
+};
+
+std::vector<DriftCell> driftCells(const std::vector<DriftScene>& scenes) {
+  std::vector<DriftCell> cells;
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    for (const auto& name : kDriftIntegrators)
+      for (double dt : scenes[k].steps) cells.push_back({k, name, dt});
+  return cells;
+}
+
+// Least-squares slope of the energy change against time (per second), and its largest magnitude.
+std::pair<double, double> driftOf(const EnergyRun& run) {
+  double st = 0, se = 0, stt = 0, ste = 0, largest = 0;
+  for (const auto& [t, e] : run.samples) st += t, se += e, stt += t * t, ste += t * e, largest = std::max(largest, std::abs(e));
+  const double n = static_cast<double>(run.samples.size());
+  const double denominator = n * stt - st * st;
+  return {n > 1 && denominator > 0 ? (n * ste - st * se) / denominator : std::nan(""), largest};
+}
 
 // Only non-finite states end a run: the drift itself is what is shown.
 FailureCriterion driftCriterion() {
@@ -168,6 +212,44 @@ void writeDamping(const LabOptions& options, const LongtimePlan& plan, double pe
              {"dt (s)", "pendulum swing energy left", "pendulum lost per period", "6-chain lost"}, lossRows);
 }
 
+// longtime_drift.csv and its table: per scene, integrator and dt, the drift
+// rate (slope of (E − E(0))/E_s against t, per 100 s), the largest |E − E(0)|/E_s,
+// and the order in dt of the drift rate between successive halvings.
+void writeDrift(const LabOptions& options, const LongtimePlan& plan, const std::vector<DriftScene>& scenes,
+                const std::vector<DriftCell>& cells, const Results<EnergyRun>& results) {
+  Csv csv(options, "longtime_drift.csv",
+          {"problem", "integrator", "dt", "duration", "failed", "time", "drift_per_100s", "max_abs_change"});
+  std::vector<std::vector<std::string>> rows;
+  std::map<std::pair<std::size_t, std::string>, std::vector<std::pair<double, double>>> rates;  // (dt, rate)
+  for (const auto& [k, run] : results) {
+    const DriftCell& cell = cells[k];
+    const auto [slope, largest] = driftOf(run);
+    const bool diverged = run.failed || !(largest <= 1e3);
+    csv << scenes[cell.scene].run.label << cell.integrator << cell.dt << plan.horizon << static_cast<long>(diverged)
+        << run.time << 100.0 * slope << largest;
+    csv.endRow();
+    if (!diverged) rates[{cell.scene, cell.integrator}].push_back({cell.dt, 100.0 * slope});
+    std::string order = "–";
+    const auto& earlier = rates[{cell.scene, cell.integrator}];
+    if (!diverged && earlier.size() >= 2) {
+      const auto& [dtBefore, rateBefore] = earlier[earlier.size() - 2];
+      order = fixed(std::log(std::abs(rateBefore / (100.0 * slope))) / std::log(dtBefore / cell.dt), 2);
+    }
+    rows.push_back({scenes[cell.scene].run.label, cell.integrator, general(cell.dt),
+                    diverged ? energyText(run) : general(100.0 * slope, 2), diverged ? "–" : general(largest, 2),
+                    order});
+    if (!diverged)
+      recordValue(options, "longtime.drift." + scenes[cell.scene].run.label + "." + cell.integrator + ".dt" +
+                               general(cell.dt),
+                  general(100.0 * slope, 2));
+  }
+  writeTable(options, "longtime_drift",
+             "Energy drift of the constrained scenes over T = " + general(plan.horizon) +
+                 " s: the least-squares slope of (E − E(0))/E_s against t, per 100 s, the largest |E − E(0)|/E_s, "
+                 "and the order of the drift rate in dt from the halving above (|rate(2h)/rate(h)| = 2^order)",
+             {"problem", "integrator", "dt", "drift per 100 s", "max |ΔE|/E_s", "order of the drift in dt"}, rows);
+}
+
 }  // namespace
 
 int runLongtime(const LabOptions& options) {
@@ -189,6 +271,15 @@ int runLongtime(const LabOptions& options) {
       },
       true);
   writeEnergy(options, plan, integrators, energy);
+
+  const std::vector<DriftScene> drift = driftScenes(options.quick);
+  const std::vector<DriftCell> driftRuns = driftCells(drift);
+  const auto drifts = sweepResults<EnergyRun>(options, driftRuns.size(), [&](std::size_t k) {
+    LongRun run = drift[driftRuns[k].scene].run;
+    run.dt = driftRuns[k].dt;
+    return runEnergy(plan, run, driftRuns[k].integrator);
+  });
+  writeDrift(options, plan, drift, driftRuns, drifts);
 
   const double eBottom = buildLabScene("pendulum", {{"angle", "0"}}).system->totalEnergy();
   const auto damping = resultsInTurn<Damping>(
