@@ -29,6 +29,7 @@ struct AdviseOptions {
   long maxSteps = 100000;
   double referenceTolerance = lab::SurveySettings{}.referenceTolerance;
   int certifyStarts = lab::SurveySettings{}.certifyMembers;
+  bool certifyAll = false;
 };
 
 std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "–"; }
@@ -49,7 +50,7 @@ void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) 
                     cell(p.candidate.dt).c_str(), scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–",
                     cell(p.candidate.maxError).c_str(), safe.c_str(),
                     (cell(p.cpuPerSimulatedSecond) + " (" + cell(p.cpuMin) + "-" + cell(p.cpuMax) + ")").c_str(),
-                    p.certifiedHi > 0.0 ? (cell(p.certifiedLo) + "-" + cell(p.certifiedHi)).c_str() : "not run",
+                    p.certifiedHi > 0.0 ? (cell(p.certifiedLo) + "-" + cell(p.certifiedHi)).c_str() : "–",
                     p.tie ? "  (tie)" : "");
     else if (!p.uncertified.empty())
       std::snprintf(line, sizeof line, "%-17s none certified: %.200s\n", scan.integrator.c_str(),
@@ -72,6 +73,7 @@ int advise(const AdviseOptions& o) {
   settings.maxSteps = o.maxSteps;
   settings.referenceTolerance = o.referenceTolerance;
   settings.certifyMembers = o.certifyStarts;
+  settings.certifyAll = o.certifyAll;
   lab::installInterruptHandler();
   double lastReport = -1.0;
   settings.progress = [&](double fraction) {
@@ -101,7 +103,9 @@ int advise(const AdviseOptions& o) {
     std::cout << "certified margin: every dt (adaptive: tolerance) " << lab::general(100.0 * settings.certifyResolution)
               << "% apart in it survives T on " << scenes::plural(settings.certifyMembers, "start")
               << " (adaptive: within E from the start as built); a pick is at most "
-              << lab::general(settings.safeFraction) << " of its margin's top\n";
+              << lab::general(settings.safeFraction) << " of its margin's top; "
+              << (settings.certifyAll ? "every pick is certified" : "the cheapest pick and its ties are certified (--certify-all: every pick)")
+              << "\n";
   const int best = advice.best;
   if (best < 0) {
     std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)
@@ -148,6 +152,8 @@ Command addAdviseCommand(CLI::App& app) {
                       "starts on which every dt of a pick's margin must survive (0: picks are not certified)")
       ->capture_default_str()
       ->check(options::decimalInteger(0, 1000));
+  command->add_flag("--certify-all", options->certifyAll,
+                    "certify every integrator's pick, not only the cheapest and its ties");
   return {command, [=] { return advise(*options); }};
 }
 

@@ -434,18 +434,39 @@ std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build,
   SurveySettings s = settings;
   s.horizon = survey.horizon;
   s.abortError = error;  // a moved pick's run ends once it misses the budget
-  for (const auto& scan : survey.integrators) {
-    if (settings.progress) settings.progress(0.8 * static_cast<double>(picks.size()) / survey.integrators.size());
-    Pick pick = firstPick(scan, s, error);
-    if (pick.found && s.certifyMembers > 0 && survey.referenceTrajectory && !cancelled(s)) {
-      const Measurer measurer{build, s, *survey.referenceTrajectory, survey.energyScale};
-      Certifier certifier{build, measurer, s, error, {}, 0};
-      certifyPick(certifier, pick);
-      pick.certifyRuns = certifier.runs;
+  for (const auto& scan : survey.integrators) picks.push_back(firstPick(scan, s, error));
+  const bool certifying = s.certifyMembers > 0 && survey.referenceTrajectory;
+  std::vector<bool> tried(picks.size(), false);
+  // Which pick to certify next: every found one (certifyAll), else the cheapest and its ties.
+  const auto next = [&]() -> int {
+    if (!certifying || cancelled(s)) return -1;
+    if (s.certifyAll) {
+      for (std::size_t k = 0; k < picks.size(); ++k)
+        if (picks[k].found && !tried[k]) return static_cast<int>(k);
+      return -1;
     }
-    picks.push_back(pick);
+    const int best = cheapest(picks);
+    if (best < 0) return -1;
+    if (!tried[best]) return best;
+    markTies(picks, best);
+    for (std::size_t k = 0; k < picks.size(); ++k)
+      if (picks[k].tie && !tried[k]) return static_cast<int>(k);
+    return -1;
+  };
+  if (!s.certifyAll || !certifying) timePicks(build, survey.horizon, s, picks);
+  for (int k = next(); k >= 0; k = next()) {
+    if (settings.progress) settings.progress(0.8 * static_cast<double>(k) / picks.size());
+    tried[k] = true;
+    const Measurer measurer{build, s, *survey.referenceTrajectory, survey.energyScale};
+    Certifier certifier{build, measurer, s, error, {}, 0};
+    const Candidate before = picks[k].candidate;
+    certifyPick(certifier, picks[k]);
+    picks[k].certifyRuns = certifier.runs;
+    const bool moved = picks[k].found && (picks[k].candidate.dt != before.dt ||
+                                          picks[k].candidate.tolerance != before.tolerance);
+    if (moved && !s.certifyAll) timePicks(build, survey.horizon, s, picks);  // all again, interleaved
   }
-  timePicks(build, survey.horizon, s, picks);
+  if (s.certifyAll && certifying) timePicks(build, survey.horizon, s, picks);
   return picks;
 }
 

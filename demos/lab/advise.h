@@ -46,6 +46,8 @@ struct SurveySettings {
   // survives T on certifyMembers starts, and a tolerance's error stays within the budget across it.
   int certifyMembers = 10;          // 0: picks are not certified
   double certifyResolution = 0.01;
+  bool certifyAll = false;          // every pick; else the cheapest and its ties (a pick that moves
+                                    // is timed again, and the cheapest certified pick wins)
   FailureCriterion failure;         // the failure criterion (lab/failure.h)
   double referenceTolerance = 1e-11;  // odeint's, in [kMinReferenceTolerance, 1]; the check run uses 100× this
   std::function<void(double)> progress;        // fraction done, 0..1, on the calling thread
@@ -169,9 +171,10 @@ void fields(Io& io, Pick& p) {
 }
 
 // Per integrator, the largest scanned safe dt (fixed-step: dt ≤ safeFraction ×
-// safeDt) or loosest tolerance whose maxError ≤ error, certified (certifyPick:
-// moved down past any failure in its window), then timed over `repeats`
-// interleaved across the picks (settings.progress: the fraction done).
+// safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`
+// interleaved across the picks; the cheapest and its ties (every pick with
+// settings.certifyAll) certified (certifyPick: moved down past any failure in
+// its margin, then timed again) until the cheapest is a certified pick.
 std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build, const Survey& survey,
                                     const SurveySettings& settings, double error);
 
