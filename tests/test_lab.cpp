@@ -403,7 +403,14 @@ TEST(StabilityQuick, OneJobAndTwoJobsWriteIdenticalData) {
 // projects onto the constraints, drifts far less than either.
 TEST(LongtimeQuick, DriftRatesOfTheSymplecticFamilies) {
   LabOptions o = quickOptions("longtime");
+  // A value of an earlier longtime run in the same --out is gone; another experiment's is kept.
+  std::filesystem::create_directories(o.outDir);
+  writeValue(o.outDir, "longtime.drift.stale", "1");
+  writeValue(o.outDir, "other.kept", "2");
   ASSERT_EQ(runLongtime(o), 0);
+  EXPECT_EQ(readValues(o.outDir).count("longtime.drift.stale"), 0u);
+  EXPECT_EQ(readValues(o.outDir).at("other.kept"), "2");
+  EXPECT_EQ(readValues(o.outDir).count("longtime.horizon"), 1u);
   const Table rows = readCsv(o.outDir + "/longtime_drift.csv", {"problem", "integrator", "dt", "duration", "failed",
                                                                 "time", "drift_per_100s", "max_abs_change"});
   std::map<std::string, std::map<std::string, std::map<double, double>>> rate;  // problem, integrator, dt

@@ -287,7 +287,7 @@ void writeTables(const LabOptions& options, const AccuracyPlan& plan, const std:
 }  // namespace
 
 int runAccuracy(const LabOptions& options) {
-  prepareOutput(options);
+  prepareOutput(options, "accuracy.");
   const auto integrators = selectedIntegrators(options, true);
   const AccuracyPlan plan = options.quick ? quickPlan() : fullPlan();
   long total = 0;

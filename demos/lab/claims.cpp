@@ -370,7 +370,7 @@ const std::vector<void (*)(Context&)> kClaims = {claimCostVsDt, claimRk4AgainstM
 }  // namespace
 
 int runClaims(const LabOptions& options) {
-  prepareOutput(options);
+  prepareOutput(options, "claims.");
   const ClaimsPlan plan = options.quick ? quickPlan() : fullPlan();
   std::cout << describe(options.criterion) << "\n";
   Progress progress(options, "claims", plan.progressTotal);

@@ -218,7 +218,7 @@ void writeResults(const LabOptions& options, const CostPlan& plan, const Results
 }  // namespace
 
 int runCost(const LabOptions& options) {
-  prepareOutput(options);
+  prepareOutput(options, "cost.");
   const CostPlan plan = options.quick ? quickPlan() : fullPlan();
   recordSettings(options, plan);
   Progress progress(options, "cost", static_cast<long>(plan.scenes.size()));

@@ -495,7 +495,7 @@ const std::vector<void (*)(Context&)> kSections = {runStiffness, runMassRatio, r
 }  // namespace
 
 int runExtremes(const LabOptions& options) {
-  prepareOutput(options);
+  prepareOutput(options, "extremes.");
   const ExtremesPlan plan = options.quick ? quickPlan() : fullPlan();
   const auto integrators = selectedIntegrators(options);
   std::vector<std::string> scanned;

@@ -210,7 +210,10 @@ void createOutputDirectory(const std::string& dir) {
   if (error) throw std::invalid_argument("--out: cannot create the directory '" + dir + "': " + error.message());
 }
 
-void prepareOutput(const LabOptions& options) { createOutputDirectory(options.outDir); }
+void prepareOutput(const LabOptions& options, const std::string& valuePrefix) {
+  createOutputDirectory(options.outDir);
+  if (options.cells->writesOutputs()) removeValues(options.outDir, valuePrefix);
+}
 
 void writeTable(const LabOptions& options, const std::string& name, const std::string& title,
                 const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {

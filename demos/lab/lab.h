@@ -167,7 +167,10 @@ bool interrupted();
 // Creates the output directory `dir` (and parents); throws std::invalid_argument
 // "--out: ..." when it is empty, or cannot be created or is not a directory.
 void createOutputDirectory(const std::string& dir);
-// Creates options.outDir (createOutputDirectory).
-void prepareOutput(const LabOptions& options);
+// Creates options.outDir (createOutputDirectory) and, when this run writes
+// its outputs, removes the experiment's quoted values (keys starting with
+// `valuePrefix`) left in its values.csv by an earlier run, so that every
+// value there is this run's.
+void prepareOutput(const LabOptions& options, const std::string& valuePrefix);
 
 }  // namespace lab

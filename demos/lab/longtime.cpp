@@ -253,7 +253,7 @@ void writeDrift(const LabOptions& options, const LongtimePlan& plan, const std::
 }  // namespace
 
 int runLongtime(const LabOptions& options) {
-  prepareOutput(options);
+  prepareOutput(options, "longtime.");
   const LongtimePlan plan = options.quick ? quickPlan() : fullPlan();
   const auto integrators = selectedIntegrators(options, true);
   const double period = scenes::pendulumPeriod(scenes::PendulumParams::seed());

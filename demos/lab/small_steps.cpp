@@ -494,7 +494,7 @@ bool runStiffCloth(const LabOptions& options, const SmallStepsPlan& plan) {
 }  // namespace
 
 int runSmallSteps(const LabOptions& options) {
-  prepareOutput(options);
+  prepareOutput(options, "small_steps.");
   std::cout << describe(options.criterion) << "\n";
   recordValue(options, "small_steps.failure", describe(options.criterion));
   const SmallStepsPlan plan = options.quick ? quickPlan() : fullPlan();

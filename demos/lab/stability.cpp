@@ -715,7 +715,7 @@ void recordSettings(const LabOptions& options, const StabilityPlan& plan, const 
 }  // namespace
 
 int runStability(const LabOptions& options, const StabilityOptions& stability) {
-  prepareOutput(options);
+  prepareOutput(options, "stability.");
   std::cout << describe(options.criterion) << "\n";
   const std::vector<std::string> integrators = scannedIntegrators(options);
   const StabilityPlan plan = options.quick ? quickPlan(stability) : fullPlan(stability);

@@ -377,7 +377,7 @@ void writeTable3(const LabOptions& options, const std::vector<std::string>& inte
 }  // namespace
 
 int runTiming(const LabOptions& options, const TimingOptions& timing) {
-  prepareOutput(options);
+  prepareOutput(options, "timing.");
   const auto integrators = selectedIntegrators(options);
   const TimingPlan plan = options.quick ? quickPlan() : fullPlan();
   Progress progress(options, "timing", static_cast<long>(integrators.size() * (plan.chains.size() + plan.cloths.size() + 2)));

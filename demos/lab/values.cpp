@@ -19,13 +19,30 @@ std::map<std::string, std::string> readValues(const std::string& dir) {
   return values;
 }
 
-void writeValue(const std::string& dir, const std::string& key, const std::string& value) {
-  std::map<std::string, std::string> values = readValues(dir);
-  values[key] = value;
+namespace {
+
+void writeValues(const std::string& dir, const std::map<std::string, std::string>& values) {
   scenes::OutputFile out(dir + "/values.csv", "the values");
   out.stream() << "key,value\n";
   for (const auto& [k, v] : values) out.stream() << k << ',' << scenes::csvField(v) << '\n';
   out.close();
+}
+
+}  // namespace
+
+void writeValue(const std::string& dir, const std::string& key, const std::string& value) {
+  std::map<std::string, std::string> values = readValues(dir);
+  values[key] = value;
+  writeValues(dir, values);
+}
+
+void removeValues(const std::string& dir, const std::string& prefix) {
+  std::map<std::string, std::string> values = readValues(dir);
+  std::size_t removed = 0;
+  for (auto v = values.begin(); v != values.end();)
+    if (v->first.rfind(prefix, 0) == 0) v = values.erase(v), ++removed;
+    else ++v;
+  if (removed > 0) writeValues(dir, values);
 }
 
 }  // namespace lab

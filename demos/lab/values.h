@@ -15,4 +15,7 @@ std::map<std::string, std::string> readValues(const std::string& dir);
 // Sets one value in DIR/values.csv, keeping the others (rows sorted by key).
 void writeValue(const std::string& dir, const std::string& key, const std::string& value);
 
+// Removes every value whose key starts with `prefix` (nothing when the file does not exist).
+void removeValues(const std::string& dir, const std::string& prefix);
+
 }  // namespace lab
