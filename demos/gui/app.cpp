@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -75,6 +76,7 @@ App::App(DemoOptions options)
   showPanel_ = !options_.hidePanel;
   paused_ = options_.startPaused;
   paced_ = options_.paced();
+  recording_ = !options_.record.empty();
   if (!options_.script.empty()) script_ = readScript(options_.script);
 
   SceneChoice first;
@@ -280,9 +282,36 @@ void App::draw() {
   overlayDrawMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sceneDone).count();
 }
 
+// A numbered PNG name in a directory: DIR/stem-000042.png.
+static std::string numberedImage(const std::string& dir, const char* stem, long long number) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s-%06lld.png", stem, number);
+  return (std::filesystem::path(dir.empty() ? "." : dir) / name).string();
+}
+
+void App::writeFrameImages() {
+  if (recording_) {
+    const std::string error = writeScreenshot(numberedImage(options_.record, "frame", frame_), windowWidth_,
+                                              windowHeight_);
+    if (!error.empty()) {
+      setError("recording stopped: " + error);
+      outputFailed_ = true;
+      recording_ = false;
+    }
+  }
+  if (screenshotRequested_) {
+    screenshotRequested_ = false;
+    const std::string path = numberedImage(options_.record, "screenshot", frame_);
+    const std::string error = writeScreenshot(path, windowWidth_, windowHeight_);
+    if (error.empty()) setStatus("screenshot: " + path);
+    else setError(error);
+  }
+}
+
 void App::finishFrame() {
   if (statusFrames_ > 0) --statusFrames_;
   ++frame_;
+  writeFrameImages();
   const bool last = quit_ || (options_.frames && frame_ >= *options_.frames);
   if (last && !options_.screenshot.empty()) {
     const std::string error = writeScreenshot(options_.screenshot, windowWidth_, windowHeight_);

@@ -175,6 +175,9 @@ class App {
   void toggleLockstep();
   void cyclePaneCount() { setPaneCount(panes_.size() >= 4 ? 1 : static_cast<int>(panes_.size()) + 1); }
   void requestQuit() { quit_ = true; }
+  void requestScreenshot() { screenshotRequested_ = true; }
+  // The frame just drawn to --record's directory, and the screenshot the k key asked for.
+  void writeFrameImages();
 
   // Every key besides the scene keys: what the help overlay lists and what
   // keyboard() dispatches, from one table.
@@ -270,6 +273,8 @@ class App {
   std::string status_;
   bool statusIsError_ = false;
   int statusFrames_ = 0;
+  bool screenshotRequested_ = false;
+  bool recording_ = false;  // --record given and its frames still written
   ExactMotion exact_;              // the scene's closed form, drawn as a ghost; empty if none
   std::string sceneHint_;          // the scene's "try this", shown when it opens
   long long hintUntilFrame_ = 360;  // frames: the hint shows for 6 s after a scene opens

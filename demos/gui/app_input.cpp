@@ -33,6 +33,8 @@ const std::vector<App::KeyBinding>& App::keyBindings() {
       {"l", "l", "lockstep: one step per frame / fixed time per frame", &App::toggleLockstep},
       {"p", "p", "control panel on / off", &App::togglePanel},
       {"e", "e", "build mode: add, move, delete; save as a scene file (keys in the panel)", &App::toggleBuildMode},
+      {"k", "k", "screenshot: a PNG of the window (into --record's directory, else the working directory)",
+       &App::requestScreenshot},
       {"h", "h", "this help", &App::toggleHelp},
       {"\x1bq", "Esc / q", "quit (Esc first closes an open list)", &App::requestQuit},
   };

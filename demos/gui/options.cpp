@@ -150,6 +150,10 @@ void addRunOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
       ->capture_default_str()
       ->check(options::integratorTolerance());
   cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
+  cli.add_option("--record", o.record,
+                 "write every frame as DIR/frame-000001.png, frame-000002.png, ... (created if missing; the o "
+                 "key's screenshots go there too); a video: ffmpeg -framerate 60 -i DIR/frame-%06d.png -pix_fmt "
+                 "yuv420p out.mp4");
   cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
 }
 
@@ -191,6 +195,13 @@ void checkOutputs(const DemoOptions& o) {
     requireWritable("--screenshot", o.screenshot);
   }
   if (!o.logState.empty()) requireWritable("--log-state", o.logState);
+  if (!o.record.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(o.record, error);
+    if (!std::filesystem::is_directory(o.record, error))
+      badUsage("--record: cannot create the directory '" + o.record + "'");
+    requireWritable("--record", (std::filesystem::path(o.record) / "frame-000001.png").string());
+  }
 }
 }  // namespace
 

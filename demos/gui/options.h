@@ -47,6 +47,8 @@ struct DemoOptions {
   std::string script;                           // --script FILE
   std::optional<long long> frames;              // --frames N: exit after N frames
   std::string screenshot;                       // --screenshot FILE.png: the last frame (PNG only)
+  std::string record;                           // --record DIR: every frame as DIR/frame-NNNNNN.png;
+                                                // the o key's screenshots go there too
   std::string logState;                         // --log-state FILE: the state at exit
 };
 

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <sstream>
 
@@ -546,4 +549,40 @@ TEST(DemoDrawing, ASurfacesFacesAreShaded) {
   }
   EXPECT_GT(checked, 0);
   EXPECT_GE(shaded, checked * 9 / 10);
+}
+
+// --record writes every frame as a numbered PNG, the last of them the very
+// image --screenshot takes; the k key writes a screenshot beside them, and
+// the status line names it. A directory that cannot be made is refused
+// before the run.
+TEST(DemoRecording, RecordWritesEveryFrameAndTheKeyAScreenshot) {
+  const std::string dir = outputDirectory("Record");
+  const RunResult run =
+      runDemo(dir, "--scene pendulum --frames 6 --record frames --screenshot last.png --log-state state.txt",
+              "3 key k\n");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  for (int frame = 1; frame <= 6; ++frame) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/frames/frame-%06d.png", frame);
+    const Image image = readPng(dir + name);
+    EXPECT_EQ(image.width, 1180) << name;
+    EXPECT_EQ(image.height, 760) << name;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/frames/frame-000007.png"));
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_TRUE(bytes(dir + "/frames/frame-000006.png") == bytes(dir + "/last.png"));
+  // One screenshot, the image of the frame it names.
+  std::vector<std::string> shots;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/frames"))
+    if (entry.path().filename().string().rfind("screenshot-", 0) == 0) shots.push_back(entry.path().filename().string());
+  ASSERT_EQ(shots.size(), 1u);
+  const std::string number = shots[0].substr(std::string("screenshot-").size());
+  EXPECT_TRUE(bytes(dir + "/frames/" + shots[0]) == bytes(dir + "/frames/frame-" + number)) << shots[0];
+  const RunResult refused = runDemo(dir, "--frames 2 --record last.png/sub");
+  EXPECT_EQ(refused.exitCode, 2);
+  ASSERT_EQ(refused.errLines().size(), 1u) << refused.err;
+  EXPECT_NE(refused.errLines()[0].find("--record"), std::string::npos) << refused.err;
 }
