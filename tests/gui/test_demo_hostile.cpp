@@ -102,6 +102,19 @@ TEST(DemoHostile, ScriptCoordinatesBeyondTwoToThe31AreClamped) {
   EXPECT_EQ(readStateLog(dir + "/state.txt").frames, 10);
 }
 
+// --threads takes a decimal count in [1, 1024]: anything else is one line and exit 2.
+TEST(DemoHostile, BadThreadCountsAreRefusedInOneLine) {
+  const std::string dir = outputDirectory("BadThreads");
+  for (const char* value : {"0", "-1", "1025", "2.5", "0x4", "nan", "''", "99999999999999999999"}) {
+    SCOPED_TRACE(value);
+    const RunResult r = runDemo(dir, std::string("--frames 2 --threads ") + value);
+    EXPECT_EQ(r.exitCode, 2);
+    ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+    EXPECT_TRUE(contains(r.err, "--threads")) << r.err;
+  }
+  EXPECT_EQ(runDemo(dir, "--scene pendulum --frames 2 --threads 1").exitCode, 0);
+}
+
 TEST(DemoHostile, ADirectoryAsTheScriptIsRejected) {
   const std::string dir = outputDirectory("ScriptDirectory");
   const RunResult r = runDemo(dir, "--script . --frames 2");
