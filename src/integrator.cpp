@@ -57,6 +57,7 @@ void IntegratorSettings::validate() const {
   // Upper bounds keep a typo from turning one step into hours of work.
   requireInRange("integrator substeps", substeps, 1, 100000);
   requireInRange("integrator iterations", iterations, 1, 10000);
+  implicitEuler.validate();
 }
 
 const IntegratorInfo* findIntegrator(const std::string& name) {

@@ -247,7 +247,9 @@ double beadRadiusError(bool coupled) {
   system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
   system.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d::Zero(), 1.0));
   ImplicitEulerIntegrator integrator;
-  integrator.settings.coupledConstraints = coupled;
+  IntegratorSettings settings;
+  settings.implicitEuler.coupledConstraints = coupled;
+  integrator.configure(settings);
   double worst = 0.0;
   for (int k = 0; k < 100; ++k) {
     system.step(integrator, 0.1);
@@ -292,7 +294,9 @@ double testChainError(bool coupled) {
   for (int i = 0; i + 1 < n; ++i) system.addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1));
   system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -0.05)));
   ImplicitEulerIntegrator integrator;
-  integrator.settings.coupledConstraints = coupled;
+  IntegratorSettings settings;
+  settings.implicitEuler.coupledConstraints = coupled;
+  integrator.configure(settings);
   double worst = 0.0;
   for (int k = 0; k < 500; ++k) {
     system.step(integrator, 0.2);
@@ -352,12 +356,12 @@ TEST(ImplicitEuler, NewtonPassesStopOnAPinnedOnlyRowAndLeaveTheRestAlone) {
     for (int k = 0; k < 100; ++k) {
       const StepStats sa = with->step(a, dt), sb = without->step(b, dt);
       ASSERT_EQ(sa.solves, sb.solves) << "dt " << dt << " step " << k;
-      ASSERT_LT(sa.solves, a.settings.constraintPasses) << "dt " << dt << " step " << k;
+      ASSERT_LT(sa.solves, a.settings().constraintPasses) << "dt " << dt << " step " << k;
     }
     const double shift = (with->positions().head(12) - without->positions().head(12)).cwiseAbs().maxCoeff();
     // Only the factorisation's ordering differs (AMD sees one more row): round-off.
     EXPECT_LT(shift, 1e-9) << "dt " << dt;  // in rod lengths: 1e-8
-    EXPECT_LE(a.lastConstraintResidual(), a.settings.constraintTolerance) << "dt " << dt;
+    EXPECT_LE(a.lastConstraintResidual(), a.settings().constraintTolerance) << "dt " << dt;
   }
 }
 
@@ -390,18 +394,20 @@ TEST(ImplicitEuler, ReusedPatternGivesTheSameStepAsAFreshIntegrator) {
   for (ImplicitLinearSolver solver : {ImplicitLinearSolver::Direct, ImplicitLinearSolver::ConjugateGradient}) {
     auto a = build(), b = build();
     ImplicitEulerIntegrator reused;
-    reused.settings.solver = solver;
-    reused.settings.cgTolerance = 1e-12;
+    IntegratorSettings settings;
+    settings.implicitEuler.solver = solver;
+    settings.implicitEuler.cgTolerance = 1e-12;
     // The reused integrator would start its geometric stiffness from the last
     // step's impulses, the fresh one from zero; without it both take the same passes.
-    reused.settings.geometricStiffness = false;
+    settings.implicitEuler.geometricStiffness = false;
+    reused.configure(settings);
     for (std::size_t c = 0; c < changes.size(); ++c) {
       a->step(reused, 0.05);
       b->restore(a->snapshot());
       changes[c](*a);
       changes[c](*b);
       ImplicitEulerIntegrator fresh;
-      fresh.settings = reused.settings;
+      fresh.configure(settings);
       a->step(reused, 0.05);
       b->step(fresh, 0.05);
       EXPECT_LT((a->positions() - b->positions()).cwiseAbs().maxCoeff(), 1e-10) << "change " << c;
@@ -518,6 +524,25 @@ TEST(ImplicitEuler, AStiffClothHangingStillConvergesInAFewPasses) {
     worstPasses = std::max(worstPasses, integrator.lastPasses());
     worstResidual = std::max({worstResidual, integrator.lastConstraintResidual(), integrator.lastMomentumResidual()});
   }
-  EXPECT_LE(worstResidual, integrator.settings.constraintTolerance);
-  EXPECT_LE(worstPasses, 4) << "of at most " << integrator.settings.constraintPasses;
+  EXPECT_LE(worstResidual, integrator.settings().constraintTolerance);
+  EXPECT_LE(worstPasses, 4) << "of at most " << integrator.settings().constraintPasses;
+}
+
+// Implicit Euler's settings are reached through makeIntegrator, as every other
+// scheme's are, and validated there.
+TEST(ImplicitEuler, SettingsComeThroughMakeIntegrator) {
+  IntegratorSettings settings;
+  settings.implicitEuler.constraintPasses = 3;
+  settings.implicitEuler.solver = ImplicitLinearSolver::Direct;
+  auto made = makeIntegrator("implicit-euler", settings);
+  const auto& implicit = dynamic_cast<const ImplicitEulerIntegrator&>(*made);
+  EXPECT_EQ(implicit.settings().constraintPasses, 3);
+  EXPECT_EQ(implicit.settings().solver, ImplicitLinearSolver::Direct);
+  settings.implicitEuler.stabilization = 2.0;
+  try {
+    makeIntegrator("implicit-euler", settings);
+    FAIL() << "an implicit stabilization of 2 was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("stabilization"), std::string::npos) << e.what();
+  }
 }

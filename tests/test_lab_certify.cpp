@@ -55,7 +55,9 @@ TEST(Certify, ALoneFailureOnOneMemberSetsTheCertifiedStep) {
   EXPECT_GT(c->lowest * 1.011, c->smallestFailureDt / 10.0);
   // Every member ran at every dt at and below the certified one.
   for (const auto& [dt, members] : membersRun) {
-    if (dt <= c->safeDt) EXPECT_EQ(members.size(), 10u) << dt;
+    if (dt <= c->safeDt) {
+      EXPECT_EQ(members.size(), 10u) << dt;
+    }
   }
   // The bands: the lone failure in the first, the 0.1 edge inside the last.
   ASSERT_EQ(c->bands.size(), 4u);

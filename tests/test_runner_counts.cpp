@@ -208,7 +208,9 @@ TEST(RunnerCounts, ImplicitEulerRowsCountItsEvaluationAndSolves) {
     CountingRod unused(0, 1, 0.1);
     c.rod = &unused;
     ImplicitEulerIntegrator implicit;
-    implicit.settings.solver = ImplicitLinearSolver::ConjugateGradient;
+    IntegratorSettings settings;
+    settings.implicitEuler.solver = ImplicitLinearSolver::ConjugateGradient;
+    implicit.configure(settings);
     std::vector<Seen> seen;
     const std::vector<Row> rows = runCounted(c, implicit, 0.02, 20, seen);
     ASSERT_EQ(rows.size(), seen.size() + 1);

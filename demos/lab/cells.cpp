@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace lab {
 
@@ -149,13 +150,32 @@ std::size_t countAt(const Json& object, const char* key) {
   return value.get<std::size_t>();
 }
 
+// Deeper than any manifest or cell the laboratory writes (a few levels): a
+// deeper document is refused while it is read, before copying or freeing it
+// could recurse once per level.
+constexpr int kMaxJsonDepth = 64;
+
+struct TooDeep : std::invalid_argument {
+  TooDeep() : std::invalid_argument("nested deeper than " + std::to_string(kMaxJsonDepth) + " levels") {}
+};
+
+template <class Input>
+Json parseBounded(Input&& input) {
+  return Json::parse(std::forward<Input>(input), [](int depth, Json::parse_event_t, Json&) {
+    if (depth > kMaxJsonDepth) throw TooDeep();
+    return true;
+  });
+}
+
 Json readJson(const std::string& path, const std::string& what) {
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("merge: no " + what + " '" + path + "' (not a shard, or its run did not finish)");
   try {
-    return Json::parse(in);
+    return parseBounded(in);
   } catch (const Json::exception&) {
     throw std::invalid_argument("merge: malformed " + what + " '" + path + "'");
+  } catch (const TooDeep& e) {
+    throw std::invalid_argument("merge: malformed " + what + " '" + path + "': " + e.what());
   }
 }
 
@@ -244,7 +264,7 @@ void readCells(const Manifest& m, const std::string& dir, const std::string& nam
     std::size_t cell = 0;
     Json result;
     try {
-      const Json row = Json::parse(line);
+      const Json row = parseBounded(line);
       cell = countAt(row, "cell");
       result = row.at("result");
     } catch (const Json::exception&) {

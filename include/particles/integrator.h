@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "particles/drift_correction.h"
+#include "particles/integrators/implicit_euler_settings.h"
 #include "particles/step_stats.h"
 
 namespace particles {
@@ -45,6 +46,8 @@ struct IntegratorSettings {
   // `particle-lab small-steps` (report, "Small steps").
   int substeps = 20;
   int iterations = 1;
+  // implicit-euler: its Newton passes, constraint coupling and linear solver.
+  ImplicitEulerSettings implicitEuler;
 
   void validate() const;  // throws naming the bad field
 };

@@ -178,11 +178,15 @@ int ImplicitEulerIntegrator::lastPasses() const { return impl_->passes; }
 double ImplicitEulerIntegrator::lastConstraintResidual() const { return impl_->constraintResidual; }
 double ImplicitEulerIntegrator::lastMomentumResidual() const { return impl_->momentumResidual; }
 
-StepStats ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
+void ImplicitEulerIntegrator::configure(const IntegratorSettings& settings) {
   settings.validate();
+  settings_ = settings.implicitEuler;
+}
+
+StepStats ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
   requireJacobians(system);
   Impl& s = *impl_;
-  s.settings = &settings;
+  s.settings = &settings_;
   s.begin(system);
   StepStats stats = s.lineariseForcesAtStart(system, h);
   if (s.coupled) s.gatherConstraintRows(system, h);  // at the first iterate x₀ + h v₀
@@ -197,7 +201,7 @@ StepStats ImplicitEulerIntegrator::step(ParticleSystem& system, double h) {
     s.evaluateForces(system, s.xTilde, s.vBar);
     ++stats.forceEvaluations;
     s.measureResiduals(system, h);
-    if (s.converged() || s.passes == settings.constraintPasses) break;
+    if (s.converged() || s.passes == settings_.constraintPasses) break;
     s.lineariseForces(system, s.xTilde, s.vBar);
   }
   s.commit(system, h);

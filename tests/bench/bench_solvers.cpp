@@ -155,8 +155,10 @@ void BM_ClothImplicitEuler(benchmark::State& state) {
   if (state.range(2)) p.stiffness = 4e5;
   auto system = cloth(p);
   ImplicitEulerIntegrator implicit;
-  implicit.settings.solver = state.range(1) ? ImplicitLinearSolver::ConjugateGradient
-                                            : ImplicitLinearSolver::Direct;
+  IntegratorSettings settings;
+  settings.implicitEuler.solver =
+      state.range(1) ? ImplicitLinearSolver::ConjugateGradient : ImplicitLinearSolver::Direct;
+  implicit.configure(settings);
   for (int k = 0; k < 3; ++k) system->step(implicit, 1.0 / 60.0);
   long iterations = 0, steps = 0;
   for (auto _ : state) {

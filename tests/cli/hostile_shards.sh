@@ -38,7 +38,11 @@ for k in 1 2; do
   "$PROGRAM" longtime --quick --shard $k/2 --out "$WORK/good$k" >/dev/null 2>&1 || fail "longtime shard $k/2 failed"
 done
 "$PROGRAM" stability --quick --shard 2/2 --out "$WORK/stability2" >/dev/null 2>&1 || fail "stability shard 2/2 failed"
-expect merge-good 0 '^\[longtime\] merged 20 cells from 2 shards into' -- merge "$WORK/good1" "$WORK/good2" --out "$WORK/merged"
+# The experiment's cell count and shard 2's share, as its manifests record them.
+TOTAL=$(sed -n 's/^  "cells": \([0-9]*\),*$/\1/p' "$WORK/good1/shard.json")
+SHARE2=$(wc -l <"$WORK/good2/cells.jsonl")
+[ -n "$TOTAL" ] && [ "$SHARE2" -gt 0 ] || fail "cannot read the good shards' cell counts"
+expect merge-good 0 "^\[longtime\] merged $TOTAL cells from 2 shards into" -- merge "$WORK/good1" "$WORK/good2" --out "$WORK/merged"
 
 # tampered NAME SED: copies of the good shards as NAME1, NAME2, shard 1's manifest edited by SED.
 tampered() {
@@ -60,12 +64,12 @@ tampered recurse-named "s|^    \"longtime\",\$|    \"merge\", \"$WORK/recurse-na
 expect merge-recursive-experiment 2 "^particle-lab: merge: the shards' manifest names 'merge', which is not an experiment" -- \
   merge "$WORK/recurse-named1" "$WORK/recurse-named2" --out "$WORK/out-recurse-named"
 # A negative count or cell index is refused as written, never read as 2^64 - 1.
-tampered negative-count 's/"cells": 20/"cells": -1/'
+tampered negative-count "s/\"cells\": $TOTAL/\"cells\": -1/"
 expect merge-negative-count 2 "^particle-lab: merge: malformed shard manifest '.*negative-count1/shard.json': cells must be an integer >= 0, got -1$" -- \
   merge "$WORK/negative-count1" "$WORK/negative-count2" --out "$WORK/out-negative-count"
 # Arguments that gained an option: the experiment enumerates other cells than the shards hold.
 tampered integrator 's|^    "--quick"$|    "--quick", "--integrator", "rk4"|'
-LAST_LINE=1 expect merge-gained-integrator 2 "^particle-lab: merge: shard 1/2 in '.*integrator1' holds a cell 2 that is not this experiment's \(made by a different run or version\): " -- \
+LAST_LINE=1 expect merge-gained-integrator 2 "^particle-lab: merge: shard 1/2 in '.*integrator1' holds a cell [0-9]+ that is not this experiment's \(made by a different run or version\): " -- \
   merge "$WORK/integrator1" "$WORK/integrator2" --out "$WORK/out-integrator"
 
 # The FNV-1a digest of a file, as a shard's manifest records it (perl-base is
@@ -108,9 +112,16 @@ LAST_LINE=1 expect merge-not-a-number 2 "^particle-lab: merge: shard 1/2 in '.*n
   merge "$WORK/not-a-number1" "$WORK/not-a-number2" --out "$WORK/out-not-a-number"
 # A shard of another experiment under longtime's manifest: its cells are stability's.
 rm -rf "$WORK/foreign2" && cp -r "$WORK/good2" "$WORK/foreign2"
-awk 'NR <= 10' "$WORK/stability2/cells.jsonl" >"$WORK/foreign2/cells.jsonl"
+awk -v n="$SHARE2" 'NR <= n' "$WORK/stability2/cells.jsonl" >"$WORK/foreign2/cells.jsonl"
 sed -i -E "s/\"cells_digest\": \"[0-9a-f]*\"/\"cells_digest\": \"$(digest "$WORK/foreign2/cells.jsonl")\"/" "$WORK/foreign2/shard.json"
 # (Refused either as cells of the wrong index or as results that do not decode as longtime's.)
 LAST_LINE=1 expect merge-foreign-cells 2 "^particle-lab: merge: shard 2/2 in '.*foreign2' holds (cell [0-9]+, not one of its own|a cell [0-9]+ that is not this experiment's) \(made by a different run or version\)" -- \
   merge "$WORK/good1" "$WORK/foreign2" --out "$WORK/out-foreign"
+# A cell nested far deeper than any result (its digest made to match): refused while it is read, not by a crash.
+rm -rf "$WORK/deep1" "$WORK/deep2" && cp -r "$WORK/good1" "$WORK/deep1" && cp -r "$WORK/good2" "$WORK/deep2"
+python3 -c 'import sys; sys.stdout.write("{\"cell\":0,\"result\":" + "[" * 200000 + "]" * 200000 + "}\n")' >"$WORK/deep1/line"
+{ cat "$WORK/deep1/line"; sed 1d "$WORK/good1/cells.jsonl"; } >"$WORK/deep1/cells.jsonl"
+sed -i -E "s/\"cells_digest\": \"[0-9a-f]*\"/\"cells_digest\": \"$(digest "$WORK/deep1/cells.jsonl")\"/" "$WORK/deep1/shard.json"
+expect merge-deep-cell 2 "^particle-lab: merge: malformed line 1 in '.*deep1/cells.jsonl': nested deeper than 64 levels$" -- \
+  merge "$WORK/deep1" "$WORK/deep2" --out "$WORK/out-deep"
 finish

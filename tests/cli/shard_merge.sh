@@ -19,11 +19,12 @@ for experiment in "$@"; do
     "$PROGRAM" "$experiment" --quick --jobs 2 --shard $k/2 --out "$dir/shard$k" > /dev/null 2>"$dir/shard$k.err" ||
       fail "$experiment: shard $k/2 failed"
     [ -e "$dir/shard$k/values.csv" ] && fail "$experiment: shard $k/2 wrote values.csv (a shard writes only its cells)"
-    # The shard's last line counts its own cells: all of its share recorded.
+    # The shard's last line (its last sweep's, labelled "EXPERIMENT" or "EXPERIMENT SWEEP") counts its own
+    # cells: all of its share recorded.
     line=$(tail -n 1 "$dir/shard$k.err")
-    if [[ $line =~ ^\[$experiment\ shard\ $k/2\]\ finished\ in\ [0-9.]+\ s:\ ([0-9]+)\ of\ its\ ([0-9]+)\ cells\ recorded\ \(of\ ([0-9]+)\ in\ the\ sweep\)$ ]] &&
-       [ "${BASH_REMATCH[1]}" = "${BASH_REMATCH[2]}" ] && [ "${BASH_REMATCH[1]}" -gt 0 ]; then
-      shares=$((shares + BASH_REMATCH[2])) sweep=${BASH_REMATCH[3]}
+    if [[ $line =~ ^\[$experiment(\ [a-z]+)*\ shard\ $k/2\]\ finished\ in\ [0-9.]+\ s:\ ([0-9]+)\ of\ its\ ([0-9]+)\ cells\ recorded\ \(of\ ([0-9]+)\ in\ the\ sweep\)$ ]] &&
+       [ "${BASH_REMATCH[2]}" = "${BASH_REMATCH[3]}" ] && [ "${BASH_REMATCH[2]}" -gt 0 ]; then
+      shares=$((shares + BASH_REMATCH[3])) sweep=${BASH_REMATCH[4]}
     else
       fail "$experiment: shard $k/2 does not end counting its own cells: $line"
     fi

@@ -17,36 +17,13 @@ namespace particles {
 // the stopping test and the choice of Jacobians and solver are written above
 // the step's phases in src/integrators/implicit_euler.cpp.
 // A force without Jacobians is refused with an exception naming it.
-enum class ImplicitLinearSolver {
-  Direct,             // LDLᵀ of the Newton passes' KKT matrix
-  ConjugateGradient,  // Jacobi-preconditioned CG on A; constrained systems use Direct
-};
-
-struct ImplicitEulerSettings {
-  // true: constraints inside the solve (as above). false: the constraint forces of
-  // the explicit solve (ConstraintSolver, k_s/k_d feedback) at the start state,
-  // held fixed through the step — the lagged scheme, kept for comparison.
-  bool coupledConstraints = true;
-  double stabilization = 1.0;          // β ∈ [0, 1]: fraction of C(x₀) removed in one step
-  int constraintPasses = 20;           // most Newton solves per step (≥ 1)
-  double constraintTolerance = 1e-10;  // relative residuals that end the passes (the stopping test)
-  // Add G, the constraints' geometric stiffness (Tournier et al.
-  // 2015). Without it the passes are Gauss–Newton and stall or diverge on a
-  // long chain, whose tension h²|λ| ∇²C outweighs M.
-  bool geometricStiffness = true;
-  double compliance = 1e-10;           // ε, relative to diag(J W Jᵀ)
-  ImplicitLinearSolver solver = ImplicitLinearSolver::ConjugateGradient;  // measured: tests/bench/bench_solvers.cpp
-  double cgTolerance = 1e-6;           // relative residual of the CG solves
-  int cgMaxIterations = 1000;
-
-  void validate() const;  // throws naming the bad field
-};
-
 class ImplicitEulerIntegrator : public Integrator {
  public:
   // Every force enters through its Jacobians: the mouse joint may be as stiff as it likes.
   double explicitForceStep(double) const override { return 0.0; }
-  ImplicitEulerSettings settings;
+  // Takes IntegratorSettings::implicitEuler (validated first).
+  void configure(const IntegratorSettings& settings) override;
+  const ImplicitEulerSettings& settings() const { return settings_; }
 
   ImplicitEulerIntegrator();
   ~ImplicitEulerIntegrator() override;
@@ -65,6 +42,7 @@ class ImplicitEulerIntegrator : public Integrator {
   double lastMomentumResidual() const;
 
  private:
+  ImplicitEulerSettings settings_;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
