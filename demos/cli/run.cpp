@@ -78,6 +78,11 @@ int run(const RunOptions& o) {
   scenes::Scene scene = o.source.load();
   const std::unique_ptr<particles::Integrator> integrator = chosenIntegrator(o, scene);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;  // both checked > 0 as read
+  const double length = sceneLength(scene);  // the divergence bound's scale
+  if (!std::isfinite(length))
+    throw std::invalid_argument(o.source.describe() +
+                                ": its particles and view span more than a double holds (their extent overflows); "
+                                "bring them nearer the origin");
   // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
   // step boundary and the files are closed with complete rows.
   lab::installInterruptHandler();
@@ -85,7 +90,7 @@ int run(const RunOptions& o) {
   const std::unique_ptr<scenes::CsvWriter> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryColumns);
 
   particles::ParticleSystem& s = *scene.system;
-  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every, o.diagnosticsEvery}, sceneLength(scene));
+  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every, o.diagnosticsEvery}, length);
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };

@@ -1,5 +1,7 @@
 #include "options/scene_source.h"
 
+#include "printable.h"
+
 #include "join_names.h"
 #include "options/usage.h"
 #include "scene_file/scene_file.h"
@@ -44,6 +46,10 @@ scenes::Scene SceneSource::load() const {
   if (!sceneFile.empty()) return scenes::loadSceneFile(sceneFile);
   validate();
   return scenes::buildScene(scene, overrides(), preset);
+}
+
+std::string SceneSource::describe() const {
+  return sceneFile.empty() ? "scene '" + scenes::printable(scene) + "'" : "scene file '" + scenes::printable(sceneFile) + "'";
 }
 
 }  // namespace options

@@ -28,6 +28,8 @@ struct SceneSource {
   // Builds or loads the scene; throws UsageError, std::invalid_argument
   // (scene table) or SceneFileError.
   scenes::Scene load() const;
+  // "scene file 'PATH'" or "scene 'NAME'", for messages about the scene as a whole.
+  std::string describe() const;
 };
 
 }  // namespace options

@@ -55,6 +55,12 @@ expect scene-substeps-0 2 '^particle-lab: .*substeps0.json: \$\.integratorSettin
 scene tolerance '"integratorSettings": {"tolerance": 9.9e-14}'
 expect scene-tolerance 2 '^particle-lab: .*tolerance.json: \$\.integratorSettings\.tolerance: integrator tolerance must be >= 1e-13 .*, got 9\.9e-14$' -- \
   run --scene-file "$WORK/tolerance.json" --steps 1
+# A scene whose extent overflows a double (particles and view from -1e308 to 1e308) is refused by name
+# before any output, not reported as a bad internal length.
+scene vast '"view": {"min": [-1e308, -1e308], "max": [1e308, 1e308]}'
+expect scene-vast 2 "^particle-lab: scene file '.*vast.json': its particles and view span more than a double holds" -- \
+  run --scene-file "$WORK/vast.json" --steps 1 --csv "$WORK/vast.csv"
+[ -e "$WORK/vast.csv" ] && fail "scene-vast: the refused run created its --csv file"
 scene huge-normal '"colliders": [{"type": "halfPlane", "point": [0, 0], "normal": [1e308, 1e308]}]'
 if "$PROGRAM" run --scene-file "$WORK/huge-normal.json" --steps 1 >/dev/null 2>"$WORK/huge-normal.err"; then
   pass scene-huge-normal
