@@ -75,13 +75,24 @@ plot for [k=1:words(names(f))] f using (omega(0)):(ok(k) && strcol(15) eq 'feedb
 f = data.'/stability_map.csv'
 list = names(f)
 count = words(list)
+# One dt range for every panel, so that the panels compare.
+unset logscale
+set xrange [*:*]
+set yrange [*:*]
+stats f using 5 nooutput
+dtLow = STATS_min
+dtHigh = STATS_max
+stats f using 2 nooutput
+set xrange [STATS_min/1.3:STATS_max*1.3]
+set yrange [dtLow/1.2:dtHigh*1.2]
 set output fig.'/stability_map.png'
 set terminal pngcairo size 1200,300*((count+2)/3) enhanced font 'DejaVu Sans,10'
 set multiplot layout ((count+2)/3),3 title sprintf('Measured: starts surviving T = %g s at each scanned dt (yellow: all, purple: none); above the scanned range: not run', T)
 unset key
 set palette defined (0 '#3b0f70', 0.5 '#de4968', 1 '#fcfdbf')
 set cbrange [0:1]
-unset colorbox
+set colorbox
+set cblabel 'fraction of starts surviving'
 set logscale xy
 set xlabel 'chain length'
 set ylabel 'dt'
@@ -91,6 +102,8 @@ do for [k=1:count] {
   plot f using 2:(strcol(1) eq n && abs($4 - T) < 1e-9 && $3 == ks ? $5 : NaN):(strcol(1) eq n && $6 > 0 ? $7/$6 : NaN) with points pt 5 ps 0.8 palette
 }
 unset multiplot
+unset cblabel
+set autoscale xy
 set terminal pngcairo size 900,600 enhanced font 'DejaVu Sans,11'
 set key outside right top
 
