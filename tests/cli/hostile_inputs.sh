@@ -34,6 +34,10 @@ expect substeps-hex 2 'substeps: expected a decimal integer in \[1, 100000\] \(n
 # advise: a horizon whose reference would not fit memory, a reference tolerance below rounding.
 expect advise-horizon 2 'horizon 1e\+300 s needs .* reference samples .*more than the limit of 2.5e\+07$' -- \
   advise --scene pendulum --error 1e-3 --horizon 1e300
+expect advise-certify-starts 2 '^particle-lab: --certify-starts: expected a decimal integer in \[0, 1000\], got -1$' -- \
+  advise --scene pendulum --error 1e-3 --horizon 1 --certify-starts -1
+expect advise-certify-starts-octal 2 '^particle-lab: --certify-starts: expected a decimal integer in \[0, 1000\] \(no leading zeros or 0x\), got 010$' -- \
+  advise --scene pendulum --error 1e-3 --horizon 1 --certify-starts 010
 expect advise-reference-tolerance 2 '^particle-lab: --reference-tolerance: value must be in \[1e-13, 1\], got 1e-300$' -- \
   advise --scene pendulum --error 1e-3 --reference-tolerance 1e-300
 # The summary on a full disk is a failed output (exit 4), as export's file is.
