@@ -49,6 +49,20 @@ std::unique_ptr<scenes::CsvWriter> openOutput(const std::string& path, const cha
   return std::make_unique<scenes::CsvWriter>(path, option, columns);
 }
 
+// --csv and --trajectory, opened; both on standard output would interleave two tables.
+struct Outputs {
+  std::unique_ptr<scenes::CsvWriter> csv, trajectory;
+};
+Outputs openOutputs(const RunOptions& o) {
+  if (o.csvPath == "-" && o.trajectoryPath == "-")
+    throw std::invalid_argument("--csv and --trajectory cannot both write to standard output ('-'); "
+                                "give one of them a file name");
+  Outputs out;
+  out.csv = openOutput(o.csvPath, "--csv", kDiagnosticsColumns);
+  out.trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryColumns);
+  return out;
+}
+
 // The scene's integrator and settings, with those the command line gives instead.
 std::unique_ptr<particles::Integrator> chosenIntegrator(const RunOptions& o, const scenes::Scene& scene) {
   const std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
@@ -86,11 +100,12 @@ int run(const RunOptions& o) {
   // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
   // step boundary and the files are closed with complete rows.
   lab::installInterruptHandler();
-  const std::unique_ptr<scenes::CsvWriter> csv = openOutput(o.csvPath, "--csv", kDiagnosticsColumns);
-  const std::unique_ptr<scenes::CsvWriter> trajectory = openOutput(o.trajectoryPath, "--trajectory", kTrajectoryColumns);
+  const Outputs out = openOutputs(o);
+  scenes::CsvWriter* const csv = out.csv.get();
+  scenes::CsvWriter* const trajectory = out.trajectory.get();
 
   particles::ParticleSystem& s = *scene.system;
-  RunLoop loop(s, *integrator, dt, {csv.get(), trajectory.get(), o.every, o.diagnosticsEvery}, length);
+  RunLoop loop(s, *integrator, dt, {csv, trajectory, o.every, o.diagnosticsEvery}, length);
   const auto diverge = [&](long long step, const std::string& reason) {
     std::cerr << "particle-lab: diverged at step " << step << " (t = " << s.time() << "): " << reason << '\n';
   };

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -141,12 +142,25 @@ void Cells::writeManifest(const std::string& experiment, const std::vector<std::
 
 namespace {
 
+// The text of "key"'s value as written in the JSON document `text` (the
+// first such key; "" when it is not found): messages quote "1e3", not the
+// 1000.0 the parser made of it.
+std::string writtenValue(const std::string& text, const char* key) {
+  const std::regex pattern("\"" + std::string(key) + "\"\\s*:\\s*([^,}\\]\\s]+)");
+  std::smatch match;
+  return std::regex_search(text, match, pattern) ? match[1].str() : std::string();
+}
+
 // object[key] as a count or index: a JSON integer >= 0 (get<std::size_t>
-// would wrap a negative one round to 2^64 − 1).
-std::size_t countAt(const Json& object, const char* key) {
+// would wrap a negative one round to 2^64 − 1). `text` is the document the
+// object was read from, quoted in the message.
+std::size_t countAt(const Json& object, const char* key, const std::string& text) {
   const Json& value = object.at(key);
-  if (!value.is_number_unsigned())
-    throw std::invalid_argument(std::string(key) + " must be an integer >= 0, got " + value.dump());
+  if (!value.is_number_unsigned()) {
+    const std::string written = writtenValue(text, key);
+    throw std::invalid_argument(std::string(key) + " must be an integer >= 0, got " +
+                                (written.empty() ? value.dump() : written));
+  }
   return value.get<std::size_t>();
 }
 
@@ -167,11 +181,15 @@ Json parseBounded(Input&& input) {
   });
 }
 
-Json readJson(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
+// The document at path, parsed; its text into `text`.
+Json readJson(const std::string& path, const std::string& what, std::string& text) {
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("merge: no " + what + " '" + path + "' (not a shard, or its run did not finish)");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  text = bytes.str();
   try {
-    return parseBounded(in);
+    return parseBounded(text);
   } catch (const Json::exception&) {
     throw std::invalid_argument("merge: malformed " + what + " '" + path + "'");
   } catch (const TooDeep& e) {
@@ -196,7 +214,8 @@ struct Manifest {
 Manifest readManifest(const std::string& dir) {
   Manifest m;
   m.path = dir + "/" + kManifestFile;
-  const Json json = readJson(m.path, "shard manifest");
+  std::string text;
+  const Json json = readJson(m.path, "shard manifest", text);
   const auto version = json.is_object() ? json.find("format_version") : json.end();
   if (version == json.end() || !version->is_number_integer() || *version != kManifestFormatVersion)
     throw std::invalid_argument("merge: shard manifest '" + m.path + "' has format version " +
@@ -208,8 +227,8 @@ Manifest readManifest(const std::string& dir) {
     m.arguments = json.at("arguments").get<std::vector<std::string>>();
     m.index = json.at("shard").get<int>();
     m.count = json.at("shards").get<int>();
-    m.cells = countAt(json, "cells");
-    m.owned = static_cast<long>(countAt(json, "owned"));
+    m.cells = countAt(json, "cells", text);
+    m.owned = static_cast<long>(countAt(json, "owned", text));
     m.cellsDigest = json.at("cells_digest").get<std::string>();
   } catch (const Json::exception&) {
     throw std::invalid_argument("merge: malformed shard manifest '" + m.path + "'");
@@ -265,7 +284,7 @@ void readCells(const Manifest& m, const std::string& dir, const std::string& nam
     Json result;
     try {
       const Json row = parseBounded(line);
-      cell = countAt(row, "cell");
+      cell = countAt(row, "cell", line);
       result = row.at("result");
     } catch (const Json::exception&) {
       throw std::invalid_argument("merge: malformed line " + std::to_string(read + 1) + " in '" + path + "'");

@@ -17,14 +17,18 @@ inline void requireFinite(const char* name, double value) {
     throw std::invalid_argument(std::string(name) + " must be finite, got " + formatValue(value));
 }
 
+// An infinite value is named as such: "must be finite and > 0, got inf".
 inline void requirePositive(const char* name, double value) {
   if (!(value > 0.0) || !std::isfinite(value))
-    throw std::invalid_argument(std::string(name) + " must be > 0, got " + formatValue(value));
+    throw std::invalid_argument(std::string(name) + (std::isinf(value) ? " must be finite and > 0, got " : " must be > 0, got ") +
+                                formatValue(value));
 }
 
 inline void requireNonNegative(const char* name, double value) {
   if (!(value >= 0.0) || !std::isfinite(value))
-    throw std::invalid_argument(std::string(name) + " must be >= 0, got " + formatValue(value));
+    throw std::invalid_argument(std::string(name) +
+                                (std::isinf(value) ? " must be finite and >= 0, got " : " must be >= 0, got ") +
+                                formatValue(value));
 }
 
 inline void requireInRange(const char* name, double value, double lo, double hi) {

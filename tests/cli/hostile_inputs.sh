@@ -26,6 +26,12 @@ expect_stdout_clash() {
   fi
 }
 expect_stdout_clash
+# Both tables on standard output would interleave: refused before any output.
+expect csv-and-trajectory-stdout 2 "^particle-lab: --csv and --trajectory cannot both write to standard output \('-'\); give one of them a file name$" -- \
+  run --scene pendulum --steps 10 --csv - --trajectory -
+# An infinite number is named as such.
+expect advise-horizon-inf 2 '^particle-lab: --horizon: value must be finite and > 0, got inf$' -- \
+  advise --scene pendulum --error 1e-3 --horizon inf
 # Integers are decimal: a leading zero or 0x is refused, not read as octal or hex.
 expect substeps-octal 2 'substeps: expected a decimal integer in \[1, 100000\] \(no leading zeros or 0x\), got 010$' -- \
   run --scene cloth --integrator xpbd --steps 1 --substeps 010

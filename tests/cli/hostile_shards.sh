@@ -67,6 +67,10 @@ expect merge-recursive-experiment 2 "^particle-lab: merge: the shards' manifest 
 tampered negative-count "s/\"cells\": $TOTAL/\"cells\": -1/"
 expect merge-negative-count 2 "^particle-lab: merge: malformed shard manifest '.*negative-count1/shard.json': cells must be an integer >= 0, got -1$" -- \
   merge "$WORK/negative-count1" "$WORK/negative-count2" --out "$WORK/out-negative-count"
+# A count written with an exponent is quoted as written, not as the parser's 1000.0.
+tampered exponent-count "s/\"cells\": $TOTAL/\"cells\": 1e3/"
+expect merge-exponent-count 2 "^particle-lab: merge: malformed shard manifest '.*exponent-count1/shard.json': cells must be an integer >= 0, got 1e3$" -- \
+  merge "$WORK/exponent-count1" "$WORK/exponent-count2" --out "$WORK/out-exponent-count"
 # Arguments that gained an option: the experiment enumerates other cells than the shards hold.
 tampered integrator 's|^    "--quick"$|    "--quick", "--integrator", "rk4"|'
 LAST_LINE=1 expect merge-gained-integrator 2 "^particle-lab: merge: shard 1/2 in '.*integrator1' holds a cell [0-9]+ that is not this experiment's \(made by a different run or version\): " -- \
