@@ -4,6 +4,7 @@
 
 #include "particles/check.h"
 #include "particles/integrators/dopri5.h"
+#include "particles/particle_system.h"
 #include "particles/integrators/explicit_euler.h"
 #include "particles/integrators/implicit_euler.h"
 #include "particles/integrators/midpoint.h"
@@ -46,7 +47,16 @@ const std::vector<IntegratorInfo>& integratorTable() {
   return table;
 }
 
+Eigen::VectorXd& Integrator::positionsOf(ParticleSystem& system) { return system.x_; }
+Eigen::VectorXd& Integrator::velocitiesOf(ParticleSystem& system) { return system.v_; }
+
 void IntegratorSettings::validate() const {
+  dopri5.validate();
+  xpbd.validate();
+  implicitEuler.validate();
+}
+
+void Dopri5Settings::validate() const {
   requirePositive("integrator tolerance", tolerance);
   if (tolerance < minTolerance)
     throw std::invalid_argument("integrator tolerance must be >= " + formatValue(minTolerance) +
@@ -54,10 +64,12 @@ void IntegratorSettings::validate() const {
   requireInRange("integrator minStepFraction", minStepFraction, 1e-15, 1.0);
   if (maxStepsPerCall < 1)
     throw std::invalid_argument("integrator maxStepsPerCall must be >= 1, got " + std::to_string(maxStepsPerCall));
+}
+
+void XpbdSettings::validate() const {
   // Upper bounds keep a typo from turning one step into hours of work.
   requireInRange("integrator substeps", substeps, 1, 100000);
   requireInRange("integrator iterations", iterations, 1, 10000);
-  implicitEuler.validate();
 }
 
 const IntegratorInfo* findIntegrator(const std::string& name) {

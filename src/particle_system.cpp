@@ -165,6 +165,34 @@ void ParticleSystem::restore(const Snapshot& s) {
   contacts_->resetWarmStart();
 }
 
+namespace {
+void requireStateSize(const char* what, const Eigen::VectorXd& given, const Eigen::VectorXd& held) {
+  if (given.size() != held.size())
+    throw std::invalid_argument(std::string(what) + " has " + std::to_string(given.size()) +
+                                " values, the system " + std::to_string(held.size()) + " (2 per particle)");
+}
+}  // namespace
+
+void ParticleSystem::setPositions(const Eigen::VectorXd& x) {
+  requireStateSize("setPositions", x, x_);
+  x_ = x;
+}
+
+void ParticleSystem::setVelocities(const Eigen::VectorXd& v) {
+  requireStateSize("setVelocities", v, v_);
+  v_ = v;
+}
+
+void ParticleSystem::setPosition(int i, const Eigen::Vector2d& p) {
+  requireIndex("setPosition", i, size());
+  x_.segment<2>(2 * i) = p;
+}
+
+void ParticleSystem::setVelocity(int i, const Eigen::Vector2d& v) {
+  requireIndex("setVelocity", i, size());
+  v_.segment<2>(2 * i) = v;
+}
+
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                   Eigen::VectorXd& a) {
   const Phase s = phase(x, v);

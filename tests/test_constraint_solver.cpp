@@ -69,8 +69,8 @@ void perturb(ParticleSystem& system, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < system.size(); ++i) {
     if (system.pinned(i)) continue;
-    system.positions().segment<2>(2 * i) += 0.02 * Vector2d(u(rng), u(rng));
-    system.velocities().segment<2>(2 * i) = Vector2d(u(rng), u(rng));
+    system.setPosition(i, system.position(i) + 0.02 * Vector2d(u(rng), u(rng)));
+    system.setVelocity(i, Vector2d(u(rng), u(rng)));
   }
 }
 
@@ -223,7 +223,7 @@ TEST(ConstraintSolver, ConstraintOnPinnedParticlesOnlyGivesFiniteResult) {
     system.addConstraint(std::make_unique<RodConstraint>(0, 1, 0.4));
     system.addConstraint(std::make_unique<RodConstraint>(1, 2, 0.3));
     system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
-    system.velocities().segment<2>(4) = Vector2d(1.0, 0.0);
+    system.setVelocity(2, Vector2d(1.0, 0.0));
     system.solver().settings.method = variant.method;
     system.solver().settings.preconditioner = variant.preconditioner;
     system.solver().settings.warmStart = variant.warmStart;
@@ -291,7 +291,7 @@ TEST(ConstraintSolver, StraightChainBetweenTwoWiresGivesFiniteSolve) {
       // opposite centripetal accelerations along the line, the rods for equal ones.
       std::mt19937 rng(5);
       std::uniform_real_distribution<double> u(-1.0, 1.0);
-      for (int i = 0; i < system.size(); ++i) system.velocities()[2 * i + 1] = -0.5 + 0.1 * u(rng);
+      for (int i = 0; i < system.size(); ++i) system.setVelocity(i, Vector2d(system.velocity(i).x(), -0.5 + 0.1 * u(rng)));
 
       VectorXd a;
       for (int solve = 0; solve < 3; ++solve) {  // a repeated solve starts warm from the first

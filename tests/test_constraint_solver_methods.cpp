@@ -93,7 +93,7 @@ void expectSameLambdaAsDense(RodForm form) {
     Eigen::VectorXd a;
     // Several evaluations along a trajectory so that warm starts are used.
     for (int step = 0; step < 3; ++step) {
-      s->positions() += 0.002 * s->velocities();
+      s->setPositions(s->positions() + 0.002 * s->velocities());
       s->acceleration(s->positions(), s->velocities(), a);
       const Eigen::VectorXd expected = denseLambda(*s);
       const Eigen::VectorXd& lambda = s->solver().lambda();

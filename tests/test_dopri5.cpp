@@ -57,7 +57,9 @@ TEST(Dopri5, GlobalErrorIsFifthOrderOnFixedSteps) {
   for (int steps : {10, 20, 40, 80}) {
     ParticleSystem system = oscillator(omega);
     Dopri5Integrator dopri5;
-    dopri5.adaptive = false;
+    IntegratorSettings fixedStep;
+    fixedStep.dopri5.adaptive = false;
+    dopri5.configure(fixedStep);
     for (int k = 0; k < steps; ++k) system.step(dopri5, T / steps);
     dts.push_back(T / steps);
     errors.push_back(oscillatorError(system, omega));
@@ -70,7 +72,7 @@ TEST(Dopri5, GlobalErrorFallsSteadilyWithTheTolerance) {
   std::vector<double> tolerances, errors;
   for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
     IntegratorSettings settings;
-    settings.tolerance = tol;
+    settings.dopri5.tolerance = tol;
     ParticleSystem system = oscillator(omega);
     auto dopri5 = makeIntegrator("dopri5", settings);
     double worst = 0.0;
@@ -93,7 +95,7 @@ TEST(Dopri5, GlobalErrorFallsSteadilyWithTheTolerance) {
 
 TEST(Dopri5, SixEvaluationsPerStepAndTheInternalStepCarriesOverCalls) {
   IntegratorSettings settings;
-  settings.tolerance = 1e-8;
+  settings.dopri5.tolerance = 1e-8;
   ParticleSystem system = oscillator(2.0);
   Dopri5Integrator dopri5;
   dopri5.configure(settings);
@@ -160,7 +162,7 @@ TEST(Dopri5, TheDefaultToleranceBeatsRk4AtTheScenesStep) {
   RecordProperty("rk4_error", std::to_string(rk4Error));
   RecordProperty("dopri5_error", std::to_string(dopri5Error));
   std::cout << "80-rod chain, T = " << T << " s, dt 0.01: RK4 error " << rk4Error << ", dopri5 at tolerance "
-            << IntegratorSettings{}.tolerance << " error " << dopri5Error << " (" << rk4Error / dopri5Error
+            << IntegratorSettings{}.dopri5.tolerance << " error " << dopri5Error << " (" << rk4Error / dopri5Error
             << "x closer), " << dopri5Work.internalSteps << " internal steps (" << dopri5Work.rejectedSteps
             << " rejected) in the last 30 calls\n";
   EXPECT_LT(dopri5Error, rk4Error / 3.0);
@@ -172,7 +174,7 @@ TEST(AdaptiveSchemes, RefuseTolerancesDoublePrecisionCannotMeet) {
   for (const IntegratorInfo& info : integratorTable()) {
     if (!info.usesTolerance) continue;
     IntegratorSettings settings;
-    settings.tolerance = 1e-25;
+    settings.dopri5.tolerance = 1e-25;
     test_support::expectRejected([&] { makeIntegrator(info.name, settings); }, "integrator tolerance must be >=");
   }
 }
@@ -189,14 +191,14 @@ TEST(AdaptiveSchemes, ConflictingWiresEndACallWithAReportedFailure) {
     system.addConstraint(std::make_unique<CircularWireConstraint>(0, Vector2d(1.2, 0.0), 0.5));
     system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.81)));
     IntegratorSettings settings;
-    settings.tolerance = 1e-10;
-    settings.maxStepsPerCall = 2000;
+    settings.dopri5.tolerance = 1e-10;
+    settings.dopri5.maxStepsPerCall = 2000;
     auto integrator = makeIntegrator(info.name, settings);
     StepFailure failure = StepFailure::None;
     for (int k = 0; k < 200 && failure == StepFailure::None; ++k) {
       const StepStats stats = system.step(*integrator, 0.01);
       failure = stats.failure;
-      EXPECT_LE(stats.internalSteps + stats.rejectedSteps, settings.maxStepsPerCall) << info.name;
+      EXPECT_LE(stats.internalSteps + stats.rejectedSteps, settings.dopri5.maxStepsPerCall) << info.name;
     }
     EXPECT_NE(failure, StepFailure::None) << info.name;
     EXPECT_TRUE(system.finite()) << info.name;
@@ -207,8 +209,8 @@ TEST(AdaptiveSchemes, TheWorkCapEndsACallThatNeedsMoreSteps) {
   for (const IntegratorInfo& info : integratorTable()) {
     if (!info.usesTolerance) continue;
     IntegratorSettings settings;
-    settings.tolerance = 1e-10;
-    settings.maxStepsPerCall = 10;
+    settings.dopri5.tolerance = 1e-10;
+    settings.dopri5.maxStepsPerCall = 10;
     ParticleSystem system = oscillator(2.0);
     auto integrator = makeIntegrator(info.name, settings);
     const StepStats stats = system.step(*integrator, 100.0);  // ~30 periods in one call

@@ -99,7 +99,7 @@ TEST(ForceBatch, EverySpringsForceInARunIsItsForceObjectsBitForBit) {
     ParticleSystem system;
     for (int p = 0; p < 2 * half; ++p)
       system.addParticle({coordinate(random), coordinate(random)}, 1.0, {coordinate(random), coordinate(random)});
-    system.positions().segment<2>(2 * (half + 3)) = system.positions().segment<2>(2 * 3);
+    system.setPosition(half + 3, system.position(3));
     for (int p = 0; p < half; ++p) {
       const double k = uniform ? 1.0 : 1.0 + p;
       system.addForce(std::make_unique<particles::SpringForce>(p, p + half, 0.5 * k, 30.0 * k, 0.2 * k));
@@ -135,7 +135,7 @@ TEST(ForceBatch, TheSpringsOrderInTheListDoesNotChangeTheBatchedForce) {
   std::vector<Eigen::Vector2d> x;
   for (int i = 0; i < system.size(); ++i) x.push_back(system.position(i));
   shuffled.addParticles(x, std::vector<double>(x.size(), system.masses()[0]));
-  shuffled.velocities() = system.velocities();
+  shuffled.setVelocities(system.velocities());
   std::vector<const particles::SpringForce*> springs;
   for (const auto& force : system.forceObjects())
     if (const auto* s = dynamic_cast<const particles::SpringForce*>(force.get())) springs.push_back(s);

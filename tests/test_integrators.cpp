@@ -199,7 +199,7 @@ TEST(Integrators, FixedStepSchemesReportDtAsTheirInternalStep) {
     system.step(*integrator, 0.02);
     // Substepping schemes report their substep.
     const bool substepping = requireIntegrator(c.name).usesSubsteps;
-    const double expected = substepping ? 0.02 / IntegratorSettings{}.substeps : 0.02;
+    const double expected = substepping ? 0.02 / IntegratorSettings{}.xpbd.substeps : 0.02;
     EXPECT_DOUBLE_EQ(integrator->lastInternalStep(), expected) << c.name;
   }
 }

@@ -369,7 +369,7 @@ TEST(IntegratorTable, NewSchemesAreListedAndToleranceIsChecked) {
   for (const char* name : {"verlet", "implicit-euler", "dopri5"})
     EXPECT_STREQ(makeIntegrator(name)->name(), name);
   IntegratorSettings bad;
-  bad.tolerance = -1.0;
+  bad.dopri5.tolerance = -1.0;
   EXPECT_THROW(makeIntegrator("dopri5", bad), std::invalid_argument);
 }
 

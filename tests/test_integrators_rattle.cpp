@@ -126,8 +126,8 @@ TEST(Rattle, BeadLaunchedAlongTheWireKeepsItsSpeedWithoutGravity) {
   p.angle = 0.0;
   scenes::Scene scene = scenes::buildPendulum(p);
   ParticleSystem& system = *scene.system;
-  system.velocities().setZero();
-  system.velocities()[0] = 2.0;  // tangent at the bottom
+  system.setVelocities(Eigen::VectorXd::Zero(2 * system.size()));
+  system.setVelocity(0, Eigen::Vector2d(2.0, 0.0));  // tangent at the bottom
   RattleIntegrator rattle;
   for (int k = 0; k < 2000; ++k) system.step(rattle, 0.005);
   EXPECT_NEAR(system.velocity(0).norm(), 2.0, 1e-9);

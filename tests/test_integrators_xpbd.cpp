@@ -29,8 +29,8 @@ namespace {
 
 std::unique_ptr<Integrator> xpbd(int substeps, int iterations) {
   IntegratorSettings settings;
-  settings.substeps = substeps;
-  settings.iterations = iterations;
+  settings.xpbd.substeps = substeps;
+  settings.xpbd.iterations = iterations;
   return makeIntegrator("xpbd", settings);
 }
 
@@ -208,7 +208,7 @@ TEST(Xpbd, DampingRemovesTheEnergyOfTheDampedSpring) {
   const double mass = 1.0, stiffness = 4.0 * particles::kPi * particles::kPi, damping = 0.8, T = 2.0;
   auto build = [&](double kd) {
     ParticleSystem system = hangingSpring(mass, stiffness, kd, 0.0);
-    system.positions()[3] = -1.2;
+    system.setPosition(1, Eigen::Vector2d(system.position(1).x(), -1.2));
     return system;
   };
   ParticleSystem reference = build(damping);
@@ -236,7 +236,7 @@ TEST(Xpbd, PositionErrorIsFirstOrderInTheSubstep) {
   std::vector<double> hs, errors;
   for (int steps : {100, 200, 400, 800}) {
     ParticleSystem system = hangingSpring(1.0, omega * omega, 0.0, 0.0);
-    system.positions()[3] = -1.0 - A;
+    system.setPosition(1, Eigen::Vector2d(system.position(1).x(), -1.0 - A));
     auto integrator = xpbd(10, 1);
     for (int k = 0; k < steps; ++k) system.step(*integrator, T / steps);
     const double exact = -1.0 - A * std::cos(omega * T);
@@ -267,15 +267,19 @@ TEST(Xpbd, AppliesAUserForceWithoutAPositionFormInThePrediction) {
 
 TEST(Xpbd, SettingsAreValidatedNamingTheField) {
   IntegratorSettings bad;
-  bad.substeps = 0;
+  bad.xpbd.substeps = 0;
   test_support::expectRejected([&] { makeIntegrator("xpbd", bad); }, "substeps");
   bad = IntegratorSettings{};
-  bad.iterations = -3;
+  bad.xpbd.iterations = -3;
   test_support::expectRejected([&] { makeIntegrator("xpbd", bad); }, "iterations");
+  // A refused configuration leaves the integrator's settings as they were.
   XpbdIntegrator direct;
-  direct.substeps = 0;
-  ParticleSystem system = hangingSpring(1.0, 10.0, 0.0, 9.8);
-  test_support::expectRejected([&] { system.step(direct, 0.01); }, "substeps");
+  bad = IntegratorSettings{};
+  bad.xpbd.substeps = 7;
+  direct.configure(bad);
+  bad.xpbd.substeps = 0;
+  test_support::expectRejected([&] { direct.configure(bad); }, "substeps");
+  EXPECT_EQ(direct.settings().substeps, 7);
 }
 
 TEST(Xpbd, ReportsTheSubstepAsItsInternalStep) {

@@ -78,14 +78,16 @@ TEST(Failure, FlagsADivergingRunAndPassesAStableOne) {
 
 TEST(Failure, EachCriterionTriggersOnItsOwn) {
   scenes::Scene chain = buildChain({6});
-  chain.system->velocities()[chain.system->velocities().size() - 1] = std::nan("");
+  const int tip = chain.system->size() - 1;
+  chain.system->setVelocity(tip, Eigen::Vector2d(chain.system->velocity(tip).x(), std::nan("")));
   auto rk4 = particles::makeIntegrator("rk4");
   const RunResult nonFinite = simulate(chain, *rk4, 0.01, 0.1);
   EXPECT_EQ(nonFinite.failure, Failure::NonFinite);
   EXPECT_TRUE(nonFinite.blewUp());
 
   scenes::Scene stretched = buildChain({6});
-  stretched.system->positions()[stretched.system->positions().size() - 2] += 1.0;  // pull the tip off
+  const int stretchedTip = stretched.system->size() - 1;
+  stretched.system->setPosition(stretchedTip, stretched.system->position(stretchedTip) + Eigen::Vector2d(1.0, 0.0));  // pull the tip off
   const RunResult constraint = simulate(stretched, *rk4, 0.01, 0.1);
   EXPECT_EQ(constraint.reason, "constraint");
   EXPECT_FALSE(constraint.blewUp());  // a violated rod is reported apart from a blow-up

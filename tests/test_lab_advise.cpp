@@ -26,7 +26,7 @@ double closedFormError(const Candidate& c, double horizon, long* evaluations = n
   scenes::Scene scene = scenes::buildScene("oscillator");
   long count = 0;  // force evaluations, as each step reports them (StepStats)
   particles::IntegratorSettings settings;
-  if (c.tolerance > 0) settings.tolerance = c.tolerance;
+  if (c.tolerance > 0) settings.dopri5.tolerance = c.tolerance;
   auto stepper = particles::makeIntegrator(c.integrator, settings);
   double worst = 0.0;
   const long steps = std::lround(horizon / c.dt);

@@ -194,7 +194,7 @@ TEST(ParticleSystem, RemovedForceNoLongerActs) {
 
 TEST(ParticleSystem, EnergiesSumKineticAndEveryPotential) {
   ParticleSystem system = makePendulum();
-  system.velocities().segment<2>(4) = Vector2d(0.0, 2.0);
+  system.setVelocity(2, Vector2d(0.0, 2.0));
   // Kinetic: ½·2·(1² + 0.75²) + ½·0.5·2² (the pinned particle has none).
   EXPECT_NEAR(system.kineticEnergy(), 1.5625 + 1.0, 1e-14);
   // Spring: ½·10·(0.5 − 0.4)²; gravity: −Σ m g·x over movable particles.
@@ -214,6 +214,6 @@ TEST(ParticleSystem, ConstraintErrorsInWorldAndRelativeUnits) {
   EXPECT_NEAR(system.maxConstraintError(), 0.1, 1e-12);
   EXPECT_NEAR(system.maxRelativeConstraintError(), 0.1, 1e-12);  // rod 0.05/0.5; wire 0.1/2
   EXPECT_TRUE(system.finite());
-  system.positions()[3] = std::nan("");
+  system.setPosition(1, Vector2d(system.position(1).x(), std::nan("")));
   EXPECT_FALSE(system.finite());
 }

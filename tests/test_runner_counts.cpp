@@ -156,7 +156,7 @@ TEST(RunnerCounts, FixedStepRowsCountEveryEvaluationSolveAndCgIteration) {
 TEST(RunnerCounts, Dopri5RowsCountItsInternalStepsAndTheirEvaluations) {
   CountedChain c = countedChain();
   IntegratorSettings settings;
-  settings.tolerance = 1e-5;
+  settings.dopri5.tolerance = 1e-5;
   auto dopri5 = makeIntegrator("dopri5", settings);
   std::vector<Seen> seen;
   const std::vector<Row> rows = runCounted(c, *dopri5, 0.002, 100, seen);

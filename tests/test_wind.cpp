@@ -64,10 +64,10 @@ TEST(WindForce, EachEndTakesHalfAndTheEdgesOwnMotionCounts) {
   EXPECT_NEAR(f[3], 0.4, 1e-12);
   EXPECT_NEAR(f[0], 0.0, 1e-15);
   // The edge rising at the wind's speed feels no wind at all.
-  system.velocities() << 0.0, 2.0, 0.0, 2.0;
+  system.setVelocities((Eigen::VectorXd(4) << 0.0, 2.0, 0.0, 2.0).finished());
   EXPECT_LT(forceAt(wind, system.phase()).norm(), 1e-15);
   // Rising twice as fast, it is pushed down by the still air as hard as it was pushed up.
-  system.velocities() << 0.0, 4.0, 0.0, 4.0;
+  system.setVelocities((Eigen::VectorXd(4) << 0.0, 4.0, 0.0, 4.0).finished());
   f = forceAt(wind, system.phase());
   EXPECT_NEAR(f[1], -0.4, 1e-12);
   EXPECT_NEAR(f[3], -0.4, 1e-12);
@@ -201,7 +201,7 @@ TEST(WindForce, BlowsAParticleOnASpringToItsClosedFormSteadyStateUnderEveryInteg
     // dopri5 at a tight tolerance: at its default 2e-5 its step control keeps
     // the particle trembling by ~1e-6 m about the steady state.
     IntegratorSettings settings;
-    settings.tolerance = 1e-10;
+    settings.dopri5.tolerance = 1e-10;
     const auto integrator = makeIntegrator(info.name, settings);
     for (int step = 0; step < 7500; ++step) {  // 15 s: settled to rounding
       const StepStats stats = system.step(*integrator, 0.002);

@@ -67,9 +67,9 @@ Outputs openOutputs(const RunOptions& o) {
 std::unique_ptr<particles::Integrator> chosenIntegrator(const RunOptions& o, const scenes::Scene& scene) {
   const std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
   particles::IntegratorSettings settings = scene.integratorSettings;
-  if (o.toleranceOption->count()) settings.tolerance = o.integratorSettings.tolerance;
-  if (o.substepsOption->count()) settings.substeps = o.integratorSettings.substeps;
-  if (o.iterationsOption->count()) settings.iterations = o.integratorSettings.iterations;
+  if (o.toleranceOption->count()) settings.dopri5.tolerance = o.integratorSettings.dopri5.tolerance;
+  if (o.substepsOption->count()) settings.xpbd.substeps = o.integratorSettings.xpbd.substeps;
+  if (o.iterationsOption->count()) settings.xpbd.iterations = o.integratorSettings.xpbd.iterations;
   return particles::makeIntegrator(integratorName, settings);
 }
 
@@ -158,17 +158,17 @@ void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& option
                   "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)")
       ->check(options::integratorName());
   options->toleranceOption =
-      sub->add_option("--tolerance", options->integratorSettings.tolerance,
+      sub->add_option("--tolerance", options->integratorSettings.dopri5.tolerance,
                       "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
                       "fixed-step integrators (default: the scene's, " +
-                          scenes::formatNumber(particles::IntegratorSettings{}.tolerance) + ")")
+                          scenes::formatNumber(particles::IntegratorSettings{}.dopri5.tolerance) + ")")
           ->check(options::integratorTolerance());
   options->substepsOption =
-      sub->add_option("--substeps", options->integratorSettings.substeps,
+      sub->add_option("--substeps", options->integratorSettings.xpbd.substeps,
                       "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)")
           ->check(options::decimalInteger(1, 100000));
   options->iterationsOption =
-      sub->add_option("--iterations", options->integratorSettings.iterations,
+      sub->add_option("--iterations", options->integratorSettings.xpbd.iterations,
                       "xpbd: constraint passes per substep, in [1, 10000] (default: the scene's, 1)")
           ->check(options::decimalInteger(1, 10000));
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)")

@@ -110,7 +110,7 @@ App::App(DemoOptions options)
   camera_.reset(scene.viewMin, scene.viewMax);
   panes_.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
   particles::IntegratorSettings integratorSettings;
-  integratorSettings.tolerance = options_.tolerance;
+  integratorSettings.dopri5.tolerance = options_.tolerance;
   panes_.front()->setIntegratorSettings(integratorSettings);
   if (!options_.compare.empty()) {
     // Each pane an integrator, with its own dt or the first pane's.
@@ -438,7 +438,7 @@ void App::applyAdvice() {
   const lab::Candidate& pick = advice_.advice().picks[advice_.advice().best].candidate;
   Simulation& pane = *panes_.front();
   particles::IntegratorSettings settings = pane.integratorSettings();
-  if (pick.tolerance > 0.0) settings.tolerance = pick.tolerance;
+  if (pick.tolerance > 0.0) settings.dopri5.tolerance = pick.tolerance;
   pane.setIntegratorSettings(settings);
   pane.setIntegrator(integratorIndexByName(pick.integrator));
   pane.setDt(pick.dt);

@@ -64,7 +64,7 @@ void App::enterBuildMode(bool currentState) {
   const particles::IntegratorSettings& settings = pane.integratorSettings();
   document["integrator"] = pane.integratorName();
   document["integratorSettings"] = {
-      {"tolerance", settings.tolerance}, {"substeps", settings.substeps}, {"iterations", settings.iterations}};
+      {"tolerance", settings.dopri5.tolerance}, {"substeps", settings.xpbd.substeps}, {"iterations", settings.xpbd.iterations}};
   document["dt"] = pane.dt();
   build_.setActive(true);
   startBuildFrom(std::move(document), "start from " + scene_.label + (currentState ? " as it is" : ""));

@@ -32,7 +32,7 @@ struct DemoOptions {
   std::optional<char> sceneKey;                 // --key K: the scene of number key K instead (scene_keys.h)
   std::optional<std::string> integrator;        // default: the scene's
   std::optional<double> dt;                     // default: the scene's
-  double tolerance = particles::IntegratorSettings{}.tolerance;  // --tolerance: dopri5's local error tolerance
+  double tolerance = particles::IntegratorSettings{}.dopri5.tolerance;  // --tolerance: dopri5's local error tolerance
   std::vector<ComparePane> compare;             // --compare euler,rk4: start in compare mode, 2 to 4 panes
   bool lockstep = false;
   particles::MouseJointSettings grab;           // --grab frequency=F, damping-ratio=Z, stiffness-ratio=R

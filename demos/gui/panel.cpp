@@ -199,10 +199,10 @@ void App::drawIntegratorSettings() {
   bool anyTolerance = false;
   for (const auto& pane : panes_) anyTolerance |= table[pane->integratorIndex()].usesTolerance;
   if (anyTolerance) {
-    float logTolerance = static_cast<float>(std::log10(panes_.front()->integratorSettings().tolerance));
+    float logTolerance = static_cast<float>(std::log10(panes_.front()->integratorSettings().dopri5.tolerance));
     if (ImGui::SliderFloat("log10 step tolerance", &logTolerance, -12.0f, -2.0f, "%.1f")) {
       particles::IntegratorSettings settings = panes_.front()->integratorSettings();
-      settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
+      settings.dopri5.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
       for (auto& pane : panes_) pane->setIntegratorSettings(settings);
     }
   }
@@ -210,8 +210,8 @@ void App::drawIntegratorSettings() {
   for (const auto& pane : panes_) anySubsteps |= table[pane->integratorIndex()].usesSubsteps;
   if (anySubsteps) {
     particles::IntegratorSettings settings = panes_.front()->integratorSettings();
-    const bool substeps = ImGui::SliderInt("substeps", &settings.substeps, 1, 200, "%d", ImGuiSliderFlags_Logarithmic);
-    const bool iterations = ImGui::SliderInt("iterations", &settings.iterations, 1, 64, "%d", ImGuiSliderFlags_Logarithmic);
+    const bool substeps = ImGui::SliderInt("substeps", &settings.xpbd.substeps, 1, 200, "%d", ImGuiSliderFlags_Logarithmic);
+    const bool iterations = ImGui::SliderInt("iterations", &settings.xpbd.iterations, 1, 64, "%d", ImGuiSliderFlags_Logarithmic);
     if (substeps || iterations)
       for (auto& pane : panes_) pane->setIntegratorSettings(settings);
   }

@@ -284,8 +284,8 @@ void Simulation::setPinned(int particle, bool pinned) {
 
 void Simulation::placePinned(int particle, const Eigen::Vector2d& position) {
   if (!system().pinned(particle)) return;
-  system().positions().segment<2>(2 * particle) = position;
-  system().velocities().segment<2>(2 * particle).setZero();
+  system().setPosition(particle, position);
+  system().setVelocity(particle, Eigen::Vector2d::Zero());
 }
 
 }  // namespace demo

@@ -156,7 +156,7 @@ std::optional<Point> measurePoint(const AccuracyPlan& plan, const Problem& probl
   for (int repeat = 0; repeat < plan.repeats && point.candidate.survived && !interrupted(); ++repeat) {
     scenes::Scene run = scene.build();
     particles::IntegratorSettings settings;
-    if (cell.tolerance > 0.0) settings.tolerance = cell.tolerance;
+    if (cell.tolerance > 0.0) settings.dopri5.tolerance = cell.tolerance;
     auto stepper = particles::makeIntegrator(cell.integrator, settings);
     point.perSecond.push_back(simulate(run, *stepper, cell.dt, problem.horizon, failure).seconds / problem.horizon);
   }

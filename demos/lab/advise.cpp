@@ -137,7 +137,7 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
   c.integrator = integrator, c.dt = dt, c.tolerance = tolerance;
   scenes::Scene scene = build();
   particles::IntegratorSettings integratorSettings;
-  if (tolerance > 0.0) integratorSettings.tolerance = tolerance;
+  if (tolerance > 0.0) integratorSettings.dopri5.tolerance = tolerance;
   auto stepper = particles::makeIntegrator(integrator, integratorSettings);
   double error = 0.0;
   long k = 0;
@@ -412,7 +412,7 @@ void timePicks(const std::function<scenes::Scene()>& build, double horizon, cons
       const Candidate& c = picks[k].candidate;
       scenes::Scene scene = build();
       particles::IntegratorSettings integratorSettings;
-      if (c.tolerance > 0.0) integratorSettings.tolerance = c.tolerance;
+      if (c.tolerance > 0.0) integratorSettings.dopri5.tolerance = c.tolerance;
       auto stepper = particles::makeIntegrator(c.integrator, integratorSettings);
       const RunResult run = simulate(scene, *stepper, c.dt, horizon, s.failure, carryOn);
       if (!run.stopped && !run.cutShort) perSecond[k].push_back(run.seconds / horizon);

@@ -21,10 +21,9 @@ void perturbStart(scenes::Scene& scene, int member, double relativeSize) {
   const double size = relativeSize * (hi - lo).norm();
   std::mt19937_64 random(0x9e3779b97f4a7c15ULL * static_cast<unsigned long long>(member));
   std::uniform_real_distribution<double> angle(0.0, 2.0 * particles::kPi);
-  Eigen::VectorXd& x = system.positions();
   for (int i = 0; i < n; ++i) {
     const double a = angle(random);
-    if (!system.pinned(i)) x.segment<2>(2 * i) += size * Eigen::Vector2d(std::cos(a), std::sin(a));
+    if (!system.pinned(i)) system.setPosition(i, system.position(i) + size * Eigen::Vector2d(std::cos(a), std::sin(a)));
   }
 }
 

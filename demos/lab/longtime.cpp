@@ -260,7 +260,7 @@ int runLongtime(const LabOptions& options) {
   Progress progress(options, "longtime", static_cast<long>(kLongRuns.size() * integrators.size() + plan.implicitSteps.size()));
   recordValue(options, "longtime.horizon", general(plan.horizon));
   recordValue(options, "longtime.pendulum_period", fixed(period, 2));
-  recordValue(options, "longtime.adaptive_tolerance", general(particles::IntegratorSettings{}.tolerance));
+  recordValue(options, "longtime.adaptive_tolerance", general(particles::IntegratorSettings{}.dopri5.tolerance));
 
   const auto energy = resultsInTurn<EnergyRun>(
       options, kLongRuns.size() * integrators.size(),

@@ -43,8 +43,8 @@ void recordSample(particles::ParticleSystem& system, const Eigen::VectorXd& x, c
   out.v.push_back(v);
   out.a.push_back(a);
   const particles::Snapshot saved = system.snapshot();
-  system.positions() = x;
-  system.velocities() = v;
+  system.setPositions(x);
+  system.setVelocities(v);
   out.energy.push_back(system.totalEnergy());
   if (!out.touchedWall && inContact(system, x)) {
     out.touchedWall = true;

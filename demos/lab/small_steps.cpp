@@ -207,8 +207,8 @@ struct RunCell {
   int budget = 0;      // xpbd: n; else 0
   particles::IntegratorSettings settings;
   double dt = 0.0;
-  int substeps() const { return family == "xpbd" ? settings.substeps : 1; }
-  int iterations() const { return family == "xpbd" ? settings.iterations : 1; }
+  int substeps() const { return family == "xpbd" ? settings.xpbd.substeps : 1; }
+  int iterations() const { return family == "xpbd" ? settings.xpbd.iterations : 1; }
 };
 
 // Every budget's splits at 1/60 s, then implicit Euler's steps, then RK4's.
@@ -217,8 +217,8 @@ std::vector<RunCell> runCells(const SmallStepsPlan& plan, const Problem& problem
   for (int n : plan.budgets)
     for (const auto& [split, si] : splits(n)) {
       RunCell cell{"xpbd", split, n, {}, kFrame};
-      cell.settings.substeps = si.first;
-      cell.settings.iterations = si.second;
+      cell.settings.xpbd.substeps = si.first;
+      cell.settings.xpbd.iterations = si.second;
       cells.push_back(cell);
     }
   for (double dt : problem.implicitSteps) cells.push_back({"implicit-euler", "-", 0, {}, dt});
@@ -305,7 +305,7 @@ XpbdRuns xpbdRuns(const SmallStepsPlan& plan, const ProblemRun& run) {
     const RunCell& cell = run.cells[k];
     if (cell.family != "xpbd") continue;
     if (cell.budget == plan.budgets.back()) xpbd.atLargest[cell.split] = outcome;
-    if (cell.settings.substeps == defaults.substeps && cell.settings.iterations == defaults.iterations)
+    if (cell.settings.xpbd.substeps == defaults.xpbd.substeps && cell.settings.xpbd.iterations == defaults.xpbd.iterations)
       xpbd.atDefault = outcome;
   }
   return xpbd;
@@ -433,7 +433,7 @@ Frames timeRk4Step(const SmallStepsPlan& plan) {
 std::optional<Frames> timeXpbdFrames(const SmallStepsPlan& plan, int substeps) {
   scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
   particles::IntegratorSettings settings;
-  settings.substeps = substeps;
+  settings.xpbd.substeps = substeps;
   auto xpbd = particles::makeIntegrator("xpbd", settings);
   Frames out;
   for (int k = 0; k < plan.loadFrames && !interrupted(); ++k) {

@@ -381,7 +381,7 @@ int runTiming(const LabOptions& options, const TimingOptions& timing) {
   const auto integrators = selectedIntegrators(options);
   const TimingPlan plan = options.quick ? quickPlan() : fullPlan();
   Progress progress(options, "timing", static_cast<long>(integrators.size() * (plan.chains.size() + plan.cloths.size() + 2)));
-  recordValue(options, "timing.adaptive_tolerance", general(particles::IntegratorSettings{}.tolerance));
+  recordValue(options, "timing.adaptive_tolerance", general(particles::IntegratorSettings{}.dopri5.tolerance));
 
   // Timed one cell at a time: a step's wall time is the measurement. Within
   // a cell the configurations compared are timed interleaved.

@@ -49,7 +49,7 @@ CLI::Validator integratorTolerance() {
       [](std::string& text) -> std::string {
         particles::IntegratorSettings settings;
         // Text that is no number is left to the conversion, which names it.
-        if (!CLI::detail::lexical_cast(text, settings.tolerance)) return {};
+        if (!CLI::detail::lexical_cast(text, settings.dopri5.tolerance)) return {};
         try {
           settings.validate();
         } catch (const std::invalid_argument& e) {

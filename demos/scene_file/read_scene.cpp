@@ -64,9 +64,9 @@ void readIntegratorSettings(const JsonNode& node, particles::IntegratorSettings&
     value(field);
     guarded(field, [&] { s.validate(); });
   };
-  read("tolerance", [&](const JsonNode& field) { s.tolerance = field.positive(); });
-  read("substeps", [&](const JsonNode& field) { s.substeps = field.integer(1, 100000); });
-  read("iterations", [&](const JsonNode& field) { s.iterations = field.integer(1, 10000); });
+  read("tolerance", [&](const JsonNode& field) { s.dopri5.tolerance = field.positive(); });
+  read("substeps", [&](const JsonNode& field) { s.xpbd.substeps = field.integer(1, 100000); });
+  read("iterations", [&](const JsonNode& field) { s.xpbd.iterations = field.integer(1, 10000); });
 }
 
 void readView(const JsonNode& node, Scene& scene) {

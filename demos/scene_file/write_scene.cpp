@@ -28,9 +28,9 @@ Json sceneToJson(const Scene& scene) {
   Json doc;
   doc["name"] = scene.name;
   doc["integrator"] = scene.integrator;
-  doc["integratorSettings"] = {{"tolerance", scene.integratorSettings.tolerance},
-                               {"substeps", scene.integratorSettings.substeps},
-                               {"iterations", scene.integratorSettings.iterations}};
+  doc["integratorSettings"] = {{"tolerance", scene.integratorSettings.dopri5.tolerance},
+                               {"substeps", scene.integratorSettings.xpbd.substeps},
+                               {"iterations", scene.integratorSettings.xpbd.iterations}};
   doc["dt"] = scene.dt;
   doc["view"] = {{"min", toJson(scene.viewMin)}, {"max", toJson(scene.viewMax)}};
   doc["solver"] = {{"tolerance", solver.tolerance},

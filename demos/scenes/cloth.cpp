@@ -79,7 +79,8 @@ Scene buildCloth(const ClothParams& p) {
   if (swingByVelocity && clothHeight > 0.0) {
     const double omega = std::copysign(std::sqrt(3.0 * p.gravity * (1.0 - std::cos(swing)) / clothHeight), swing);
     for (int row = 0; row < p.height; ++row)
-      for (int col = 0; col < p.width; ++col) s.velocities()[2 * (row * p.width + col)] = omega * row * p.rest;
+      for (int col = 0; col < p.width; ++col)
+        s.setVelocity(row * p.width + col, Eigen::Vector2d(omega * row * p.rest, s.velocity(row * p.width + col).y()));
   }
   const auto id = [&](int row, int col) { return row * p.width + col; };
 

@@ -4,8 +4,12 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "particles/drift_correction.h"
+#include "particles/integrators/dopri5_settings.h"
 #include "particles/integrators/implicit_euler_settings.h"
+#include "particles/integrators/xpbd_settings.h"
 #include "particles/step_stats.h"
 
 namespace particles {
@@ -13,41 +17,12 @@ namespace particles {
 class ParticleSystem;
 
 // Settings an integrator may use, set by name from the command line and the
-// panel. Fixed-step schemes ignore them; one struct keeps makeIntegrator's
-// signature the same for every scheme.
+// panel: one struct per scheme that has any. Fixed-step schemes ignore them;
+// one struct of them keeps makeIntegrator's signature the same for every scheme.
 struct IntegratorSettings {
-  // Adaptive schemes (dopri5): local error allowed per internal
-  // step, mixed absolute and relative — error_i against tolerance·(1 + |y_i|)
-  // for every component of y = (x, v); each scheme's header gives its norm.
-  // 2e-5, the tightest value of the 1–2–5 series at which dopri5 on the
-  // 80-rod chain at dt 0.01 keeps within the engine's cost target of 1.6 RK4
-  // steps: 29 internal steps and 1 rejected per 30 output steps, 6.0
-  // evaluations per output step against RK4's 4, 1.54 RK4 steps in
-  // instructions (tests/bench/bench_step.cpp, scripts/callgrind-step.sh); it
-  // ends 0.35 s 4.8× closer to a tight reference than RK4 at that dt does
-  // (test Dopri5.TheDefaultToleranceBeatsRk4AtTheScenesStep prints both
-  // errors). At 1e-5 it took 33 internal steps (6.6 evaluations, 1.70 RK4
-  // steps) for 8.6× RK4's accuracy. The global error follows the tolerance
-  // (report, §3.4 "Accuracy: work against precision").
-  double tolerance = 2e-5;
-  // Below this the error estimate is dominated by rounding (the stages differ
-  // by a few ulps of y): a smaller tolerance is refused rather than chased.
-  static constexpr double minTolerance = 1e-13;
-  // Floor of the internal step, as a fraction of the interval dt of one call:
-  // a step the controller would shrink below it fails the call with
-  // StepFailure::StepBelowFloor instead of being accepted anyway.
-  double minStepFraction = 1e-9;
-  // Work cap: internal steps (accepted and rejected) one call may attempt
-  // before it fails with StepFailure::WorkCapReached.
-  long maxStepsPerCall = 100000;
-  // xpbd: a step of dt is `substeps` substeps of h = dt/substeps, each with
-  // `iterations` Gauss–Seidel passes over the constraints (both ≥ 1). Macklin
-  // et al. 2019 favour many substeps of one pass; the defaults are measured by
-  // `particle-lab small-steps` (report, "Small steps").
-  int substeps = 20;
-  int iterations = 1;
-  // implicit-euler: its Newton passes, constraint coupling and linear solver.
-  ImplicitEulerSettings implicitEuler;
+  Dopri5Settings dopri5;                // the adaptive scheme's tolerance, step floor and work cap
+  XpbdSettings xpbd;                    // substeps and constraint passes
+  ImplicitEulerSettings implicitEuler;  // Newton passes, constraint coupling and linear solver
 
   void validate() const;  // throws naming the bad field
 };
@@ -91,6 +66,11 @@ class Integrator {
   virtual void configure(const IntegratorSettings& settings) { settings.validate(); }
 
  protected:
+  // The state a scheme advances in place; the system's own accessors are
+  // read-only (ParticleSystem::setPositions for everything else).
+  static Eigen::VectorXd& positionsOf(ParticleSystem& system);
+  static Eigen::VectorXd& velocitiesOf(ParticleSystem& system);
+
   double lastStep_ = 0.0;
 };
 
@@ -99,8 +79,8 @@ struct IntegratorInfo {
   const char* summary;  // one line for `list` and the help overlay
   int order;            // global order of accuracy on smooth problems
   std::unique_ptr<Integrator> (*make)();
-  bool usesTolerance = false;  // reads IntegratorSettings (tolerance, step floor, work cap)
-  bool usesSubsteps = false;   // reads IntegratorSettings::substeps and ::iterations
+  bool usesTolerance = false;  // reads IntegratorSettings::dopri5 (tolerance, step floor, work cap)
+  bool usesSubsteps = false;   // reads IntegratorSettings::xpbd (substeps, iterations)
   // Part of the laboratory's default sweeps over long chains and large
   // scenes (stability, timing, cost, extremes); a scheme left out is run there
   // only when named (--integrators), and the long-time and accuracy experiments

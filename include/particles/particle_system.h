@@ -82,10 +82,18 @@ class ParticleSystem {
 
   // --- state --------------------------------------------------------------
   int size() const { return static_cast<int>(mass_.size()); }
-  Eigen::VectorXd& positions() { return x_; }
-  Eigen::VectorXd& velocities() { return v_; }
+  // Read-only: only an integrator advances the state in place (Integrator's
+  // protected access); everything else sets it through the setters below.
   const Eigen::VectorXd& positions() const { return x_; }
   const Eigen::VectorXd& velocities() const { return v_; }
+  // Every particle's position or velocity (2n values; std::invalid_argument
+  // for another size), or particle i's (requireIndex). The clock, forces and
+  // constraints are left as they are; an adaptive scheme's carried solution
+  // restarts from the new state (particles/step_continuation.h).
+  void setPositions(const Eigen::VectorXd& x);
+  void setVelocities(const Eigen::VectorXd& v);
+  void setPosition(int i, const Eigen::Vector2d& p);
+  void setVelocity(int i, const Eigen::Vector2d& v);
   Eigen::Vector2d position(int i) const { return x_.segment<2>(2 * i); }
   Eigen::Vector2d velocity(int i) const { return v_.segment<2>(2 * i); }
   const Eigen::VectorXd& masses() const { return mass_; }
@@ -168,6 +176,7 @@ class ParticleSystem {
   int contactsLastStep() const;
 
  private:
+  friend class Integrator;  // advances x_ and v_ in place (Integrator::positionsOf)
   Eigen::VectorXd x_, v_, f_;
   Eigen::VectorXd mass_, inverseMass_, radius_;
   double time_ = 0.0;

@@ -41,7 +41,7 @@ constexpr double kRejected = 1e10;  // err of a trial that produced a non-finite
 
 void Dopri5Integrator::configure(const IntegratorSettings& settings) {
   settings.validate();
-  settings_ = settings;
+  settings_ = settings.dopri5;
 }
 
 namespace {
@@ -139,8 +139,8 @@ void Dopri5Integrator::denseOutput(double theta, Eigen::VectorXd& x, Eigen::Vect
 }
 
 StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
+  Eigen::VectorXd& x = positionsOf(system);
+  Eigen::VectorXd& v = velocitiesOf(system);
   // The internal solution (x0_, kx_[0], lead_ ahead of the output) and k₁ there
   // (FSAL: the last accepted step's k₇) carry on only while the system holds
   // exactly the state, structure and forces this integrator returned;
@@ -164,7 +164,7 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
   stats.internalSteps = 0;
   lastStep_ = 0.0;  // becomes the largest step accepted in this call
 
-  if (!adaptive) {
+  if (!settings_.adaptive) {
     trial(system, dt);
     x0_.swap(x1_);
     kx_[0].swap(kx_[6]);

@@ -216,8 +216,8 @@ void ImplicitEulerIntegrator::Impl::begin(ParticleSystem& system) {
   dofs = 2 * n;
   coupled = settings->coupledConstraints && !system.constraints().empty();
   m = coupled ? static_cast<int>(system.constraints().size()) : 0;
-  x0 = system.positions();
-  v0 = system.velocities();
+  x0 = positionsOf(system);
+  v0 = velocitiesOf(system);
   vBar = v0;
   // The last step's impulses start the iteration (their tension gives the first
   // pass its geometric stiffness).
@@ -410,8 +410,8 @@ void ImplicitEulerIntegrator::Impl::solvePass(StepStats& stats) {
 }
 
 void ImplicitEulerIntegrator::Impl::commit(ParticleSystem& system, double h) const {
-  system.velocities() = vBar;  // a failed solve leaves the last finite iterate
-  system.positions() = x0 + h * vBar;
+  velocitiesOf(system) = vBar;  // a failed solve leaves the last finite iterate
+  positionsOf(system) = x0 + h * vBar;
 }
 
 // --- the linear system -------------------------------------------------------

@@ -5,8 +5,8 @@
 namespace particles {
 
 StepStats MidpointIntegrator::step(ParticleSystem& system, double dt) {
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
+  Eigen::VectorXd& x = positionsOf(system);
+  Eigen::VectorXd& v = velocitiesOf(system);
   system.acceleration(x, v, a_);
   xMid_ = x + (0.5 * dt) * v;
   vMid_ = v + (0.5 * dt) * a_;

@@ -92,8 +92,8 @@ RattleIntegrator::~RattleIntegrator() = default;
 // kick → drift → project positions (SHAKE) → kick → project velocities.
 StepStats RattleIntegrator::step(ParticleSystem& system, double dt) {
   Impl& s = *impl_;
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
+  Eigen::VectorXd& x = positionsOf(system);
+  Eigen::VectorXd& v = velocitiesOf(system);
   const Eigen::VectorXd& w = system.inverseMasses();
   const ConstraintList& constraints = system.constraints();
   auto kick = [&](double h) {

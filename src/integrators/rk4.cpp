@@ -55,8 +55,8 @@ struct Stage {
 // sum. The start y0 is the system's own state, read until the last pass
 // writes y0 + (h/6) d over it.
 StepStats Rk4Integrator::step(ParticleSystem& system, double dt) {
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
+  Eigen::VectorXd& x = positionsOf(system);
+  Eigen::VectorXd& v = velocitiesOf(system);
   const int m = static_cast<int>(x.size()), threads = threadCount();
   for (Eigen::VectorXd* w : {&xs_, &vs_, &dx_, &dv_}) w->resize(m);
   auto each = [&](auto pass) { parallelRanges(m, threads, kParallelEntries, pass); };

@@ -5,8 +5,8 @@
 namespace particles {
 
 StepStats SymplecticEulerIntegrator::step(ParticleSystem& system, double dt) {
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
+  Eigen::VectorXd& x = positionsOf(system);
+  Eigen::VectorXd& v = velocitiesOf(system);
   system.acceleration(x, v, a_);
   v += dt * a_;
   x += dt * v;

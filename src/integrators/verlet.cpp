@@ -5,8 +5,8 @@
 namespace particles {
 
 StepStats VerletIntegrator::step(ParticleSystem& system, double dt) {
-  Eigen::VectorXd& x = system.positions();
-  Eigen::VectorXd& v = system.velocities();
+  Eigen::VectorXd& x = positionsOf(system);
+  Eigen::VectorXd& v = velocitiesOf(system);
   // The cached acceleration is valid only for exactly the system it was left at.
   if (!continuation_.matches(system)) system.acceleration(x, v, a0_);
 

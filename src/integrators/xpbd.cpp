@@ -91,22 +91,17 @@ XpbdIntegrator::Forms XpbdIntegrator::positionForms(const ParticleSystem& system
 
 void XpbdIntegrator::configure(const IntegratorSettings& settings) {
   settings.validate();
-  substeps = settings.substeps;
-  iterations = settings.iterations;
+  settings_ = settings.xpbd;
 }
 
 StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
-  IntegratorSettings check;
-  check.substeps = substeps;
-  check.iterations = iterations;
-  check.validate();  // public fields: checked before anything moves
 
-  const double h = dt / substeps;
+  const double h = dt / settings_.substeps;
   prepare(system, h);
-  for (int k = 0; k < substeps; ++k) {
+  for (int k = 0; k < settings_.substeps; ++k) {
     applyForces(system);
     predict(system, h);
-    for (int pass = 0; pass < iterations; ++pass) project(system, pass);
+    for (int pass = 0; pass < settings_.iterations; ++pass) project(system, pass);
     updateVelocities(system, h);
     collide(system, h);
   }
@@ -115,8 +110,8 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
   // and CG iterations stay 0; the forces without a position form are applied
   // once per substep.
   StepStats stats;
-  stats.internalSteps = substeps;
-  stats.forceEvaluations = substeps;
+  stats.internalSteps = settings_.substeps;
+  stats.forceEvaluations = settings_.substeps;
   return stats;
 }
 
@@ -144,11 +139,11 @@ void XpbdIntegrator::applyForces(ParticleSystem& system) {
 // (before the forces) for the contacts.
 void XpbdIntegrator::predict(ParticleSystem& system, double h) {
   const bool colliding = system.colliding();
-  const int m = static_cast<int>(system.positions().size());
+  const int m = static_cast<int>(positionsOf(system).size());
   xn_.resize(m);
   if (colliding) vn_.resize(m);
-  double* x = system.positions().data();
-  double* v = system.velocities().data();
+  double* x = positionsOf(system).data();
+  double* v = velocitiesOf(system).data();
   double* xn = xn_.data();
   double* vn = vn_.data();
   const double* a = acceleration_.data();
@@ -170,9 +165,9 @@ void XpbdIntegrator::predict(ParticleSystem& system, double h) {
 // angle springs, then the hard constraints, so that those hold as well as one
 // pass can make them.
 void XpbdIntegrator::project(ParticleSystem& system, int pass) {
-  Eigen::VectorXd& x = system.positions();
+  Eigen::VectorXd& x = positionsOf(system);
   const Eigen::VectorXd& w = system.inverseMasses();
-  distances_.project(xn_.data(), x.data(), pass, iterations);
+  distances_.project(xn_.data(), x.data(), pass, settings_.iterations);
   for (std::size_t k = 0; k < forms_.angles.size(); ++k)
     projectAngle(forms_.angles[k], w, xn_, x, angleLambda_[k]);
   for (std::size_t k = 0; k < forms_.attachments.size(); ++k) {
@@ -182,7 +177,7 @@ void XpbdIntegrator::project(ParticleSystem& system, int pass) {
     projectAttachment(c, w, xn_, x, attachmentLambda_[k]);
   }
   for (const auto& constraint : system.constraints())
-    projectConstraint(*constraint, system.velocities(), system.masses(), w, x, blocks_);
+    projectConstraint(*constraint, velocitiesOf(system), system.masses(), w, x, blocks_);
 }
 
 // Contacts over the substep, from (xⁿ, vⁿ) to the projected state.
@@ -192,9 +187,9 @@ void XpbdIntegrator::collide(ParticleSystem& system, double h) {
 
 // v ← (x − xⁿ)/h; pinned particles (w = 0) never moved and keep v = 0.
 void XpbdIntegrator::updateVelocities(ParticleSystem& system, double h) {
-  const double* x = system.positions().data();
+  const double* x = positionsOf(system).data();
   const double* xn = xn_.data();
-  double* v = system.velocities().data();
+  double* v = velocitiesOf(system).data();
   parallelRanges(static_cast<int>(xn_.size()), threadCount(), kParallelEntries, [&](int begin, int end) {
 #pragma omp simd
     for (int k = begin; k < end; ++k) v[k] = (x[k] - xn[k]) / h;

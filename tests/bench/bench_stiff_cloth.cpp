@@ -39,8 +39,8 @@ double worstSpringStrain(const particles::ParticleSystem& system) {
 void BM_StiffClothXpbdFrame(benchmark::State& state) {
   scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(static_cast<int>(state.range(0))));
   particles::IntegratorSettings settings;
-  settings.substeps = static_cast<int>(state.range(1));
-  settings.iterations = static_cast<int>(state.range(2));
+  settings.xpbd.substeps = static_cast<int>(state.range(1));
+  settings.xpbd.iterations = static_cast<int>(state.range(2));
   particles::setThreadCount(static_cast<int>(state.range(3)));
   auto xpbd = particles::makeIntegrator("xpbd", settings);
   particles::ParticleSystem& system = *scene.system;

@@ -463,8 +463,8 @@ TEST(DemoBugs, B09_TheHudsEnergyLeavesOutTheMouseSpring) {
   EXPECT_GT(pane.mouseSpringEnergy, 0.0);
   // The logged energy is the scene's alone: the same state in a fresh pendulum.
   scenes::Scene scene = scenes::buildScene("pendulum");
-  scene.system->positions().segment<2>(0) = pane.particles[0].x;
-  scene.system->velocities().segment<2>(0) = pane.particles[0].v;
+  scene.system->setPosition(0, pane.particles[0].x);
+  scene.system->setVelocity(0, pane.particles[0].v);
   EXPECT_NEAR(pane.energy, scene.system->totalEnergy(), 1e-9 * (1.0 + std::abs(pane.energy)));
   EXPECT_TRUE(contains(log.overlay("hud")->text, "(mouse spring")) << log.overlay("hud")->text;
 }

@@ -35,19 +35,20 @@ namespace particles {
 // from the controller's proposal after it, which an event-free stretch can
 // grow without bound. The first call picks its step with HNW's
 // starting-step estimate (II.4). A step
-// the controller would cut below settings.minStepFraction·dt, or more than
-// settings.maxStepsPerCall attempts in one call, ends the call early with
+// the controller would cut below settings.dopri5.minStepFraction·dt, or more than
+// settings.dopri5.maxStepsPerCall attempts in one call, ends the call early with
 // StepFailure::StepBelowFloor or WorkCapReached; the state is then that of
 // the last accepted internal step.
 //
-// With adaptive = false every call is one step of dt (for order tests).
+// With Dopri5Settings::adaptive = false every call is one step of dt (for order tests).
 class Dopri5Integrator : public Integrator {
  public:
   const char* name() const override { return "dopri5"; }
+  // Takes IntegratorSettings::dopri5 (validated first).
   void configure(const IntegratorSettings& settings) override;
+  const Dopri5Settings& settings() const { return settings_; }
   StepStats step(ParticleSystem& system, double dt) override;
 
-  bool adaptive = true;
   double internalStep() const { return h_; }  // the step the next attempt starts from (0: not chosen yet)
 
  private:
@@ -60,7 +61,7 @@ class Dopri5Integrator : public Integrator {
   // its stages, still in kx_, kv_).
   void denseOutput(double theta, Eigen::VectorXd& x, Eigen::VectorXd& v) const;
 
-  IntegratorSettings settings_;
+  Dopri5Settings settings_;
   double h_ = 0.0, errPrevious_ = 1e-4;
   double accepted_ = 0.0;  // the last accepted internal step (0: none yet)
   std::array<Eigen::VectorXd, 7> kx_, kv_;  // stage derivatives of x (the stage velocities) and v

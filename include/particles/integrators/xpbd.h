@@ -18,7 +18,7 @@ class MouseSpringForce;
 
 // Extended position-based dynamics with small steps (Macklin, Müller &
 // Chentanez 2016; Macklin et al. 2019, "Small Steps in Physics Simulation").
-// A step of dt takes `substeps` substeps of h = dt/substeps; each one
+// A step of dt takes `substeps` substeps (XpbdSettings) of h = dt/substeps; each one
 //   applies the forces without a position form (gravity, drag, wind, springs
 //     of zero stiffness) at (x, v):   v ← v + h W f,  xⁿ ← x,  x ← x + h v;
 //   projects, `iterations` times in Gauss–Seidel order, the damped springs as
@@ -38,15 +38,14 @@ class MouseSpringForce;
 // angle springs have no form at all.
 class XpbdIntegrator : public Integrator {
  public:
-  int substeps = IntegratorSettings{}.substeps;
-  int iterations = IntegratorSettings{}.iterations;
-
   const char* name() const override { return "xpbd"; }
   bool collidesInSubsteps() const override { return true; }
   // The mouse joint is projected as a compliant attachment, stable at any stiffness.
   double explicitForceStep(double) const override { return 0.0; }
   StepStats step(ParticleSystem& system, double dt) override;
+  // Takes IntegratorSettings::xpbd (validated first).
   void configure(const IntegratorSettings& settings) override;
+  const XpbdSettings& settings() const { return settings_; }
 
   // How every force of the system enters a substep of h, compliances set for
   // that h; throws std::invalid_argument naming the first force with no known form.
@@ -67,6 +66,7 @@ class XpbdIntegrator : public Integrator {
   void project(ParticleSystem& system, int pass);
   void updateVelocities(ParticleSystem& system, double h);
 
+  XpbdSettings settings_;
   Forms forms_;
   std::uint64_t preparedStamp_ = 0;  // ParticleSystem::structureStamp() forms_ was built for
   double preparedStep_ = 0.0;        // and the substep h
