@@ -32,17 +32,17 @@ std::string listNames(const std::vector<ChoiceName<Value>>& table) {
 
 const std::vector<ChoiceName<SolveMethod>>& solveMethodNames() {
   static const std::vector<ChoiceName<SolveMethod>> table = {
-      {SolveMethod::Direct, "direct", "direct (LDLT)"},
-      {SolveMethod::ConjugateGradient, "cg", "conjugate gradient"},
+      {SolveMethod::Direct, "direct"},
+      {SolveMethod::ConjugateGradient, "cg"},
   };
   return table;
 }
 
 const std::vector<ChoiceName<Preconditioner>>& preconditionerNames() {
   static const std::vector<ChoiceName<Preconditioner>> table = {
-      {Preconditioner::None, "none", "none"},
-      {Preconditioner::Jacobi, "jacobi", "Jacobi"},
-      {Preconditioner::IncompleteCholesky, "incomplete-cholesky", "incomplete Cholesky"},
+      {Preconditioner::None, "none"},
+      {Preconditioner::Jacobi, "jacobi"},
+      {Preconditioner::IncompleteCholesky, "incomplete-cholesky"},
   };
   return table;
 }

@@ -217,3 +217,25 @@ TEST(ParticleSystem, ConstraintErrorsInWorldAndRelativeUnits) {
   system.setPosition(1, Vector2d(system.position(1).x(), std::nan("")));
   EXPECT_FALSE(system.finite());
 }
+
+// The state is read-only through positions()/velocities(); the setters change
+// exactly what they name and refuse a wrong size or index in one message.
+TEST(ParticleSystem, StateSettersChangeWhatTheyNameAndRefuseBadSizes) {
+  ParticleSystem system = makePendulum();
+  const Eigen::VectorXd x0 = system.positions(), v0 = system.velocities();
+  system.setPosition(1, Vector2d(0.25, -0.5));
+  EXPECT_EQ(system.position(1), Vector2d(0.25, -0.5));
+  EXPECT_EQ(system.position(0), x0.segment<2>(0));
+  system.setVelocity(2, Vector2d(1.0, 2.0));
+  EXPECT_EQ(system.velocity(2), Vector2d(1.0, 2.0));
+  EXPECT_EQ(system.velocity(1), v0.segment<2>(2));
+  system.setPositions(x0);
+  system.setVelocities(v0);
+  EXPECT_EQ(system.positions(), x0);
+  EXPECT_EQ(system.velocities(), v0);
+  test_support::expectRejected([&] { system.setPositions(Eigen::VectorXd::Zero(3)); }, "setPositions has 3 values");
+  test_support::expectRejected([&] { system.setVelocities(Eigen::VectorXd::Zero(2)); }, "setVelocities has 2 values");
+  test_support::expectRejected([&] { system.setPosition(system.size(), Vector2d::Zero()); }, "setPosition names particle");
+  test_support::expectRejected([&] { system.setVelocity(-1, Vector2d::Zero()); }, "setVelocity names particle");
+  EXPECT_EQ(system.positions(), x0);
+}

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "app.h"
-#include "particles/solver_names.h"
+#include "particles/constraint_solver.h"
 #include "particles/threads.h"
 
 namespace demo {
@@ -19,10 +19,27 @@ const scenes::SceneInfo* findScene(const std::string& name) {
   return nullptr;
 }
 
-// A combo over one of the engine's name tables (particles/solver_names.h),
+// The constraint solve's choices as the panel shows them (scene files use
+// particles/solver_names.h).
+template <class Value>
+struct Labelled {
+  Value value;
+  const char* label;
+};
+const std::vector<Labelled<particles::SolveMethod>> kSolveMethodLabels = {
+    {particles::SolveMethod::Direct, "direct (LDLT)"},
+    {particles::SolveMethod::ConjugateGradient, "conjugate gradient"},
+};
+const std::vector<Labelled<particles::Preconditioner>> kPreconditionerLabels = {
+    {particles::Preconditioner::None, "none"},
+    {particles::Preconditioner::Jacobi, "Jacobi"},
+    {particles::Preconditioner::IncompleteCholesky, "incomplete Cholesky"},
+};
+
+// A combo over one of the label tables above,
 // showing each choice's label; true when the choice changed.
 template <class Value>
-bool choose(const char* label, const std::vector<particles::ChoiceName<Value>>& table, Value& value) {
+bool choose(const char* label, const std::vector<Labelled<Value>>& table, Value& value) {
   const char* current = "?";
   for (const auto& e : table)
     if (e.value == value) current = e.label;
@@ -261,9 +278,9 @@ void App::drawSolverSection() {
 
 void App::drawSolverSettings() {
   particles::SolverSettings settings = panes_.front()->system().solver().settings;
-  bool changed = choose("constraint solve", particles::solveMethodNames(), settings.method);
+  bool changed = choose("constraint solve", kSolveMethodLabels, settings.method);
   if (settings.method == particles::SolveMethod::ConjugateGradient)
-    changed |= choose("preconditioner", particles::preconditionerNames(), settings.preconditioner);
+    changed |= choose("preconditioner", kPreconditionerLabels, settings.preconditioner);
   float logTolerance = static_cast<float>(std::log10(settings.tolerance));
   if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
     settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));

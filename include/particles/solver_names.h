@@ -1,6 +1,6 @@
 #pragma once
-// The names of the constraint solve's choices, defined once: scene files
-// read and write `name`, the demo's panel shows `label`.
+// The names of the constraint solve's choices, defined once: scene files and
+// messages use `name` (the demo's panel has its own labels for people).
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,8 +12,7 @@ namespace particles {
 template <class Value>
 struct ChoiceName {
   Value value;
-  const char* name;   // in scene files: "direct", "cg"; "none", "jacobi", "incomplete-cholesky"
-  const char* label;  // for people: "direct (LDLT)", "incomplete Cholesky"
+  const char* name;  // in scene files: "direct", "cg"; "none", "jacobi", "incomplete-cholesky"
 };
 
 const std::vector<ChoiceName<SolveMethod>>& solveMethodNames();
