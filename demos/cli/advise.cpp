@@ -154,7 +154,7 @@ Command addAdviseCommand(CLI::App& app) {
       ->check(options::decimalInteger(0, 1000));
   command->add_flag("--certify-all", options->certifyAll,
                     "certify every integrator's pick, not only the cheapest and its ties");
-  return {command, [=] { return advise(*options); }};
+  return {command, [=](const Context&) { return advise(*options); }};
 }
 
 }  // namespace cli

@@ -3,12 +3,17 @@
 // to the application through one add function listed in main.cpp; it returns
 // the action main runs when that subcommand was given.
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "options/usage.h"
+
+namespace lab {
+class Cells;
+}
 
 namespace cli {
 
@@ -24,10 +29,16 @@ enum ExitCode : int {
 // A bad option value or combination found after parsing; exits kBadInput.
 using options::UsageError;
 
+// What a subcommand runs under besides its options: a merge running an
+// experiment again hands it the cells the shards recorded.
+struct Context {
+  std::shared_ptr<lab::Cells> replay;  // null: compute the cells
+};
+
 struct Command {
-  CLI::App* app;                // the subcommand
-  std::function<int()> run;     // returns the exit code; throws UsageError,
-                                // std::invalid_argument or SceneFileError for bad input
+  CLI::App* app;                               // the subcommand
+  std::function<int(const Context&)> run;      // returns the exit code; throws UsageError,
+                                               // std::invalid_argument or SceneFileError for bad input
 };
 
 Command addRunCommand(CLI::App& app);
@@ -46,10 +57,8 @@ Command addSmallStepsCommand(CLI::App& app);
 Command addRenderReportCommand(CLI::App& app);
 Command addMergeCommand(CLI::App& app);
 
-// The arguments after the program's name, as given (cli/main.cpp).
-const std::vector<std::string>& commandLine();
-// Parses `arguments` (the subcommand first) and runs that subcommand:
-// particle-lab's main, and merge running an experiment again.
-int runCommandLine(const std::vector<std::string>& arguments);
+// Parses `arguments` (the subcommand first) and runs that subcommand under
+// `context`: particle-lab's main, and merge running an experiment again.
+int runCommandLine(const std::vector<std::string>& arguments, const Context& context = {});
 
 }  // namespace cli

@@ -34,7 +34,7 @@ Command addExportCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("export", "write a scene (with its parameters applied) as a JSON scene file");
   options->source.addOptions(*sub);
   sub->add_option("-o,--output", options->output, "file to write (default: stdout)");
-  return {sub, [options] { return exportScene(*options); }};
+  return {sub, [options](const Context&) { return exportScene(*options); }};
 }
 
 }  // namespace cli

@@ -17,9 +17,6 @@ namespace cli {
 
 namespace {
 
-// The recorded cells a merge replays (set by merge while it runs the experiment again).
-std::shared_ptr<lab::Cells> replayCells;
-
 // Options every experiment takes, with --shard; held by the returned action.
 struct ExperimentOptions : lab::LabOptions {
   std::string shard;  // "K/N", empty: every cell
@@ -49,39 +46,40 @@ std::shared_ptr<ExperimentOptions> addLabOptions(CLI::App* command) {
   return options;
 }
 
-// The experiment's command line without the options that do not change its
-// results (--shard, --out, --jobs): what a shard's manifest records.
-std::vector<std::string> resultArguments() {
-  std::vector<std::string> kept;
-  const std::vector<std::string>& all = commandLine();
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    bool dropped = false;
-    for (const char* option : {"--shard", "--out", "--jobs"}) {
-      const std::string name(option);
-      if (all[k] == name) dropped = true, ++k;  // and its value
-      else if (all[k].rfind(name + "=", 0) == 0) dropped = true;
-      if (dropped) break;
+// The experiment's options as parsed, without those that do not change its
+// results (--shard, --out, --jobs): what a shard's manifest records and a
+// merge runs again. Flags by name, every value of an option after its name,
+// in the order the options are declared.
+std::vector<std::string> resultArguments(const CLI::App* command) {
+  std::vector<std::string> kept{command->get_name()};
+  for (const CLI::Option* option : command->get_options()) {
+    const std::string name = option->get_name();
+    if (option->count() == 0 || name == "--shard" || name == "--out" || name == "--jobs") continue;
+    if (option->get_expected_max() == 0) {
+      kept.push_back(name);
+      continue;
     }
-    if (!dropped) kept.push_back(all[k]);
+    for (const std::string& value : option->results()) kept.insert(kept.end(), {name, value});
   }
   return kept;
 }
 
 // Runs an experiment: all its cells, a shard of them (--shard), or the cells a
 // merge replays. Ctrl-C stops it early, keeping the rows already written.
-int experiment(const CLI::App* command, ExperimentOptions& options, const std::function<int()>& run) {
+int experiment(const CLI::App* command, ExperimentOptions& options, const Context& context,
+               const std::function<int()>& run) {
   std::optional<lab::ShardSpec> shard;
   if (!options.shard.empty()) shard = lab::parseShard(options.shard);
   lab::installInterruptHandler();
   try {
-    if (replayCells) {
+    if (context.replay) {
       if (shard) throw UsageError("merge: the shards' arguments hold --shard");
-      options.cells = replayCells;
+      options.cells = context.replay;
     } else if (shard) {
       options.cells = std::make_shared<lab::Cells>(*shard, options.outDir);
     }
     const int code = run();
-    if (code == 0) options.cells->writeManifest(command->get_name(), resultArguments());
+    if (code == 0) options.cells->writeManifest(command->get_name(), resultArguments(command));
     return code;
   } catch (const scenes::WriteError&) {
     throw;  // exit 4, not a bad option
@@ -108,8 +106,8 @@ Command addStabilityCommand(CLI::App& app) {
                       "T of Tables 1 and 2: simulated seconds a run must survive")
       ->capture_default_str()
       ->check(options::numberInRange(lab::StabilityOptions::minDuration, lab::StabilityOptions::maxDuration));
-  return {command, [=] {
-            return experiment(command, *options, [&] { return lab::runStability(*options, *stability); });
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runStability(*options, *stability); });
           }};
 }
 
@@ -123,16 +121,16 @@ Command addTimingCommand(CLI::App& app) {
   command->add_option("--steps", timing->steps, "steps per timed repeat")
       ->capture_default_str()
       ->check(options::decimalInteger(1, 1000000000));
-  return {command, [=] {
-            return experiment(command, *options, [&] { return lab::runTiming(*options, *timing); });
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runTiming(*options, *timing); });
           }};
 }
 
 Command addAccuracyCommand(CLI::App& app) {
   auto* command = app.add_subcommand("accuracy", "work-precision: error at T against CPU time, per integrator and dt");
   auto options = addLabOptions(command);
-  return {command, [=] {
-            return experiment(command, *options, [&] { return lab::runAccuracy(*options); });
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runAccuracy(*options); });
           }};
 }
 
@@ -140,16 +138,16 @@ Command addExtremesCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "extremes", "stiff springs, mass ratios, feedback gains, CG budget, rod forms, the taut chain");
   auto options = addLabOptions(command);
-  return {command, [=] {
-            return experiment(command, *options, [&] { return lab::runExtremes(*options); });
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runExtremes(*options); });
           }};
 }
 
 Command addClaimsCommand(CLI::App& app) {
   auto* command = app.add_subcommand("claims", "the seed report's claims, each confirmed or refuted by a measurement");
   auto options = addLabOptions(command);
-  return {command, [=] {
-            return experiment(command, *options, [&] { return lab::runClaims(*options); });
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runClaims(*options); });
           }};
 }
 
@@ -157,21 +155,27 @@ Command addCostCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "cost", "the cost of accuracy: cheapest safe integrator and dt per scene and error budget");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment(command, *options, [&] { return lab::runCost(*options); }); }};
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runCost(*options); });
+          }};
 }
 
 Command addLongtimeCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "longtime", "energy over 500 s per integrator (pendulum, 6-chain); implicit Euler's loss per period");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment(command, *options, [&] { return lab::runLongtime(*options); }); }};
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runLongtime(*options); });
+          }};
 }
 
 Command addSmallStepsCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "small-steps", "XPBD substeps against iterations and against implicit Euler and RK4; the stiff cloth at 60 Hz");
   auto options = addLabOptions(command);
-  return {command, [=] { return experiment(command, *options, [&] { return lab::runSmallSteps(*options); }); }};
+  return {command, [=](const Context& context) {
+            return experiment(command, *options, context, [&] { return lab::runSmallSteps(*options); });
+          }};
 }
 
 Command addRenderReportCommand(CLI::App& app) {
@@ -188,7 +192,7 @@ Command addRenderReportCommand(CLI::App& app) {
                       "<!-- end NAME -->), keeping the rest");
   command->add_flag("--check", render->check,
                     "write nothing: exit 0 if --out already holds the rendering, 1 (naming the first differing line) if not");
-  return {command, [=] {
+  return {command, [=](const Context&) {
             lab::installInterruptHandler();
             try {
               return lab::renderReport(*render);
@@ -207,7 +211,7 @@ Command addMergeCommand(CLI::App& app) {
   auto out = std::make_shared<std::string>();
   command->add_option("dirs", *dirs, "the shards' output directories")->required();
   command->add_option("--out", *out, "directory for the merged CSVs, tables and values")->required();
-  return {command, [=] {
+  return {command, [=](const Context&) {
             const lab::ShardSet set = lab::readShards(*dirs);
             // Only an experiment is run again (a command taking --shard), never
             // merge itself or another tool named by an edited manifest.
@@ -216,12 +220,12 @@ Command addMergeCommand(CLI::App& app) {
                                "', which is not an experiment (made by a different run or version)");
             // The experiment runs again with its own arguments, every cell
             // read from the shards: tables and derived numbers from all cells.
-            replayCells = std::make_shared<lab::Cells>(set.cells, set.shardNames);
+            Context replay;
+            replay.replay = std::make_shared<lab::Cells>(set.cells, set.shardNames);
             std::vector<std::string> arguments = set.arguments;
             arguments.insert(arguments.end(), {"--out", *out});
-            const int code = runCommandLine(arguments);
-            const std::size_t enumerated = replayCells->count();
-            replayCells.reset();
+            const int code = runCommandLine(arguments, replay);
+            const std::size_t enumerated = replay.replay->count();
             if (code == 0 && enumerated != set.cellCount)
               throw UsageError("merge: the shards hold " + std::to_string(set.cellCount) + " cells, the experiment has " +
                                std::to_string(enumerated) + " (made by a different version?)");

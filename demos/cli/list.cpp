@@ -45,7 +45,7 @@ int list() {
 Command addListCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "list", "list the presets, the built-in scenes with their parameters under every preset, and the integrators");
-  return {sub, list};
+  return {sub, [](const Context&) { return list(); }};
 }
 
 }  // namespace cli

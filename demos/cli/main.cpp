@@ -33,8 +33,6 @@ constexpr cli::Command (*kCommands[])(CLI::App&) = {
     cli::addMergeCommand,
 };
 
-std::vector<std::string> arguments;
-
 // One line on stderr (control characters escaped), and the exit code.
 int fail(const std::string& message, int code = cli::kBadInput) {
   options::printErrorLine("particle-lab", message);
@@ -45,16 +43,13 @@ int fail(const std::string& message, int code = cli::kBadInput) {
 
 namespace cli {
 
-const std::vector<std::string>& commandLine() { return arguments; }
-
-int runCommandLine(const std::vector<std::string>& given) {
+int runCommandLine(const std::vector<std::string>& given, const Context& context) {
   CLI::App app{"particle-lab: run particle-system scenes without a window, list and export them, and run the laboratory's experiments"};
   app.name("particle-lab");
   app.require_subcommand(1);
   app.set_version_flag("--version", options::versionLine("particle-lab"));
   std::vector<cli::Command> commands;
   for (auto add : kCommands) commands.push_back(add(app));
-  arguments = given;
   std::vector<std::string> reversed(given.rbegin(), given.rend());  // CLI11 takes them last first
   try {
     app.parse(reversed);
@@ -65,7 +60,7 @@ int runCommandLine(const std::vector<std::string>& given) {
   for (const cli::Command& command : commands) {
     if (!command.app->parsed()) continue;
     try {
-      const int code = command.run();
+      const int code = command.run(context);
       // The summary or table on stdout is the command's result: a failed write
       // of it (stdout on a full disk, /dev/full) is a failed output, exit 4.
       errno = 0;

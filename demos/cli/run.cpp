@@ -229,7 +229,7 @@ Command addRunCommand(CLI::App& app) {
       "only); 4 an output file or stdout could not be written (disk full); 130 SIGINT, SIGTERM or SIGHUP: the run stops at\n"
       "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"
       "a second run given the same path is refused (exit 2).");
-  return {sub, [options] { return run(*options); }};
+  return {sub, [options](const Context&) { return run(*options); }};
 }
 
 }  // namespace cli
