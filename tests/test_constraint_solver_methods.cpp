@@ -1,4 +1,4 @@
-// The constraint solve by each method of issue 7 — plain and Jacobi
+// The constraint solve by each method — plain and Jacobi
 // matrix-free CG with and without warm start, incomplete-Cholesky CG, and the
 // sparse direct LDLᵀ — against a dense solve of the same J W Jᵀ λ = b.
 #include <random>

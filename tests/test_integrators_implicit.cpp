@@ -1,4 +1,4 @@
-// The integrators of issue 7 — velocity Verlet, backward Euler with the
+// Velocity Verlet, backward Euler with the
 // constraints in its solve, adaptive RK4 — and the force Jacobians the
 // implicit step relies on.
 #include <algorithm>
@@ -283,7 +283,7 @@ TEST(ImplicitEuler, KeepsBeadOnWireWhereLaggedConstraintsDoNot) {
 
 namespace {
 
-// The test chain of the report at the issue's target: 200 particles, rods of
+// The report's long test chain: 200 particles, rods of
 // 0.1, the first pinned, released horizontally under g = 0.05; 100 s at
 // dt = 0.2 (k_s·dt² = 2.4 for the explicit feedback). Returns max |C|/r.
 double testChainError(bool coupled) {

@@ -1,9 +1,9 @@
 // Constraint solves compared on the test chain (cl = 80 and 500) and a cloth
-// curtain: matrix-free CG (plain, cold start: the solver before issue 7;
+// curtain: matrix-free CG (plain, cold start: the first solver;
 // Jacobi + warm start), incomplete-Cholesky CG and the sparse direct LDLᵀ.
 // Each benchmark times one RK4 step (four solves) at CG tolerance 1e-8 and
 // reports CG iterations per solve beside the time. The implicit-Euler and
-// large-cloth benchmarks of issue 7 are here too.
+// large-cloth benchmarks are here too.
 //
 //   build/tests/bench_solvers --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
@@ -147,7 +147,7 @@ BENCHMARK(BM_ClothRk4)->Arg(32)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kM
 
 // One implicit-Euler step at dt = 1/60 of an 8-way cloth hanging from two
 // corners. stiff = 1 raises k_s to 4·10⁵ (mass 0.2): RK4 then blows up at
-// dt = 1/1000 and needs 1/2000 — the issue's stiff cloth.
+// dt = 1/1000 and needs 1/2000 — the stiff cloth of the small-steps experiment.
 void BM_ClothImplicitEuler(benchmark::State& state) {
   ClothParams p;
   p.width = p.height = static_cast<int>(state.range(0));

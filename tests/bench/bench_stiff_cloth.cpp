@@ -1,10 +1,10 @@
 // The stiff cloth at 60 Hz: the 128×128 8-way cloth of scenes::stiffClothParams
 // (k_s = 4e5, g = 9.8, top row on a rail), advanced by one 1/60 s frame with
 // xpbd at several substep counts, beside one plain RK4 step of the same cloth
-// in the same run (the issue's yardstick: 16 ms ≈ five RK4 steps). Each xpbd
+// in the same run (the yardstick: a 16 ms frame ≈ five RK4 steps). Each xpbd
 // benchmark first runs one simulated second so the cloth hangs loaded, then
 // reports the worst spring strain | |d|/r − 1 | seen over the warm-up and ten
-// frames after the timed ones (the issue asks for ≤ 3 % in ≤ 16 ms; 30 substeps of one pass
+// frames after the timed ones (the target is ≤ 3 % in ≤ 16 ms; 30 substeps of one pass
 // meet both here, and test_integrators_xpbd checks the strain of that setting).
 //
 // threads: the engine's thread count for the xpbd frame (particles/threads.h;

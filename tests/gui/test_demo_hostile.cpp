@@ -1,4 +1,4 @@
-// particle-demo under hostile input (issue 12, items 13-16): nothing a user or
+// particle-demo under hostile input: nothing a user or
 // a script does ends the program except q, Esc or closing it, and no input
 // reaches undefined behaviour (the sanitizer build runs these too).
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // particle-demo as a new user meets it: the layout, the camera, the mouse
-// joint, onboarding and honest drawing, and each bug found by use (issue 14's
-// list, numbered in the test names' comments).
+// joint, onboarding and honest drawing, and each bug found by use (numbered
+// B01, B02, ... in the test names).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -332,7 +332,7 @@ TEST(DemoDrawing, ClosedFormGhostMatchesTheExactSolution) {
 }
 
 // ---------------------------------------------------------------------------
-// The bugs found by use, numbered as in the issue
+// The bugs found by use, numbered B01, B02, ...
 
 TEST(DemoBugs, B01_EscClosesAnOpenComboInsteadOfQuitting) {
   const std::string dir = outputDirectory("EscCombo");
