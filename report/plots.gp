@@ -129,15 +129,18 @@ knob(dt, tol) = (tol > 0 ? sprintf('tol %.0e', tol) : sprintf('%.2g', dt))
 # The rows at both ends of each scheme's sweep on a problem (least and largest
 # tolerance, else dt): only those two points are labelled, so labels never pile up.
 sweepEnds(p) = sprintf("< awk -F, 'NR > 1 && $1 == \"%s\" { k = ($4 > 0 ? $4 : $3) + 0; if (!($2 in lo) || k < lo[$2]) { lo[$2] = k; lr[$2] = $0 } if (!($2 in hi) || k > hi[$2]) { hi[$2] = k; hr[$2] = $0 } } END { for (s in lr) { print lr[s]; if (hr[s] != lr[s]) print hr[s] } }' '%s'", p, f)
+mine(p, scheme) = (strcol(1) eq p && strcol(2) eq scheme && positive($5) < 1e300)
 do for [p in problems] {
   horizon = system(sprintf("awk -F, '$1==\"accuracy.horizon.%s\"{print $2}' '%s/values.csv'", p, data))
   set output fig.'/accuracy_'.p.'.png'
-  set title sprintf("Work-precision: %s, T = %s s; CPU median of repeats, bars min-max; each sweep's ends labelled by dt or tolerance", p, horizon) font ',10'
+  set title sprintf("Work-precision: %s, T = %s s\nCPU median of repeats, bars min-max; each sweep's ends labelled by dt or tolerance", p, horizon) font ',10'
   set xlabel 'CPU seconds per simulated second'
   set ylabel 'max particle position error over [0, T]'
   set autoscale fix
   set offsets graph 0.02, graph 0.12, graph 0.05, graph 0.05
-  plot for [k=1:words(schemes)] f using (strcol(1) eq p && strcol(2) eq word(schemes, k) ? positive($6) : NaN):(positive($5)):10:11 with xerrorbars lc k title word(schemes, k), \
+  # The bars' ends too are NaN outside the row's problem and scheme: autoscaling
+  # counts them, and another problem's bars would widen the axis.
+  plot for [k=1:words(schemes)] f using (mine(p, word(schemes, k)) ? positive($6) : NaN):(positive($5)):(mine(p, word(schemes, k)) ? $10 : NaN):(mine(p, word(schemes, k)) ? $11 : NaN) with xerrorbars lc k title word(schemes, k), \
        for [k=1:words(schemes)] sweepEnds(p) using (strcol(2) eq word(schemes, k) ? positive($6) : NaN):(positive($5)):(knob($3, $4)) with labels tc lt k font ',8' offset 0.6,0.4 left notitle
   unset offsets
   set autoscale
