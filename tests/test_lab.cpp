@@ -18,7 +18,7 @@
 #include "lab/parallel.h"
 #include "lab/scan.h"
 #include "particles/constraints/circular_wire.h"
-#include "csv_writer.h"
+#include "output/csv_writer.h"
 #include "lab/render.h"
 #include "lab/values.h"
 
@@ -302,7 +302,7 @@ TEST(Csv, CellsWithCommasAndQuotesAreQuotedAndReadBack) {
   const std::string dir = quickOptions("csv-quoting").outDir;
   std::filesystem::create_directories(dir);
   {
-    scenes::CsvWriter csv(dir + "/t.csv", "the CSV", {"solver", "n"});
+    output::CsvWriter csv(dir + "/t.csv", "the CSV", {"solver", "n"});
     csv << "plain CG, cold start" << 80L;
     csv.endRow();
     csv << "say \"hi\"" << 1L;
@@ -311,7 +311,7 @@ TEST(Csv, CellsWithCommasAndQuotesAreQuotedAndReadBack) {
   }
   EXPECT_EQ(fileText(dir + "/t.csv"), "solver,n\n\"plain CG, cold start\",80\n\"say \"\"hi\"\"\",1\n");
   for (const std::string text : {"plain", "a, b", "\"", "x \"y\", z", "", "line\nbreak"})
-    EXPECT_EQ(scenes::csvUnquote(scenes::csvField(text)), text) << text;
+    EXPECT_EQ(output::csvUnquote(output::csvField(text)), text) << text;
   writeValue(dir, "durations", "30, 60, 120");
   writeValue(dir, "quote", "a \"b\", c");
   EXPECT_EQ(readValues(dir).at("durations"), "30, 60, 120");

@@ -66,7 +66,7 @@ TEST(Certify, ALoneFailureOnOneMemberSetsTheCertifiedStep) {
   EXPECT_EQ(c->bands[1].failed, 0);
   EXPECT_GT(c->bands[3].failed, 0);
   EXPECT_LT(c->bands[3].failed, c->bands[3].points);
-  EXPECT_EQ(certifiedText(*c), scenes::formatGeneral(c->safeDt, 4));
+  EXPECT_EQ(certifiedText(*c), output::formatGeneral(c->safeDt, 4));
 }
 
 TEST(Certify, NothingSurvivingDownToTheFloorCertifiesNothing) {

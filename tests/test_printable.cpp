@@ -3,11 +3,11 @@
 // escaped; every other character, UTF-8 included, is kept.
 #include <gtest/gtest.h>
 
-#include "printable.h"
+#include "output/printable.h"
 
 namespace {
 
-using scenes::printable;
+using output::printable;
 
 TEST(Printable, ControlCharactersBecomeCEscapes) {
   EXPECT_EQ(printable("two\nlines\t\r\x1b[31m\x7f"), "two\\nlines\\t\\r\\x1b[31m\\x7f");

@@ -108,7 +108,7 @@ std::vector<Row> runCounted(CountedChain& c, Integrator& integrator, double dt, 
                             (std::string("particle-lab-runner-counts-") +
                              ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".csv"))
                                .string();
-  scenes::CsvWriter csv(path, "the test's CSV", cli::kDiagnosticsColumns);
+  output::CsvWriter csv(path, "the test's CSV", cli::kDiagnosticsColumns);
   cli::RunLoop loop(c.system, integrator, dt, {&csv, nullptr, 1}, 2.0);
   EXPECT_EQ(loop.start(), "");
   for (int k = 0; k < steps; ++k) {
@@ -252,7 +252,7 @@ TEST(RunnerCounts, DiagnosticsMeasureThePotentialOncePerMeasuredStep) {
             .string();
     auto integrator = makeIntegrator("rk4");
     {
-      scenes::CsvWriter csv(path, "the test's CSV", cli::kDiagnosticsColumns);
+      output::CsvWriter csv(path, "the test's CSV", cli::kDiagnosticsColumns);
       cli::RunLoop loop(system, *integrator, 0.01, {&csv, nullptr, 1, every}, 2.0);
       EXPECT_EQ(loop.start(), "");
       const int before = spring.potentials;

@@ -15,7 +15,7 @@
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
 #include "particles/integrator.h"
-#include "format_number.h"
+#include "output/format_number.h"
 #include "scene.h"
 #include "scenes/cloth.h"
 #include "scenes/hair.h"
@@ -501,10 +501,10 @@ TEST(HairScene, SeedZigzagsHangDownAndKeepTheirAngles) {
 }  // namespace
 
 TEST(Labels, CountsArePluralOnlyWhenNotOne) {
-  EXPECT_EQ(scenes::plural(1, "particle"), "1 particle");
-  EXPECT_EQ(scenes::plural(0, "particle"), "0 particles");
-  EXPECT_EQ(scenes::plural(24, "particle"), "24 particles");
-  EXPECT_EQ(scenes::plural(-1, "start"), "-1 starts");
-  EXPECT_EQ(scenes::plural(1, "index", "indices"), "1 index");
-  EXPECT_EQ(scenes::plural(3, "index", "indices"), "3 indices");
+  EXPECT_EQ(output::plural(1, "particle"), "1 particle");
+  EXPECT_EQ(output::plural(0, "particle"), "0 particles");
+  EXPECT_EQ(output::plural(24, "particle"), "24 particles");
+  EXPECT_EQ(output::plural(-1, "start"), "-1 starts");
+  EXPECT_EQ(output::plural(1, "index", "indices"), "1 index");
+  EXPECT_EQ(output::plural(3, "index", "indices"), "3 indices");
 }

@@ -8,13 +8,13 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "format_number.h"
-#include "printable.h"
+#include "output/format_number.h"
+#include "output/printable.h"
 #include "lab/advise.h"
 #include "options/option_checks.h"
 #include "options/scene_source.h"
 #include "particles/check.h"
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace cli {
 
@@ -57,7 +57,7 @@ void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) 
                     p.uncertified.c_str());
     else
       std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
-                    scan.integrator.c_str(), scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
+                    scan.integrator.c_str(), output::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
     std::cout << line;
   }
 }
@@ -83,25 +83,25 @@ int advise(const AdviseOptions& o) {
       std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
     else
       std::fprintf(stderr, "advise: %3.0f%% done (the scan, then %s of each pick)\n", 100.0 * fraction,
-                   scenes::plural(o.repeats, "timed repeat").c_str());
+                   output::plural(o.repeats, "timed repeat").c_str());
   };
   const lab::Advice advice = lab::advise([&] { return o.source.load(); }, settings);
   if (lab::interrupted() || !advice.complete) return 130;
   const lab::Survey& survey = advice.survey;
   const std::vector<lab::Pick>& picks = advice.picks;
 
-  std::cout << "scene " << scenes::printable(survey.scene) << ", " << scenes::plural(survey.particles, "particle") << ", size "
+  std::cout << "scene " << output::printable(survey.scene) << ", " << output::plural(survey.particles, "particle") << ", size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
             << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
   if (!survey.limit.empty()) {
     std::cout << "advise: " << survey.limit << "; the longest horizon it can certify: --horizon "
-              << scenes::formatNumber(survey.certifiableHorizon) << "\n";
+              << output::formatNumber(survey.certifiableHorizon) << "\n";
     return kCannotCertify;
   }
   printPicks(survey, picks);
   if (settings.certifyMembers > 0)
     std::cout << "certified margin: every dt (adaptive: tolerance) " << lab::general(100.0 * settings.certifyResolution)
-              << "% apart in it survives T on " << scenes::plural(settings.certifyMembers, "start")
+              << "% apart in it survives T on " << output::plural(settings.certifyMembers, "start")
               << " (adaptive: within E from the start as built); a pick is at most "
               << lab::general(settings.safeFraction) << " of its margin's top; "
               << (settings.certifyAll ? "every pick is certified" : "the cheapest pick and its ties are certified (--certify-all: every pick)")
@@ -117,7 +117,7 @@ int advise(const AdviseOptions& o) {
     if (p.tie) ties += (ties.empty() ? "" : ", ") + p.candidate.integrator;
   if (!ties.empty())
     std::cout << "advise: within the timing spread of " << picks[best].candidate.integrator << " (a tie, "
-              << scenes::plural(o.repeats, "interleaved repeat") << "): " << ties << "\n";
+              << output::plural(o.repeats, "interleaved repeat") << "): " << ties << "\n";
   std::cout << "advise: " << lab::pickArguments(picks[best].candidate) << "\n";
   return kSuccess;
 }

@@ -4,7 +4,7 @@
 
 #include "cli/command.h"
 #include "options/scene_source.h"
-#include "output_file.h"
+#include "output/output_file.h"
 #include "scene_file/scene_file.h"
 
 namespace cli {
@@ -19,10 +19,10 @@ int exportScene(const ExportOptions& o) {
   const std::string json = scenes::writeScene(o.source.load());
   if (o.output.empty()) {
     std::cout << json << std::flush;
-    if (!std::cout) scenes::throwWriteError("the standard output", "-");
+    if (!std::cout) output::throwWriteError("the standard output", "-");
     return kSuccess;
   }
-  scenes::OutputFile out(o.output, "--output");
+  output::OutputFile out(o.output, "--output");
   out.stream() << json;
   out.close();
   return kSuccess;

@@ -9,8 +9,8 @@
 #include "lab/experiments.h"
 #include "lab/render.h"
 #include "options/option_checks.h"
-#include "output_file.h"
-#include "printable.h"
+#include "output/output_file.h"
+#include "output/printable.h"
 #include "particles/check.h"
 
 namespace cli {
@@ -81,7 +81,7 @@ int experiment(const CLI::App* command, ExperimentOptions& options, const Contex
     const int code = run();
     if (code == 0) options.cells->writeManifest(command->get_name(), resultArguments(command));
     return code;
-  } catch (const scenes::WriteError&) {
+  } catch (const output::WriteError&) {
     throw;  // exit 4, not a bad option
   } catch (const std::runtime_error& e) {  // an output file that cannot be written
     throw UsageError(e.what());
@@ -196,7 +196,7 @@ Command addRenderReportCommand(CLI::App& app) {
             lab::installInterruptHandler();
             try {
               return lab::renderReport(*render);
-            } catch (const scenes::WriteError&) {
+            } catch (const output::WriteError&) {
               throw;
             } catch (const std::runtime_error& e) {
               throw UsageError(e.what());
@@ -231,7 +231,7 @@ Command addMergeCommand(CLI::App& app) {
                                std::to_string(enumerated) + " (made by a different version?)");
             if (code == 0)
               std::fprintf(stderr, "[%s] merged %zu cells from %zu shards into '%s'\n", set.experiment.c_str(),
-                           set.cellCount, set.shardNames.size(), scenes::printable(*out).c_str());
+                           set.cellCount, set.shardNames.size(), output::printable(*out).c_str());
             return code;
           }};
 }

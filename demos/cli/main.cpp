@@ -10,7 +10,7 @@
 
 #include "cli/command.h"
 #include "options/usage.h"
-#include "output_file.h"
+#include "output/output_file.h"
 #include "scene_file/json_node.h"
 
 namespace {
@@ -74,7 +74,7 @@ int runCommandLine(const std::vector<std::string>& given, const Context& context
       return fail(e.what());
     } catch (const std::invalid_argument& e) {
       return fail(e.what());
-    } catch (const scenes::WriteError& e) {
+    } catch (const output::WriteError& e) {
       return fail(e.what(), cli::kWriteFailed);
     } catch (const std::bad_alloc&) {
       return fail("out of memory (the scene or the run is too large for this machine)", cli::kBadInput);

@@ -11,12 +11,12 @@
 #include "lab/lab.h"
 #include "options/option_checks.h"
 #include "options/scene_source.h"
-#include "output_file.h"
+#include "output/output_file.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
-#include "printable.h"
-#include "format_number.h"
+#include "output/printable.h"
+#include "output/format_number.h"
 
 namespace cli {
 
@@ -43,15 +43,15 @@ struct RunOptions {
 };
 
 // A CSV file with its header written (numbers in their shortest exact form), or none when path is empty.
-std::unique_ptr<scenes::CsvWriter> openOutput(const std::string& path, const char* option,
+std::unique_ptr<output::CsvWriter> openOutput(const std::string& path, const char* option,
                                               const std::vector<std::string>& columns) {
   if (path.empty()) return nullptr;
-  return std::make_unique<scenes::CsvWriter>(path, option, columns);
+  return std::make_unique<output::CsvWriter>(path, option, columns);
 }
 
 // --csv and --trajectory, opened; both on standard output would interleave two tables.
 struct Outputs {
-  std::unique_ptr<scenes::CsvWriter> csv, trajectory;
+  std::unique_ptr<output::CsvWriter> csv, trajectory;
 };
 Outputs openOutputs(const RunOptions& o) {
   if (o.csvPath == "-" && o.trajectoryPath == "-")
@@ -77,12 +77,12 @@ std::unique_ptr<particles::Integrator> chosenIntegrator(const RunOptions& o, con
 void printSummary(const scenes::Scene& scene, const particles::Integrator& integrator, double dt, long long steps,
                   double seconds) {
   const particles::ParticleSystem& s = *scene.system;
-  std::cout << scenes::printable(scene.name) << " with " << integrator.name() << " at dt " << dt << ": "
-            << scenes::plural(steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
+  std::cout << output::printable(scene.name) << " with " << integrator.name() << " at dt " << dt << ": "
+            << output::plural(steps, "step") << " to t = " << s.time() << " in " << seconds << " s of simulation ("
             << (seconds > 0.0 ? steps / seconds : 0.0) << " steps/s); total energy " << s.totalEnergy()
             << ", max |C| " << s.maxConstraintError();
   if (s.tearing().on())
-    std::cout << ", " << scenes::plural(static_cast<long long>(s.brokenLinks().size()), "link") << " torn";
+    std::cout << ", " << output::plural(static_cast<long long>(s.brokenLinks().size()), "link") << " torn";
   std::cout << '\n';
 }
 
@@ -101,8 +101,8 @@ int run(const RunOptions& o) {
   // step boundary and the files are closed with complete rows.
   lab::installInterruptHandler();
   const Outputs out = openOutputs(o);
-  scenes::CsvWriter* const csv = out.csv.get();
-  scenes::CsvWriter* const trajectory = out.trajectory.get();
+  output::CsvWriter* const csv = out.csv.get();
+  output::CsvWriter* const trajectory = out.trajectory.get();
 
   particles::ParticleSystem& s = *scene.system;
   RunLoop loop(s, *integrator, dt, {csv, trajectory, o.every, o.diagnosticsEvery}, length);
@@ -161,7 +161,7 @@ void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& option
       sub->add_option("--tolerance", options->integratorSettings.dopri5.tolerance,
                       "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
                       "fixed-step integrators (default: the scene's, " +
-                          scenes::formatNumber(particles::IntegratorSettings{}.dopri5.tolerance) + ")")
+                          output::formatNumber(particles::IntegratorSettings{}.dopri5.tolerance) + ")")
           ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.xpbd.substeps,

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "csv_writer.h"
+#include "output/csv_writer.h"
 #include "particles/divergence.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
@@ -15,8 +15,8 @@
 namespace cli {
 
 struct RunOutputs {
-  scenes::CsvWriter* csv = nullptr;         // rows of kDiagnosticsColumns
-  scenes::CsvWriter* trajectory = nullptr;  // rows of kTrajectoryColumns
+  output::CsvWriter* csv = nullptr;         // rows of kDiagnosticsColumns
+  output::CsvWriter* trajectory = nullptr;  // rows of kTrajectoryColumns
   long long every = 1;                 // trajectory rows every `every` steps (and at step 0)
   // Diagnostics, the divergence check and the CSV row every this many steps
   // (and at step 0): a divergence is found up to diagnosticsEvery − 1 steps late.

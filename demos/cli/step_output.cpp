@@ -48,7 +48,7 @@ std::string nonFiniteDiagnostics(const Diagnostics& d) {
   return {};
 }
 
-void writeDiagnostics(scenes::CsvWriter& csv, const Diagnostics& d, double stepMicros) {
+void writeDiagnostics(output::CsvWriter& csv, const Diagnostics& d, double stepMicros) {
   const particles::StepStats& stats = d.stats;
   csv << d.step << d.time << d.kinetic << d.potential << d.kinetic + d.potential << d.constraintError
       << stats.cgIterations << stats.maxResidual << stats.solves << stats.forceEvaluations << stats.internalSteps
@@ -56,7 +56,7 @@ void writeDiagnostics(scenes::CsvWriter& csv, const Diagnostics& d, double stepM
   csv.endRow();
 }
 
-void writeTrajectory(scenes::CsvWriter& csv, long long step, const particles::ParticleSystem& s) {
+void writeTrajectory(output::CsvWriter& csv, long long step, const particles::ParticleSystem& s) {
   for (int i = 0; i < s.size(); ++i) {
     const Eigen::Vector2d x = s.position(i), v = s.velocity(i);
     csv << step << s.time() << i << x.x() << x.y() << v.x() << v.y();

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "csv_writer.h"
+#include "output/csv_writer.h"
 #include "scene.h"
 
 #include "particles/divergence.h"
@@ -64,10 +64,10 @@ Diagnostics measureDiagnostics(long long step, const particles::ParticleSystem& 
 std::string nonFiniteDiagnostics(const Diagnostics& d);
 
 // One diagnostics row; stepMicros is that step's wall time.
-void writeDiagnostics(scenes::CsvWriter& csv, const Diagnostics& d, double stepMicros);
+void writeDiagnostics(output::CsvWriter& csv, const Diagnostics& d, double stepMicros);
 
 inline const std::vector<std::string> kTrajectoryColumns = {"step", "t", "particle", "x", "y", "vx", "vy"};
 // One trajectory row per particle.
-void writeTrajectory(scenes::CsvWriter& csv, long long step, const particles::ParticleSystem& s);
+void writeTrajectory(output::CsvWriter& csv, long long step, const particles::ParticleSystem& s);
 
 }  // namespace cli

@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "app.h"
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace demo {
 
@@ -35,7 +35,7 @@ void drawPickRow(const lab::IntegratorSurvey& scan, const lab::Pick& p, bool bes
     ImGui::TextDisabled("none");
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("nothing within E on the scanned grid (%s)",
-                        scenes::plural(static_cast<long long>(scan.scanned.size()), "run").c_str());
+                        output::plural(static_cast<long long>(scan.scanned.size()), "run").c_str());
     return;
   }
   // An adaptive scheme's dt is its call interval; its tolerance sets the steps.
@@ -50,7 +50,7 @@ void drawPickRow(const lab::IntegratorSurvey& scan, const lab::Pick& p, bool bes
   ImGui::TextUnformatted((cell(p.cpuPerSimulatedSecond) + (p.tie ? " (tie)" : "")).c_str());
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("median of %s (interleaved across the picks), %s to %s%s",
-                      scenes::plural(repeats, "repeat").c_str(), cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str(),
+                      output::plural(repeats, "repeat").c_str(), cell(p.cpuMin).c_str(), cell(p.cpuMax).c_str(),
                       p.tie ? "; overlaps the cheapest's range: a tie" : "");
 }
 
@@ -121,7 +121,7 @@ void App::drawAdviceButtons(bool running) {
 void App::drawAdviceResult() {
   const lab::Advice& a = advice_.advice();
   ImGui::TextWrapped("%s, %s, T = %s s, E = %s; reference: %s%s", advice_.scene().label.c_str(),
-                     scenes::plural(a.survey.particles, "particle").c_str(), lab::general(advice_.request().horizon).c_str(),
+                     output::plural(a.survey.particles, "particle").c_str(), lab::general(advice_.request().horizon).c_str(),
                      lab::general(advice_.request().error).c_str(), a.survey.reference.c_str(),
                      adviceIsForThisScene() ? "" : " (another scene: advise again to apply)");
   drawPicksTable(a, advice_.request().repeats);

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "app.h"
-#include "output_file.h"
+#include "output/output_file.h"
 #include "scene_file/scene_file.h"
 
 namespace demo {
@@ -264,7 +264,7 @@ void App::deleteBuildSelection() {
 void App::saveBuild() {
   if (build_.file.empty()) throw std::invalid_argument("save: the file field is empty");
   const std::string text = documentFileText(build_.history.current());
-  scenes::OutputFile file(build_.file, "scene");  // throws, naming the file, when it cannot be written
+  output::OutputFile file(build_.file, "scene");  // throws, naming the file, when it cannot be written
   file.stream() << text;
   file.close();
   setStatus("saved " + build_.file + " (particle-lab run --scene-file " + build_.file + ")");

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "app.h"
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace demo {
 
@@ -95,7 +95,7 @@ std::vector<std::string> wrap(const std::string& text, float width, std::size_t 
   return lines;
 }
 
-using scenes::plural;
+using output::plural;
 }  // namespace
 
 // Why a pane shows what it shows, beyond its numbers: stopped, slow motion,

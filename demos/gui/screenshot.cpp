@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "output_file.h"
+#include "output/output_file.h"
 
 namespace demo {
 
@@ -18,12 +18,12 @@ std::string writeScreenshot(const std::string& path, int width, int height) {
   glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
 
   try {
-    scenes::OutputFile file(path, "--screenshot");
+    output::OutputFile file(path, "--screenshot");
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(png_jmpbuf(png))) {
       png_destroy_write_struct(&png, &info);
-      throw scenes::WriteError("libpng failed writing '" + path + "'");  // the partial file is removed
+      throw output::WriteError("libpng failed writing '" + path + "'");  // the partial file is removed
     }
     // libpng writes through the output file's stream (checked on close).
     const auto write = [](png_structp p, png_bytep data, png_size_t size) {
@@ -42,7 +42,7 @@ std::string writeScreenshot(const std::string& path, int width, int height) {
     png_destroy_write_struct(&png, &info);
     file.close();
     return "";
-  } catch (const std::exception& e) {  // cannot open (std::invalid_argument) or write (scenes::WriteError)
+  } catch (const std::exception& e) {  // cannot open (std::invalid_argument) or write (output::WriteError)
     return e.what();
   }
 }

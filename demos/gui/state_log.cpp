@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "output_file.h"
+#include "output/output_file.h"
 
 namespace demo {
 
@@ -106,11 +106,11 @@ void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, c
 std::string writeStateFile(const std::string& path, const std::vector<PaneState>& panes,
                            const StateExtras& extras, long long frames, bool paused) {
   try {
-    scenes::OutputFile file(path, "--log-state");
+    output::OutputFile file(path, "--log-state");
     writeStateRecords(file.stream(), panes, extras, frames, paused);
     file.close();
     return "";
-  } catch (const std::exception& e) {  // cannot open (std::invalid_argument) or write (scenes::WriteError)
+  } catch (const std::exception& e) {  // cannot open (std::invalid_argument) or write (output::WriteError)
     return e.what();
   }
 }

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "app.h"
-#include "format_number.h"
+#include "output/format_number.h"
 #include "particles/constants.h"
 
 namespace demo {
@@ -15,8 +15,8 @@ namespace {
 constexpr double kDegrees = 180.0 / particles::kPi;
 
 std::string describeWind(const particles::WindSettings& w) {
-  return "wind " + scenes::formatGeneral(w.speed, 3) + " m/s at " + scenes::formatGeneral(w.direction * kDegrees, 3) +
-         " deg, gusts +-" + scenes::formatGeneral(100.0 * w.gust, 3) + "%";
+  return "wind " + output::formatGeneral(w.speed, 3) + " m/s at " + output::formatGeneral(w.direction * kDegrees, 3) +
+         " deg, gusts +-" + output::formatGeneral(100.0 * w.gust, 3) + "%";
 }
 }  // namespace
 
@@ -54,7 +54,7 @@ void App::toggleTearing() {
   windTear_.tearOn = !windTear_.tearOn;
   applyWindTear();
   setStatus(windTear_.tearOn ? "tearing: springs stretched beyond " +
-                                   scenes::formatGeneral(100.0 * windTear_.tearStrain, 3) + "% of their rest length break"
+                                   output::formatGeneral(100.0 * windTear_.tearStrain, 3) + "% of their rest length break"
                              : "tearing off (torn springs stay torn until r)");
 }
 
@@ -90,7 +90,7 @@ void App::drawWindTearSection() {
   changed |= ImGui::Checkbox("tearing (t)", &windTear_.tearOn);
   changed |= slider("tear strain", windTear_.tearStrain, 0.02f, 2.0f, "%.3g",
                     "a spring stretched beyond this fraction of its rest length breaks", 1.0, logarithmic);
-  ImGui::TextDisabled("%s torn", scenes::plural(static_cast<long long>(panes_.front()->system().brokenLinks().size()),
+  ImGui::TextDisabled("%s torn", output::plural(static_cast<long long>(panes_.front()->system().brokenLinks().size()),
                                                 "link").c_str());
   if (changed) guarded([&] { applyWindTear(); });
 }

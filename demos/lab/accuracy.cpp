@@ -14,7 +14,7 @@
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
 #include "lab/results.h"
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace lab {
 
@@ -255,7 +255,7 @@ void writeRuns(const LabOptions& options, const AccuracyPlan& plan, const std::v
                           general(run.summary.size), run.summary.description});
     recordValue(options, "accuracy.reference_agreement." + problem.label, general(run.summary.agreement, 2));
     recordValue(options, "accuracy.horizon." + problem.label, general(problem.horizon));
-    std::vector<std::string> row{problem.label + " (" + scenes::plural(run.particles, "particle") +
+    std::vector<std::string> row{problem.label + " (" + output::plural(run.particles, "particle") +
                                  ", T = " + general(problem.horizon) + " s)"};
     for (const Sweep& sweep : run.sweeps) {
       writePointRows(csv, problem, sweep);

@@ -395,8 +395,8 @@ void certifyPick(Certifier& certifier, Pick& pick) {
   }
   pick.found = false;
   pick.uncertified = std::string("every ") + (adaptive ? "tolerance" : "dt") + " from the pick down to " +
-                     scenes::formatNumber(floor) + " has a failure within its margin (the lowest at " +
-                     scenes::formatNumber(failed) + ")";
+                     output::formatNumber(floor) + " has a failure within its margin (the lowest at " +
+                     output::formatNumber(failed) + ")";
 }
 
 // `repeats` timed runs of every found pick, interleaved (pick 1, 2, ..., 1, 2, ...) so that a load
@@ -512,8 +512,8 @@ int cheapest(const std::vector<Pick>& picks) {
 // Every number with the digits that read back to the same double, so that
 // the printed options rerun exactly the run that was measured.
 std::string pickArguments(const Candidate& c) {
-  std::string args = "--integrator " + c.integrator + " --dt " + scenes::formatNumber(c.dt);
-  if (c.tolerance > 0.0) args += " --tolerance " + scenes::formatNumber(c.tolerance);
+  std::string args = "--integrator " + c.integrator + " --dt " + output::formatNumber(c.dt);
+  if (c.tolerance > 0.0) args += " --tolerance " + output::formatNumber(c.tolerance);
   return args;
 }
 

@@ -79,7 +79,7 @@ Cells::Cells(ShardSpec spec, const std::string& dir) : mode_(Mode::Shard), spec_
     throw std::invalid_argument("cannot write the shard manifest file '" + manifest + "': not a regular file");
   std::filesystem::remove(manifest, error);
   if (error) throw std::invalid_argument("cannot remove the old shard manifest '" + manifest + "': " + error.message());
-  cellsFile_ = std::make_unique<scenes::OutputFile>(dir_ + "/" + kCellsFile, "the shard's cells");
+  cellsFile_ = std::make_unique<output::OutputFile>(dir_ + "/" + kCellsFile, "the shard's cells");
 }
 
 Cells::Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames)
@@ -135,7 +135,7 @@ void Cells::writeManifest(const std::string& experiment, const std::vector<std::
                          {"cells", next_},
                          {"owned", owned_},
                          {"cells_digest", hexDigest(cellsDigest_)}};
-  scenes::OutputFile out(dir_ + "/" + kManifestFile, "the shard manifest");
+  output::OutputFile out(dir_ + "/" + kManifestFile, "the shard manifest");
   out.stream() << manifest.dump(2) << '\n';
   out.close();
 }

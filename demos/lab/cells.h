@@ -28,7 +28,7 @@
 #include "lab/cell_json.h"
 #include "lab/lab.h"
 #include "lab/parallel.h"
-#include "output_file.h"
+#include "output/output_file.h"
 
 namespace lab {
 
@@ -104,7 +104,7 @@ class Cells {
   std::uint64_t cellsDigest_ = fnv1a("");  // of every byte written to the cells file
   std::map<std::size_t, Json> recorded_;
   std::vector<std::string> shardNames_;
-  std::unique_ptr<scenes::OutputFile> cellsFile_;
+  std::unique_ptr<output::OutputFile> cellsFile_;
   std::mutex mutex_;
 };
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace lab {
 
@@ -77,9 +77,9 @@ std::optional<Certificate> certifySafeStep(const MemberRun& run, double duration
 }
 
 std::string certifiedText(const Certificate& c) {
-  if (c.belowFloor()) return "< " + scenes::formatGeneral(c.lowest, 4);
-  if (c.aboveGrid()) return "≥ " + scenes::formatGeneral(c.safeDt, 4);
-  return scenes::formatGeneral(c.safeDt, 4);
+  if (c.belowFloor()) return "< " + output::formatGeneral(c.lowest, 4);
+  if (c.aboveGrid()) return "≥ " + output::formatGeneral(c.safeDt, 4);
+  return output::formatGeneral(c.safeDt, 4);
 }
 
 }  // namespace lab

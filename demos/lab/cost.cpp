@@ -11,7 +11,7 @@
 #include "lab/experiments.h"
 #include "lab/lab_scene.h"
 #include "lab/results.h"
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace lab {
 
@@ -192,7 +192,7 @@ void writeResults(const LabOptions& options, const CostPlan& plan, const Results
   for (const auto& [k, survey] : surveys) {
     const CostScene& scene = plan.scenes[k];
     writeSafeRows(safeCsv, scene, survey);
-    const std::string label = scene.label + " (" + scenes::plural(survey.particles, "particle") + ", T = " +
+    const std::string label = scene.label + " (" + output::plural(survey.particles, "particle") + ", T = " +
                               general(scene.horizon) + " s)";
     for (std::size_t b = 0; b < kBudgets.size(); ++b) {
       const double relative = kBudgets[b], budget = relative * survey.size;
@@ -209,7 +209,7 @@ void writeResults(const LabOptions& options, const CostPlan& plan, const Results
              "against the reference is within the budget (relative to the scene's size; absolute in brackets), "
              "at dt <= 0.8 x its safe boundary, certified: every dt (adaptive: tolerance) " +
                  general(100.0 * SurveySettings{}.certifyResolution) + "% apart in its margin survives on " +
-                 scenes::plural(SurveySettings{}.certifyMembers, "start") +
+                 output::plural(SurveySettings{}.certifyMembers, "start") +
                  "; CPU seconds per simulated second, median of repeats interleaved across the picks (min–max); a "
                  "tie: a pick whose range overlaps the cheapest's",
              {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s", "certified margin"}, table);

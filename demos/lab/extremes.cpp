@@ -11,7 +11,7 @@
 #include "lab/lab_scene.h"
 #include "lab/cells.h"
 #include "lab/results.h"
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace lab {
 
@@ -505,7 +505,7 @@ int runExtremes(const LabOptions& options) {
   const ScanSettings scan;
   Progress progress(options, "extremes",
                     static_cast<long>(integrators.size()) * plan.progressPerIntegrator + plan.progressFixed);
-  Context context{options, plan, integrators, scanned, scan, scenes::plural(scan.members, "start"), progress};
+  Context context{options, plan, integrators, scanned, scan, output::plural(scan.members, "start"), progress};
   for (const auto section : kSections) {
     section(context);
     if (interrupted()) return 130;

@@ -14,7 +14,7 @@
 #include "particles/threads.h"
 #include "lab/lab_scene.h"
 #include "lab/values.h"
-#include "output_file.h"
+#include "output/output_file.h"
 #include "particles/forces/gravity.h"
 
 namespace lab {
@@ -177,8 +177,8 @@ double median(std::vector<double> values) {
 
 Csv::Csv(const LabOptions& options, const std::string& name, const std::vector<std::string>& columns) {
   if (options.cells->writesOutputs())
-    writer_ = std::make_unique<scenes::CsvWriter>(options.outDir + "/" + name, "the CSV", columns,
-                                                  scenes::CsvFormat{10, true});
+    writer_ = std::make_unique<output::CsvWriter>(options.outDir + "/" + name, "the CSV", columns,
+                                                  output::CsvFormat{10, true});
 }
 
 Csv::~Csv() = default;
@@ -231,7 +231,7 @@ void writeTable(const LabOptions& options, const std::string& name, const std::s
   md << '\n';
   for (const auto& row : rows) line(row);
   const std::string path = options.outDir + "/" + name + ".md";
-  scenes::OutputFile out(path, "the table");
+  output::OutputFile out(path, "the table");
   out.stream() << md.str();
   out.close();
   std::cout << "\n" << md.str() << std::flush;

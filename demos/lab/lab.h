@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "csv_writer.h"
+#include "output/csv_writer.h"
 #include "scene.h"
 #include "lab/failure.h"
 #include "lab/scan.h"
-#include "format_number.h"
+#include "output/format_number.h"
 #include "particles/integrator.h"
 
 namespace lab {
@@ -114,7 +114,7 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 // Median of a non-empty sample.
 double median(std::vector<double> values);
 
-// An experiment's CSV file DIR/NAME (scenes::CsvWriter, numbers to 10
+// An experiment's CSV file DIR/NAME (output::CsvWriter, numbers to 10
 // significant digits), flushed after every row so an interrupted experiment
 // keeps what it measured. In a shard (cells.h) it writes nothing.
 class Csv {
@@ -128,7 +128,7 @@ class Csv {
   void endRow();
 
  private:
-  std::unique_ptr<scenes::CsvWriter> writer_;  // null in a shard
+  std::unique_ptr<output::CsvWriter> writer_;  // null in a shard
 };
 
 // Writes a Markdown table under its title in italics (also printed to stdout) to DIR/NAME.md.
@@ -140,8 +140,8 @@ void recordValue(const LabOptions& options, const std::string& key, const std::s
 
 // Numbers in tables and quoted values (format_number.h): `digits` after the
 // point, or `digits` significant digits (printf's %.*f and %.*g).
-inline std::string fixed(double value, int digits) { return scenes::formatFixed(value, digits); }
-inline std::string general(double value, int digits = 3) { return scenes::formatGeneral(value, digits); }
+inline std::string fixed(double value, int digits) { return output::formatFixed(value, digits); }
+inline std::string general(double value, int digits = 3) { return output::formatGeneral(value, digits); }
 
 // Progress on stderr: done/total, elapsed, estimated time left (at most every 2 s).
 // A merge (cells.h, replay) computes nothing and shows none.

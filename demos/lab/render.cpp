@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "lab/values.h"
-#include "output_file.h"
+#include "output/output_file.h"
 
 namespace lab {
 
@@ -116,7 +116,7 @@ int renderReport(const RenderOptions& options) {
                  firstDifferentLine(current, rendered));
     return 1;
   }
-  scenes::OutputFile out(options.outPath, "the rendered report");
+  output::OutputFile out(options.outPath, "the rendered report");
   out.stream() << rendered;
   out.close();
   return 0;

@@ -19,7 +19,7 @@
 #include "lab/lab.h"
 #include "lab/cells.h"
 #include "lab/results.h"
-#include "format_number.h"
+#include "output/format_number.h"
 
 namespace lab {
 
@@ -172,7 +172,7 @@ void printGrid(const StabilityPlan& plan) {
   std::cout << "grid: " << scan.grid.size() << " dt from " << general(scan.grid.front(), 3) << " to "
             << general(scan.grid.back(), 3) << " s, neighbours " << general(scan.grid[1] / scan.grid[0] - 1, 2)
             << " apart; scanned up to " << scan.beyond << "x the first failure; "
-            << scenes::plural(scan.members, "start") << " (perturbed by " << plan.perturbation
+            << output::plural(scan.members, "start") << " (perturbed by " << plan.perturbation
             << " of the scene size); T = " << general(plan.duration) << " s\n";
 }
 
@@ -612,13 +612,13 @@ void recordShifts(const LabOptions& options, const StabilityPlan& plan, const st
 }
 
 std::string conditionsText(const StabilityPlan& plan) {
-  return "T = " + general(plan.duration) + " s, " + scenes::plural(plan.scan.members, "start") + ", 5% dt grid";
+  return "T = " + general(plan.duration) + " s, " + output::plural(plan.scan.members, "start") + ", 5% dt grid";
 }
 
 // Table 2's conditions: the certification's grid, ensemble and decade.
 std::string certifiedConditionsText(const StabilityPlan& plan) {
   const CertifySettings& c = plan.certify;
-  return "T = " + general(plan.duration) + " s, " + scenes::plural(c.members, "start") + ", " +
+  return "T = " + general(plan.duration) + " s, " + output::plural(c.members, "start") + ", " +
          general(100.0 * c.resolution) + "% dt grid descending from " + general(c.top) + " s until " +
          general(c.decades) + (c.decades == 1.0 ? " decade" : " decades") +
          " below the smallest failure survives (floor T/" + std::to_string(plan.certifyMaxSteps) + ")";
@@ -630,7 +630,7 @@ void writeSafeStepTables(const LabOptions& options, const StabilityPlan& plan, c
   writeTable(options, "table1", "Table 1: longest chain (of " + std::to_string(plan.ladder.size()) + " lengths " +
                                     std::to_string(plan.ladder.front()) + "–" + std::to_string(plan.ladder.back()) +
                                     ") such that it and every shorter one survive, T = " + general(plan.duration) +
-                                    " s, " + scenes::plural(plan.ladderMembers, "start"),
+                                    " s, " + output::plural(plan.ladderMembers, "start"),
              {"integrator", "dt 0.2", "dt 0.1", "dt 0.05", "seed dt 0.2", "seed dt 0.1", "seed dt 0.05"}, table1);
   std::vector<std::string> table2Header{"integrator"};
   for (int length : plan.tableLengths) table2Header.push_back("cl " + std::to_string(length));
@@ -644,7 +644,7 @@ void writeSafeStepTables(const LabOptions& options, const StabilityPlan& plan, c
   const std::vector<double>& edges = plan.certify.bandEdges;
   for (std::size_t b = 0; b + 1 < edges.size(); ++b)
     certifiedHeader.push_back("failing in (" + general(edges[b]) + ", " + general(edges[b + 1]) + "] × dt");
-  certifiedHeader.push_back("coarse scan (" + scenes::plural(plan.scan.members, "start") + ", 5%)");
+  certifiedHeader.push_back("coarse scan (" + output::plural(plan.scan.members, "start") + ", 5%)");
   writeTable(options, "stability_certified",
              "Certified safe dt, the smallest failure, and the failing fraction of grid dts in bands above the "
              "certified dt, " + certifiedConditionsText(plan),
@@ -653,7 +653,7 @@ void writeSafeStepTables(const LabOptions& options, const StabilityPlan& plan, c
              {"integrator", "chain length", "safe dt", "first failure", "survives again at"}, boundaries);
   std::vector<std::string> header{"integrator", "chain length"};
   for (double d : plan.durations) header.push_back("T = " + general(d) + " s");
-  writeTable(options, "stability_vs_duration", "Safe dt against T (" + scenes::plural(plan.scan.members, "start") + ")",
+  writeTable(options, "stability_vs_duration", "Safe dt against T (" + output::plural(plan.scan.members, "start") + ")",
              header, vsDuration);
 }
 

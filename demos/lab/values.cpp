@@ -2,8 +2,8 @@
 
 #include <fstream>
 
-#include "csv_writer.h"
-#include "output_file.h"
+#include "output/csv_writer.h"
+#include "output/output_file.h"
 
 namespace lab {
 
@@ -14,7 +14,7 @@ std::map<std::string, std::string> readValues(const std::string& dir) {
   while (std::getline(in, row)) {
     const auto comma = row.find(',');
     if (comma != std::string::npos && row.substr(0, comma) != "key")  // not the header
-      values[row.substr(0, comma)] = scenes::csvUnquote(row.substr(comma + 1));
+      values[row.substr(0, comma)] = output::csvUnquote(row.substr(comma + 1));
   }
   return values;
 }
@@ -22,9 +22,9 @@ std::map<std::string, std::string> readValues(const std::string& dir) {
 namespace {
 
 void writeValues(const std::string& dir, const std::map<std::string, std::string>& values) {
-  scenes::OutputFile out(dir + "/values.csv", "the values");
+  output::OutputFile out(dir + "/values.csv", "the values");
   out.stream() << "key,value\n";
-  for (const auto& [k, v] : values) out.stream() << k << ',' << scenes::csvField(v) << '\n';
+  for (const auto& [k, v] : values) out.stream() << k << ',' << output::csvField(v) << '\n';
   out.close();
 }
 

@@ -1,6 +1,6 @@
 #include "options/scene_source.h"
 
-#include "printable.h"
+#include "output/printable.h"
 
 #include "join_names.h"
 #include "options/usage.h"
@@ -49,7 +49,7 @@ scenes::Scene SceneSource::load() const {
 }
 
 std::string SceneSource::describe() const {
-  return sceneFile.empty() ? "scene '" + scenes::printable(scene) + "'" : "scene file '" + scenes::printable(sceneFile) + "'";
+  return sceneFile.empty() ? "scene '" + output::printable(scene) + "'" : "scene file '" + output::printable(sceneFile) + "'";
 }
 
 }  // namespace options

@@ -2,14 +2,14 @@
 
 #include <cstdio>
 
-#include "printable.h"
+#include "output/printable.h"
 
 namespace options {
 
 std::string versionLine(const char* program) { return std::string(program) + " " + PARTICLES_VERSION; }
 
 void printErrorLine(const char* program, const std::string& message) {
-  std::fprintf(stderr, "%s: %s\n", program, scenes::printable(message).c_str());
+  std::fprintf(stderr, "%s: %s\n", program, output::printable(message).c_str());
 }
 
 }  // namespace options

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "format_number.h"
+#include "output/format_number.h"
 #include "scene.h"
 
 namespace scenes {
 
-inline std::string formatParam(double value) { return scenes::formatNumber(value); }
+inline std::string formatParam(double value) { return output::formatNumber(value); }
 std::string formatParam(int value);
 inline std::string formatParam(const std::string& value) { return value; }
 

@@ -1,10 +1,10 @@
-#include "format_number.h"
+#include "output/format_number.h"
 
 #include <charconv>
 
 #include <fmt/format.h>
 
-namespace scenes {
+namespace output {
 
 std::string formatNumber(double value) {
   char buffer[32];
@@ -22,4 +22,4 @@ std::string plural(long long count, const std::string& noun, const std::string& 
   return std::to_string(count) + " " + (count == 1 ? noun : pluralNoun.empty() ? noun + "s" : pluralNoun);
 }
 
-}  // namespace scenes
+}  // namespace output

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <string>
 
-namespace scenes {
+namespace output {
 
 namespace detail {
 // The code point of the invisible formatting character whose UTF-8 encoding
@@ -56,4 +56,4 @@ inline std::string printable(const std::string& text) {
   return out;
 }
 
-}  // namespace scenes
+}  // namespace output

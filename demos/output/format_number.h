@@ -4,7 +4,7 @@
 // particles::formatValue, particles/check.h.)
 #include <string>
 
-namespace scenes {
+namespace output {
 
 // The shortest text that reads back to the same double (std::to_chars'
 // shortest form: 0.1, 1e-05, 1e+10): parameter defaults, the runner's CSVs,
@@ -23,4 +23,4 @@ std::string formatFixed(double value, int digits);
 // `pluralNoun` for a noun that does not take an s (empty: noun + "s").
 std::string plural(long long count, const std::string& noun, const std::string& pluralNoun = "");
 
-}  // namespace scenes
+}  // namespace output

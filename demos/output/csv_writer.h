@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "output_file.h"
+#include "output/output_file.h"
 
-namespace scenes {
+namespace output {
 
 // A cell as RFC 4180 writes it: as it is, or in double quotes (inner quotes
 // doubled) when it holds a comma, a quote or a line break.
@@ -51,4 +51,4 @@ class CsvWriter {
   std::string row_;
 };
 
-}  // namespace scenes
+}  // namespace output

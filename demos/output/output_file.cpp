@@ -1,4 +1,4 @@
-#include "output_file.h"
+#include "output/output_file.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-namespace scenes {
+namespace output {
 
 void throwWriteError(const std::string& what, const std::string& path) {
   const int error = errno;
@@ -123,4 +123,4 @@ void OutputFile::close() {
   }
 }
 
-}  // namespace scenes
+}  // namespace output

@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace scenes {
+namespace output {
 
 // A write or close of an output file failed (a full disk, a device such as
 // /dev/full, an I/O error): what() is one line naming the file and the cause.
@@ -64,4 +64,4 @@ class OutputFile {
   std::ofstream out_;
 };
 
-}  // namespace scenes
+}  // namespace output

@@ -1,10 +1,10 @@
-#include "csv_writer.h"
+#include "output/csv_writer.h"
 
 #include <stdexcept>
 
-#include "format_number.h"
+#include "output/format_number.h"
 
-namespace scenes {
+namespace output {
 
 CsvWriter::CsvWriter(const std::string& path, const std::string& what, const std::vector<std::string>& columns,
                      CsvFormat format)
@@ -34,7 +34,7 @@ CsvWriter& CsvWriter::operator<<(const std::string& cell) { return append(csvFie
 
 // Numbers never need quoting.
 CsvWriter& CsvWriter::operator<<(double value) {
-  return append(format_.digits > 0 ? scenes::formatGeneral(value, format_.digits) : scenes::formatNumber(value));
+  return append(format_.digits > 0 ? output::formatGeneral(value, format_.digits) : output::formatNumber(value));
 }
 
 CsvWriter& CsvWriter::operator<<(long long value) { return append(std::to_string(value)); }
@@ -57,4 +57,4 @@ void CsvWriter::endRow() {
   cell_ = 0;
 }
 
-}  // namespace scenes
+}  // namespace output
