@@ -1,23 +1,25 @@
 #!/usr/bin/env bash
-# Functions longer than a line threshold (clang-tidy's readability-function-size,
-# LineThreshold: the body's lines, blank and comment lines included) in the .cpp
-# files of the given directories, each compiled as the build directory's
-# compile_commands.json says. Prints every offender as
+# Functions longer than a line threshold in the .cpp files of the given
+# directories. A function's length is the lines of its body after the line
+# that opens it, down to and including its closing brace, blank and comment
+# lines included (clang-tidy's readability-function-size LineThreshold counts
+# the same: over the laboratory, the runner and the demo, both list the same
+# functions with the same counts at thresholds 20 and 40). Universal Ctags
+# finds each function definition (its name's line and its closing brace's
+# line; a lambda counts within its function); the body opens at the first "{"
+# from the name's line on. Prints every offender as
 #   path:line: function 'name': N lines (threshold T)
 # and exits 1 if there is one, 0 if none, 2 on bad use.
-#   bash scripts/check-function-size.sh [--build DIR] [--lines N] [--exclude FILE]... DIR...
-# (defaults: --build build, --lines 60; --exclude leaves out one file, by its
-# path as given or its name, and may be repeated; CLANG_TIDY names the program,
-# default clang-tidy; JOBS clang-tidy processes at once, default 2).
+#   bash scripts/check-function-size.sh [--lines N] [--exclude FILE]... DIR...
+# (default --lines 60; --exclude leaves out one file, by its path as given or
+# its name, and may be repeated; CTAGS names the program, default ctags).
 set -euo pipefail
-usage() { echo "usage: check-function-size.sh [--build DIR] [--lines N] [--exclude FILE]... DIR..." >&2; exit 2; }
-build=build
+usage() { echo "usage: check-function-size.sh [--lines N] [--exclude FILE]... DIR..." >&2; exit 2; }
 lines=60
 excludes=()
 dirs=()
 while (($#)); do
   case "$1" in
-    --build) (($# >= 2)) || usage; build=$2; shift 2 ;;
     --lines) (($# >= 2)) || usage; lines=$2; shift 2 ;;
     --exclude) (($# >= 2)) || usage; excludes+=("$2"); shift 2 ;;
     -*) usage ;;
@@ -26,10 +28,9 @@ while (($#)); do
 done
 ((${#dirs[@]})) || usage
 [[ "$lines" =~ ^[1-9][0-9]*$ ]] || { echo "check-function-size: --lines must be a positive integer, got '$lines'" >&2; exit 2; }
-tidy=${CLANG_TIDY:-clang-tidy}
-command -v "$tidy" >/dev/null || { echo "check-function-size: $tidy not found" >&2; exit 2; }
-[ -f "$build/compile_commands.json" ] ||
-  { echo "check-function-size: no $build/compile_commands.json (configure with CMAKE_EXPORT_COMPILE_COMMANDS)" >&2; exit 2; }
+ctags=${CTAGS:-ctags}
+"$ctags" --version 2>/dev/null | grep -q "Universal Ctags" ||
+  { echo "check-function-size: $ctags is not Universal Ctags (Debian: universal-ctags)" >&2; exit 2; }
 
 excluded() {
   local file=$1 skip
@@ -48,32 +49,23 @@ for dir in "${dirs[@]}"; do
 done
 ((${#files[@]})) || { echo "check-function-size: no .cpp files in ${dirs[*]}" >&2; exit 2; }
 
-config="{CheckOptions: [{key: readability-function-size.LineThreshold, value: $lines}]}"
-# One clang-tidy per file, each into its own file so that parallel runs do not
-# interleave; it reports an offender as a warning naming the function, then a
-# note with its line count, joined here into one line.
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-export tidy build config out
-printf '%s\0' "${files[@]}" |
-  xargs -0 -n 1 -P "${JOBS:-2}" bash -c \
-    '"$tidy" -p "$build" --quiet --checks="-*,readability-function-size" --config="$config" "$0" \
-       > "$out/$(printf %s "$0" | tr / _).txt" 2>/dev/null || printf "%s\n" "$0" >> "$out/failed"'
-if [ -f "$out/failed" ]; then
-  sed 's/^/check-function-size: clang-tidy failed on /' "$out/failed" >&2
-  exit 2
-fi
-report=$(cat "$out"/*.txt | awk -v threshold="$lines" '
-    /warning: function .* exceeds recommended size\/complexity thresholds/ {
-      split($0, at, ":"); where = at[1] ":" at[2]
-      name = $0; sub(/^[^\x27]*\x27/, "", name); sub(/\x27.*$/, "", name)
-      next
+# One row per function definition: file|name's line|closing brace's line|name.
+tags=$("$ctags" -x --languages=C++ --kinds-C++=f --fields=+ne --_xformat='%F|%n|%e|%N' "${files[@]}") ||
+  { echo "check-function-size: $ctags failed" >&2; exit 2; }
+report=$(printf '%s\n' "$tags" | awk -F'|' -v threshold="$lines" '
+  NF >= 4 && $3 != "" && $4 !~ /^__anon/ {  # a lambda counts within its function
+    file = $1; start = $2 + 0; end = $3 + 0; name = $4
+    if (!(file in loaded)) {
+      n = 0
+      while ((getline line < file) > 0) text[file, ++n] = line
+      close(file)
+      loaded[file] = 1
     }
-    where != "" && / note: [0-9]+ lines including whitespace and comments/ {
-      count = $0; sub(/^.* note: /, "", count); sub(/ lines.*$/, "", count)
-      printf "%s: function \x27%s\x27: %d lines (threshold %d)\n", where, name, count, threshold
-      where = ""
-    }' | sort -t: -k1,1 -k2,2n)
+    open = start
+    while (open < end && index(text[file, open], "{") == 0) open++
+    if (end - open > threshold)
+      printf "%s:%d: function \x27%s\x27: %d lines (threshold %d)\n", file, start, name, end - open, threshold
+  }' | sort -t: -k1,1 -k2,2n)
 if [ -n "$report" ]; then
   echo "$report"
   echo "check-function-size: $(echo "$report" | wc -l) function(s) over $lines lines in ${#files[@]} file(s)"
