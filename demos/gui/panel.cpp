@@ -55,11 +55,14 @@ bool choose(const char* label, const std::vector<Labelled<Value>>& table, Value&
   return changed;
 }
 
-void plot(const char* label, const std::vector<float>& values, float height) {
+// A trace against frames (newest at the right), labelled with its quantity and
+// unit; the overlay gives the newest value and the y axis's range, which is
+// the trace's own minimum to maximum.
+void plot(const char* label, const char* unit, const std::vector<float>& values, float height) {
   if (values.empty()) return;
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-  char overlay[64];
-  std::snprintf(overlay, sizeof overlay, "%.4g", values.back());
+  char overlay[96];
+  std::snprintf(overlay, sizeof overlay, "%.4g %s\ny %.3g to %.3g", values.back(), unit, *lo, *hi);
   ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay, *lo,
                    *hi > *lo ? *hi : *lo + 1e-12f, ImVec2(0.0f, height));
 }
@@ -261,11 +264,11 @@ void App::drawPlotsSection() {
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     ImGui::PushID(static_cast<int>(k));
     if (panes_.size() > 1) ImGui::TextDisabled("%s", panes_[k]->integratorName());
-    plot("energy", panes_[k]->trace().energy(), height);
-    plot("max |C|", panes_[k]->trace().constraintError(), height);
+    plot("energy", "J", panes_[k]->trace().energy(), height);
+    plot("max |C|", "m", panes_[k]->trace().constraintError(), height);
     ImGui::PopID();
   }
-  ImGui::TextDisabled("last %d frames", Trace::capacity);
+  ImGui::TextDisabled("x: the last %d frames, newest at the right", Trace::capacity);
 }
 
 // --- constraint solver and mouse spring ---------------------------------------
