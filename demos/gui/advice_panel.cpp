@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "app.h"
+#include "panel_rows.h"
 #include "output/format_number.h"
 
 namespace demo {
@@ -102,12 +103,12 @@ void App::drawAdviceButtons(bool running) {
   if (ImGui::Button("Advise")) guarded([&] { startAdvice(); });
   ImGui::EndDisabled();
   recordWidget("advise");
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("Cancel"));
   ImGui::BeginDisabled(!running || advice_.cancelling());
   if (ImGui::Button("Cancel")) advice_.cancel();
   ImGui::EndDisabled();
   recordWidget("advise-cancel");
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("Apply"));
   const bool applicable = advice_.state() == AdviceState::Done && advice_.advice().best >= 0 && adviceIsForThisScene();
   ImGui::BeginDisabled(!applicable);
   if (ImGui::Button("Apply")) guarded([&] { applyAdvice(); });

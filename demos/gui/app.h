@@ -263,6 +263,8 @@ class App {
   long long frame_ = 0;
   // Wall times of the last frame's drawing, GL work included: the scene, and
   // the text and panel (ImGui) on top.
+  // The drawing's time, measured on one frame in drawTimingPeriod (App::draw).
+  static constexpr int drawTimingPeriod = 30;
   double sceneDrawMs_ = 0.0, overlayDrawMs_ = 0.0;
   std::vector<Renderer::FaceFill> paneFaceFill_;  // each pane's shaded faces in the last frame
   std::vector<Overlay> overlays_;  // the text and controls drawn in the last frame

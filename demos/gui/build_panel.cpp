@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "app.h"
+#include "panel_rows.h"
 
 namespace demo {
 
@@ -34,7 +35,7 @@ void App::drawBuildSection() {
     if (ImGui::Button("Build mode (e)")) guarded([&] { enterBuildMode(false); });
     recordWidget("build");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("edit the scene as it starts: add, move and delete objects, save it");
-    ImGui::SameLine();
+    sameLineIfFits(buttonWidth("from the state now"));
     if (ImGui::Button("from the state now")) guarded([&] { enterBuildMode(true); });
     recordWidget("build-now");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("edit the scene as it is now: positions and velocities at this time");
@@ -111,14 +112,14 @@ void App::drawBuildHistory() {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && history.canUndo())
     ImGui::SetTooltip("undo %s", history.nextUndo().c_str());
   ImGui::EndDisabled();
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("Redo (y)"));
   ImGui::BeginDisabled(!history.canRedo());
   if (ImGui::Button("Redo (y)")) guarded([&] { redoBuild(); });
   recordWidget("build-redo");
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && history.canRedo())
     ImGui::SetTooltip("redo %s", history.nextRedo().c_str());
   ImGui::EndDisabled();
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("New (N)"));
   if (ImGui::Button("New (N)")) guarded([&] { newBuild(); });
   recordWidget("build-new");
   ImGui::TextDisabled("%zu of %zu states", history.position() + 1, history.size());
@@ -131,7 +132,7 @@ void App::drawBuildFile() {
   recordWidget("build-file");
   if (ImGui::Button("Save (s)")) guarded([&] { saveBuild(); });
   recordWidget("build-save");
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("Open (o)"));
   if (ImGui::Button("Open (o)")) guarded([&] { openBuild(); });
   recordWidget("build-open");
 }
@@ -147,7 +148,7 @@ void App::drawBuildSelection() {
   }
   if (!refersToObject(document, *selected)) return;
   ImGui::Text("%s", describe(*selected, objectAt(document, *selected)).c_str());
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("delete"));
   if (ImGui::SmallButton("delete")) guarded([&] { deleteBuildSelection(); });
   recordWidget("build-delete");
   const Json& object = objectAt(document, *selected);

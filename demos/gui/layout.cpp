@@ -12,14 +12,19 @@ PixelRect inset(const PixelRect& r, int by) {
 }
 }  // namespace
 
+int wrappedLines(int lines, int naturalWidth, int width) {
+  if (width >= naturalWidth) return lines;
+  return (lines * naturalWidth + std::max(width, 1) - 1) / std::max(width, 1);
+}
+
 Layout computeLayout(int windowWidth, int windowHeight, bool panelShown, int paneCount, const LayoutMetrics& m) {
   Layout layout;
   const int panel = panelShown ? std::min(m.panelWidth, windowWidth / 2) : 0;
   const int width = windowWidth - panel;
   layout.panel = {width, 0, panel, windowHeight};
   const bool compare = paneCount > 1;
-  const int top = barHeight(m.topLines, m);
-  const int bottom = barHeight(compare ? m.compareBottomLines : m.bottomLines, m);
+  const int top = barHeight(wrappedLines(m.topLines, m.barWidth, width), m);
+  const int bottom = barHeight(wrappedLines(compare ? m.compareBottomLines : m.bottomLines, m.barWidth, width), m);
   layout.topBar = {0, 0, width, top};
   layout.bottomBar = {0, std::max(windowHeight - bottom, top), width, bottom};
   const PixelRect area{0, top, width, std::max(layout.bottomBar.y - top, 1)};
@@ -28,7 +33,7 @@ Layout computeLayout(int windowWidth, int windowHeight, bool panelShown, int pan
     PixelRect header{pane.x, pane.y, pane.width, 0};
     PixelRect world = pane;
     if (compare) {
-      header.height = std::min(barHeight(m.paneHeaderLines, m), pane.height / 2);
+      header.height = std::min(barHeight(wrappedLines(m.paneHeaderLines, m.paneHeaderWidth, pane.width), m), pane.height / 2);
       world.y += header.height;
       world.height -= header.height;
     }

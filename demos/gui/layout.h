@@ -11,13 +11,17 @@
 
 namespace demo {
 
+// The bars' lines are those they hold at their natural width; a narrower
+// bar holds proportionally more, since its text wraps (wrappedLines).
 struct LayoutMetrics {
   int lineHeight = 18;       // pixels per line of HUD text (15 px font)
   int padding = 4;           // around the text of a bar
-  int topLines = 2;          // scene · summary; hint or message (a long message takes both)
+  int topLines = 2;          // scene · time · summary; hint or message (a long message takes both)
   int bottomLines = 4;       // single pane: three HUD lines and the keys / legend
   int compareBottomLines = 1;  // compare mode: the keys / legend
+  int barWidth = 840;        // the top and bottom bars' natural width
   int paneHeaderLines = 3;   // compare mode: each pane's integrator, numbers, state
+  int paneHeaderWidth = 420;  // and its natural width
   int gutter = 12;           // around each pane's world, for the edge indicators
   int panelWidth = 340;      // the control panel, when shown (at most half the window)
 };
@@ -28,6 +32,9 @@ struct Layout {
   std::vector<PixelRect> headers;      // compare mode: each pane's text strip (empty rectangles otherwise)
   std::vector<PixelRect> worlds;       // where each pane draws the world
 };
+
+// Lines a bar of `width` pixels needs for text that takes `lines` at `naturalWidth`.
+int wrappedLines(int lines, int naturalWidth, int width);
 
 Layout computeLayout(int windowWidth, int windowHeight, bool panelShown, int paneCount,
                      const LayoutMetrics& metrics = {});

@@ -48,51 +48,94 @@ struct Piece {
 };
 using Line = std::vector<Piece>;
 
-// Fills the bar and writes its lines (clipped to it): the bar is the
-// overlay's rectangle, its text the overlay's text.
+float textWidth(const std::string& text) { return ImGui::CalcTextSize(text.c_str()).x; }
+float lineWidth(const Line& line) {
+  float width = 0.0f;
+  for (const Piece& piece : line) width += textWidth(piece.text);
+  return width;
+}
+
+void append(Line& line, const std::string& text, ImU32 colour) {
+  if (!line.empty() && line.back().colour == colour) line.back().text += text;
+  else line.push_back({text, colour});
+}
+
+// A line broken at spaces into lines no wider than `width`, each piece
+// keeping its colour; a word wider than the whole width has a line to itself.
+std::vector<Line> wrapLine(const Line& line, float width) {
+  std::vector<Line> lines(1);
+  float x = 0.0f;
+  for (const Piece& piece : line) {
+    const std::string& t = piece.text;
+    std::size_t start = 0;
+    while (start < t.size()) {
+      const std::size_t word = t.find_first_not_of(' ', start);
+      if (word == std::string::npos) break;  // trailing spaces end a piece
+      std::size_t end = t.find(' ', word);
+      if (end == std::string::npos) end = t.size();
+      std::string token = t.substr(start, end - start);  // the spaces before the word, then the word
+      if (x > 0.0f && x + textWidth(token) > width) {
+        lines.emplace_back();
+        token = t.substr(word, end - word);
+        x = 0.0f;
+      }
+      append(lines.back(), token, piece.colour);
+      x += textWidth(token);
+      start = end;
+    }
+  }
+  return lines;
+}
+
+// The line with " ..." at its end, less as many words as it takes to fit `width`.
+Line shortened(Line line, float width) {
+  const std::string more = " ...";
+  while (!line.empty() && lineWidth(line) + textWidth(more) > width) {
+    std::string& last = line.back().text;
+    const std::size_t space = last.find_last_of(' ');
+    if (space == std::string::npos || last.find_first_not_of(' ') == std::string::npos) line.pop_back();
+    else last.erase(space);
+  }
+  append(line, more, line.empty() ? dimColour : line.back().colour);
+  return line;
+}
+
+// Fills the bar and writes its lines, wrapped to its width: the bar is the
+// overlay's rectangle, its text the overlay's text. Lines beyond what the
+// bar holds are left out, the last one kept ending in "...", and the overlay
+// says so.
 Overlay drawBar(const char* kind, const PixelRect& r, const std::vector<Line>& lines, int lineHeight, int padding) {
+  constexpr float margin = 8.0f;
+  const float width = r.width - 2.0f * margin;
+  std::vector<Line> wrapped;
+  for (const Line& line : lines)
+    for (Line& part : wrapLine(line, width)) wrapped.push_back(std::move(part));
+  const std::size_t holds = static_cast<std::size_t>(std::max((r.height - 2 * padding) / lineHeight, 1));
+  Overlay overlay{kind, r, ""};
+  if (wrapped.size() > holds) {
+    wrapped.resize(holds);
+    wrapped.back() = shortened(wrapped.back(), width);
+    overlay.shortened = true;
+  }
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const ImVec2 a(r.x, r.y), b(r.x + r.width, r.y + r.height);
   draw->AddRectFilled(a, b, barColour);
   draw->PushClipRect(a, b, true);
-  Overlay overlay{kind, r, ""};
   float y = r.y + padding;
-  for (const Line& line : lines) {
-    float x = r.x + 8.0f;
+  for (const Line& line : wrapped) {
+    float x = r.x + margin;
     for (const Piece& piece : line) {
       draw->AddText(ImVec2(x, y), piece.colour, piece.text.c_str());
-      x += ImGui::CalcTextSize(piece.text.c_str()).x;
+      x += textWidth(piece.text);
       overlay.text += piece.text;
     }
+    overlay.textWidth = std::max(overlay.textWidth, static_cast<int>(std::ceil(x - r.x + margin)));
     overlay.text += "\n";
     y += lineHeight;
   }
+  overlay.textHeight = static_cast<int>(wrapped.size()) * lineHeight + 2 * padding;
   draw->PopClipRect();
   return overlay;
-}
-
-// Breaks a long message into lines that fit `width` pixels, at spaces; the
-// last line allowed ends in "..." when the message goes on.
-std::vector<std::string> wrap(const std::string& text, float width, std::size_t maxLines) {
-  std::vector<std::string> lines(1);
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find(' ', start);
-    if (end == std::string::npos) end = text.size();
-    const std::string word = text.substr(start, end - start);
-    const std::string candidate = lines.back().empty() ? word : lines.back() + " " + word;
-    if (!lines.back().empty() && ImGui::CalcTextSize(candidate.c_str()).x > width) {
-      if (lines.size() == maxLines) {
-        lines.back() += " ...";
-        return lines;
-      }
-      lines.push_back(word);
-    } else {
-      lines.back() = candidate;
-    }
-    start = end + 1;
-  }
-  return lines;
 }
 
 using output::plural;
@@ -144,11 +187,14 @@ void App::drawTopBar() {
         return nullptr;
       }())
     summary = info->summary;
-  Line title{{scene_.label, titleColour}, {"  " + summary, dimColour}};
+  // The title line: the scene, its time, then its summary, which is what a
+  // narrow window shortens.
+  Line title{{scene_.label, titleColour}};
   if (panes_.size() == 1)
-    title.push_back({format("     t = {:.2f} s{}", first.timeReached(), paused_ ? "   [paused]" : ""), colour(palette::hudText)});
+    title.push_back({format("   t = {:.2f} s{}", first.timeReached(), paused_ ? "   [paused]" : ""), colour(palette::hudText)});
   else
-    title.push_back({paused_ ? "     [paused]" : "     " + realTimeReadout(), colour(palette::hudText)});
+    title.push_back({paused_ ? "   [paused]" : "   " + realTimeReadout(), colour(palette::hudText)});
+  title.push_back({"   " + summary, dimColour});
 
   // The message line: an error or status first, then what the single pane's
   // state needs said, then the scene's hint (for its first seconds), then
@@ -178,10 +224,14 @@ void App::drawTopBar() {
   } else if (!grabbedOnce_) {
     message = "drag any particle with the left mouse button; h lists the keys";
   }
+  // A message too long for the lines below the title takes the title's line too.
+  const float width = l.topBar.width - 16.0f;
+  const std::size_t holds = static_cast<std::size_t>((l.topBar.height - 2 * m.padding) / m.lineHeight);
   std::vector<Line> lines;
-  const std::vector<std::string> wrapped = wrap(message, l.topBar.width - 16.0f, 2);
-  if (wrapped.size() < 2) lines.push_back(title);
-  for (const std::string& w : wrapped) lines.push_back({{w, messageColour}});
+  const std::vector<Line> titleLines = wrapLine(title, width);
+  if (message.empty() || wrapLine({{message, messageColour}}, width).size() < holds)
+    lines.push_back(titleLines.size() > 1 ? shortened(titleLines.front(), width) : titleLines.front());
+  if (!message.empty()) lines.push_back({{message, messageColour}});
   overlays_.push_back(drawBar("top-bar", l.topBar, lines, m.lineHeight, m.padding));
 }
 

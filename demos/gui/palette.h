@@ -1,6 +1,8 @@
 #pragma once
 // The demo's colours, in one place: the renderer draws with them and the
 // screenshot tests look for them.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -13,7 +15,8 @@ struct Rgb {
 namespace palette {
 constexpr Rgb background{24, 27, 33};
 constexpr Rgb paneBorder{70, 76, 90};
-constexpr Rgb wall{58, 66, 82};
+constexpr Rgb wall{84, 96, 122};          // a collider's body
+constexpr Rgb wallOutline{176, 190, 216};  // and its outline, so that a thin one stands out
 constexpr Rgb particle{236, 239, 244};
 constexpr Rgb pinnedParticle{255, 96, 84};
 constexpr Rgb grabbedParticle{120, 235, 140};
@@ -22,16 +25,41 @@ constexpr Rgb clothFront{62, 104, 160};  // a surface's faces (the cloth), at th
 constexpr Rgb clothBack{150, 84, 96};    // a face turned over (negative signed area): a fold
 constexpr Rgb mouseSpring{120, 235, 140};
 constexpr Rgb constraint{232, 178, 62};
-constexpr Rgb constraintForceArrow{255, 214, 0};  // Jᵀλ, which is no force object's
+constexpr Rgb constraintLoaded{255, 72, 48};  // the constraint carrying the pane's largest force
+constexpr Rgb stretched{255, 156, 56};       // a spring or face at +strainFullScale
+constexpr Rgb compressed{140, 232, 255};     // and at −strainFullScale
+constexpr Rgb constraintForceArrow{255, 96, 226};  // Jᵀλ, which is no force object's
 constexpr Rgb otherForceArrow{200, 200, 200};
 constexpr Rgb divergenceText{255, 92, 150};
 constexpr Rgb hudText{235, 235, 240};
 constexpr Rgb buildSelection{90, 230, 255};  // build mode: the selected object's outline
 constexpr Rgb buildGesture{255, 236, 140};   // build mode: the gesture being drawn, the particle it would snap to
+
+// The stress colour map. A spring's strain (length over rest length, less 1)
+// or a face's (area over rest area, less 1) moves its colour from the rest
+// colour toward `stretched` or `compressed`, all the way at 10%.
+constexpr double strainFullScale = 0.1;
+
+inline Rgb mix(Rgb a, Rgb b, double t) {
+  t = std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 1.0;
+  auto channel = [t](std::uint8_t x, std::uint8_t y) {
+    return static_cast<std::uint8_t>(std::lround(x + t * (static_cast<double>(y) - x)));
+  };
+  return {channel(a.r, b.r), channel(a.g, b.g), channel(a.b, b.b)};
+}
+
+inline Rgb strainColour(Rgb rest, double strain) {
+  return strain >= 0.0 ? mix(rest, stretched, strain / strainFullScale) : mix(rest, compressed, -strain / strainFullScale);
+}
+
+// A constraint's colour from the force it applies over the largest in its
+// pane (0…1): its kind's colour, turning red where it is loaded most.
+inline Rgb constraintColour(Rgb kind, double relativeForce) { return mix(kind, constraintLoaded, relativeForce); }
 }  // namespace palette
 
-// Arrow colour of each force type ("f"), by Force::type(); a type not listed
-// draws in palette::otherForceArrow.
+// Arrow colour of each force type ("f"), by Force::type(), and of the
+// constraint force Jᵀλ ("constraint"); a type not listed draws in
+// palette::otherForceArrow.
 struct ForceColour {
   const char* type;
   Rgb colour;
@@ -43,7 +71,25 @@ constexpr ForceColour forceArrowColours[] = {
     {"drag", {160, 160, 160}},
     {"mouse-spring", {120, 235, 140}},
     {"wind", {120, 255, 230}},
+    {"constraint", palette::constraintForceArrow},
 };
+
+// Line colour of each kind of force and constraint that draws, by type();
+// a kind not listed draws in palette::spring.
+constexpr ForceColour sketchColours[] = {
+    {"spring", palette::spring},
+    {"angular-spring", {196, 128, 255}},
+    {"mouse-spring", palette::mouseSpring},
+    {"rod", palette::constraint},
+    {"circular-wire", {176, 214, 92}},
+    {"line", {196, 200, 214}},
+};
+
+inline Rgb sketchColour(const char* type) {
+  for (const ForceColour& entry : sketchColours)
+    if (std::strcmp(entry.type, type) == 0) return entry.colour;
+  return palette::spring;
+}
 
 inline Rgb forceArrowColour(const char* type) {
   for (const ForceColour& entry : forceArrowColours)

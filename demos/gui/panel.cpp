@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "app.h"
+#include "panel_rows.h"
 #include "particles/constraint_solver.h"
 #include "particles/threads.h"
 
@@ -168,13 +169,14 @@ void App::drawSceneParams() {
 void App::drawRunButtons() {
   if (ImGui::Button("Reset (r)")) guarded([&] { resetScene(); });
   recordWidget("reset");
-  ImGui::SameLine();
-  if (ImGui::Button(paused_ ? "Run (space)" : "Pause (space)")) paused_ = !paused_;
+  const char* pause = paused_ ? "Run (space)" : "Pause (space)";
+  sameLineIfFits(buttonWidth(pause));
+  if (ImGui::Button(pause)) paused_ = !paused_;
   recordWidget("pause");
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("Step (.)"));
   if (ImGui::Button("Step (.)")) keyboard('.');
   recordWidget("step");
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("Rewind (b)"));
   if (ImGui::Button("Rewind (b)")) rewind();
   recordWidget("rewind");
 }
@@ -240,7 +242,7 @@ void App::drawIntegratorSettings() {
 // dt scaling, speed, lockstep and the number of compare panes.
 void App::drawTimeControls() {
   if (ImGui::Button("dt x2 (+)")) guarded([&] { scaleDt(2.0); });
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("dt /2 (-)"));
   if (ImGui::Button("dt /2 (-)")) guarded([&] { scaleDt(0.5); });
   float speed = static_cast<float>(speed_);
   if (ImGui::SliderFloat("speed", &speed, 0.125f, 8.0f, "%.3gx", ImGuiSliderFlags_Logarithmic)) speed_ = speed;
@@ -322,12 +324,12 @@ void App::drawMouseSpringSettings() {
 void App::drawDisplaySection() {
   if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::Checkbox("forces (f)", &drawOptions_.forces);
-  ImGui::SameLine();
+  sameLineIfFits(checkboxWidth("constraints (c)"));
   ImGui::Checkbox("constraints (c)", &drawOptions_.constraints);
-  ImGui::SameLine();
+  sameLineIfFits(checkboxWidth("help (h)"));
   ImGui::Checkbox("help (h)", &showHelp_);
   ImGui::Checkbox("closed-form ghost (g)", &drawOptions_.ghost);
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("frame all (a)"));
   if (ImGui::Button("frame all (a)")) frameAll();
 }
 

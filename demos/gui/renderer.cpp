@@ -38,8 +38,7 @@ int pixels(double value, int lo, int hi) {
 }
 }  // namespace
 
-int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
-  const double byScale = std::clamp(0.022 * pixelsPerUnit, 8.0, 12.0);
+double particleSpacingPixels(const particles::ParticleSystem& system, double pixelsPerUnit) {
   Eigen::Vector2d lo, hi;
   int finite = 0;
   for (int i = 0; i < system.size(); ++i) {
@@ -49,9 +48,15 @@ int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit)
     hi = finite ? hi.cwiseMax(x) : x;
     ++finite;
   }
-  if (finite < 2) return pixels(byScale, minParticlePixels, 12);
+  if (finite < 2) return 0.0;
   const Eigen::Vector2d extent = (hi - lo) * pixelsPerUnit;
-  const double spacing = std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / finite);
+  return std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / finite);
+}
+
+int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
+  const double byScale = std::clamp(0.022 * pixelsPerUnit, 8.0, 12.0);
+  const double spacing = particleSpacingPixels(system, pixelsPerUnit);
+  if (spacing == 0.0) return pixels(byScale, minParticlePixels, 12);
   return pixels(std::min(0.45 * spacing, byScale), minParticlePixels, 12);
 }
 
@@ -73,13 +78,22 @@ void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view,
 void Renderer::collectPane(const Simulation& simulation, const ViewTransform& view, const DrawOptions& options,
                            const GhostFrame* ghost) {
   const particles::ParticleSystem& system = simulation.system();
-  for (Batch* b : {&walls_, &faces_, &springs_, &constraints_, &arrows_, &ghostLines_, &ghostPoints_}) b->clear();
+  for (Batch* b : {&walls_, &wallOutlines_, &faces_, &springs_, &constraints_, &arrows_, &ghostLines_, &ghostPoints_}) b->clear();
   for (auto& entry : pointsBySize_) entry.second.clear();
   for (auto& entry : discsBySize_) entry.second.clear();
 
+  const bool surface = !simulation.scene().faces.empty();
+  faceFill_ = {};
+  faceFill_.spacingPixels = particleSpacingPixels(system, view.pixelsPerUnit);
+  faceFill_.springsDrawn = !surface || faceFill_.spacingPixels >= meshLinePixels;
+  faceFill_.particlesDrawn = !surface || faceFill_.spacingPixels >= meshDotPixels;
+
   collectWalls(system, view);
   collectFaces(simulation, view);
-  collectSketches(system, options, view.pixelsPerUnit, !simulation.scene().faces.empty());
+  const bool constraints = options.constraints && !system.constraints().empty();
+  if (options.forces || constraints) collectLoads(system);
+  if (faceFill_.springsDrawn) collectSprings(system, view.pixelsPerUnit, surface);
+  if (constraints) collectConstraints(system);
   if (options.forces) collectForceArrows(system, view);
   collectParticles(simulation, view);
   if (ghost && options.ghost) collectGhost(*ghost, view, pointDiameter(system, view.pixelsPerUnit));
@@ -116,6 +130,8 @@ bool Renderer::beginPane(const ViewTransform& view, int windowHeight) const {
 void Renderer::drawBatches(bool smooth) const {
   draw(faces_, GL_TRIANGLES);
   draw(walls_, GL_TRIANGLES);
+  glLineWidth(1.5f);
+  draw(wallOutlines_, GL_LINES);
   for (const auto& [diameter, batch] : discsBySize_) {
     glPointSize(static_cast<float>(diameter));
     draw(batch, GL_POINTS);
@@ -184,11 +200,14 @@ void Renderer::collectWalls(const particles::ParticleSystem& system, const ViewT
     const std::vector<Eigen::Vector2d> outline = colliderOutline(c, far);
     for (std::size_t k = 1; k + 1 < outline.size(); ++k)  // a fan: the outline is convex
       for (const Eigen::Vector2d& v : {outline[0], outline[k], outline[k + 1]}) walls_.add(v, palette::wall);
+    for (std::size_t k = 0; k < outline.size(); ++k)
+      wallOutlines_.line(outline[k], outline[(k + 1) % outline.size()], palette::wallOutline);
   }
 }
 
-// A surface drawn as shaded quads: its colour brightens where a face is
-// stretched beyond its rest area and darkens where it is compressed; a face
+// A surface drawn as shaded quads in the stress colour map: a face turns
+// orange where it is stretched beyond its rest area and cyan where it is
+// compressed (palette::strainColour); a face
 // turned over (a fold, negative signed area) shows the back colour; a face
 // with a torn side is not drawn.
 void Renderer::collectFaces(const Simulation& simulation, const ViewTransform& view) {
@@ -199,7 +218,6 @@ void Renderer::collectFaces(const Simulation& simulation, const ViewTransform& v
   const double paneArea = static_cast<double>(view.pane.width) * view.pane.height;
   const double pixelArea = view.pixelsPerUnit * view.pixelsPerUnit;
   double filled = 0.0;  // pixels, each face's clipped to the pane's area
-  faceFill_ = {};
   faceFill_.panePixels = paneArea;
   for (std::size_t k = 0; k < faces.size() && k < rest.size(); ++k) {
     if (!intact[k]) continue;
@@ -215,16 +233,15 @@ void Renderer::collectFaces(const Simulation& simulation, const ViewTransform& v
     ++faceFill_.shaded;
     faceFill_.shadedPixels += pixels;
     const double ratio = area / rest[k];
-    const Rgb base = ratio >= 0.0 ? palette::clothFront : palette::clothBack;
-    const double shade = std::clamp(0.8 + 0.4 * (std::abs(ratio) - 1.0), 0.55, 1.3);
-    auto channel = [&](std::uint8_t c) { return static_cast<std::uint8_t>(std::min(255.0, c * shade)); };
-    const Rgb c{channel(base.r), channel(base.g), channel(base.b)};
+    // Its strain as a length's: √(area / rest area) − 1, so a face and a
+    // spring stretched alike show alike.
+    const Rgb c = palette::strainColour(ratio >= 0.0 ? palette::clothFront : palette::clothBack,
+                                        std::sqrt(std::abs(ratio)) - 1.0);
     for (int corner : {0, 1, 2, 0, 2, 3}) faces_.add(system.position(f[corner]), c);
   }
 }
 
-void Renderer::collectSketches(const particles::ParticleSystem& system, const DrawOptions& options,
-                               double pixelsPerUnit, bool surface) {
+void Renderer::collectSprings(const particles::ParticleSystem& system, double pixelsPerUnit, bool surface) {
   const particles::Phase phase = system.phase();
   int springs = 0;
   for (const auto& force : system.forceObjects())
@@ -235,23 +252,35 @@ void Renderer::collectSketches(const particles::ParticleSystem& system, const Dr
     sketch_.circles.clear();
     force->sketch(phase, sketch_);
     const bool mouse = dynamic_cast<const particles::MouseSpringForce*>(force.get()) != nullptr;
-    const bool spring = dynamic_cast<const particles::SpringForce*>(force.get()) != nullptr;
-    const Rgb colour = mouse ? palette::mouseSpring : palette::spring;
-    for (const auto& l : sketch_.lines)
-      addSpring(springs_, l.a, l.b, colour, mouse ? 255 : surface ? 70 : 220, spring && coils, pixelsPerUnit);
-    for (const auto& c : sketch_.circles) addCircle(springs_, c.centre, c.radius, colour);
+    const auto* spring = dynamic_cast<const particles::SpringForce*>(force.get());
+    const Rgb kind = sketchColour(force->type());
+    for (const auto& l : sketch_.lines) {
+      const double strain = spring && spring->restLength() > 0.0 ? (l.b - l.a).norm() / spring->restLength() - 1.0 : 0.0;
+      addSpring(springs_, l.a, l.b, palette::strainColour(kind, strain), mouse ? 255 : surface ? 90 : 220,
+                spring && coils, pixelsPerUnit);
+    }
+    for (const auto& c : sketch_.circles) addCircle(springs_, c.centre, c.radius, kind);
   }
-  if (!options.constraints) return;
+}
+
+void Renderer::collectConstraints(const particles::ParticleSystem& system) {
+  const particles::Phase phase = system.phase();
+  double largest = 0.0;
+  for (double f : constraintForce_)
+    if (std::isfinite(f)) largest = std::max(largest, f);
+  std::size_t k = 0;
   for (const auto& constraint : system.constraints()) {
+    const double force = k < constraintForce_.size() ? constraintForce_[k] : 0.0;
+    ++k;
+    const Rgb colour = palette::constraintColour(sketchColour(constraint->type()), largest > 0.0 ? force / largest : 0.0);
     sketch_.lines.clear();
     sketch_.circles.clear();
     constraint->sketch(phase, sketch_);
-    for (const auto& l : sketch_.lines) constraints_.line(l.a, l.b, palette::constraint);
-    for (const auto& c : sketch_.circles) addCircle(constraints_, c.centre, c.radius, palette::constraint);
+    for (const auto& l : sketch_.lines) constraints_.line(l.a, l.b, colour);
+    for (const auto& c : sketch_.circles) addCircle(constraints_, c.centre, c.radius, colour);
     // A bead on a circular wire is a pendulum: its rod to the centre, faintly.
     if (dynamic_cast<const particles::CircularWireConstraint*>(constraint.get()) && !sketch_.circles.empty())
-      for (int i : constraint->particles())
-        constraints_.line(sketch_.circles.front().centre, system.position(i), palette::constraint);
+      for (int i : constraint->particles()) constraints_.line(sketch_.circles.front().centre, system.position(i), colour);
   }
 }
 
@@ -294,36 +323,59 @@ void Renderer::addCircle(Batch& batch, const Eigen::Vector2d& centre, double rad
   }
 }
 
-void Renderer::collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view) {
+void Renderer::collectLoads(const particles::ParticleSystem& system) {
   // Each force type's contribution Q_type at the current state, and the
   // constraint force Jᵀλ as the difference between (Q + Jᵀλ) and Q.
   const particles::Phase phase = system.phase();
   const int n2 = 2 * system.size();
-  std::vector<const char*> types;
-  std::vector<Rgb> colours;
+  loadTypes_.clear();
   for (const auto& force : system.forceObjects()) {
-    auto it = std::find_if(types.begin(), types.end(), [&](const char* t) { return std::strcmp(t, force->type()) == 0; });
-    std::size_t k = it - types.begin();
-    if (it == types.end()) {
-      types.push_back(force->type());
-      colours.push_back(forceArrowColour(force->type()));
-      if (forceByType_.size() < types.size()) forceByType_.emplace_back();
+    auto it = std::find_if(loadTypes_.begin(), loadTypes_.end(),
+                           [&](const char* t) { return std::strcmp(t, force->type()) == 0; });
+    const std::size_t k = it - loadTypes_.begin();
+    if (it == loadTypes_.end()) {
+      loadTypes_.push_back(force->type());
+      if (forceByType_.size() < loadTypes_.size()) forceByType_.emplace_back();
       forceByType_[k].setZero(n2);
     }
     force->apply(phase, forceByType_[k]);
   }
   totalForce_.setZero(n2);
-  for (std::size_t k = 0; k < types.size(); ++k) totalForce_ += forceByType_[k];
-  if (!system.constraints().empty()) {
-    const Eigen::VectorXd applied = totalForce_;
-    arrowSolver_.settings = system.solver().settings;
-    arrowSolver_.addConstraintForces(phase, system.constraints(), totalForce_);
-    if (forceByType_.size() <= types.size()) forceByType_.emplace_back();
-    forceByType_[types.size()] = totalForce_ - applied;
-    types.push_back("constraint");
-    colours.push_back(palette::constraintForceArrow);
-  }
+  for (std::size_t k = 0; k < loadTypes_.size(); ++k) totalForce_ += forceByType_[k];
+  constraintForce_.assign(system.constraints().size(), 0.0);
+  if (system.constraints().empty()) return;
+  const Eigen::VectorXd applied = totalForce_;
+  collectConstraintForces(system);
+  if (forceByType_.size() <= loadTypes_.size()) forceByType_.emplace_back();
+  forceByType_[loadTypes_.size()] = totalForce_ - applied;
+  loadTypes_.push_back("constraint");
+}
 
+void Renderer::collectConstraintForces(const particles::ParticleSystem& system) {
+  const particles::Phase phase = system.phase();
+  arrowSolver_.settings = system.solver().settings;
+  arrowSolver_.addConstraintForces(phase, system.constraints(), totalForce_);
+  const Eigen::VectorXd& lambda = arrowSolver_.lambda();
+  const auto& constraints = system.constraints();
+  if (lambda.size() != static_cast<Eigen::Index>(constraints.size())) return;
+  for (std::size_t k = 0; k < constraints.size(); ++k) {
+    const std::size_t blocks = constraints[k]->particles().size();
+    gradient_.assign(blocks, Eigen::Vector2d::Zero());
+    gradientRate_.assign(blocks, Eigen::Vector2d::Zero());
+    particles::ConstraintRow row;
+    row.J = gradient_.data();
+    row.Jdot = gradientRate_.data();
+    constraints[k]->evaluate(phase, row);
+    double largest = 0.0;
+    for (const Eigen::Vector2d& g : gradient_) largest = std::max(largest, g.norm());
+    constraintForce_[k] = std::abs(lambda[static_cast<Eigen::Index>(k)]) * largest;
+  }
+}
+
+void Renderer::collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view) {
+  const std::vector<const char*>& types = loadTypes_;
+  std::vector<Rgb> colours;
+  for (const char* type : types) colours.push_back(forceArrowColour(type));
   // One scale for every arrow in the pane: the 90th-percentile magnitude is
   // drawn arrowReferencePixels long, so both a gentle field and a hard pull show.
   std::vector<double> magnitudes;
@@ -356,6 +408,8 @@ void Renderer::collectParticles(const Simulation& simulation, const ViewTransfor
   const int grabbed = simulation.mouseSpring() ? simulation.mouseSpring()->particle() : -1;
   const int diameter = pointDiameter(system, view.pixelsPerUnit);
   for (int i = 0; i < system.size(); ++i) {
+    const bool marked = i == grabbed || system.pinned(i);
+    if (!marked && !faceFill_.particlesDrawn) continue;
     const Rgb colour = i == grabbed            ? palette::grabbedParticle
                        : system.pinned(i)      ? palette::pinnedParticle
                                                : palette::particle;
@@ -364,7 +418,7 @@ void Renderer::collectParticles(const Simulation& simulation, const ViewTransfor
       const int disc = pixels(2.0 * system.radii()[i] * view.pixelsPerUnit, 0, 4096);
       if (disc > diameter) discsBySize_[disc].add(system.position(i), colour, 56);
     }
-    pointsBySize_[i == grabbed || system.pinned(i) ? diameter + 2 : diameter].add(system.position(i), colour);
+    pointsBySize_[marked ? diameter + 2 : diameter].add(system.position(i), colour);
   }
 }
 

@@ -24,6 +24,19 @@ struct DrawOptions {
 // than the typical spacing so that a dense cloth still shows its mesh.
 constexpr int minParticlePixels = 6;
 int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit);
+// The typical distance in pixels between neighbouring particles: the side of
+// the square each would have if they tiled their bounding box; 0 for fewer
+// than two finite particles.
+double particleSpacingPixels(const particles::ParticleSystem& system, double pixelsPerUnit);
+
+// A surface (a scene with faces, the cloth) is drawn in the detail its
+// spacing on screen allows: its springs from meshLinePixels up, its free
+// particles from meshDotPixels up. Finer, they would fill the surface with a
+// solid block of lines or dots (and cost a software rasteriser a primitive
+// each); the shaded faces alone then show it, with its pinned and grabbed
+// particles. Zooming in brings the mesh back.
+constexpr double meshLinePixels = 6.0;
+constexpr double meshDotPixels = 2.0 * minParticlePixels;
 
 class Renderer {
  public:
@@ -35,10 +48,14 @@ class Renderer {
 
   // The last drawPane's shaded faces: how many, how many it left unshaded (a
   // mesh stretched past the fill budget, as a diverged cloth is), and the
-  // pixels they cover (each clipped to the pane's area) against the pane's.
+  // pixels they cover (each clipped to the pane's area) against the pane's;
+  // then the surface's detail: its spacing on screen, and whether its springs
+  // and free particles were drawn (both true in a scene without faces).
   struct FaceFill {
     int shaded = 0, leftOut = 0;
     double shadedPixels = 0.0, panePixels = 0.0;
+    double spacingPixels = 0.0;
+    bool springsDrawn = true, particlesDrawn = true;
   };
   const FaceFill& faceFill() const { return faceFill_; }
 
@@ -69,8 +86,16 @@ class Renderer {
   void collectWalls(const particles::ParticleSystem& system, const ViewTransform& view);  // colliders
   void collectFaces(const Simulation& simulation, const ViewTransform& view);
   // surface: the springs are drawn faintly over the shaded faces.
-  void collectSketches(const particles::ParticleSystem& system, const DrawOptions& options, double pixelsPerUnit,
-                       bool surface);
+  // The loads at the current state: each force type's Q (forceByType_, in
+  // the order of loadTypes_) and, with constraints, Jᵀλ by the renderer's own
+  // solve as one more type, and each constraint's force (|λ| times its
+  // largest gradient block) in constraintForce_.
+  void collectLoads(const particles::ParticleSystem& system);
+  void collectConstraintForces(const particles::ParticleSystem& system);
+  // Springs in their strain's colour; on a surface, faintly over the faces.
+  void collectSprings(const particles::ParticleSystem& system, double pixelsPerUnit, bool surface);
+  // Wires, rods and lines in the colour of the force they carry.
+  void collectConstraints(const particles::ParticleSystem& system);
   void collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view);
   void collectParticles(const Simulation& simulation, const ViewTransform& view);
   void collectGhost(const GhostFrame& ghost, const ViewTransform& view, int diameter);
@@ -79,7 +104,7 @@ class Renderer {
                  bool coil, double pixelsPerUnit);
   void addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour);
   static void draw(const Batch& batch, unsigned mode);
-  Batch walls_, faces_, springs_, constraints_, arrows_, ghostLines_;
+  Batch walls_, wallOutlines_, faces_, springs_, constraints_, arrows_, ghostLines_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
   Batch ghostPoints_;
@@ -88,6 +113,9 @@ class Renderer {
   particles::Sketch sketch_;
   std::vector<Eigen::VectorXd> forceByType_;
   Eigen::VectorXd totalForce_;
+  std::vector<const char*> loadTypes_;  // Force::type() of each forceByType_ entry, then "constraint"
+  std::vector<double> constraintForce_;
+  std::vector<Eigen::Vector2d> gradient_, gradientRate_;
   particles::ConstraintSolver arrowSolver_;  // its own λ, so drawing never disturbs the run
 };
 

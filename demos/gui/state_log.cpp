@@ -40,7 +40,8 @@ void writePaneRecords(std::ostream& out, std::size_t k, const PaneState& pane) {
       << "," << sim.framesWaited() << "\n";
   const Renderer::FaceFill& faces = pane.faces;
   out << "faces," << k << "," << faces.shaded << "," << faces.leftOut << "," << faces.shadedPixels << ","
-      << faces.panePixels << "\n";
+      << faces.panePixels << "," << faces.spacingPixels << "," << (faces.springsDrawn ? 1 : 0) << ","
+      << (faces.particlesDrawn ? 1 : 0) << "\n";
   const ViewTransform& v = pane.view;
   out << "view," << k << "," << v.pane.x << "," << v.pane.y << "," << v.pane.width << "," << v.pane.height << ","
       << v.worldMin.x() << "," << v.worldMin.y() << "," << v.worldMax.x() << "," << v.worldMax.y() << "\n";
@@ -67,6 +68,7 @@ void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, c
     for (char c : o.text) text += c == '\n' ? std::string(" | ") : std::string(1, c);
     out << "overlay," << o.kind << "," << o.rect.x << "," << o.rect.y << "," << o.rect.width << "," << o.rect.height
         << "," << text << "\n";
+    out << "text-fit," << o.kind << "," << o.textWidth << "," << o.textHeight << "," << (o.shortened ? 1 : 0) << "\n";
   }
   for (const Overlay& w : extras.widgets)
     out << "widget," << w.kind << "," << w.rect.x << "," << w.rect.y << "," << w.rect.width << "," << w.rect.height

@@ -58,6 +58,11 @@ struct Overlay {
   std::string kind;
   PixelRect rect;
   std::string text;
+  // A bar's text as drawn: its widest line and its lines in pixels, and
+  // whether it was shortened ("...") because its lines outnumbered the bar's
+  // (0 and false for overlays that are not bars).
+  int textWidth = 0, textHeight = 0;
+  bool shortened = false;
 };
 
 struct AdviceRecord {

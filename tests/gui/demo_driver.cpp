@@ -144,6 +144,14 @@ StateLog readStateLog(const std::string& path) {
       p.facesLeftOut = std::stoi(f.at(3));
       p.shadedPixels = number(4);
       p.panePixels = number(5);
+      p.spacingPixels = number(6);
+      p.springsDrawn = f.at(7) == "1";
+      p.particlesDrawn = f.at(8) == "1";
+    } else if (record == "text-fit") {
+      LoggedOverlay& o = log.overlays.at(log.overlays.size() - 1);
+      o.textWidth = std::stoi(f.at(2));
+      o.textHeight = std::stoi(f.at(3));
+      o.shortened = f.at(4) == "1";
     } else if (record == "budget") {
       LoggedBudget& b = log.budget;
       b.budgetMs = number(1);

@@ -75,6 +75,10 @@ struct LoggedPane {
   // pixels they cover against the pane's.
   int facesShaded = 0, facesLeftOut = 0;
   double shadedPixels = 0.0, panePixels = 0.0;
+  // The surface's detail: its particles' spacing on screen, and whether its
+  // springs and free particles were drawn.
+  double spacingPixels = 0.0;
+  bool springsDrawn = true, particlesDrawn = true;
   int pixelX = 0, pixelY = 0, pixelWidth = 0, pixelHeight = 0;
   Eigen::Vector2d worldMin, worldMax;
   std::vector<LoggedParticle> particles;
@@ -93,6 +97,10 @@ struct LoggedOverlay {
   std::string kind;  // top-bar, hud, pane-hud, indicator, help, panel; widget names for widgets
   int x = 0, y = 0, width = 0, height = 0;
   std::string text;  // line breaks as " | "
+  // A bar's text-fit record: its widest line and its lines in pixels, and
+  // whether it was shortened with "...".
+  int textWidth = 0, textHeight = 0;
+  bool shortened = false;
   Eigen::Vector2d centre() const { return {x + 0.5 * width, y + 0.5 * height}; }
   bool covers(const Eigen::Vector2d& pixel, double margin) const {
     return pixel.x() > x - margin && pixel.x() < x + width + margin && pixel.y() > y - margin &&
