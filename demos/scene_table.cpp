@@ -36,7 +36,7 @@ const std::vector<SceneInfo>& sceneTable() {
           "cloth", "spring cloth on a curtain rail, released swung aside; a big wall left and a nail right",
           "try this: drag the cloth's hem onto the nail, or slide the whole curtain along its rail"),
       entry<HairParams, buildHair>(
-          "hair", "ringlets: strands of springs and one-signed angular springs, hanging and colliding",
+          "hair", "strands of springs and angular springs, hanging and colliding: ringlets, or the seed preset's zigzag",
           "try this: pull a curl's tip down and let go: it springs back into its ringlet"),
       entry<WireParams, buildWire>(
           "wire", "beads on circular wires, coupled by soft springs",

@@ -253,10 +253,17 @@ void App::draw() {
   const std::vector<ViewTransform> views = paneViews();
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     GhostFrame ghost;
-    if (exact_) ghost = exact_(panes_[k]->system().time());
-    renderer_.drawPane(*panes_[k], views[k], windowHeight_, drawOptions_, exact_ ? &ghost : nullptr);
-    paneFaceFill_.resize(panes_.size());
-    paneFaceFill_[k] = renderer_.faceFill();
+    // Running with a dt longer than a frame, the drawing is between steps
+    // (Simulation::drawnFraction), and the ghost at the time drawn.
+    DrawOptions options = drawOptions_;
+    options.frameTime = paused_ || stepMode_ == StepMode::Lockstep ? 0.0 : speed_ / framesPerSecond;
+    const Simulation& pane = *panes_[k];
+    const double drawnTime = pane.system().time() - (1.0 - pane.drawnFraction(options.frameTime)) * pane.dt();
+    const bool ghostShown = exact_ && !disturbedAt_;
+    if (ghostShown) ghost = exact_(drawnTime);
+    renderer_.drawPane(pane, views[k], windowHeight_, options, ghostShown ? &ghost : nullptr);
+    paneDrawings_.resize(panes_.size());
+    paneDrawings_[k] = renderer_.drawing();
   }
   if (build_.active()) drawBuildOverlay(views.front());
   // The drawing is timed on one frame in drawTimingPeriod, which waits for
@@ -338,7 +345,7 @@ bool App::writeStateLog() const {
   std::vector<PaneState> states;
   const std::vector<ViewTransform> views = paneViews();
   for (std::size_t k = 0; k < panes_.size(); ++k)
-    states.push_back({scene_.label, panes_[k].get(), views[k], k < paneFaceFill_.size() ? paneFaceFill_[k] : Renderer::FaceFill{}});
+    states.push_back({scene_.label, panes_[k].get(), views[k], k < paneDrawings_.size() ? paneDrawings_[k] : Renderer::PaneDrawing{}});
   StateExtras extras;
   extras.overlays = overlays_;
   extras.widgets = widgets_;
@@ -397,6 +404,7 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   const scenes::SceneInfo* info = findSceneInfo(choice.name);
   sceneHint_ = info ? hintOf(*info) : "";
   exact_ = exactMotion(choice, *buildChoice(choice).system);
+  disturbedAt_.reset();
   setStatus("scene: " + choice.label);
   statusFrames_ = 0;  // the top bar shows the scene's summary and hint instead
   hintUntilFrame_ = frame_ + hintFramesShown;
@@ -464,6 +472,7 @@ void App::resetScene() {
   tool_ = MouseTool::None;
   panning_ = false;
   paused_ = false;
+  disturbedAt_.reset();
   setStatus("reset");
 }
 
@@ -544,6 +553,8 @@ void App::rewind() {
     return;
   }
   for (auto& pane : panes_) pane->rewindTo(*frame);
+  // Back before the first disturbance, the motion is the closed form's again.
+  if (disturbedAt_ && panes_.front()->system().time() < *disturbedAt_) disturbedAt_.reset();
   paused_ = true;
   char text[128];
   std::snprintf(text, sizeof text, "rewound to t = %.2f s (paused: space runs, - halves dt)",
@@ -567,7 +578,9 @@ void App::setError(const std::string& text) {
 // Layout
 
 Layout App::layout() const {
-  return computeLayout(windowWidth_, windowHeight_, showPanel_, static_cast<int>(panes_.size()));
+  LayoutMetrics metrics;
+  if (!drawOptions_.forces) metrics.legendLines = 0;
+  return computeLayout(windowWidth_, windowHeight_, showPanel_, static_cast<int>(panes_.size()), metrics);
 }
 
 std::vector<ViewTransform> App::paneViews() const {

@@ -3,6 +3,7 @@
 // simulated, the user's input, and one frame = input → step → draw → output.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -162,6 +163,7 @@ class App {
   void toggleWind();
   void toggleTearing();
   std::string realTimeReadout() const;
+  std::string ghostLabel() const;
   // The rest of the keys' actions, one each.
   void doubleDt() { scaleDt(2.0); }
   void halveDt() { scaleDt(0.5); }
@@ -266,7 +268,7 @@ class App {
   // The drawing's time, measured on one frame in drawTimingPeriod (App::draw).
   static constexpr int drawTimingPeriod = 30;
   double sceneDrawMs_ = 0.0, overlayDrawMs_ = 0.0;
-  std::vector<Renderer::FaceFill> paneFaceFill_;  // each pane's shaded faces in the last frame
+  std::vector<Renderer::PaneDrawing> paneDrawings_;  // each pane's shaded faces in the last frame
   std::vector<Overlay> overlays_;  // the text and controls drawn in the last frame
   std::vector<Overlay> widgets_;   // the panel's buttons and combos, for scripted clicks
   // Wall time of every frame (input, stepping, drawing, swap) and its
@@ -278,6 +280,9 @@ class App {
   bool screenshotRequested_ = false;
   bool recording_ = false;  // --record given and its frames still written
   ExactMotion exact_;              // the scene's closed form, drawn as a ghost; empty if none
+  // When the mouse first moved or pinned a particle since the scene started:
+  // the closed form is the undisturbed motion, so the ghost is hidden from then.
+  std::optional<double> disturbedAt_;
   std::string sceneHint_;          // the scene's "try this", shown when it opens
   long long hintUntilFrame_ = 360;  // frames: the hint shows for 6 s after a scene opens
   // The panel's advice (advice_job.h): what it asks, the job, and what was applied.

@@ -180,6 +180,7 @@ void App::mouse(int button, int state, int x, int y, bool shift) {
   toolPane_ = k;
   pressX_ = x;
   pressY_ = y;
+  if (!disturbedAt_) disturbedAt_ = panes_[k]->system().time();
   if (pinTool) {
     tool_ = MouseTool::Pin;
     pinWasPinned_ = panes_[k]->system().pinned(*particle);

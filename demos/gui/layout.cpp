@@ -24,7 +24,8 @@ Layout computeLayout(int windowWidth, int windowHeight, bool panelShown, int pan
   layout.panel = {width, 0, panel, windowHeight};
   const bool compare = paneCount > 1;
   const int top = barHeight(wrappedLines(m.topLines, m.barWidth, width), m);
-  const int bottom = barHeight(wrappedLines(compare ? m.compareBottomLines : m.bottomLines, m.barWidth, width), m);
+  const int bottomText = (compare ? m.compareBottomLines : m.bottomLines) + m.legendLines;
+  const int bottom = barHeight(wrappedLines(bottomText, m.barWidth, width), m);
   layout.topBar = {0, 0, width, top};
   layout.bottomBar = {0, std::max(windowHeight - bottom, top), width, bottom};
   const PixelRect area{0, top, width, std::max(layout.bottomBar.y - top, 1)};

@@ -17,11 +17,12 @@ struct LayoutMetrics {
   int lineHeight = 18;       // pixels per line of HUD text (15 px font)
   int padding = 4;           // around the text of a bar
   int topLines = 2;          // scene · time · summary; hint or message (a long message takes both)
-  int bottomLines = 4;       // single pane: three HUD lines and the keys / legend
-  int compareBottomLines = 1;  // compare mode: the keys / legend
+  int bottomLines = 5;       // single pane: four HUD lines (the integrator, its state, timings, numbers) and the keys
+  int compareBottomLines = 1;  // compare mode: the keys
+  int legendLines = 1;       // the force legend, when the arrows are shown (either mode)
   int barWidth = 840;        // the top and bottom bars' natural width
   int paneHeaderLines = 3;   // compare mode: each pane's integrator, numbers, state
-  int paneHeaderWidth = 420;  // and its natural width
+  int paneHeaderWidth = 560;  // and its natural width
   int gutter = 12;           // around each pane's world, for the edge indicators
   int panelWidth = 340;      // the control panel, when shown (at most half the window)
 };

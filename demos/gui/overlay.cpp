@@ -41,10 +41,12 @@ const ImU32 titleColour = IM_COL32(255, 217, 115, 255);
 const ImU32 dimColour = IM_COL32(150, 155, 165, 255);
 const ImU32 barColour = IM_COL32(14, 16, 20, 255);
 
-// A line of text in a bar: pieces of text in their colours, one after another.
+// A line of text in a bar: pieces of text in their colours, one after
+// another; a piece marked whole is never broken across lines.
 struct Piece {
   std::string text;
   ImU32 colour;
+  bool whole = false;
 };
 using Line = std::vector<Piece>;
 
@@ -71,7 +73,7 @@ std::vector<Line> wrapLine(const Line& line, float width) {
     while (start < t.size()) {
       const std::size_t word = t.find_first_not_of(' ', start);
       if (word == std::string::npos) break;  // trailing spaces end a piece
-      std::size_t end = t.find(' ', word);
+      std::size_t end = piece.whole ? t.size() : t.find(' ', word);
       if (end == std::string::npos) end = t.size();
       std::string token = t.substr(start, end - start);  // the spaces before the word, then the word
       if (x > 0.0f && x + textWidth(token) > width) {
@@ -163,8 +165,8 @@ std::string App::paneStateLine(const Simulation& sim) const {
                   f.simulationMs, sceneDrawMs_ + overlayDrawMs_);
   const double frameTime = speed_ / 60.0;
   if (stepMode_ == StepMode::FixedTime && sim.dt() > frameTime)
-    return format("dt {:g} s > one frame ({:.3g} s): a step every {:.0f} frames (- halves dt)", sim.dt(), frameTime,
-                  std::ceil(sim.dt() / frameTime));
+    return format("dt {:g} s > one frame ({:.3g} s): a step every {:.0f} frames, drawn between steps (- halves dt)",
+                  sim.dt(), frameTime, std::ceil(sim.dt() / frameTime));
   return "";
 }
 
@@ -174,6 +176,13 @@ std::string App::realTimeReadout() const {
   if (paused_) return "paused";
   if (!realTime_.known()) return "real time: measuring";
   return format("{:.2f}x real time{}", realTime_.ratio(), paced_ ? "" : " (flat out)");
+}
+
+// What the ghost shows, where the scene has a closed form and it is on.
+std::string App::ghostLabel() const {
+  if (!exact_ || !drawOptions_.ghost) return "";
+  if (disturbedAt_) return format("   ghost off: moved by the mouse at t = {:.2f} s (r resets)", *disturbedAt_);
+  return "   ghost: the closed form from the start";
 }
 
 void App::drawTopBar() {
@@ -245,10 +254,16 @@ void App::drawBottomBar() {
     const FrameStats& f = sim.lastFrame();
     const ImU32 text = colour(palette::hudText);
     const std::string state = paneStateLine(sim);
-    lines.push_back({{format("{}   dt {:g} s   {}/frame{}", sim.integratorName(), sim.dt(), plural(f.substeps, "substep"),
-                             stepMode_ == StepMode::Lockstep ? " (lockstep)" : ""),
+    // Steps of dt per frame; xpbd's own substeps within each step apart.
+    const auto& scheme = particles::integratorTable()[sim.integratorIndex()];
+    const std::string within =
+        scheme.usesSubsteps ? format(" ({} each)", plural(sim.integratorSettings().xpbd.substeps, "xpbd substep")) : "";
+    lines.push_back({{format("{}   dt {:g} s   {}/frame{}{}", sim.integratorName(), sim.dt(), plural(f.substeps, "step"),
+                             within, stepMode_ == StepMode::Lockstep ? " (lockstep)" : ""),
                       text},
-                     {state.empty() ? "" : "   " + state, sim.stopped() ? colour(palette::divergenceText) : titleColour}});
+                     {ghostLabel(), colour(palette::ghost)}});
+    // The pane's state on a line of its own (the top bar may show a status instead).
+    lines.push_back({{state, sim.stopped() ? colour(palette::divergenceText) : titleColour}});
     // Fixed-width numbers, so that the line does not jitter from frame to frame.
     lines.push_back({{format("simulation {:7.2f} ms   draw {:6.1f} ms (scene {:5.1f} + text and panel {:5.1f})   per frame   {}",
                              f.simulationMs, sceneDrawMs_ + overlayDrawMs_, sceneDrawMs_, overlayDrawMs_,
@@ -266,18 +281,19 @@ void App::drawBottomBar() {
     if (sim.mouseSpring()) numbers += format("   (mouse spring {: .3e} apart)", sim.mouseSpringEnergy());
     lines.push_back({{numbers, text}});
   }
-  Line keys{{"h help   p panel   v compare   a frame all   wheel zoom   middle-drag pan", dimColour}};
+  lines.push_back({{"h help   p panel   v compare   a frame all   wheel zoom   middle-drag pan", dimColour}});
   if (drawOptions_.forces) {
+    Line legend;
     // Which colour is which force type, for the types in the first pane.
     const particles::ParticleSystem& s = panes_.front()->system();
     std::vector<std::string> types;
     for (const auto& force : s.forceObjects())
       if (std::find(types.begin(), types.end(), force->type()) == types.end()) types.push_back(force->type());
-    keys.push_back({"      arrows:", dimColour});
-    for (const std::string& type : types) keys.push_back({" --> " + type, colour(forceArrowColour(type.c_str()))});
-    if (!s.constraints().empty()) keys.push_back({" --> J^T lambda", colour(palette::constraintForceArrow)});
+    legend.push_back({"arrows:", dimColour});
+    for (const std::string& type : types) legend.push_back({" --> " + type, colour(forceArrowColour(type.c_str())), true});
+    if (!s.constraints().empty()) legend.push_back({" --> J^T lambda", colour(palette::constraintForceArrow), true});
+    lines.push_back(legend);
   }
-  lines.push_back(keys);
   overlays_.push_back(drawBar("hud", l.bottomBar, lines, m.lineHeight, m.padding));
 }
 

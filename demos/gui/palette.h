@@ -24,6 +24,7 @@ constexpr Rgb spring{86, 132, 190};
 constexpr Rgb clothFront{62, 104, 160};  // a surface's faces (the cloth), at their rest area
 constexpr Rgb clothBack{150, 84, 96};    // a face turned over (negative signed area): a fold
 constexpr Rgb mouseSpring{120, 235, 140};
+constexpr Rgb ghost{150, 220, 255};  // the closed-form motion beside the simulation
 constexpr Rgb constraint{232, 178, 62};
 constexpr Rgb constraintLoaded{255, 72, 48};  // the constraint carrying the pane's largest force
 constexpr Rgb stretched{255, 156, 56};       // a spring or face at +strainFullScale

@@ -284,15 +284,19 @@ void App::drawSolverSection() {
 void App::drawSolverSettings() {
   particles::SolverSettings settings = panes_.front()->system().solver().settings;
   bool changed = choose("constraint solve", kSolveMethodLabels, settings.method);
-  if (settings.method == particles::SolveMethod::ConjugateGradient)
-    changed |= choose("preconditioner", kPreconditionerLabels, settings.preconditioner);
+  // CG's own settings: the direct solve has no tolerance or iteration cap.
+  const bool cg = settings.method == particles::SolveMethod::ConjugateGradient;
+  ImGui::BeginDisabled(!cg);
+  if (cg) changed |= choose("preconditioner", kPreconditionerLabels, settings.preconditioner);
   float logTolerance = static_cast<float>(std::log10(settings.tolerance));
-  if (ImGui::SliderFloat("log10 tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
+  if (ImGui::SliderFloat("log10 CG tolerance", &logTolerance, -14.0f, -1.0f, "%.1f")) {
     settings.tolerance = std::pow(10.0, static_cast<double>(logTolerance));
     changed = true;
   }
-  changed |= ImGui::InputInt("iteration cap", &settings.maxIterations);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: 4m + 100 for m constraints");
+  changed |= ImGui::InputInt("CG iteration cap", &settings.maxIterations);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(cg ? "0: 4m + 100 for m constraints" : "conjugate gradient only: the direct solve factorises J W J^T");
+  ImGui::EndDisabled();
   changed |= ImGui::InputDouble("feedback k_s", &settings.stiffness, 1.0, 10.0, "%.3g");
   changed |= ImGui::InputDouble("feedback k_d", &settings.damping, 0.5, 5.0, "%.3g");
   if (!changed) return;

@@ -27,7 +27,6 @@ constexpr double faceFillBudget = 4.0;
 constexpr int coilSpringLimit = 16;            // scenes with at most this many springs draw them as coils
 constexpr int coilTurns = 8;
 constexpr double coilWidthPixels = 7.0;
-const Rgb ghostColour{150, 220, 255};
 
 // A pixel size from a double that may be NaN or huge (a diverged state): an
 // int in [lo, hi] without undefined behaviour.
@@ -38,11 +37,11 @@ int pixels(double value, int lo, int hi) {
 }
 }  // namespace
 
-double particleSpacingPixels(const particles::ParticleSystem& system, double pixelsPerUnit) {
+double particleSpacingPixels(const particles::Phase& phase, double pixelsPerUnit) {
   Eigen::Vector2d lo, hi;
   int finite = 0;
-  for (int i = 0; i < system.size(); ++i) {
-    const Eigen::Vector2d x = system.position(i);
+  for (int i = 0; i < phase.size(); ++i) {
+    const Eigen::Vector2d x = phase.position(i);
     if (!x.allFinite()) continue;
     lo = finite ? lo.cwiseMin(x) : x;
     hi = finite ? hi.cwiseMax(x) : x;
@@ -53,9 +52,9 @@ double particleSpacingPixels(const particles::ParticleSystem& system, double pix
   return std::sqrt(std::max(extent.x(), 1.0) * std::max(extent.y(), 1.0) / finite);
 }
 
-int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit) {
+int pointDiameter(const particles::Phase& phase, double pixelsPerUnit) {
   const double byScale = std::clamp(0.022 * pixelsPerUnit, 8.0, 12.0);
-  const double spacing = particleSpacingPixels(system, pixelsPerUnit);
+  const double spacing = particleSpacingPixels(phase, pixelsPerUnit);
   if (spacing == 0.0) return pixels(byScale, minParticlePixels, 12);
   return pixels(std::min(0.45 * spacing, byScale), minParticlePixels, 12);
 }
@@ -82,21 +81,31 @@ void Renderer::collectPane(const Simulation& simulation, const ViewTransform& vi
   for (auto& entry : pointsBySize_) entry.second.clear();
   for (auto& entry : discsBySize_) entry.second.clear();
 
+  const double fraction = simulation.drawnFraction(options.frameTime);
+  if (fraction < 1.0) {
+    const Eigen::VectorXd& before = simulation.previousPositions();
+    drawnX_ = before + fraction * (system.positions() - before);
+    drawn_ = &drawnX_;
+  } else {
+    drawn_ = &system.positions();
+  }
+  const particles::Phase phase = phaseOf(system);
   const bool surface = !simulation.scene().faces.empty();
-  faceFill_ = {};
-  faceFill_.spacingPixels = particleSpacingPixels(system, view.pixelsPerUnit);
-  faceFill_.springsDrawn = !surface || faceFill_.spacingPixels >= meshLinePixels;
-  faceFill_.particlesDrawn = !surface || faceFill_.spacingPixels >= meshDotPixels;
+  drawing_ = {};
+  drawing_.drawnFraction = fraction;
+  drawing_.spacingPixels = particleSpacingPixels(phase, view.pixelsPerUnit);
+  drawing_.springsDrawn = !surface || drawing_.spacingPixels >= meshLinePixels;
+  drawing_.particlesDrawn = !surface || drawing_.spacingPixels >= meshDotPixels;
 
   collectWalls(system, view);
   collectFaces(simulation, view);
   const bool constraints = options.constraints && !system.constraints().empty();
   if (options.forces || constraints) collectLoads(system);
-  if (faceFill_.springsDrawn) collectSprings(system, view.pixelsPerUnit, surface);
+  if (drawing_.springsDrawn) collectSprings(system, view.pixelsPerUnit, surface);
   if (constraints) collectConstraints(system);
   if (options.forces) collectForceArrows(system, view);
   collectParticles(simulation, view);
-  if (ghost && options.ghost) collectGhost(*ghost, view, pointDiameter(system, view.pixelsPerUnit));
+  if (ghost && options.ghost) collectGhost(*ghost, view, pointDiameter(phase, view.pixelsPerUnit));
 }
 
 bool Renderer::beginPane(const ViewTransform& view, int windowHeight) const {
@@ -211,38 +220,38 @@ void Renderer::collectWalls(const particles::ParticleSystem& system, const ViewT
 // turned over (a fold, negative signed area) shows the back colour; a face
 // with a torn side is not drawn.
 void Renderer::collectFaces(const Simulation& simulation, const ViewTransform& view) {
-  const particles::ParticleSystem& system = simulation.system();
+  const particles::Phase phase = phaseOf(simulation.system());
   const auto& faces = simulation.scene().faces;
   const auto& rest = simulation.restFaceAreas();
   const std::vector<char>& intact = simulation.intactFaces();  // a face with a torn side is a hole
   const double paneArea = static_cast<double>(view.pane.width) * view.pane.height;
   const double pixelArea = view.pixelsPerUnit * view.pixelsPerUnit;
   double filled = 0.0;  // pixels, each face's clipped to the pane's area
-  faceFill_.panePixels = paneArea;
+  drawing_.panePixels = paneArea;
   for (std::size_t k = 0; k < faces.size() && k < rest.size(); ++k) {
     if (!intact[k]) continue;
     const auto& f = faces[k];
-    const double area = faceArea(system, f);
+    const double area = faceArea(phase, f);
     if (!std::isfinite(area) || !(std::abs(rest[k]) > 0.0)) continue;
     const double pixels = std::min(std::abs(area) * pixelArea, paneArea);
     filled += pixels;
     if (filled > faceFillBudget * paneArea) {
-      ++faceFill_.leftOut;
+      ++drawing_.leftOut;
       continue;
     }
-    ++faceFill_.shaded;
-    faceFill_.shadedPixels += pixels;
+    ++drawing_.shaded;
+    drawing_.shadedPixels += pixels;
     const double ratio = area / rest[k];
     // Its strain as a length's: √(area / rest area) − 1, so a face and a
     // spring stretched alike show alike.
     const Rgb c = palette::strainColour(ratio >= 0.0 ? palette::clothFront : palette::clothBack,
                                         std::sqrt(std::abs(ratio)) - 1.0);
-    for (int corner : {0, 1, 2, 0, 2, 3}) faces_.add(system.position(f[corner]), c);
+    for (int corner : {0, 1, 2, 0, 2, 3}) faces_.add(phase.position(f[corner]), c);
   }
 }
 
 void Renderer::collectSprings(const particles::ParticleSystem& system, double pixelsPerUnit, bool surface) {
-  const particles::Phase phase = system.phase();
+  const particles::Phase phase = phaseOf(system);
   int springs = 0;
   for (const auto& force : system.forceObjects())
     springs += dynamic_cast<const particles::SpringForce*>(force.get()) != nullptr;
@@ -264,7 +273,7 @@ void Renderer::collectSprings(const particles::ParticleSystem& system, double pi
 }
 
 void Renderer::collectConstraints(const particles::ParticleSystem& system) {
-  const particles::Phase phase = system.phase();
+  const particles::Phase phase = phaseOf(system);
   double largest = 0.0;
   for (double f : constraintForce_)
     if (std::isfinite(f)) largest = std::max(largest, f);
@@ -280,7 +289,7 @@ void Renderer::collectConstraints(const particles::ParticleSystem& system) {
     for (const auto& c : sketch_.circles) addCircle(constraints_, c.centre, c.radius, colour);
     // A bead on a circular wire is a pendulum: its rod to the centre, faintly.
     if (dynamic_cast<const particles::CircularWireConstraint*>(constraint.get()) && !sketch_.circles.empty())
-      for (int i : constraint->particles()) constraints_.line(sketch_.circles.front().centre, system.position(i), colour);
+      for (int i : constraint->particles()) constraints_.line(sketch_.circles.front().centre, phase.position(i), colour);
   }
 }
 
@@ -309,9 +318,9 @@ void Renderer::addSpring(Batch& batch, const Eigen::Vector2d& a, const Eigen::Ve
 }
 
 void Renderer::collectGhost(const GhostFrame& ghost, const ViewTransform& view, int diameter) {
-  for (const auto& [a, b] : ghost.springs) addSpring(ghostLines_, a, b, ghostColour, 150, true, view.pixelsPerUnit);
-  for (const auto& [a, b] : ghost.rods) ghostLines_.line(a, b, ghostColour, 150);
-  for (const Eigen::Vector2d& p : ghost.points) ghostPoints_.add(p, ghostColour, 170);
+  for (const auto& [a, b] : ghost.springs) addSpring(ghostLines_, a, b, palette::ghost, 150, true, view.pixelsPerUnit);
+  for (const auto& [a, b] : ghost.rods) ghostLines_.line(a, b, palette::ghost, 150);
+  for (const Eigen::Vector2d& p : ghost.points) ghostPoints_.add(p, palette::ghost, 170);
   ghostDiameter_ = diameter + 2;
 }
 
@@ -326,7 +335,7 @@ void Renderer::addCircle(Batch& batch, const Eigen::Vector2d& centre, double rad
 void Renderer::collectLoads(const particles::ParticleSystem& system) {
   // Each force type's contribution Q_type at the current state, and the
   // constraint force Jᵀλ as the difference between (Q + Jᵀλ) and Q.
-  const particles::Phase phase = system.phase();
+  const particles::Phase phase = phaseOf(system);
   const int n2 = 2 * system.size();
   loadTypes_.clear();
   for (const auto& force : system.forceObjects()) {
@@ -352,7 +361,7 @@ void Renderer::collectLoads(const particles::ParticleSystem& system) {
 }
 
 void Renderer::collectConstraintForces(const particles::ParticleSystem& system) {
-  const particles::Phase phase = system.phase();
+  const particles::Phase phase = phaseOf(system);
   arrowSolver_.settings = system.solver().settings;
   arrowSolver_.addConstraintForces(phase, system.constraints(), totalForce_);
   const Eigen::VectorXd& lambda = arrowSolver_.lambda();
@@ -373,6 +382,7 @@ void Renderer::collectConstraintForces(const particles::ParticleSystem& system) 
 }
 
 void Renderer::collectForceArrows(const particles::ParticleSystem& system, const ViewTransform& view) {
+  const particles::Phase phase = phaseOf(system);
   const std::vector<const char*>& types = loadTypes_;
   std::vector<Rgb> colours;
   for (const char* type : types) colours.push_back(forceArrowColour(type));
@@ -395,7 +405,7 @@ void Renderer::collectForceArrows(const particles::ParticleSystem& system, const
       const double pixels = std::min(f.norm() * pixelsPerForce, arrowMaxPixels);
       if (!(pixels >= arrowMinPixels)) continue;
       const Eigen::Vector2d dir = f.normalized(), side(-dir.y(), dir.x());
-      const Eigen::Vector2d from = system.position(i), to = from + dir * (pixels / view.pixelsPerUnit);
+      const Eigen::Vector2d from = phase.position(i), to = from + dir * (pixels / view.pixelsPerUnit);
       const double head = std::min(6.0, 0.4 * pixels) / view.pixelsPerUnit;
       arrows_.line(from, to, colours[k]);
       arrows_.line(to, to - head * (dir + 0.5 * side), colours[k]);
@@ -406,19 +416,20 @@ void Renderer::collectForceArrows(const particles::ParticleSystem& system, const
 void Renderer::collectParticles(const Simulation& simulation, const ViewTransform& view) {
   const particles::ParticleSystem& system = simulation.system();
   const int grabbed = simulation.mouseSpring() ? simulation.mouseSpring()->particle() : -1;
-  const int diameter = pointDiameter(system, view.pixelsPerUnit);
+  const particles::Phase phase = phaseOf(system);
+  const int diameter = pointDiameter(phase, view.pixelsPerUnit);
   for (int i = 0; i < system.size(); ++i) {
     const bool marked = i == grabbed || system.pinned(i);
-    if (!marked && !faceFill_.particlesDrawn) continue;
+    if (!marked && !drawing_.particlesDrawn) continue;
     const Rgb colour = i == grabbed            ? palette::grabbedParticle
                        : system.pinned(i)      ? palette::pinnedParticle
                                                : palette::particle;
     // A collidable particle also shows its collision disc, faintly, under the mesh.
     if (system.collidable(i)) {
       const int disc = pixels(2.0 * system.radii()[i] * view.pixelsPerUnit, 0, 4096);
-      if (disc > diameter) discsBySize_[disc].add(system.position(i), colour, 56);
+      if (disc > diameter) discsBySize_[disc].add(phase.position(i), colour, 56);
     }
-    pointsBySize_[marked ? diameter + 2 : diameter].add(system.position(i), colour);
+    pointsBySize_[marked ? diameter + 2 : diameter].add(phase.position(i), colour);
   }
 }
 

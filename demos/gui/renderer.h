@@ -17,17 +17,20 @@ struct DrawOptions {
   bool forces = false;      // arrows per force type ('f')
   bool constraints = true;  // wires, rods, lines ('c'): drawing only, they always act
   bool ghost = true;        // the exact motion beside the simulation, where a scene has one ('g')
+  // Simulated seconds a frame advances while running (0: paused or
+  // lockstep): with a dt longer than this, the drawing is interpolated.
+  double frameTime = 0.0;
 };
 
 // Diameter in pixels of a point particle: at least minParticlePixels so that
 // every particle can be seen and grabbed, larger in a small scene, and no more
 // than the typical spacing so that a dense cloth still shows its mesh.
 constexpr int minParticlePixels = 6;
-int pointDiameter(const particles::ParticleSystem& system, double pixelsPerUnit);
+int pointDiameter(const particles::Phase& phase, double pixelsPerUnit);
 // The typical distance in pixels between neighbouring particles: the side of
 // the square each would have if they tiled their bounding box; 0 for fewer
 // than two finite particles.
-double particleSpacingPixels(const particles::ParticleSystem& system, double pixelsPerUnit);
+double particleSpacingPixels(const particles::Phase& phase, double pixelsPerUnit);
 
 // A surface (a scene with faces, the cloth) is drawn in the detail its
 // spacing on screen allows: its springs from meshLinePixels up, its free
@@ -46,18 +49,21 @@ class Renderer {
   void drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                 const DrawOptions& options, const GhostFrame* ghost = nullptr);
 
-  // The last drawPane's shaded faces: how many, how many it left unshaded (a
-  // mesh stretched past the fill budget, as a diverged cloth is), and the
-  // pixels they cover (each clipped to the pane's area) against the pane's;
-  // then the surface's detail: its spacing on screen, and whether its springs
-  // and free particles were drawn (both true in a scene without faces).
-  struct FaceFill {
+  // What the last drawPane drew. Its shaded faces: how many, how many it
+  // left unshaded (a mesh stretched past the fill budget, as a diverged cloth
+  // is), and the pixels they cover (each clipped to the pane's area) against
+  // the pane's; the surface's detail: its spacing on screen, and whether its
+  // springs and free particles were drawn (both true in a scene without
+  // faces); and where between the last two steps its positions were
+  // (Simulation::drawnFraction; 1: the state).
+  struct PaneDrawing {
     int shaded = 0, leftOut = 0;
     double shadedPixels = 0.0, panePixels = 0.0;
     double spacingPixels = 0.0;
     bool springsDrawn = true, particlesDrawn = true;
+    double drawnFraction = 1.0;
   };
-  const FaceFill& faceFill() const { return faceFill_; }
+  const PaneDrawing& drawing() const { return drawing_; }
 
  private:
   // Vertices of one primitive kind: 2 floats and 4 bytes of colour each.
@@ -109,10 +115,17 @@ class Renderer {
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent
   Batch ghostPoints_;
   int ghostDiameter_ = minParticlePixels;
-  FaceFill faceFill_;
+  PaneDrawing drawing_;
   particles::Sketch sketch_;
   std::vector<Eigen::VectorXd> forceByType_;
   Eigen::VectorXd totalForce_;
+  // The positions drawn (drawPane's phase): the state's, or drawnX_ between
+  // the last two steps (Simulation::drawnFraction).
+  particles::Phase phaseOf(const particles::ParticleSystem& system) const {
+    return system.phase(*drawn_, system.velocities());
+  }
+  const Eigen::VectorXd* drawn_ = nullptr;
+  Eigen::VectorXd drawnX_;
   std::vector<const char*> loadTypes_;  // Force::type() of each forceByType_ entry, then "constraint"
   std::vector<double> constraintForce_;
   std::vector<Eigen::Vector2d> gradient_, gradientRate_;

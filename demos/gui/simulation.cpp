@@ -29,7 +29,7 @@ Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
   setIntegrator(integratorIndex);
   setDt(dt);
   history_.record(frames_, system(), owedTime_, steps_);
-  for (const auto& face : scene_.faces) restFaceAreas_.push_back(faceArea(system(), face));
+  for (const auto& face : scene_.faces) restFaceAreas_.push_back(faceArea(system().phase(), face));
   intactFaces_.assign(scene_.faces.size(), 1);
   // A scene file's wind: its edges are where the wind can blow again once stopped.
   for (const auto& force : system().forceObjects())
@@ -39,7 +39,7 @@ Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
     }
 }
 
-double faceArea(const particles::ParticleSystem& s, const std::array<int, 4>& f) {
+double faceArea(const particles::Phase& s, const std::array<int, 4>& f) {
   // The shoelace formula over the quad's corners, counter-clockwise positive.
   double twice = 0.0;
   for (int k = 0; k < 4; ++k) {
@@ -84,6 +84,12 @@ void Simulation::beginFrame(double frameTime, StepMode mode) {
   // runs, never what it computes. Time short of a whole dt carries over.
   if (mode == StepMode::Lockstep) lockstepOwed_ = true;
   else owedTime_ += frameTime;
+}
+
+double Simulation::drawnFraction(double frameTime) const {
+  const bool between = frameTime > 0.0 && dt_ > frameTime && frameMode_ == StepMode::FixedTime && !stopped() &&
+                       previousX_.size() == system().positions().size();
+  return between ? std::clamp(owedTime_ / dt_, 0.0, 1.0) : 1.0;
 }
 
 bool Simulation::owesStep() const {
@@ -132,6 +138,7 @@ double Simulation::mouseSpringEnergy() const {
 
 void Simulation::stepAndWatch() {
   particles::StepStats stats;
+  previousX_ = system().positions();
   try {
     stats = system().step(*integrator_, dt_);
   } catch (const std::exception& e) {
@@ -153,6 +160,8 @@ void Simulation::stepAndWatch() {
   if (divergence_) {
     divergedAt_ = system().time();
     owedTime_ = 0.0;
+    // The plots end where the HUD's numbers are: at the state that diverged.
+    trace_.add(sceneEnergy(), system().maxConstraintError());
   }
 }
 

@@ -42,7 +42,7 @@ struct FrameStats {
 };
 
 // The signed area of a quad face, positive when its corners run counter-clockwise.
-double faceArea(const particles::ParticleSystem& system, const std::array<int, 4>& face);
+double faceArea(const particles::Phase& phase, const std::array<int, 4>& face);
 
 // The table position of the integrator named `name`; throws for an unknown one.
 int integratorIndexByName(const std::string& name);
@@ -125,6 +125,13 @@ class Simulation {
   long long frames() const { return frames_; }
   long long framesWaited() const { return framesWaited_; }  // frames it owed a step and took none
   double owedTime() const { return owedTime_; }  // simulated time not yet stepped: t + owed is the shared clock
+  // Drawing between steps. While frames of `frameTime` simulated seconds
+  // come faster than steps (dt longer than a frame, running), the drawing
+  // is the positions before the last step moved toward the state by this
+  // fraction, the time owed over dt: motion stays smooth, one step behind
+  // the clock. 1 (the state itself) otherwise.
+  double drawnFraction(double frameTime) const;
+  const Eigen::VectorXd& previousPositions() const { return previousX_; }
   const RewindBuffer& history() const { return history_; }
   // Restores the state recorded at `frame` (see history()), clears the
   // divergence and the plots. False when that frame is not recorded.
@@ -163,6 +170,7 @@ class Simulation {
   int integratorIndex_;
   double dt_;
   double owedTime_ = 0.0;  // simulated time accumulated but not yet stepped
+  Eigen::VectorXd previousX_;  // the positions before the last step
   long long steps_ = 0;
   long long frames_ = 0;
   long long framesWaited_ = 0;

@@ -37,11 +37,12 @@ void writePaneRecords(std::ostream& out, std::size_t k, const PaneState& pane) {
       << sim.sceneEnergy() << "," << s.maxConstraintError() << "," << sim.mouseSpringEnergy() << ","
       << (sim.lastFrame().capped ? 1 : 0) << "," << sim.lastFrame().substeps << "," << sim.frames() << "," << sim.owedTime() << ","
       << sim.trace().energy().size() << "," << (sim.lastFrame().waited ? 1 : 0) << "," << sim.lastFrame().longestStepMs
-      << "," << sim.framesWaited() << "\n";
-  const Renderer::FaceFill& faces = pane.faces;
+      << "," << sim.framesWaited() << "," << (sim.trace().energy().empty() ? 0.0f : sim.trace().energy().back()) << ","
+      << (sim.trace().constraintError().empty() ? 0.0f : sim.trace().constraintError().back()) << "\n";
+  const Renderer::PaneDrawing& faces = pane.drawing;
   out << "faces," << k << "," << faces.shaded << "," << faces.leftOut << "," << faces.shadedPixels << ","
       << faces.panePixels << "," << faces.spacingPixels << "," << (faces.springsDrawn ? 1 : 0) << ","
-      << (faces.particlesDrawn ? 1 : 0) << "\n";
+      << (faces.particlesDrawn ? 1 : 0) << "," << faces.drawnFraction << "\n";
   const ViewTransform& v = pane.view;
   out << "view," << k << "," << v.pane.x << "," << v.pane.y << "," << v.pane.width << "," << v.pane.height << ","
       << v.worldMin.x() << "," << v.worldMin.y() << "," << v.worldMax.x() << "," << v.worldMax.y() << "\n";

@@ -101,7 +101,7 @@ struct PaneState {
   std::string sceneLabel;
   const Simulation* simulation;
   ViewTransform view;
-  Renderer::FaceFill faces;  // its shaded faces in the last frame drawn
+  Renderer::PaneDrawing drawing;  // what its last frame drew
 };
 
 // Returns an error message, empty on success.

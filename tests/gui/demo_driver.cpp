@@ -137,6 +137,8 @@ StateLog readStateLog(const std::string& path) {
       p.waited = f.at(17) == "1";
       p.longestStepMs = number(18);
       p.framesWaited = std::stoll(f.at(19));
+      p.plottedEnergy = number(20);
+      p.plottedConstraintError = number(21);
       log.panes.push_back(p);
     } else if (record == "faces") {
       LoggedPane& p = log.panes.at(std::stoul(f.at(1)));
@@ -147,6 +149,7 @@ StateLog readStateLog(const std::string& path) {
       p.spacingPixels = number(6);
       p.springsDrawn = f.at(7) == "1";
       p.particlesDrawn = f.at(8) == "1";
+      p.drawnFraction = number(9);
     } else if (record == "text-fit") {
       LoggedOverlay& o = log.overlays.at(log.overlays.size() - 1);
       o.textWidth = std::stoi(f.at(2));

@@ -63,6 +63,7 @@ struct LoggedPane {
   double mouseSpringEnergy = 0.0;  // apart from energy, the scene's own
   double owedTime = 0.0;           // time + owedTime is the clock all panes share
   int plotPoints = 0;
+  double plottedEnergy = 0.0, plottedConstraintError = 0.0;  // the plots' newest points (floats)
   long long steps = 0, framesAdvanced = 0;
   bool diverged = false, slowMotion = false;
   int mouseSprings = 0, substeps = 0;
@@ -79,6 +80,7 @@ struct LoggedPane {
   // springs and free particles were drawn.
   double spacingPixels = 0.0;
   bool springsDrawn = true, particlesDrawn = true;
+  double drawnFraction = 1.0;  // 1: the state drawn; less: between the last two steps
   int pixelX = 0, pixelY = 0, pixelWidth = 0, pixelHeight = 0;
   Eigen::Vector2d worldMin, worldMax;
   std::vector<LoggedParticle> particles;

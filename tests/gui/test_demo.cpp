@@ -272,7 +272,8 @@ TEST(DemoKeys, EveryScenePlusEveryIntegratorByKeyThenQuitExitsZero) {
     EXPECT_GT(log.panes[0].steps, 0);
     EXPECT_NE(log.overlay("help"), nullptr);    // h shows the help overlay
     ASSERT_NE(log.overlay("hud"), nullptr);     // f adds the force legend to the bottom bar
-    EXPECT_NE(log.overlay("hud")->text.find("arrows: --> "), std::string::npos) << log.overlay("hud")->text;
+    EXPECT_NE(log.overlay("hud")->text.find("arrows:"), std::string::npos) << log.overlay("hud")->text;
+    EXPECT_NE(log.overlay("hud")->text.find(" --> "), std::string::npos) << log.overlay("hud")->text;
   }
 }
 
@@ -592,6 +593,9 @@ TEST(DemoDivergence, HugeDtDivergesShowsTheMessageRewindsAndKeepsRunning) {
   ASSERT_TRUE(diverged.panes[0].diverged);
   EXPECT_TRUE(diverged.paused);
   const double divergedAt = diverged.panes[0].time;
+  // The plots end at the state the HUD gives, the one that diverged.
+  EXPECT_FLOAT_EQ(diverged.panes[0].plottedEnergy, diverged.panes[0].energy);
+  EXPECT_FLOAT_EQ(diverged.panes[0].plottedConstraintError, diverged.panes[0].maxConstraintError);
 
   // The message, in its colour, in the top bar (never over the scene).
   const LoggedOverlay* bar = diverged.overlay("top-bar");

@@ -162,3 +162,36 @@ TEST(DemoLooks, TextFitsAt800x600) {
   ASSERT_EQ(runDemo(dir, "--scene cloth --frames 30 --log-state state.txt").exitCode, 0);
   expectTextFits(readStateLog(dir + "/state.txt"), "cloth at the default size");
 }
+
+// With a dt longer than a frame, the drawing moves between steps: the
+// pendulum at dt 0.1 s (six frames a step) after 9 frames has stepped once
+// and owes half a step, so its bob is drawn halfway from the start to the
+// state after that step (each logged by a run stopped there), not at the state.
+TEST(DemoLooks, ADtLongerThanAFrameIsDrawnBetweenSteps) {
+  const std::string dir = outputDirectory("Interpolated");
+  const std::string args = "--no-panel --window 900x700 --scene pendulum --integrator rk4 --dt 0.1 ";
+  const std::string noGhost = "0 key g\n";
+  ASSERT_EQ(runDemo(dir, args + "--frames 3 --log-state before.txt", noGhost).exitCode, 0);
+  ASSERT_EQ(runDemo(dir, args + "--frames 9 --screenshot between.png --log-state between.txt", noGhost).exitCode, 0);
+  const LoggedPane before = readStateLog(dir + "/before.txt").panes.at(0);
+  const LoggedPane after = readStateLog(dir + "/between.txt").panes.at(0);
+  ASSERT_EQ(before.steps, 0);
+  ASSERT_EQ(after.steps, 1);
+  EXPECT_NEAR(after.drawnFraction, 0.5, 1e-9);
+  const Image image = readPng(dir + "/between.png");
+  const Eigen::Vector2d start = before.particles.back().x, state = after.particles.back().x;
+  const Eigen::Vector2d expected = after.toPixel(start + after.drawnFraction * (state - start));
+  // The centroid of the bob's pixels near where it should be drawn.
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (int dy = -15; dy <= 15; ++dy)
+    for (int dx = -15; dx <= 15; ++dx) {
+      const int x = static_cast<int>(expected.x()) + dx, y = static_cast<int>(expected.y()) + dy;
+      if (image.inside(x, y) && near(image.at(x, y), demo::palette::particle, 40)) sum += Eigen::Vector2d(x + 0.5, y + 0.5), ++count;
+    }
+  ASSERT_GT(count, 10);
+  EXPECT_LT((sum / count - expected).norm(), 1.5) << "drawn at " << (sum / count).transpose() << ", expected "
+                                                  << expected.transpose();
+  // And that is not where the state is.
+  EXPECT_GT((after.toPixel(state) - expected).norm(), 4.0);
+}
