@@ -468,7 +468,7 @@ void App::resetScene() {
   }
   panes_ = std::move(fresh);
   applyWindTear();  // the wind and tearing the user set outlast a reset
-  camera_.reset(panes_.front()->scene().viewMin, panes_.front()->scene().viewMax);
+  sceneView();
   tool_ = MouseTool::None;
   panning_ = false;
   paused_ = false;

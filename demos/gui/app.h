@@ -151,6 +151,7 @@ class App {
   void setStatus(const std::string& text);
   void setError(const std::string& text);
   void frameAll();
+  void sceneView();  // the camera as the scene starts it; the scene runs on
   void startAdvice();
   void pollAdvice();
   void applyAdvice();

@@ -24,6 +24,7 @@ const std::vector<App::KeyBinding>& App::keyBindings() {
       {"r", "r", "reset the scene", &App::resetScene},
       {"b", "b", "rewind about one second (every pane to one time)", &App::rewind},
       {"a", "a", "frame all: fit the view to the particles", &App::frameAll},
+      {"A", "A", "the scene's own view: the camera reset, the scene running on", &App::sceneView},
       {"f", "f", "force arrows on / off (colour per force type)", &App::toggleForces},
       {"c", "c", "constraint drawing on / off (the constraints always act)", &App::toggleConstraints},
       {"g", "g", "closed-form ghost on / off (oscillator, pendulum)", &App::toggleGhost},
@@ -228,7 +229,12 @@ void App::frameAll() {
     return;
   }
   camera_.frame(lo, hi);
-  setStatus("framed all particles (r resets the scene and its view)");
+  setStatus("framed all particles (A: the scene's own view; r resets the scene and its view)");
+}
+
+void App::sceneView() {
+  camera_.reset(panes_.front()->scene().viewMin, panes_.front()->scene().viewMax);
+  setStatus("the scene's own view (the scene runs on; r resets it)");
 }
 
 }  // namespace demo

@@ -78,9 +78,12 @@ void App::drawPanel() {
   const PixelRect area = layout().panel;
   ImGui::SetNextWindowPos(ImVec2(static_cast<float>(area.x), 0.0f));
   ImGui::SetNextWindowSize(ImVec2(static_cast<float>(area.width), static_cast<float>(area.height)));
+  // The scroll bar is always there, so that the rows that wrap (panel_rows.h)
+  // wrap alike whether the panel's content overflows or not, and a control
+  // keeps its place when a section opens.
   ImGui::Begin("Control panel", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoSavedSettings);
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysVerticalScrollbar);
   ImGui::PushItemWidth(-110.0f);
 
   drawSceneSection();
@@ -335,6 +338,8 @@ void App::drawDisplaySection() {
   ImGui::Checkbox("closed-form ghost (g)", &drawOptions_.ghost);
   sameLineIfFits(buttonWidth("frame all (a)"));
   if (ImGui::Button("frame all (a)")) frameAll();
+  sameLineIfFits(buttonWidth("scene view (A)"));
+  if (ImGui::Button("scene view (A)")) sceneView();
 }
 
 }  // namespace demo

@@ -114,6 +114,25 @@ TEST(DemoCamera, WheelZoomsAboutTheCursor) {
   EXPECT_LT((before.toPixel(at) - after.toPixel(at)).norm(), 0.5);
 }
 
+// A (shift+a) brings back the scene's own view after a zoom and a frame-all,
+// and the scene runs on: its steps and time are those of a run without it.
+TEST(DemoCamera, SceneViewKeyResetsTheCameraAndKeepsTheScene) {
+  const std::string dir = outputDirectory("SceneView");
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --frames 20 --log-state plain.txt").exitCode, 0);
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --frames 20 --log-state moved.txt", "2 wheel world 0.3 -0.2 3\n4 key a\n").exitCode,
+            0);
+  ASSERT_EQ(runDemo(dir, "--scene pendulum --frames 20 --log-state back.txt", "2 wheel world 0.3 -0.2 3\n4 key a\n6 key A\n")
+                .exitCode, 0);
+  const LoggedPane plain = readStateLog(dir + "/plain.txt").panes.at(0);
+  const LoggedPane moved = readStateLog(dir + "/moved.txt").panes.at(0);
+  const LoggedPane back = readStateLog(dir + "/back.txt").panes.at(0);
+  EXPECT_GT((moved.worldMin - plain.worldMin).norm(), 1e-3);  // the view did move
+  EXPECT_LT((back.worldMin - plain.worldMin).norm(), 1e-12);
+  EXPECT_LT((back.worldMax - plain.worldMax).norm(), 1e-12);
+  EXPECT_EQ(back.steps, plain.steps);
+  EXPECT_EQ(back.particles.back().x, plain.particles.back().x);
+}
+
 TEST(DemoCamera, MiddleDragAndSpaceDragPanWithoutPausing) {
   const std::string dir = outputDirectory("Pan");
   ASSERT_EQ(runDemo(dir, "--scene pendulum --frames 3 --log-state before.txt").exitCode, 0);
