@@ -145,8 +145,7 @@ bool applyColliderImpact(const Collider& c, const ColliderImpact& impact, double
                            : Path{p, v1, path.a, tau};
   }
   ++track.impacts;
-  return !(change.resting && tau == t && (x1 - x1Before).norm() <= slop &&
-           (v1 - v1Before).norm() * remaining <= slop);
+  return !(tau == t && (x1 - x1Before).norm() <= slop && (v1 - v1Before).norm() * remaining <= slop);
 }
 
 bool stopIfStillEntering(const std::vector<Collider>& colliders, const ColliderBoxes& boxes, double r,

@@ -69,11 +69,13 @@ std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& co
                                                  const Track& track, double r, double slop, double dt);
 // Applies it: a bounce (−e times the normal velocity, Coulomb friction) or a
 // resting contact for the rest of the step; the track then starts at τ.
-// Returns false when the impact changed nothing: a resting contact met again
-// at the time of the last event, with the step's end moved by no more than
-// `slop` and its velocity by no more than would move it that far in the time
-// left (a particle sliding over the edge of a face, whose chord lies on the
-// face). The rest of the track then lies on the surface and is settled.
+// Returns false when the impact changed nothing: met again at the time of
+// the last event, with the step's end moved by no more than `slop` and its
+// velocity by no more than would move it that far in the time left. That is
+// a resting contact (a particle sliding over the edge of a face, whose chord
+// lies on the face: the rest of the track lies on the surface and is
+// settled), or a corner the chord only grazes, on a face the particle is
+// leaving (no impulse: the next search would find the same event).
 bool applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double slop, double dt,
                          Track& track);
 // Out of impacts (the work cap ContactSettings::maxImpacts): if the rest of
