@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures of the demo with the program's own
 # --screenshot: the cloth with a corner pulled by a scripted mouse drag, the hair,
-# and compare mode.
+# compare mode, the cloth torn in wind, and a scene built by script in build
+# mode, saved and run from its file.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-demo=./build/demos/particle-demo
+demo=$(pwd)/build/demos/particle-demo
 out=report/figures
 mkdir -p "$out"
 run() {  # runs the demo under Xvfb unless a display is available
@@ -43,4 +44,44 @@ run --scene hair --frames 300 --script "$script" --screenshot "$out/demo-hair.pn
 # four integrators, 3 s in.
 run --scene test-chain --compare euler,symplectic-euler,midpoint,rk4 --dt 0.005 --frames 180 \
     --no-panel --window 1000x700 --screenshot "$out/demo-compare.png"
-echo "wrote $out/demo-cloth.png $out/demo-hair.png $out/demo-compare.png"
+# Wind and tearing: the 8-way cloth in a steady 2 m/s wind with tearing at
+# 15% strain; its lower right corner is pulled away until links tear (the
+# pulled particle falls free), 3.3 s in.
+torn=(--scene cloth --param links=8 --param width=16 --param height=14 --param wind=2 --param tear-strain=0.15)
+log=$(mktemp)
+run "${torn[@]}" --frames 120 --log-state "$log"
+read -r cx cy < <(awk -F, '$1 == "particle" && (best == "" || $4 - $5 > best) {best = $4 - $5; x = $4; y = $5}
+                          END {print x, y}' "$log")
+awk -v x="$cx" -v y="$cy" 'BEGIN {
+  print 120, "down world", x, y
+  for (k = 1; k <= 60; ++k) print 120 + k, "move world", x + 0.35 * k / 60, y - 0.3 * k / 60
+  print 181, "up world", x + 0.35, y - 0.3
+}' > "$script"
+run "${torn[@]}" --frames 200 --script "$script" --screenshot "$out/demo-torn-wind.png" --log-state "$log"
+awk -F, '$1 == "tearing" {print "torn cloth in wind: " $4 " links broken"}' "$log"
+rm -f "$log"
+
+# Build mode: a 3 x 3 cloth patch, its top row pinned, 12 springs and a disc
+# below it, drawn by scripted clicks and drags from an empty scene, saved as a
+# scene file and run; the picture is particle-demo --scene-file of that file.
+built=$(mktemp -d)
+awk 'BEGIN {
+  f = 0
+  print f++, "key e"; print f++, "key N"; print f++, "key n"; print f++, "edit new radius 0.01"
+  for (row = 0; row < 3; ++row) {
+    print f++, "edit new pinned", (row == 0 ? "true" : "false")
+    for (col = 0; col < 3; ++col) { print f, "down world", 0.1 * col, 0.4 - 0.1 * row; print f++, "up world", 0.1 * col, 0.4 - 0.1 * row }
+  }
+  print f++, "key k"; print f++, "edit new stiffness 30"; print f++, "edit new damping 0.5"
+  for (row = 0; row < 3; ++row) for (col = 0; col < 2; ++col) {
+    print f++, "down world", 0.1 * col, 0.4 - 0.1 * row; print f++, "up world", 0.1 * col + 0.1, 0.4 - 0.1 * row }
+  for (col = 0; col < 3; ++col) for (row = 0; row < 2; ++row) {
+    print f++, "down world", 0.1 * col, 0.4 - 0.1 * row; print f++, "up world", 0.1 * col, 0.3 - 0.1 * row }
+  print f++, "key D"; print f++, "edit new friction 0.3"; print f++, "edit build grid 0.05"
+  print f++, "down world 0.1 0.0"; print f++, "up world 0.1 0.15"
+  print f++, "edit build file patch.json"; print f++, "key s"; print f++, "key q"
+}' > "$built/build.txt"
+(cd "$built" && run --script build.txt --frames 1000 --lockstep >/dev/null)
+run --scene-file "$built/patch.json" --frames 120 --screenshot "$out/demo-built.png"
+rm -rf "$built"
+echo "wrote $out/demo-cloth.png $out/demo-hair.png $out/demo-compare.png $out/demo-torn-wind.png $out/demo-built.png"
