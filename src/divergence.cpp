@@ -59,7 +59,10 @@ std::string Divergence::message() const {
       return "a constraint solve left a relative residual of " + formatValue(value) + ", above the limit " +
              formatValue(limit) + " (its multipliers are no solution)";
     case DivergenceReason::ConstraintViolation:
-      return "a constraint error of " + formatValue(value) + " exceeds the limit " + formatValue(limit);
+      return relative ? "the relative constraint error max |C|/r reached " + formatValue(value) + ", above the limit " +
+                            formatValue(limit) + " (r: a rod's length, a wire's radius)"
+                      : "the constraint error max |C| reached " + formatValue(value) + " (world units), above the limit " +
+                            formatValue(limit);
     case DivergenceReason::EnergyGrowth:
       return "the energy rose by " + formatValue(value) + ", more than the limit " + formatValue(limit);
     case DivergenceReason::OutOfBounds:
@@ -110,8 +113,10 @@ Divergence checkDivergence(const ParticleSystem& system, const DivergenceLimits&
     return fail(DivergenceReason::SolveFailed, lastStep.maxResidual, limits.maxSolveResidual);
   if (!system.constraints().empty()) {
     const double relative = system.maxRelativeConstraintError();
-    if (!(relative <= limits.maxRelativeConstraintError))
+    if (!(relative <= limits.maxRelativeConstraintError)) {
+      d.relative = true;
       return fail(DivergenceReason::ConstraintViolation, relative, limits.maxRelativeConstraintError);
+    }
     if (std::isfinite(limits.maxConstraintError)) {
       const double absolute = system.maxConstraintError();
       if (!(absolute <= limits.maxConstraintError))

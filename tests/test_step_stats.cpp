@@ -159,13 +159,20 @@ TEST(Divergence, EachReasonTriggersOnItsOwn) {
     ParticleSystem system = makeChain();
     system.setPosition(4, system.position(4) - Vector2d(0.02, 0.0));  // the last rod 20% short
     DivergenceLimits limits;
-    EXPECT_EQ(checkDivergence(system, limits, 0.0, fine).reason, DivergenceReason::ConstraintViolation);
+    const Divergence relative = checkDivergence(system, limits, 0.0, fine);
+    EXPECT_EQ(relative.reason, DivergenceReason::ConstraintViolation);
+    // The message names the measure: relative to the rod's length here.
+    EXPECT_TRUE(relative.relative);
+    EXPECT_NE(relative.message().find("relative constraint error max |C|/r reached 0.2"), std::string::npos)
+        << relative.message();
     limits.maxRelativeConstraintError = 0.5;
     EXPECT_FALSE(checkDivergence(system, limits, 0.0, fine));
     limits.maxConstraintError = 1e-3;  // world units
     const Divergence d = checkDivergence(system, limits, 0.0, fine);
     EXPECT_EQ(d.reason, DivergenceReason::ConstraintViolation);
     EXPECT_GT(d.value, d.limit);
+    EXPECT_FALSE(d.relative);
+    EXPECT_NE(d.message().find("max |C| reached 0.02 (world units)"), std::string::npos) << d.message();
   }
   {
     ParticleSystem system = makeChain();

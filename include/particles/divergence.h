@@ -53,6 +53,7 @@ struct Divergence {
   DivergenceReason reason = DivergenceReason::None;
   double value = 0.0, limit = 0.0;  // the measured quantity and the threshold it crossed
   StepFailure failure = StepFailure::None;  // for StepFailed: which
+  bool relative = false;  // for ConstraintViolation: max |C|/r (true) or max |C| in world units
 
   explicit operator bool() const { return reason != DivergenceReason::None; }
   // One line, e.g. "max |C|/r = 0.31 exceeds 0.1" or "the step failed: work-cap".

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -194,4 +195,45 @@ TEST(DemoLooks, ADtLongerThanAFrameIsDrawnBetweenSteps) {
                                                   << expected.transpose();
   // And that is not where the state is.
   EXPECT_GT((after.toPixel(state) - expected).norm(), 4.0);
+}
+
+// The ghost is the closed form of the undisturbed motion: the HUD says so,
+// and once the mouse moves the scene it is hidden and the HUD says when; r
+// brings it back.
+TEST(DemoLooks, TheGhostSaysWhatItShowsAndHidesOnceTheMouseMovesTheScene) {
+  const std::string dir = outputDirectory("GhostLabel");
+  // Explicit Euler at 10 ms drifts from the closed form, so the two are apart.
+  const std::string args = "--no-panel --window 900x700 --scene pendulum --integrator euler --dt 0.01 --frames 60 ";
+  ASSERT_EQ(runDemo(dir, args + "--screenshot plain.png --log-state plain.txt").exitCode, 0);
+  const StateLog plain = readStateLog(dir + "/plain.txt");
+  EXPECT_NE(plain.overlay("hud")->text.find("ghost: the closed form from the start"), std::string::npos)
+      << plain.overlay("hud")->text;
+  // In the pane's world only (the HUD's label is in the ghost's colour too).
+  const LoggedPane& pane = plain.panes.at(0);
+  auto ghostPixels = [&](const Image& image) {
+    int count = 0;
+    for (int y = pane.pixelY; y < pane.pixelY + pane.pixelHeight; ++y)
+      for (int x = pane.pixelX; x < pane.pixelX + pane.pixelWidth; ++x)
+        count += near(image.at(x, y), demo::palette::mix(demo::palette::background, demo::palette::ghost, 170 / 255.0), 25);
+    return count;
+  };
+  EXPECT_GT(ghostPixels(readPng(dir + "/plain.png")), 20);
+
+  // The bob where it is when the drag starts, at frame 3.
+  ASSERT_EQ(runDemo(dir, "--no-panel --window 900x700 --scene pendulum --integrator euler --dt 0.01 --frames 3 "
+                         "--log-state early.txt").exitCode, 0);
+  const Eigen::Vector2d bob = readStateLog(dir + "/early.txt").panes.at(0).particles.back().x;
+  std::ostringstream drag;
+  drag << "3 down world " << bob.x() << " " << bob.y() << "\n6 move world " << bob.x() + 0.1 << " " << bob.y()
+       << "\n";
+  ASSERT_EQ(runDemo(dir, args + "--screenshot moved.png --log-state moved.txt", drag.str()).exitCode, 0);
+  const StateLog moved = readStateLog(dir + "/moved.txt");
+  EXPECT_NE(moved.overlay("hud")->text.find("ghost off: moved by the mouse at t = 0.05 s"), std::string::npos)
+      << moved.overlay("hud")->text;
+  EXPECT_EQ(ghostPixels(readPng(dir + "/moved.png")), 0);
+
+  ASSERT_EQ(runDemo(dir, args + "--log-state reset.txt", drag.str() + "8 up world 0 0\n9 key r\n").exitCode, 0);
+  const StateLog reset = readStateLog(dir + "/reset.txt");
+  EXPECT_NE(reset.overlay("hud")->text.find("ghost: the closed form from the start"), std::string::npos)
+      << reset.overlay("hud")->text;
 }
