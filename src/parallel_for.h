@@ -1,4 +1,7 @@
 #pragma once
+#include <algorithm>
+#include <limits>
+
 // The engine's parallel loops: body(i) for every i in [0, n), or
 // body(begin, end) over contiguous ranges covering [0, n), on `threads`
 // OpenMP threads when threads > 1 and n >= grain, else as a plain loop on the
@@ -32,6 +35,21 @@ void parallelRanges(int n, int threads, int grain, const Body& body) {
     return;
   }
   body(0, n);
+}
+
+// The largest value(i) over [0, n) (−∞ for n = 0), as parallelFor splits
+// it. A maximum is exact whatever the order, so the result is the same bits
+// on any thread count (a NaN value is passed over).
+template <class Value>
+double parallelMax(int n, int threads, int grain, const Value& value) {
+  double largest = -std::numeric_limits<double>::infinity();
+  if (threads > 1 && n >= grain) {
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(max : largest)
+    for (int i = 0; i < n; ++i) largest = std::max(largest, value(i));
+    return largest;
+  }
+  for (int i = 0; i < n; ++i) largest = std::max(largest, value(i));
+  return largest;
 }
 
 }  // namespace particles

@@ -193,13 +193,17 @@ int threadsOfThisProcess() {
 }
 
 // A cloth big enough for the parallel paths (kParallelSprings springs,
-// kParallelParticles particles): 80 × 80 particles, 8-way springs.
-std::unique_ptr<ParticleSystem> bigCloth() {
+// kParallelParticles particles): 80 × 80 particles, 8-way springs; with
+// colliders, 96 × 96 at rest with its grid's sides as collision edges, its
+// bottom row 0.2 mm above a box it meets within ten 1 ms steps (and a disc
+// below), for the contact broad phase's parallel blocks (kParallelEntries
+// particles and edges).
+std::unique_ptr<ParticleSystem> bigCloth(bool colliders = false) {
   auto s = std::make_unique<ParticleSystem>();
-  const int w = 80;
+  const int w = colliders ? 96 : 80;
   std::vector<Eigen::Vector2d> x;
   for (int r = 0; r < w; ++r)
-    for (int c = 0; c < w; ++c) x.emplace_back(0.05 * c + 0.001 * r * r, -0.05 * r);
+    for (int c = 0; c < w; ++c) x.emplace_back(0.05 * c + (colliders ? 0.0 : 0.001 * r * r), -0.05 * r);  // on colliders: at rest
   s->addParticles(x, std::vector<double>(x.size(), 0.2));
   for (int c = 0; c < w; ++c) s->setPinned(c, true);
   for (int r = 0; r < w; ++r)
@@ -213,6 +217,15 @@ std::unique_ptr<ParticleSystem> bigCloth() {
       if (r + 1 < w && c > 0) spring(r + 1, c - 1, 0.0707);
     }
   s->addForce(std::make_unique<particles::GravityForce>(Eigen::Vector2d(0.0, -9.81)));
+  if (colliders) {
+    s->addCollider(particles::Collider::box(Eigen::Vector2d(-1.0, -5.2), Eigen::Vector2d(6.0, -4.7502)));
+    s->addCollider(particles::Collider::disc(Eigen::Vector2d(2.4, -5.6), 0.3));
+    for (int r = 0; r < w; ++r)
+      for (int c = 0; c < w; ++c) {
+        if (c + 1 < w) s->addCollisionEdge(r * w + c, r * w + c + 1);
+        if (r + 1 < w) s->addCollisionEdge(r * w + c, (r + 1) * w + c);
+      }
+  }
   return s;
 }
 
@@ -239,20 +252,26 @@ TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
     std::unique_ptr<ParticleSystem> system;
     double dt = 0.001;
     scenes::Scene built;
-    if (scene == "big-cloth") {
-      system = bigCloth();
+    if (scene == "big-cloth" || scene == "big-cloth-on-colliders") {
+      system = bigCloth(scene == "big-cloth-on-colliders");
     } else {
       built = scenes::buildScene(scene);
       system = std::move(built.system);
       dt = built.dt;
     }
     auto integrator = particles::makeIntegrator(integratorName);
-    for (int k = 0; k < 10; ++k) system->step(*integrator, dt);
+    int contacts = 0;
+    for (int k = 0; k < 10; ++k) {
+      system->step(*integrator, dt);
+      contacts += system->contactsLastStep();
+    }
+    // The cloth on colliders does meet them within its ten steps.
+    if (scene == "big-cloth-on-colliders") EXPECT_GT(contacts, 0) << integratorName;
     Eigen::VectorXd state(2 * system->positions().size());
     state << system->positions(), system->velocities();
     return state;
   };
-  std::vector<std::string> sceneNames = {"big-cloth"};
+  std::vector<std::string> sceneNames = {"big-cloth", "big-cloth-on-colliders"};
   for (const scenes::SceneInfo& info : scenes::sceneTable()) sceneNames.push_back(info.name);
   for (const std::string& scene : sceneNames)
     for (const std::string& integrator : integrators) {

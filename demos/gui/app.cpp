@@ -60,6 +60,13 @@ const scenes::SceneInfo* findSceneInfo(const std::string& name) {
   return nullptr;
 }
 
+// The "try this" line: the choice's own, else its scene's.
+std::string hintFor(const SceneChoice& choice) {
+  if (!choice.hint.empty()) return choice.hint;
+  const scenes::SceneInfo* info = findSceneInfo(choice.name);
+  return info ? hintOf(*info) : "";
+}
+
 // A pixel coordinate from a double that may be huge or NaN (a script's
 // window coordinate ≥ 2³¹ or a world point far outside): clamped well inside int.
 int toPixel(double v) {
@@ -120,7 +127,7 @@ App::App(DemoOptions options)
       panes_[k]->setDt(options_.compare[k].dt.value_or(dt));
     }
   }
-  if (const scenes::SceneInfo* info = findSceneInfo(scene_.name)) sceneHint_ = hintOf(*info);
+  sceneHint_ = hintFor(scene_);
   exact_ = exactMotion(scene_, *buildChoice(scene_).system);  // a fresh build: the state at t = 0
   mouseSettings_.joint = options_.grab;
   takeWindTearFromScene();
@@ -401,8 +408,7 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   tool_ = MouseTool::None;
   panning_ = false;
   paused_ = options_.startPaused && frame_ == 0;
-  const scenes::SceneInfo* info = findSceneInfo(choice.name);
-  sceneHint_ = info ? hintOf(*info) : "";
+  sceneHint_ = hintFor(choice);
   exact_ = exactMotion(choice, *buildChoice(choice).system);
   disturbedAt_.reset();
   setStatus("scene: " + choice.label);

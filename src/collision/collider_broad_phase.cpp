@@ -2,11 +2,14 @@
 // near any collider at all, and the collision edges at those particles.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
 
 #include "collider_broad_phase.h"
+#include "parallel_for.h"
+#include "particles/threads.h"
 #include "set_flags.h"
 
 namespace particles {
@@ -35,6 +38,56 @@ std::optional<std::array<double, 4>> pathBox(const double* S, const double* X, i
   return std::array<double, 4>{lo.x(), lo.y(), hi.x(), hi.y()};
 }
 
+// Up to kChunk colliders grown by the margin, on the stack: boxes (lo x,
+// lo y, hi x, hi y) and half-plane rows (n, n·p + margin).
+constexpr std::size_t kChunk = 8;
+struct GrownChunk {
+  std::array<std::array<double, 4>, kChunk> boxes{}, planes{};
+  std::size_t boxCount = 0, planeCount = 0;
+
+  GrownChunk(const std::vector<Collider>& colliders, std::size_t first, std::size_t last, double margin) {
+    for (std::size_t k = first; k < last; ++k) {
+      const Collider& c = colliders[k];
+      Eigen::Vector2d lo, hi;
+      if (c.bounds(lo, hi))
+        boxes[boxCount++] = {lo.x() - margin, lo.y() - margin, hi.x() + margin, hi.y() + margin};
+      else
+        planes[planeCount++] = {c.normal.x(), c.normal.y(), c.normal.dot(c.points[0]) + margin, 0.0};
+    }
+  }
+
+  // The block is apart when its box is apart from every collider. For a
+  // half-plane the least n·x over the box is at its corner against n; n·x is
+  // monotone in each coordinate in floating point too, so each particle's
+  // n·a and n·b are at least that corner's.
+  bool apart(const std::array<double, 4>& B) const {
+    for (std::size_t k = 0; k < boxCount; ++k) {
+      const std::array<double, 4>& b = boxes[k];
+      if (!(B[1] > b[3] || B[3] < b[1] || B[0] > b[2] || B[2] < b[0])) return false;
+    }
+    for (std::size_t k = 0; k < planeCount; ++k) {
+      const std::array<double, 4>& p = planes[k];
+      if (!(p[0] * (p[0] >= 0.0 ? B[0] : B[2]) + p[1] * (p[1] >= 0.0 ? B[1] : B[3]) > p[2])) return false;
+    }
+    return true;
+  }
+
+  // Whether the path a → b comes within the margin of one of the colliders.
+  bool near(double ax, double ay, double bx, double by) const {
+    const double loX = std::min(ax, bx), hiX = std::max(ax, bx), loY = std::min(ay, by), hiY = std::max(ay, by);
+    for (std::size_t k = 0; k < boxCount; ++k) {
+      const std::array<double, 4>& b = boxes[k];
+      if (loY <= b[3] && hiY >= b[1] && loX <= b[2] && hiX >= b[0]) return true;
+    }
+    // A half-plane n·(x − p) ≤ 0: near when either end is within margin of it.
+    for (std::size_t k = 0; k < planeCount; ++k) {
+      const std::array<double, 4>& p = planes[k];
+      if (std::min(p[0] * ax + p[1] * ay, p[0] * bx + p[1] * by) <= p[2]) return true;
+    }
+    return false;
+  }
+};
+
 }  // namespace
 
 void markNearColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
@@ -44,57 +97,21 @@ void markNearColliders(const std::vector<Collider>& colliders, const Eigen::Vect
   nearList.clear();
   const double* S = x0.data();
   const double* X = x1.data();
-  // Colliders in chunks whose grown boxes (lo x, lo y, hi x, hi y) or
-  // half-plane rows (n, n·p + margin) sit on the stack; each particle's path
-  // box is made once per chunk and tested with a few comparisons per collider.
-  constexpr std::size_t kChunk = 8;
+  // Colliders in chunks; each particle's path box is made once per chunk and
+  // tested with a few comparisons per collider. Blocks touch their own
+  // particles only: any thread may test any block, with the same flags.
+  const int blocks = (n + kBlock - 1) / kBlock;
   for (std::size_t first = 0; first < colliders.size(); first += kChunk) {
-    const std::size_t last = std::min(colliders.size(), first + kChunk);
-    std::array<std::array<double, 4>, kChunk> boxes{}, planes{};
-    std::size_t boxCount = 0, planeCount = 0;
-    for (std::size_t k = first; k < last; ++k) {
-      const Collider& c = colliders[k];
-      Eigen::Vector2d lo, hi;
-      if (c.bounds(lo, hi))
-        boxes[boxCount++] = {lo.x() - margin, lo.y() - margin, hi.x() + margin, hi.y() + margin};
-      else
-        planes[planeCount++] = {c.normal.x(), c.normal.y(), c.normal.dot(c.points[0]) + margin, 0.0};
-    }
-    for (int block = 0; block < n; block += kBlock) {
-      const int end = std::min(n, block + kBlock);
-      // The block is skipped when its box is apart from every collider. For
-      // a half-plane the least n·x over the box is at its corner against n;
-      // n·x is monotone in each coordinate in floating point too, so each
-      // particle's n·a and n·b are at least that corner's.
-      const std::optional<std::array<double, 4>> box = pathBox(S, X, block, end);
-      bool apart = box.has_value();
-      const std::array<double, 4> B = box.value_or(std::array<double, 4>{});
-      for (std::size_t k = 0; k < boxCount && apart; ++k) {
-        const std::array<double, 4>& b = boxes[k];
-        apart = B[1] > b[3] || B[3] < b[1] || B[0] > b[2] || B[2] < b[0];
+    const GrownChunk chunk(colliders, first, std::min(colliders.size(), first + kChunk), margin);
+    parallelRanges(blocks, threadCount(), kParallelEntries / kBlock, [&](int firstBlock, int lastBlock) {
+      for (int block = firstBlock * kBlock; block < std::min(n, lastBlock * kBlock); block += kBlock) {
+        const int end = std::min(n, block + kBlock);
+        const std::optional<std::array<double, 4>> box = pathBox(S, X, block, end);
+        if (box && chunk.apart(*box)) continue;
+        for (int i = block; i < end; ++i)
+          if (!near[i]) near[i] = chunk.near(S[2 * i], S[2 * i + 1], X[2 * i], X[2 * i + 1]);
       }
-      for (std::size_t k = 0; k < planeCount && apart; ++k) {
-        const std::array<double, 4>& p = planes[k];
-        apart = p[0] * (p[0] >= 0.0 ? B[0] : B[2]) + p[1] * (p[1] >= 0.0 ? B[1] : B[3]) > p[2];
-      }
-      if (apart) continue;
-      for (int i = block; i < end; ++i) {
-        if (near[i]) continue;
-        const double ax = S[2 * i], ay = S[2 * i + 1], bx = X[2 * i], by = X[2 * i + 1];
-        const double loX = std::min(ax, bx), hiX = std::max(ax, bx), loY = std::min(ay, by), hiY = std::max(ay, by);
-        bool hit = false;
-        for (std::size_t k = 0; k < boxCount && !hit; ++k) {
-          const std::array<double, 4>& b = boxes[k];
-          hit = loY <= b[3] && hiY >= b[1] && loX <= b[2] && hiX >= b[0];
-        }
-        // A half-plane n·(x − p) ≤ 0: near when either end is within margin of it.
-        for (std::size_t k = 0; k < planeCount && !hit; ++k) {
-          const std::array<double, 4>& p = planes[k];
-          hit = std::min(p[0] * ax + p[1] * ay, p[0] * bx + p[1] * by) <= p[2];
-        }
-        near[i] = hit;
-      }
-    }
+    });
   }
   contact::appendSetFlags(near, nearList);
 }
@@ -133,12 +150,17 @@ double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd&
   // Each side of an edge's box is at most the edge's extent along it at the
   // end plus the travel of its two ends: |x_i − x_j|∞ + 2 max_k |x1_k − x0_k|∞.
   // (Both axes at once; with a coordinate not finite the reach may be any value.)
-  using Point = Eigen::Map<const Eigen::Array2d>;
+  // Maxima, so the same on any thread count.
   const double* X = x1.data();
-  Eigen::Array2d extent = Eigen::Array2d::Zero();
-  for (const CollisionEdge& edge : edges) extent = extent.max((Point(X + 2 * edge.a) - Point(X + 2 * edge.b)).abs());
-  const double travel = x1.size() > 0 ? (x1 - x0).cwiseAbs().maxCoeff() : 0.0;
-  return extent.maxCoeff() + 2.0 * travel;
+  const double* S = x0.data();
+  const int threads = threadCount();
+  const double extent = std::max(0.0, parallelMax(static_cast<int>(edges.size()), threads, kParallelEntries, [&](int k) {
+    const CollisionEdge& e = edges[k];
+    return std::max(std::abs(X[2 * e.a] - X[2 * e.b]), std::abs(X[2 * e.a + 1] - X[2 * e.b + 1]));
+  }));
+  const double travel = std::max(0.0, parallelMax(static_cast<int>(x1.size()), threads, kParallelEntries,
+                                                  [&](int k) { return std::abs(X[k] - S[k]); }));
+  return extent + 2.0 * travel;
 }
 
 }  // namespace particles
