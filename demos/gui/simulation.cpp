@@ -79,6 +79,7 @@ void Simulation::setDt(double dt) {
 void Simulation::beginFrame(double frameTime, StepMode mode) {
   lastFrame_ = {};
   frameMode_ = mode;
+  frameTime_ = frameTime;
   if (stopped()) return;
   // Fixed simulated time per frame: the frame rate changes how often this
   // runs, never what it computes. Time short of a whole dt carries over.
@@ -138,7 +139,9 @@ double Simulation::mouseSpringEnergy() const {
 
 void Simulation::stepAndWatch() {
   particles::StepStats stats;
-  previousX_ = system().positions();
+  // Kept only while steps are longer than frames, the one case drawn between them.
+  if (frameMode_ == StepMode::FixedTime && dt_ > frameTime_) previousX_ = system().positions();
+  else previousX_.resize(0);
   try {
     stats = system().step(*integrator_, dt_);
   } catch (const std::exception& e) {

@@ -170,7 +170,8 @@ class Simulation {
   int integratorIndex_;
   double dt_;
   double owedTime_ = 0.0;  // simulated time accumulated but not yet stepped
-  Eigen::VectorXd previousX_;  // the positions before the last step
+  Eigen::VectorXd previousX_;  // the positions before the last step, when dt > frameTime_ (else empty)
+  double frameTime_ = 0.0;     // the last frame's simulated time (beginFrame)
   long long steps_ = 0;
   long long frames_ = 0;
   long long framesWaited_ = 0;
