@@ -92,6 +92,12 @@ TEST(Verlet, PredictedVelocityKeepsSecondOrderWithDamping) {
   EXPECT_NEAR(order, 2.0, 0.3);
 }
 
+TEST(Rattle, PredictedVelocityKeepsSecondOrderWithDamping) {
+  const double order = fittedOrder("rattle", 0.5, dampedReference(0.5));
+  RecordProperty("fitted_order", std::to_string(order));
+  EXPECT_NEAR(order, 2.0, 0.3);
+}
+
 TEST(ImplicitEuler, GlobalErrorIsFirstOrder) {
   const double order = fittedOrder("implicit-euler", 0.0, undamped);
   RecordProperty("fitted_order", std::to_string(order));

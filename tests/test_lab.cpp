@@ -437,10 +437,24 @@ TEST(LongtimeQuick, DriftRatesOfTheSymplecticFamilies) {
 TEST(AccuracyQuick, OscillatorSlopesAreTheIntegratorsOrders) {
   LabOptions o = quickOptions("accuracy");
   ASSERT_EQ(runAccuracy(o), 0);
-  const Table rows = readCsv(o.outDir + "/accuracy_slopes.csv", {"problem", "integrator", "slope"});
+  const Table rows =
+      readCsv(o.outDir + "/accuracy_slopes.csv", {"problem", "integrator", "slope", "points", "local_slopes"});
   std::map<std::string, double> slope;
   for (const auto& row : rows)
-    if (row.at("problem") == "oscillator") slope[row.at("integrator")] = std::stod(row.at("slope"));
+    if (row.at("problem") == "oscillator") {
+      slope[row.at("integrator")] = std::stod(row.at("slope"));
+      // The fit runs over the finest points whose local slopes agree: at least
+      // two points, and no more than there are local slopes plus one.
+      std::istringstream local(row.at("local_slopes"));
+      std::vector<double> slopes;
+      for (double s; local >> s;) slopes.push_back(s);
+      const int points = std::stoi(row.at("points"));
+      EXPECT_GE(points, 2) << row.at("integrator");
+      EXPECT_LE(points, static_cast<int>(slopes.size()) + 1) << row.at("integrator");
+      if (points == 2) {
+        EXPECT_NEAR(slope[row.at("integrator")], slopes.front(), 0.006) << row.at("integrator");
+      }
+    }
   EXPECT_NEAR(slope["euler"], 1.0, 0.3);
   EXPECT_NEAR(slope["midpoint"], 2.0, 0.3);
   EXPECT_NEAR(slope["rk4"], 4.0, 0.3);

@@ -15,6 +15,7 @@
 #include "lab/reference.h"
 #include "lab/scan.h"
 #include "scenes/oscillator.h"
+#include "scenes/pendulum.h"
 
 using namespace lab;
 
@@ -66,6 +67,28 @@ TEST(OdeintReference, MatchesTheOscillatorClosedForm) {
   EXPECT_GT(maxTrajectoryDistance(odeintReference(again, horizon, settings),
                                   oscillatorReference({}, horizon, settings.interval)),
             1e-8);
+}
+
+// The slowest period measured on a reference (what the accuracy horizons are
+// counted in) is the large-angle pendulum's elliptic-integral period; a
+// pendulum hanging at rest has none.
+TEST(OdeintReference, SlowestPeriodIsThePendulumsPeriod) {
+  scenes::PendulumParams p;
+  const double period = scenes::pendulumPeriod(p);
+  scenes::Scene swinging = scenes::buildPendulum(p);
+  ReferenceSettings settings;
+  settings.tolerance = 1e-9;
+  const Trajectory swing = odeintReference(swinging, 5.5 * period, settings);
+  EXPECT_NEAR(swing.slowestPeriod(), period, 1e-3 * period);
+  // The height swings at twice the frequency: over 0.9 periods it alone
+  // crosses twice, over 0.4 nothing does.
+  scenes::Scene shorter = scenes::buildPendulum(p);
+  EXPECT_NEAR(odeintReference(shorter, 0.9 * period, settings).slowestPeriod(), 0.5 * period, 2e-3 * period);
+  scenes::Scene brief = scenes::buildPendulum(p);
+  EXPECT_EQ(odeintReference(brief, 0.4 * period, settings).slowestPeriod(), 0.0);
+  p.angle = 0.0;
+  scenes::Scene hanging = scenes::buildPendulum(p);
+  EXPECT_EQ(odeintReference(hanging, 3.0 * period, settings).slowestPeriod(), 0.0);
 }
 
 TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {

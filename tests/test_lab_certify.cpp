@@ -83,6 +83,24 @@ TEST(Certify, NothingSurvivingDownToTheFloorCertifiesNothing) {
   EXPECT_EQ(certifiedText(*c).rfind("< ", 0), 0u);
 }
 
+TEST(Certify, AScanThatReachesTheFloorBeforeADecadeIsMarked) {
+  // Failures above 0.02, survival below: a decade below the failure (0.002)
+  // lies under the floor 0.005, so the certificate covers [0.005, 0.02) only.
+  CertifySettings settings;
+  settings.top = 0.1;
+  settings.floor = 0.005;
+  const double duration = 2.0;
+  const auto c = certifySafeStep(
+      [&](double dt, int) -> std::optional<Probe> { return dt > 0.02 ? failedProbe(0.5) : survivedProbe(duration); },
+      duration, settings);
+  ASSERT_TRUE(c);
+  EXPECT_FALSE(c->fullDecades);
+  EXPECT_FALSE(c->belowFloor());
+  EXPECT_LE(c->safeDt, 0.02);
+  EXPECT_GT(c->safeDt * 1.011, 0.02);
+  EXPECT_EQ(certifiedText(*c), output::formatGeneral(c->safeDt, 4) + " †");
+}
+
 TEST(Certify, NothingFailingIsALowerBoundAtTheTop) {
   CertifySettings settings;
   settings.top = 0.4;

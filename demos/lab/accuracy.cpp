@@ -1,5 +1,5 @@
 // `particle-lab accuracy`: work–precision over horizons of at least five
-// periods. For each problem, integrator and step (adaptive schemes: tolerance,
+// measured periods (a chaotic problem: its predictability). For each problem, integrator and step (adaptive schemes: tolerance,
 // at a fixed output interval), against a reference independent of every
 // integrator under test (lab/reference.h): the maximum over the trajectory of
 // the largest particle position error, the error at T, the energy error and
@@ -28,18 +28,31 @@ struct Problem {
   std::vector<double> steps;  // dt values swept
   bool closedForm = false;    // the oscillator: the closed form is the reference
   double referenceTolerance = 1e-11;
+  // A chaotic problem, whose horizon is its predictability and not five
+  // periods: its references are also run over this longer horizon (0: none),
+  // to measure the periods in it and when the two references part.
+  double chaosProbe = 0.0;
 };
+
+// The partings of references more than this (m) leave no error to measure orders on.
+constexpr double kPartingThreshold = 1e-4;
 
 // What the tables need of a problem's reference (its trajectory stays in the
 // processes that measure against it).
 struct ReferenceSummary {
   double agreement = 0.0;
   double size = 0.0;
+  double period = 0.0;  // Trajectory::slowestPeriod
   std::string description;
+  // Over Problem::chaosProbe: the slowest period, the references' agreement,
+  // and the time they first part by more than kPartingThreshold.
+  double probePeriod = 0.0, probeAgreement = 0.0, probePredictable = 0.0;
 };
 template <class Io>
 void fields(Io& io, ReferenceSummary& r) {
-  io("agreement", r.agreement), io("size", r.size), io("description", r.description);
+  io("agreement", r.agreement), io("size", r.size), io("period", r.period), io("description", r.description);
+  io("probe_period", r.probePeriod), io("probe_agreement", r.probeAgreement);
+  io("probe_predictable", r.probePredictable);
 }
 
 // One point of the work–precision sweep: the run against the reference and
@@ -64,17 +77,19 @@ struct AccuracyPlan {
   std::vector<double> tolerances;
 };
 
-// Periods: oscillator 2π (ω = 1); pendulum ≈ 20 s (scenes::pendulumPeriod);
-// the chain's swing ≈ 12 s. The chain is chaotic: past about 20 s two
-// references at nearby tolerances part, so its reference is held tighter.
+// Horizons of at least five periods of the slowest motion, as measured on
+// the references (accuracy_references.md): oscillator 6.3 s, pendulum 21.3 s,
+// cloth 18.2 s (its vertical bounce). The 6-chain (period 18.3 s) is chaotic:
+// its references part by more than kPartingThreshold after about 66 s, so its
+// horizon is 60 s, its reference held tighter, and the probe over 100 s says so.
 AccuracyPlan fullPlan() {
   AccuracyPlan plan;
   plan.repeats = 5;
   plan.problems = {
       {"oscillator", "oscillator", {}, 32.0, logSpace(0.005, 0.5, 9), true},
-      {"pendulum", "pendulum", {}, 100.0, logSpace(0.005, 0.3, 8)},
-      {"6-chain", "test-chain", {{"cl", "6"}}, 60.0, logSpace(0.0025, 0.08, 7), false, 1e-13},
-      {"cloth-10x10", "cloth", {{"width", "10"}, {"height", "10"}}, 10.0, logSpace(0.0025, 0.16, 7)},
+      {"pendulum", "pendulum", {}, 110.0, logSpace(0.005, 0.3, 8)},
+      {"6-chain", "test-chain", {{"cl", "6"}}, 60.0, logSpace(0.0025, 0.08, 7), false, 1e-13, 100.0},
+      {"cloth-10x10", "cloth", {{"width", "10"}, {"height", "10"}}, 100.0, logSpace(0.0025, 0.16, 7)},
   };
   plan.tolerances = logSpace(1e-12, 1e-3, 10);
   return plan;
@@ -87,7 +102,7 @@ AccuracyPlan quickPlan() {
   plan.problems = {
       {"oscillator", "oscillator", {}, 10.0, {0.1, 0.05, 0.025}, true},
       {"pendulum", "pendulum", {}, 20.0, {0.1, 0.05, 0.025}},
-      {"6-chain", "test-chain", {{"cl", "6"}}, 4.0, {0.04, 0.02}, false, 1e-11},
+      {"6-chain", "test-chain", {{"cl", "6"}}, 4.0, {0.04, 0.02}, false, 1e-11, 8.0},
       {"cloth-10x10", "cloth", {{"width", "10"}, {"height", "10"}}, 1.0, {0.04, 0.02}},
   };
   plan.tolerances = {1e-5, 1e-9};
@@ -136,6 +151,10 @@ class ProblemScene {
     if (!computed_)
       computed_ = makeReference(builder(), problem_.horizon, firstDt_, problem_.referenceTolerance, closedForm_);
     return *computed_;
+  }
+  // The reference over another horizon, computed afresh.
+  Reference longerReference(double horizon) const {
+    return makeReference(builder(), horizon, firstDt_, problem_.referenceTolerance, closedForm_);
   }
   int particles = 0;
   double scale = 0.0;  // E_s of the start
@@ -202,7 +221,15 @@ ProblemRun measureProblem(const LabOptions& options, const AccuracyPlan& plan, c
   run.summary = cell<ReferenceSummary>(options, [&]() -> std::optional<ReferenceSummary> {
                   const Reference& r = scene.reference();
                   if (interrupted()) return std::nullopt;
-                  return ReferenceSummary{r.agreement, static_cast<double>(r.trajectory.size()), r.description};
+                  ReferenceSummary summary{r.agreement, r.trajectory.size(), r.trajectory.slowestPeriod(),
+                                           r.description};
+                  if (problem.chaosProbe > 0.0) {
+                    const Reference probe = scene.longerReference(problem.chaosProbe);
+                    summary.probePeriod = probe.trajectory.slowestPeriod();
+                    summary.probeAgreement = probe.agreement;
+                    summary.probePredictable = predictableUntil(probe, kPartingThreshold, problem.chaosProbe);
+                  }
+                  return summary;
                 }).value_or(ReferenceSummary{});
   for (const auto& name : integrators) {
     run.sweeps.push_back(sweepIntegrator(options, plan, problem, scene, name, progress));
@@ -211,18 +238,52 @@ ProblemRun measureProblem(const LabOptions& options, const AccuracyPlan& plan, c
   return run;
 }
 
-// The order is read where the error is asymptotic (below a tenth of the
-// scene) and above the reference's uncertainty, bounded by its distance from
-// the check run at 100× its tolerance.
-double observedOrder(const Problem& problem, const ProblemRun& run, const Sweep& sweep) {
-  std::vector<double> knobs, errors;
+// The observed order on a sweep: local slopes between neighbouring points
+// (finest first) and the least-squares slope over the asymptotic range, the
+// finest points whose local slopes lie within kAsymptoticSpread of each other.
+struct Order {
+  double slope = std::nan("");  // over the asymptotic range; NaN with fewer than two points
+  int points = 0;               // in the asymptotic range
+  std::vector<double> local;    // finest pair first
+};
+constexpr double kAsymptoticSpread = 0.2;
+
+// The points that count are where the error is below a tenth of the scene and
+// above the reference's uncertainty (its distance from the check run at 100×
+// its tolerance).
+Order observedOrder(const Problem& problem, const ProblemRun& run, const Sweep& sweep) {
+  std::vector<std::pair<double, double>> points;  // (knob, error)
   const double floor = problem.closedForm ? 1e-13 : run.summary.agreement;
   for (const auto& [cell, point] : sweep.points) {
     const Candidate& candidate = point.candidate;
     if (candidate.survived && candidate.maxError < 0.1 * run.summary.size && candidate.maxError > floor)
-      knobs.push_back(cell.tolerance > 0.0 ? cell.knob : cell.dt), errors.push_back(candidate.maxError);
+      points.emplace_back(cell.tolerance > 0.0 ? cell.knob : cell.dt, candidate.maxError);
   }
-  return logLogSlope(knobs, errors);
+  std::sort(points.begin(), points.end());
+  Order order;
+  for (std::size_t k = 0; k + 1 < points.size(); ++k)
+    order.local.push_back(std::log(points[k + 1].second / points[k].second) /
+                          std::log(points[k + 1].first / points[k].first));
+  if (order.local.empty()) return order;
+  // The asymptotic range grows from the finest pair while the spread of its local slopes stays small.
+  std::size_t slopes = 1;
+  double lo = order.local[0], hi = order.local[0];
+  while (slopes < order.local.size()) {
+    const double next = order.local[slopes];
+    if (std::max(hi, next) - std::min(lo, next) > kAsymptoticSpread) break;
+    lo = std::min(lo, next), hi = std::max(hi, next), ++slopes;
+  }
+  std::vector<double> knobs, errors;
+  for (std::size_t k = 0; k <= slopes; ++k) knobs.push_back(points[k].first), errors.push_back(points[k].second);
+  order.slope = logLogSlope(knobs, errors);
+  order.points = static_cast<int>(knobs.size());
+  return order;
+}
+
+std::string localSlopesText(const Order& order) {
+  std::string text;
+  for (double s : order.local) text += (text.empty() ? "" : " ") + fixed(s, 2);
+  return text.empty() ? "–" : text;
 }
 
 void writePointRows(Csv& csv, const Problem& problem, const Sweep& sweep) {
@@ -240,48 +301,90 @@ void writePointRows(Csv& csv, const Problem& problem, const Sweep& sweep) {
 
 using Rows = std::vector<std::vector<std::string>>;
 
-// accuracy.csv and accuracy_slopes.csv; the slope table's rows and the
-// references' (an interrupted sweep is missing points: no slope is derived from it).
-void writeRuns(const LabOptions& options, const AccuracyPlan& plan, const std::vector<ProblemRun>& runs,
-               Rows& table, Rows& references) {
+// The rows of the experiment's tables.
+struct AccuracyTables {
+  Rows slopes;      // per problem, the order of every integrator
+  Rows local;       // per problem and integrator, the order with its range and local slopes
+  Rows references;  // per problem, its reference and horizon
+};
+
+// A problem's reference row: its horizon against the slowest period measured on the reference.
+void addReferenceRow(const LabOptions& options, const Problem& problem, const ProblemRun& run,
+                     AccuracyTables& tables) {
+  const double period = run.summary.period;
+  const std::string periods = period > 0.0 ? fixed(problem.horizon / period, 1) : "< 2";
+  tables.references.push_back({problem.label, std::to_string(run.particles), general(problem.horizon),
+                               period > 0.0 ? general(period, 3) : "–", periods, general(run.summary.size),
+                               run.summary.description});
+  recordValue(options, "accuracy.reference_agreement." + problem.label, general(run.summary.agreement, 2));
+  recordValue(options, "accuracy.horizon." + problem.label, general(problem.horizon));
+  recordValue(options, "accuracy.period." + problem.label, period > 0.0 ? general(period, 3) : "–");
+  recordValue(options, "accuracy.periods." + problem.label, periods);
+  if (problem.chaosProbe > 0.0) {
+    const std::string key = "accuracy.chaos." + problem.label;
+    recordValue(options, key + ".probe", general(problem.chaosProbe));
+    recordValue(options, key + ".probe_periods",
+                run.summary.probePeriod > 0.0 ? fixed(problem.chaosProbe / run.summary.probePeriod, 1) : "< 2");
+    recordValue(options, key + ".probe_agreement", general(run.summary.probeAgreement, 2));
+    recordValue(options, key + ".predictable", general(run.summary.probePredictable, 3));
+    recordValue(options, key + ".threshold", general(kPartingThreshold));
+  }
+}
+
+// accuracy.csv and accuracy_slopes.csv, and the tables' rows (an interrupted
+// sweep is missing points: no slope is derived from it).
+AccuracyTables writeRuns(const LabOptions& options, const AccuracyPlan& plan, const std::vector<ProblemRun>& runs) {
+  AccuracyTables tables;
   Csv csv(options, "accuracy.csv",
           {"problem", "integrator", "dt", "tolerance", "error", "seconds_per_simulated_second", "error_at_T",
            "energy_error", "constraint_drift", "cpu_min", "cpu_max", "survived", "failure"});
-  Csv slopes(options, "accuracy_slopes.csv", {"problem", "integrator", "slope"});
+  Csv slopes(options, "accuracy_slopes.csv", {"problem", "integrator", "slope", "points", "local_slopes"});
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Problem& problem = plan.problems[k];
     const ProblemRun& run = runs[k];
-    references.push_back({problem.label, std::to_string(run.particles), general(problem.horizon),
-                          general(run.summary.size), run.summary.description});
-    recordValue(options, "accuracy.reference_agreement." + problem.label, general(run.summary.agreement, 2));
-    recordValue(options, "accuracy.horizon." + problem.label, general(problem.horizon));
+    addReferenceRow(options, problem, run, tables);
     std::vector<std::string> row{problem.label + " (" + output::plural(run.particles, "particle") +
                                  ", T = " + general(problem.horizon) + " s)"};
     for (const Sweep& sweep : run.sweeps) {
       writePointRows(csv, problem, sweep);
       if (!sweep.complete) break;
-      const double slope = observedOrder(problem, run, sweep);
-      slopes << problem.label << sweep.integrator << slope;
+      const Order order = observedOrder(problem, run, sweep);
+      slopes << problem.label << sweep.integrator << order.slope << static_cast<long>(order.points)
+             << localSlopesText(order);
       slopes.endRow();
-      row.push_back(std::isfinite(slope) ? fixed(slope, 2) : "–");
+      row.push_back(std::isfinite(order.slope) ? fixed(order.slope, 2) : "–");
+      tables.local.push_back(
+          {problem.label, sweep.integrator, row.back(), std::to_string(order.points), localSlopesText(order)});
       recordValue(options, "accuracy.slope." + problem.label + "." + sweep.integrator, row.back());
+      recordValue(options, "accuracy.local_slopes." + problem.label + "." + sweep.integrator,
+                  localSlopesText(order));
     }
-    table.push_back(row);
+    tables.slopes.push_back(row);
   }
+  return tables;
 }
 
 void writeTables(const LabOptions& options, const AccuracyPlan& plan, const std::vector<std::string>& integrators,
-                 const Rows& table, const Rows& references) {
+                 const AccuracyTables& tables) {
   writeTable(options, "accuracy_references",
-             "Work–precision problems and their references (agreement: largest particle distance from odeint "
-             "at 100x the tolerance, at samples about 1 s apart)",
-             {"problem", "particles", "T (s)", "size", "reference"}, references);
+             "Work–precision problems and their references (slowest period: measured on the reference, the mean "
+             "spacing of its centre's crossings; agreement: largest particle distance from odeint at 100x the "
+             "tolerance, at samples about 1 s apart)",
+             {"problem", "particles", "T (s)", "slowest period (s)", "periods in T", "size", "reference"},
+             tables.references);
   std::vector<std::string> header{"problem"};
   for (const auto& name : integrators) header.push_back(name);
+  const std::string against =
+      "against log dt (adaptive schemes: against log tolerance, called every " + general(plan.outputInterval) + " s)";
   writeTable(options, "accuracy_slopes",
-             "Observed order: slope of log max position error over [0, T] against log dt (adaptive schemes: "
-             "against log tolerance, called every " + general(plan.outputInterval) + " s)",
-             header, table);
+             "Observed order: slope of log max position error over [0, T] " + against +
+                 ", fitted over the asymptotic range (the finest points whose local slopes agree within " +
+                 fixed(kAsymptoticSpread, 1) + ")",
+             header, tables.slopes);
+  writeTable(options, "accuracy_local_slopes",
+             "Local slopes of log max position error " + against +
+                 " between neighbouring points, finest first, and the points of the asymptotic range",
+             {"problem", "integrator", "order", "points fitted", "local slopes (finest first)"}, tables.local);
 }
 
 }  // namespace
@@ -302,10 +405,9 @@ int runAccuracy(const LabOptions& options) {
     if (interrupted()) break;
     runs.push_back(measureProblem(options, plan, problem, integrators, progress));
   }
-  Rows table, references;
-  writeRuns(options, plan, runs, table, references);
+  const AccuracyTables tables = writeRuns(options, plan, runs);
   if (interrupted()) return 130;  // rows already written stay; no table from missing data
-  writeTables(options, plan, integrators, table, references);
+  writeTables(options, plan, integrators, tables);
   return 0;
 }
 

@@ -79,7 +79,7 @@ std::optional<Certificate> certifySafeStep(const MemberRun& run, double duration
 std::string certifiedText(const Certificate& c) {
   if (c.belowFloor()) return "< " + output::formatGeneral(c.lowest, 4);
   if (c.aboveGrid()) return "≥ " + output::formatGeneral(c.safeDt, 4);
-  return output::formatGeneral(c.safeDt, 4);
+  return output::formatGeneral(c.safeDt, 4) + (c.fullDecades ? "" : " †");
 }
 
 }  // namespace lab

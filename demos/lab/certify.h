@@ -70,7 +70,9 @@ using MemberRun = std::function<std::optional<Probe>(double dt, int member)>;
 std::optional<Certificate> certifySafeStep(const MemberRun& run, double duration, const CertifySettings& settings);
 
 // "< floor" when every dt down to the floor failed, "≥ top" when nothing
-// failed, the safe dt otherwise (4 significant digits: the 1% grid's).
+// failed, the safe dt otherwise (4 significant digits: the 1% grid's),
+// marked " †" when the floor ended the scan before a whole `decades` below
+// the smallest failure had survived (a certificate of the scanned range only).
 std::string certifiedText(const Certificate& certificate);
 
 }  // namespace lab

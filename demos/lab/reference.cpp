@@ -80,6 +80,50 @@ double Trajectory::size() const {
   return (hi - lo).norm();
 }
 
+namespace {
+// Mean spacing of the upward crossings of a signal's mean, each counted once
+// it has been a tenth of a standard deviation below and then reaches the mean
+// (times interpolated linearly between samples); 0 with fewer than two, or
+// when the signal's standard deviation is below stillBelow.
+double meanCrossingPeriod(const std::vector<double>& signal, double interval, double stillBelow) {
+  const double n = static_cast<double>(signal.size());
+  double mean = 0.0, squares = 0.0;
+  for (double s : signal) mean += s / n;
+  for (double s : signal) squares += (s - mean) * (s - mean) / n;
+  const double band = 0.1 * std::sqrt(squares);
+  if (!(band > 0.1 * stillBelow)) return 0.0;  // a coordinate that does not move
+  std::vector<double> times;
+  bool armed = false;
+  for (std::size_t k = 1; k < signal.size(); ++k) {
+    if (signal[k - 1] - mean < -band) armed = true;
+    if (armed && signal[k - 1] < mean && signal[k] >= mean) {
+      const double fraction = (mean - signal[k - 1]) / (signal[k] - signal[k - 1]);
+      times.push_back((static_cast<double>(k - 1) + fraction) * interval);
+      armed = false;
+    }
+  }
+  return times.size() < 2 ? 0.0 : (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+}
+}  // namespace
+
+double Trajectory::slowestPeriod() const {
+  double slowest = 0.0;
+  double reach = size();  // the scene's size, or its distance from the origin when larger
+  for (const auto& sample : x) reach = std::max(reach, sample.cwiseAbs().maxCoeff());
+  const double still = 1e-6 * reach;
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<double> centre;
+    centre.reserve(x.size());
+    for (const auto& sample : x) {
+      double sum = 0.0;
+      for (Eigen::Index i = axis; i < sample.size(); i += 2) sum += sample[i];
+      centre.push_back(sum / static_cast<double>(sample.size() / 2));
+    }
+    slowest = std::max(slowest, meanCrossingPeriod(centre, interval, still));
+  }
+  return slowest;
+}
+
 Trajectory odeintReference(scenes::Scene& scene, double duration, const ReferenceSettings& settings) {
   namespace odeint = boost::numeric::odeint;
   particles::ParticleSystem& system = *scene.system;

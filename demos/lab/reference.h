@@ -31,6 +31,14 @@ class Trajectory {
   // Diagonal of the bounding box of every particle over every sample: the
   // scene's size that relative error budgets are taken of.
   double size() const;
+  // The period of the slowest motion: per coordinate of the particles' centre,
+  // the mean spacing of its upward crossings of its mean (with a hysteresis of
+  // a tenth of its standard deviation, so that a motion that has settled adds
+  // no crossings); the longest over the two coordinates that move (a standard
+  // deviation of at least 1e-6 of the larger of size() and the largest
+  // coordinate). 0 when
+  // neither crosses twice (no period within the horizon).
+  double slowestPeriod() const;
 };
 
 struct ReferenceSettings {

@@ -11,7 +11,7 @@ namespace particles {
 struct RattleIntegrator::Impl {
   linear::ConstraintRows start, now;  // rows at x (the projection direction) and at the trial state
   linear::CgScratch cg;
-  Eigen::VectorXd f, xStart, rhs, multiplier, diagonal, scatter;
+  Eigen::VectorXd f, xStart, vPredicted, rhs, multiplier, diagonal, scatter;
 
   // Solves (J W Jᵀ + μ I) y = rhs for the rows' J by Jacobi-preconditioned
   // CG from y = 0, μ = kShift·max diag; rows with a zero diagonal (every
@@ -102,6 +102,7 @@ StepStats RattleIntegrator::step(ParticleSystem& system, double dt) {
   StepStats stats;
 
   system.appliedForces(x, v, s.f);
+  s.vPredicted = v;  // vⁿ, for the prediction of v⁺
   kick(0.5 * dt);
   s.xStart = x;
   if (!constraints.empty()) s.start.gather(system.phase(x, v), constraints);
@@ -125,9 +126,14 @@ StepStats RattleIntegrator::step(ParticleSystem& system, double dt) {
     s.solve(s.start, w, stats);
     s.move(s.start, w, s.multiplier, x);
   }
-  v = (x - s.xStart) / dt;  // v½, the constraint impulse included
+  // v½, the constraint impulse included. The second kick's forces are taken
+  // at the predicted v⁺ ≈ 2 v½ − vⁿ (error O(dt²)), as Verlet's are: forces
+  // that depend on v (damping) would leave the step first order at v½. Forces
+  // that do not are unchanged by it.
+  v = (x - s.xStart) / dt;
+  s.vPredicted = 2.0 * v - s.vPredicted;  // vⁿ was kept there
 
-  system.appliedForces(x, v, s.f);
+  system.appliedForces(x, s.vPredicted, s.f);
   kick(0.5 * dt);
   if (!constraints.empty()) {  // J(x⁺) v⁺ = 0 along W J(x⁺)ᵀ: passes until the shift's share is gone
     s.now.gather(system.phase(x, v), constraints);
