@@ -297,3 +297,20 @@ plot f using 2:(strcol(1) eq 'xpbd' ? $3 : NaN) title 'xpbd frame (ms)', \
      3 axes x1y2 with lines dt 4 lc 'blue' title '3 % strain'
 unset y2tics
 unset y2label
+
+# --- cost of accuracy against size -----------------------------------------
+# The cheapest certified pick's CPU time per simulated second against the
+# particle count, per family and budget (cost_vs_size.csv), with its spread.
+f = data.'/cost_vs_size.csv'
+set output fig.'/cost_vs_size.png'
+set logscale xy
+set format x '10^{%L}'
+set format y '10^{%L}'
+set key inside top left
+set xlabel 'particles'
+set ylabel 'CPU s per simulated s of the cheapest pick'
+set title sprintf('The cost of accuracy against size (first %g s from release)', quoted('cost.size_horizon') + 0)
+plot for [fam in "chain cloth"] for [b in "0.01 0.0001"] \
+       f using (strcol(1) eq fam && abs($6 - real(b)) < 1e-12 ? $3 : NaN):11:12:13 with yerrorlines \
+       title fam.', budget '.b
+unset title

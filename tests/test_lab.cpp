@@ -19,6 +19,7 @@
 #include "lab/scan.h"
 #include "particles/constraints/circular_wire.h"
 #include "output/csv_writer.h"
+#include "output/format_number.h"
 #include "lab/render.h"
 #include "lab/values.h"
 
@@ -474,6 +475,36 @@ TEST(AccuracyQuick, OscillatorSlopesAreTheIntegratorsOrders) {
   for (const auto& [name, errors] : adaptiveErrors) {
     ASSERT_GE(errors.size(), 2u) << name;
     EXPECT_LT(errors.begin()->second, 0.5 * errors.rbegin()->second) << name;
+  }
+}
+
+// The cost against size: a pick per family, size and budget, each within its
+// budget, and the slope in values.csv is the fit of log CPU time against log
+// particle count over the CSV's rows.
+TEST(CostQuick, CostAgainstSizeFitsItsOwnRows) {
+  LabOptions o = quickOptions("cost");
+  ASSERT_EQ(runCost(o), 0);
+  const Table rows = readCsv(o.outDir + "/cost_vs_size.csv",
+                             {"family", "scene", "particles", "horizon", "size", "budget_relative", "integrator", "dt",
+                              "tolerance", "max_error", "cpu_per_simulated_second", "cpu_min", "cpu_max",
+                              "reference_agreement"});
+  std::map<std::pair<std::string, std::string>, std::vector<std::pair<double, double>>> series;
+  for (const auto& row : rows) {
+    EXPECT_LE(std::stod(row.at("max_error")), std::stod(row.at("budget_relative")) * std::stod(row.at("size")));
+    EXPECT_GT(std::stod(row.at("cpu_per_simulated_second")), 0.0);
+    series[{row.at("family"), row.at("budget_relative")}].emplace_back(std::stod(row.at("particles")),
+                                                                       std::stod(row.at("cpu_per_simulated_second")));
+  }
+  ASSERT_EQ(series.size(), 4u);  // chain and cloth × two budgets
+  const Table values = readCsv(o.outDir + "/values.csv", {"key", "value"});
+  std::map<std::string, std::string> value;
+  for (const auto& row : values) value[row.at("key")] = row.at("value");
+  for (const auto& [key, points] : series) {
+    ASSERT_EQ(points.size(), 2u) << key.first << " " << key.second;
+    const double slope = std::log(points[1].second / points[0].second) / std::log(points[1].first / points[0].first);
+    const std::string name = "cost.size_slope." + key.first + "." + lab::general(std::stod(key.second));
+    ASSERT_TRUE(value.count(name)) << name;
+    EXPECT_NEAR(std::stod(value[name]), slope, 0.006) << name;
   }
 }
 

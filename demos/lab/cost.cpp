@@ -58,14 +58,31 @@ void fields(Io& io, Surveyed& s) {
 
 bool measurable(double budget, double referenceAgreement) { return !(budget < kReferenceMargin * referenceAgreement); }
 
+// One scene at growing sizes: what the cheapest choice costs as the particle count grows.
+struct SizeFamily {
+  std::string name;  // "chain", "cloth"
+  std::vector<CostScene> sizes;
+};
+
 // What the experiment surveys.
 struct CostPlan {
   std::vector<CostScene> scenes;
+  std::vector<SizeFamily> families;
   int repeats = 0;  // timed repeats per pick; the median is reported
 };
 
-// Error budgets, × the scene's size.
+// Error budgets, × the scene's size: of the scenes, and of the size families.
 const std::vector<double> kBudgets = {1e-2, 1e-4, 1e-6};
+const std::vector<double> kSizeBudgets = {1e-2, 1e-4};
+constexpr double kSizeHorizon = 2.0;  // T of the size families, simulated seconds
+
+CostScene chainOfLength(int length, double horizon, long maxSteps) {
+  return {std::to_string(length) + "-chain", "test-chain", {{"cl", std::to_string(length)}}, horizon, maxSteps, false};
+}
+CostScene clothOfSide(int side, double horizon, long maxSteps) {
+  const std::string n = std::to_string(side);
+  return {n + "x" + n + " cloth", "cloth", {{"width", n}, {"height", n}}, horizon, maxSteps, false};
+}
 
 // Small scenes, short horizons: proves the code runs.
 CostPlan quickPlan() {
@@ -74,22 +91,33 @@ CostPlan quickPlan() {
            {"6-chain", "test-chain", {{"cl", "6"}}, 5.0, 1000, false},
            {"6x6 cloth", "cloth", {{"width", "6"}, {"height", "6"}}, 2.0, 500, false},
            {"hair", "hair", {{"curls", "1"}, {"particles", "6"}}, 1.0, 1000, false}},
+          {{"chain", {chainOfLength(3, 1.0, 500), chainOfLength(6, 1.0, 500)}},
+           {"cloth", {clothOfSide(4, 1.0, 500), clothOfSide(6, 1.0, 500)}}},
           2};
 }
 
+// The size families run over the first seconds from release: the long
+// chains' references part soon after (the 96-chain's by 0.38 at 5 s, at
+// tolerances 1e-11 and 1e-9), and five periods of the large cloths would take
+// the report's time several times over.
 CostPlan fullPlan() {
+  std::vector<CostScene> chains, cloths;
+  for (int length : {6, 12, 24, 48, 96, 240}) chains.push_back(chainOfLength(length, kSizeHorizon, 20000));
+  for (int side : {8, 16, 32, 64}) cloths.push_back(clothOfSide(side, kSizeHorizon, 10000));
   return {{{"oscillator", "oscillator", {}, 32.0, 100000, true},
            {"pendulum", "pendulum", {}, 100.0, 100000, false},
            {"24-chain", "test-chain", {{"cl", "24"}}, 20.0, 20000, false},
            {"24-chain", "test-chain", {{"cl", "24"}}, 60.0, 20000, false},
            {"16x16 cloth", "cloth", {{"width", "16"}, {"height", "16"}}, 10.0, 10000, false},
            {"hair", "hair", {}, 10.0, 20000, false}},
+          {{"chain", chains}, {"cloth", cloths}},
           SurveySettings{}.repeats};
 }
 
 // One survey: runs stop once beyond the loosest budget, and each
 // integrator's scan ends within the tightest.
-SurveySettings surveySettings(const LabOptions& options, const CostPlan& plan, const CostScene& scene) {
+SurveySettings surveySettings(const LabOptions& options, const CostPlan& plan, const CostScene& scene,
+                              const std::vector<double>& budgets) {
   SurveySettings settings;
   settings.horizon = scene.horizon;
   settings.maxSteps = scene.maxSteps;
@@ -97,13 +125,14 @@ SurveySettings surveySettings(const LabOptions& options, const CostPlan& plan, c
   settings.repeats = plan.repeats;
   settings.failure = options.criterion;
   settings.relativeToSize = true;
-  settings.abortError = kBudgets.front();
-  settings.targetError = kBudgets.back();
+  settings.abortError = budgets.front();
+  settings.targetError = budgets.back();
   return settings;
 }
 
 // One scene's survey and its picks per budget (nullopt: interrupted).
-std::optional<Surveyed> surveyCostScene(const CostScene& scene, const SurveySettings& settings) {
+std::optional<Surveyed> surveyCostScene(const CostScene& scene, const SurveySettings& settings,
+                                        const std::vector<double>& budgets) {
   const auto build = [&] { return buildLabScene(scene.scene, scene.params); };
   ClosedForm closedForm;
   if (scene.closedForm)
@@ -114,7 +143,7 @@ std::optional<Surveyed> surveyCostScene(const CostScene& scene, const SurveySett
   for (const auto& scan : survey.integrators)
     out.integrators.push_back({scan.integrator, scan.adaptive, scan.safeDt, scan.firstFailureDt,
                                static_cast<long>(scan.scanned.size()), scan.ensembleRuns});
-  for (double relative : kBudgets)
+  for (double relative : budgets)
     out.picks.push_back(measurable(relative * survey.size, survey.referenceAgreement)
                             ? pickPerIntegrator(build, survey, settings, relative * survey.size)
                             : std::vector<Pick>{});
@@ -215,19 +244,91 @@ void writeResults(const LabOptions& options, const CostPlan& plan, const Results
              {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s", "certified margin"}, table);
 }
 
+// Every surveyed scene in cell order: the scenes, then each family's sizes in turn.
+struct Surveyable {
+  const CostScene* scene;
+  const std::vector<double>* budgets;
+  int family;  // index into CostPlan::families, −1 for the scenes
+};
+std::vector<Surveyable> surveyables(const CostPlan& plan) {
+  std::vector<Surveyable> all;
+  for (const CostScene& scene : plan.scenes) all.push_back({&scene, &kBudgets, -1});
+  for (std::size_t f = 0; f < plan.families.size(); ++f)
+    for (const CostScene& scene : plan.families[f].sizes) all.push_back({&scene, &kSizeBudgets, static_cast<int>(f)});
+  return all;
+}
+
+// The size families: every size's cheapest pick per budget (cost_vs_size.csv
+// and its table), and per family and budget the fitted slope of log CPU time
+// per simulated second against log particle count over the sizes with a pick.
+void writeSizeResults(const LabOptions& options, const CostPlan& plan, const std::vector<Surveyable>& all,
+                      const Results<Surveyed>& surveys) {
+  Csv csv(options, "cost_vs_size.csv",
+          {"family", "scene", "particles", "horizon", "size", "budget_relative", "integrator", "dt", "tolerance",
+           "max_error", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
+  std::vector<std::vector<std::string>> table, slopes;
+  for (std::size_t f = 0; f < plan.families.size(); ++f) {
+    const SizeFamily& family = plan.families[f];
+    for (std::size_t b = 0; b < kSizeBudgets.size(); ++b) {
+      std::vector<double> particles, cpu;
+      for (const auto& [k, survey] : surveys) {
+        if (all[k].family != static_cast<int>(f)) continue;
+        const CostScene& scene = *all[k].scene;
+        const double relative = kSizeBudgets[b], budget = relative * survey.size;
+        std::vector<std::string> row{family.name, std::to_string(survey.particles), general(scene.horizon),
+                                     general(relative)};
+        const std::vector<std::string> columns = cheapestText(scene, survey, budget, survey.picks[b]);
+        row.insert(row.end(), columns.begin(), columns.end() - 1);  // the certified margin stays in the scenes' table
+        table.push_back(row);
+        const int best = measurable(budget, survey.referenceAgreement) ? cheapest(survey.picks[b]) : -1;
+        if (best < 0) continue;
+        const Pick& pick = survey.picks[b][best];
+        csv << family.name << scene.label << static_cast<long>(survey.particles) << scene.horizon << survey.size
+            << relative << pick.candidate.integrator << pick.candidate.dt << pick.candidate.tolerance
+            << pick.candidate.maxError << pick.cpuPerSimulatedSecond << pick.cpuMin << pick.cpuMax
+            << survey.referenceAgreement;
+        csv.endRow();
+        particles.push_back(survey.particles);
+        cpu.push_back(pick.cpuPerSimulatedSecond);
+      }
+      const double slope = logLogSlope(particles, cpu);
+      const std::string text = std::isfinite(slope) ? fixed(slope, 2) : "–";
+      slopes.push_back({family.name, general(kSizeBudgets[b]), text, std::to_string(particles.size())});
+      recordValue(options, "cost.size_slope." + family.name + "." + general(kSizeBudgets[b]), text);
+    }
+  }
+  recordValue(options, "cost.size_horizon", general(plan.families.empty() ? 0.0 : plan.families[0].sizes[0].horizon));
+  writeTable(options, "cost_vs_size",
+             "The cost of accuracy against size: per family, size and budget (relative to the scene's size), the "
+             "cheapest integrator and dt within the budget over [0, T], chosen and certified as in the cost table; CPU "
+             "seconds per simulated second, median of interleaved repeats (min–max)",
+             {"family", "particles", "T (s)", "budget", "cheapest", "dt", "max error", "CPU s / simulated s"}, table);
+  writeTable(options, "cost_size_slopes",
+             "Growth of the cheapest choice's cost with size: fitted slope of log CPU s per simulated s against log "
+             "particle count, over the sizes with a pick",
+             {"family", "budget", "slope", "sizes fitted"}, slopes);
+}
+
 }  // namespace
 
 int runCost(const LabOptions& options) {
   prepareOutput(options, "cost.");
   const CostPlan plan = options.quick ? quickPlan() : fullPlan();
   recordSettings(options, plan);
-  Progress progress(options, "cost", static_cast<long>(plan.scenes.size()));
+  const std::vector<Surveyable> all = surveyables(plan);
+  Progress progress(options, "cost", static_cast<long>(all.size()));
   // One scene at a time: the picks' CPU times are measurements.
   const auto surveys = resultsInTurn<Surveyed>(
-      options, plan.scenes.size(),
-      [&](std::size_t k) { return surveyCostScene(plan.scenes[k], surveySettings(options, plan, plan.scenes[k])); },
+      options, all.size(),
+      [&](std::size_t k) {
+        const Surveyable& s = all[k];
+        return surveyCostScene(*s.scene, surveySettings(options, plan, *s.scene, *s.budgets), *s.budgets);
+      },
       true, [&](std::size_t) { progress.tick(); });
-  writeResults(options, plan, surveys);
+  Results<Surveyed> scenes, sizes;
+  for (const auto& [k, survey] : surveys) (all[k].family < 0 ? scenes : sizes).emplace(k, survey);
+  writeResults(options, plan, scenes);
+  writeSizeResults(options, plan, all, sizes);
   return interrupted() ? 130 : 0;
 }
 
