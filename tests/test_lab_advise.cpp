@@ -121,6 +121,43 @@ TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
   EXPECT_LE(chosenCost, 2 * cheapestCost) << "chose " << pickArguments(chosen) << ", cheapest " << cheapestName;
 }
 
+// An energy budget is a budget: on the pendulum at E = 1e-2, the position
+// budget alone lets the picks' energy errors exceed 1e-4 of E_s; with that
+// energy budget (and a constraint-drift budget) every pick meets both, and
+// the pick is rerun from its options with the same energy error.
+TEST(Advise, EnergyAndDriftBudgetsAreMetByEveryPick) {
+  const auto build = [] { return scenes::buildScene("pendulum"); };
+  SurveySettings settings;
+  settings.horizon = 20.0;
+  settings.targetError = settings.abortError = 1e-2;
+  settings.integrators = {"rk4", "verlet", "midpoint"};
+  settings.repeats = 1;
+  settings.certifyMembers = 0;
+  const double energy = 1e-4, drift = 1e-5;
+  const Advice loose = advise(build, settings);
+  ASSERT_TRUE(loose.complete);
+  double worstLoose = 0.0;
+  for (const Pick& p : loose.picks)
+    if (p.found) worstLoose = std::max(worstLoose, p.candidate.energyError);
+  ASSERT_GT(worstLoose, energy) << "the position budget alone already meets the energy budget: no test";
+
+  settings.energyBudget = energy;
+  settings.driftBudget = drift;
+  const Advice tight = advise(build, settings);
+  ASSERT_TRUE(tight.complete);
+  ASSERT_GE(tight.best, 0);
+  for (const Pick& p : tight.picks) {
+    if (!p.found) continue;
+    EXPECT_LE(p.candidate.energyError, energy) << pickArguments(p.candidate);
+    EXPECT_LE(p.candidate.constraintDrift, drift) << pickArguments(p.candidate);
+    EXPECT_LE(p.candidate.maxError, 1e-2) << pickArguments(p.candidate);
+  }
+  const Candidate& best = tight.picks[tight.best].candidate;
+  const Candidate again = measureRun(build, *tight.survey.referenceTrajectory, best.integrator, best.dt,
+                                     best.tolerance, settings.horizon, settings.failure, tight.survey.energyScale);
+  EXPECT_NEAR(again.energyError, best.energyError, 1e-12 + 1e-9 * best.energyError);
+}
+
 TEST(Advise, APrintedPickRerunFromItsOptionsReproducesItsError) {
   // The options printed for a pick (pickArguments) are read back as a user
   // would and rerun: the closed-form error of the rerun is within 10% of the

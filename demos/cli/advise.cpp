@@ -1,10 +1,12 @@
 // `particle-lab advise`: measures this scene and names the cheapest integrator
 // and step whose maximum position error over [0, T] against a reference is at
-// most E (lab/advise.h). The table goes to stdout, progress to stderr; the last
+// most E, and optionally whose energy error and constraint drift stay within
+// their budgets (lab/advise.h). The table goes to stdout, progress to stderr; the last
 // line is the advice as run options.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 #include "cli/command.h"
@@ -23,6 +25,8 @@ namespace {
 struct AdviseOptions {
   options::SceneSource source;
   double error = 0.0;    // E, world units
+  double energyBudget = std::numeric_limits<double>::infinity();  // of |E − E_ref| / E_s; infinite: none
+  double driftBudget = std::numeric_limits<double>::infinity();   // of |C|/r; infinite: none
   double horizon = 0.0;  // T, simulated seconds
   std::vector<std::string> integrators;
   int repeats = 5;
@@ -34,9 +38,18 @@ struct AdviseOptions {
 
 std::string cell(double value) { return std::isfinite(value) ? lab::general(value, 3) : "–"; }
 
+// The optional budgets as given, ", energy error <= X, |C|/r <= Y" ("" when none is).
+std::string budgetsLine(const AdviseOptions& o) {
+  std::string text;
+  if (std::isfinite(o.energyBudget)) text += ", energy error <= " + lab::general(o.energyBudget);
+  if (std::isfinite(o.driftBudget)) text += ", |C|/r <= " + lab::general(o.driftBudget);
+  return text;
+}
+
 // The table: one line per integrator, its pick or why it has none.
-void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) {
-  std::cout << "integrator        dt          tolerance  max error  safe dt     CPU s per sim s (min-max)   certified margin\n";
+void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks, const std::string& budgetsText) {
+  std::cout << "integrator        dt          tolerance  max error  energy err |C|/r       safe dt     CPU s per sim s "
+               "(min-max)   certified margin\n";
   for (std::size_t k = 0; k < picks.size(); ++k) {
     const auto& scan = survey.integrators[k];
     const auto& p = picks[k];
@@ -46,9 +59,10 @@ void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) 
       std::snprintf(line, sizeof line, "%-17s refuses the scene: %.180s\n", scan.integrator.c_str(),
                     scan.refused.c_str());
     else if (p.found)
-      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-11s %-27s %s%s\n", scan.integrator.c_str(),
-                    cell(p.candidate.dt).c_str(), scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–",
-                    cell(p.candidate.maxError).c_str(), safe.c_str(),
+      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-10s %-10s %-11s %-27s %s%s\n",
+                    scan.integrator.c_str(), cell(p.candidate.dt).c_str(),
+                    scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–", cell(p.candidate.maxError).c_str(),
+                    cell(p.candidate.energyError).c_str(), cell(p.candidate.constraintDrift).c_str(), safe.c_str(),
                     (cell(p.cpuPerSimulatedSecond) + " (" + cell(p.cpuMin) + "-" + cell(p.cpuMax) + ")").c_str(),
                     p.certifiedHi > 0.0 ? (cell(p.certifiedLo) + "-" + cell(p.certifiedHi)).c_str() : "–",
                     p.tie ? "  (tie)" : "");
@@ -56,8 +70,9 @@ void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks) 
       std::snprintf(line, sizeof line, "%-17s none certified: %.200s\n", scan.integrator.c_str(),
                     p.uncertified.c_str());
     else
-      std::snprintf(line, sizeof line, "%-17s none within E on the scanned grid (%s), safe dt %s\n",
-                    scan.integrator.c_str(), output::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
+      std::snprintf(line, sizeof line, "%-17s none within %s on the scanned grid (%s), safe dt %s\n",
+                    scan.integrator.c_str(), budgetsText.c_str(),
+                    output::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
     std::cout << line;
   }
 }
@@ -68,6 +83,8 @@ int advise(const AdviseOptions& o) {
   lab::SurveySettings settings;
   settings.horizon = o.horizon;
   settings.targetError = settings.abortError = o.error;
+  settings.energyBudget = o.energyBudget;
+  settings.driftBudget = o.driftBudget;
   settings.integrators = o.integrators;
   settings.repeats = o.repeats;
   settings.maxSteps = o.maxSteps;
@@ -92,24 +109,26 @@ int advise(const AdviseOptions& o) {
 
   std::cout << "scene " << output::printable(survey.scene) << ", " << output::plural(survey.particles, "particle") << ", size "
             << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
-            << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
+            << budgetsLine(o) << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
   if (!survey.limit.empty()) {
     std::cout << "advise: " << survey.limit << "; the longest horizon it can certify: --horizon "
               << output::formatNumber(survey.certifiableHorizon) << "\n";
     return kCannotCertify;
   }
-  printPicks(survey, picks);
+  printPicks(survey, picks, std::isfinite(o.energyBudget) || std::isfinite(o.driftBudget) ? "the budgets" : "E");
   if (settings.certifyMembers > 0)
     std::cout << "certified margin: every dt (adaptive: tolerance) " << lab::general(100.0 * settings.certifyResolution)
               << "% apart in it survives T on " << output::plural(settings.certifyMembers, "start")
-              << " (adaptive: within E from the start as built); a pick is at most "
+              << " (adaptive: within "
+              << (std::isfinite(o.energyBudget) || std::isfinite(o.driftBudget) ? "the budgets" : "E")
+              << " from the start as built); a pick is at most "
               << lab::general(settings.safeFraction) << " of its margin's top; "
               << (settings.certifyAll ? "every pick is certified" : "the cheapest pick and its ties are certified (--certify-all: every pick)")
               << "\n";
   const int best = advice.best;
   if (best < 0) {
-    std::cout << "advise: no integrator meets --error " << lab::general(o.error) << " over " << lab::general(o.horizon)
-              << " s within its safe range\n";
+    std::cout << "advise: no integrator meets --error " << lab::general(o.error) << budgetsLine(o) << " over "
+              << lab::general(o.horizon) << " s within its safe range\n";
     return 1;
   }
   std::string ties;
@@ -134,6 +153,13 @@ Command addAdviseCommand(CLI::App& app) {
       ->check(options::positiveNumber());
   command->add_option("--horizon", options->horizon, "T: simulated seconds the error is measured over")
       ->required()
+      ->check(options::positiveNumber());
+  command->add_option("--energy-error", options->energyBudget,
+                      "largest energy error |E - E_ref| over the run, as a fraction of the releasable energy E_s "
+                      "(default: none)")
+      ->check(options::positiveNumber());
+  command->add_option("--constraint-drift", options->driftBudget,
+                      "largest constraint drift |C|/r over the run (default: none)")
       ->check(options::positiveNumber());
   command->add_option("--integrator", options->integrators,
                       "consider only these integrators (repeatable; default: every one)")

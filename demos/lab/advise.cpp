@@ -19,6 +19,8 @@ void validate(const SurveySettings& s) {
   particles::requirePositive("horizon", s.horizon);
   particles::requirePositive("error", s.targetError);
   particles::requirePositive("abort error", s.abortError);
+  if (!(s.energyBudget > 0.0) || !(s.driftBudget > 0.0))
+    throw std::invalid_argument("the energy and drift budgets must be > 0 (infinite: none)");
   if (s.dtMax != 0.0) particles::requirePositive("dt max", s.dtMax);
   if (s.interval != 0.0) particles::requirePositive("interval", s.interval);
   particles::requirePositive("adaptive interval", s.adaptiveInterval);
@@ -95,7 +97,7 @@ void scanSteps(const Measurer& m, const SurveySettings& s, IntegratorSurvey& out
       }
       update();
     }
-    if (established() && belowSafe(dt) && c.survived && c.maxError <= s.targetError) break;
+    if (established() && belowSafe(dt) && withinBudgets(c, s.targetError, s)) break;
   }
   update();
   out.safeDt = boundary.safeDt;
@@ -121,7 +123,7 @@ void scanTolerances(const Measurer& m, const SurveySettings& s, double interval,
     if (cancelled(s)) break;
     out.scanned.push_back(c);
     if (progress) progress(static_cast<double>(j + 1) / tolerances.size());
-    if (c.survived && c.maxError <= s.targetError) break;
+    if (withinBudgets(c, s.targetError, s)) break;
   }
   out.safeDt = interval;
 }
@@ -310,7 +312,7 @@ Pick firstPick(const IntegratorSurvey& scan, const SurveySettings& s, double err
   Pick pick;
   for (const auto& c : scan.scanned) {
     const bool safe = scan.adaptive || c.dt <= s.safeFraction * scan.safeDt * (1 + 1e-12);
-    if (!c.survived || !safe || !(c.maxError <= error)) continue;
+    if (!safe || !withinBudgets(c, error, s)) continue;
     const bool better = !pick.found || (scan.adaptive ? c.tolerance > pick.candidate.tolerance
                                                       : c.dt > pick.candidate.dt);
     if (better) pick.found = true, pick.candidate = c;
@@ -340,7 +342,7 @@ struct Certifier {
   bool passesTolerance(const Candidate& pick, double tolerance) {
     ++runs;
     const Candidate c = measurer.run(pick.integrator, pick.dt, tolerance, true);
-    return c.survived && c.maxError <= error;
+    return withinBudgets(c, error, s);
   }
   bool passes(const Candidate& pick, double value) {
     const auto found = known.find(value);
@@ -377,7 +379,7 @@ void certifyPick(Certifier& certifier, Pick& pick) {
       const Candidate moved = certifier.measurer.run(pick.candidate.integrator, adaptive ? pick.candidate.dt : next,
                                                      adaptive ? next : 0.0, true);
       ++certifier.runs;
-      if (!moved.survived || !(moved.maxError <= certifier.error)) {
+      if (!withinBudgets(moved, certifier.error, s)) {
         failed = next;
         continue;
       }
@@ -494,6 +496,11 @@ Advice advise(const std::function<scenes::Scene()>& build, const SurveySettings&
   out.complete = true;
   if (settings.progress) settings.progress(1.0);
   return out;
+}
+
+bool withinBudgets(const Candidate& c, double error, const SurveySettings& settings) {
+  return c.survived && c.maxError <= error && c.energyError <= settings.energyBudget &&
+         c.constraintDrift <= settings.driftBudget;
 }
 
 void markTies(std::vector<Pick>& picks, int best) {

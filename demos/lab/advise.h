@@ -28,6 +28,11 @@ struct SurveySettings {
   double horizon = 10.0;            // T, simulated seconds
   double abortError = 1e-2;         // a run stops once its error exceeds this (world units)
   double targetError = 1e-4;        // the scan of an integrator ends at the first safe point within this
+  // Optional budgets a pick must meet besides the position error (infinite: none): the largest
+  // energy error |E − E_ref| / E_s over the run (Candidate::energyError) and the largest
+  // constraint drift |C|/r (Candidate::constraintDrift).
+  double energyBudget = std::numeric_limits<double>::infinity();
+  double driftBudget = std::numeric_limits<double>::infinity();
   bool relativeToSize = false;      // abortError and targetError are fractions of the scene's size
   std::vector<std::string> integrators;  // empty: every integrator in the engine's table
   double dtMax = 0.0;               // largest dt scanned; 0: min(T/20, 0.5)
@@ -179,6 +184,10 @@ std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build,
                                     const SurveySettings& settings, double error);
 
 // Index of the cheapest found pick by median CPU time, −1 if none is found.
+// A run that survived T within the position error `error` and the settings'
+// energy and drift budgets: what every scan, pick and certification asks.
+bool withinBudgets(const Candidate& c, double error, const SurveySettings& settings);
+
 int cheapest(const std::vector<Pick>& picks);
 // Marks the found picks whose timing range (min–max of the repeats) overlaps the cheapest's as ties.
 void markTies(std::vector<Pick>& picks, int best);
