@@ -77,9 +77,8 @@ void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks, 
   }
 }
 
-int advise(const AdviseOptions& o) {
-  o.source.load();  // bad scene input fails here, before any measurement
-
+// The survey `advise` runs: the options' budgets and limits, progress on stderr.
+lab::SurveySettings surveySettings(const AdviseOptions& o) {
   lab::SurveySettings settings;
   settings.horizon = o.horizon;
   settings.targetError = settings.abortError = o.error;
@@ -91,17 +90,28 @@ int advise(const AdviseOptions& o) {
   settings.referenceTolerance = o.referenceTolerance;
   settings.certifyMembers = o.certifyStarts;
   settings.certifyAll = o.certifyAll;
-  lab::installInterruptHandler();
-  double lastReport = -1.0;
-  settings.progress = [&](double fraction) {
-    if (fraction - lastReport < 0.05 && fraction < 1.0) return;
-    lastReport = fraction;
+  auto lastReport = std::make_shared<double>(-1.0);
+  settings.progress = [lastReport, horizon = o.horizon, repeats = o.repeats](double fraction) {
+    if (fraction - *lastReport < 0.05 && fraction < 1.0) return;
+    *lastReport = fraction;
     if (fraction == 0.0)
-      std::fprintf(stderr, "advise: computing the reference over %g s\n", o.horizon);
+      std::fprintf(stderr, "advise: computing the reference over %g s\n", horizon);
     else
       std::fprintf(stderr, "advise: %3.0f%% done (the scan, then %s of each pick)\n", 100.0 * fraction,
-                   output::plural(o.repeats, "timed repeat").c_str());
+                   output::plural(repeats, "timed repeat").c_str());
   };
+  return settings;
+}
+
+// What the budgets are called in the table's lines: "E", or "the budgets" when there are more.
+std::string budgetsName(const AdviseOptions& o) {
+  return std::isfinite(o.energyBudget) || std::isfinite(o.driftBudget) ? "the budgets" : "E";
+}
+
+int advise(const AdviseOptions& o) {
+  o.source.load();  // bad scene input fails here, before any measurement
+  const lab::SurveySettings settings = surveySettings(o);
+  lab::installInterruptHandler();
   const lab::Advice advice = lab::advise([&] { return o.source.load(); }, settings);
   if (lab::interrupted() || !advice.complete) return 130;
   const lab::Survey& survey = advice.survey;
@@ -115,13 +125,11 @@ int advise(const AdviseOptions& o) {
               << output::formatNumber(survey.certifiableHorizon) << "\n";
     return kCannotCertify;
   }
-  printPicks(survey, picks, std::isfinite(o.energyBudget) || std::isfinite(o.driftBudget) ? "the budgets" : "E");
+  printPicks(survey, picks, budgetsName(o));
   if (settings.certifyMembers > 0)
     std::cout << "certified margin: every dt (adaptive: tolerance) " << lab::general(100.0 * settings.certifyResolution)
               << "% apart in it survives T on " << output::plural(settings.certifyMembers, "start")
-              << " (adaptive: within "
-              << (std::isfinite(o.energyBudget) || std::isfinite(o.driftBudget) ? "the budgets" : "E")
-              << " from the start as built); a pick is at most "
+              << " (adaptive: within " << budgetsName(o) << " from the start as built); a pick is at most "
               << lab::general(settings.safeFraction) << " of its margin's top; "
               << (settings.certifyAll ? "every pick is certified" : "the cheapest pick and its ties are certified (--certify-all: every pick)")
               << "\n";
