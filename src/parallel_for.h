@@ -1,6 +1,7 @@
 #pragma once
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 // The engine's parallel loops: body(i) for every i in [0, n), or
 // body(begin, end) over contiguous ranges covering [0, n), on `threads`
@@ -35,6 +36,23 @@ void parallelRanges(int n, int threads, int grain, const Body& body) {
     return;
   }
   body(0, n);
+}
+
+// value(begin, end) over the ranges parallelRanges gives, the results in
+// range order: one per thread, or a single one for [0, n) when the loop runs
+// serially. Combined by an exact operation (a minimum, a maximum) they give
+// the same bits on any thread count.
+template <class Result, class Value>
+std::vector<Result> parallelRangeResults(int n, int threads, int grain, const Value& value) {
+  if (threads > 1 && n >= grain) {
+    std::vector<Result> results(static_cast<std::size_t>(threads));
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int id = 0; id < threads; ++id)
+      results[static_cast<std::size_t>(id)] = value(static_cast<int>(static_cast<long long>(n) * id / threads),
+                                                    static_cast<int>(static_cast<long long>(n) * (id + 1) / threads));
+    return results;
+  }
+  return {value(0, n)};
 }
 
 // The largest value(i) over [0, n) (−∞ for n = 0), as parallelFor splits

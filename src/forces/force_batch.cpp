@@ -150,10 +150,11 @@ void ForceBatches::apply(const Phase& s, Eigen::VectorXd& f) const {
   applySegments(0, static_cast<int>(segments_.size()), s, f, {});
 }
 
-void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, double* a) const {
+void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, double* a, bool clear) const {
   const double* w = s.inverseMass.data();
   for (int b = begin; b < end; b += kParticleBlock) {
     const int e = std::min(end, b + kParticleBlock);
+    if (clear) std::fill(f + 2 * b, f + 2 * e, 0.0);
     for (const FieldTerm& t : tail_) addField(t, b, e, s, f);
 #pragma omp simd
     for (int i = b; i < e; ++i) {
@@ -166,7 +167,17 @@ void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, 
 void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a) const {
   a.resize(s.x.size());
   double* ad = a.data();
-  applySegments(0, headSegments_, s, f, [&](int begin, int end) { tailAndDivide(begin, end, s, f.data(), ad); });
+  if (headSegments_ == 0) {
+    // Fields alone: each range clears its own f as it goes, so no pass over
+    // the whole of f runs on one thread (and pulls it into one core's cache).
+    f.resize(s.x.size());
+    double* fd = f.data();
+    parallelRanges(s.size(), threadCount(), kParallelParticles,
+                   [&](int begin, int end) { tailAndDivide(begin, end, s, fd, ad, true); });
+    return;
+  }
+  applySegments(0, headSegments_, s, f,
+                [&](int begin, int end) { tailAndDivide(begin, end, s, f.data(), ad, false); });
 }
 
 }  // namespace particles

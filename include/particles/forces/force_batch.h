@@ -63,8 +63,9 @@ class ForceBatches {
   // cleared first when begin is 0. finish runs after the last one.
   void applySegments(int begin, int end, const Phase& s, Eigen::VectorXd& f,
                      const SpringBatch::ParticleRange& finish) const;
-  // The trailing fields and a = W f on particles [begin, end).
-  void tailAndDivide(int begin, int end, const Phase& s, double* f, double* a) const;
+  // The trailing fields and a = W f on particles [begin, end), f cleared
+  // there first when clear is set.
+  void tailAndDivide(int begin, int end, const Phase& s, double* f, double* a, bool clear) const;
 
   std::vector<Segment> segments_;
   std::vector<FieldTerm> tail_;  // the fields after the last other segment, in order
