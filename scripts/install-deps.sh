@@ -5,7 +5,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libboost-dev libfmt-dev
   freeglut3-dev libglu1-mesa-dev libgl1-mesa-dev libimgui-dev libpng-dev
-  xvfb xauth gnuplot-nox parallel valgrind help2man python3 universal-ctags
+  xvfb xauth gnuplot-nox parallel valgrind help2man python3 universal-ctags util-linux
 )
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi

@@ -6,13 +6,17 @@
 // (RK4 at a small dt). Per run: CPU time per simulated second, constraint
 // error, numerical damping and position error at T; a run stops at its first
 // failure by the lab's criterion (failure.h), which is printed and recorded. Then the stiff 128² cloth
-// at 60 Hz: frame time against substeps beside one RK4 step, in the same run.
+// at 60 Hz: frame time against substeps beside one RK4 step, in the same run,
+// and one frame's wall time on one thread against two.
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
+#include <utility>
 
 #include "lab/cells.h"
 #include "lab/experiments.h"
@@ -20,6 +24,7 @@
 #include "lab/lab_scene.h"
 #include "lab/results.h"
 #include "particles/forces/spring.h"
+#include "particles/threads.h"
 #include "scenes/cloth.h"
 
 namespace lab {
@@ -77,6 +82,15 @@ struct Frames {
 template <class Io>
 void fields(Io& io, Frames& f) {
   io("ms", f.ms), io("worst", f.worst);
+}
+
+// Wall times (ms) of the same frames on one thread and on two, in turn.
+struct ThreadedFrames {
+  std::vector<double> oneMs, twoMs;
+};
+template <class Io>
+void fields(Io& io, ThreadedFrames& f) {
+  io("one_ms", f.oneMs), io("two_ms", f.twoMs);
 }
 
 // A run stops at its first failure by the lab's criterion; its damping and
@@ -151,6 +165,7 @@ struct SmallStepsPlan {
   int clothSize = 0;                 // the 60 Hz stiff cloth: n × n particles
   int frameRepeats = 0;              // timed frames (RK4: twice as many steps)
   std::vector<int> clothSubsteps;    // xpbd's substeps per frame on it
+  int threadedSubsteps = 0;          // the substeps timed on one thread against two
   int loadFrames = 0;                // frames run before timing: one simulated second, the cloth hangs loaded
 };
 
@@ -181,6 +196,7 @@ SmallStepsPlan quickPlan() {
   plan.clothSize = 32;
   plan.frameRepeats = 3;
   plan.clothSubsteps = {10, 30};
+  plan.threadedSubsteps = 30;
   plan.loadFrames = 10;
   return plan;
 }
@@ -196,6 +212,7 @@ SmallStepsPlan fullPlan() {
   plan.clothSize = 128;
   plan.frameRepeats = 5;
   plan.clothSubsteps = {10, 20, 30, 40, 60};
+  plan.threadedSubsteps = 30;
   plan.loadFrames = 60;
   return plan;
 }
@@ -409,6 +426,10 @@ void writeFamilyTables(const LabOptions& options, const Tabulated& t) {
 
 // --- the stiff cloth at 60 Hz ---------------------------------------------
 
+double wallSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 std::vector<double> frameTimes(scenes::Scene& scene, particles::Integrator& stepper, double dt, int frames) {
   std::vector<double> ms;
   for (int k = 0; k < frames; ++k) {
@@ -446,6 +467,42 @@ std::optional<Frames> timeXpbdFrames(const SmallStepsPlan& plan, int substeps) {
   return out;
 }
 
+// One thread against two on the loaded cloth: two copies stepped frame by
+// frame in turn, the engine's thread count set before each, so that both
+// counts meet the same load of the machine. Wall time: two threads share a
+// frame. The copies stay the same bits (the engine's threads never change a
+// result), which the run checks.
+std::optional<ThreadedFrames> timeThreadedXpbdFrames(const SmallStepsPlan& plan, int substeps) {
+  scenes::Scene one = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
+  scenes::Scene two = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
+  particles::IntegratorSettings settings;
+  settings.xpbd.substeps = substeps;
+  auto xpbdOne = particles::makeIntegrator("xpbd", settings);
+  auto xpbdTwo = particles::makeIntegrator("xpbd", settings);
+  for (int k = 0; k < plan.loadFrames && !interrupted(); ++k) {
+    one.system->step(*xpbdOne, kFrame);
+    two.system->step(*xpbdTwo, kFrame);
+  }
+  ThreadedFrames out;
+  const int previous = particles::threadCount();
+  auto timed = [previous](scenes::Scene& scene, particles::Integrator& xpbd, int threads) {
+    particles::setThreadCount(threads);
+    const double start = wallSeconds();
+    scene.system->step(xpbd, kFrame);
+    const double ms = 1e3 * (wallSeconds() - start);
+    particles::setThreadCount(previous);
+    return ms;
+  };
+  for (int k = 0; k < 2 * plan.frameRepeats && !interrupted(); ++k) {
+    out.oneMs.push_back(timed(one, *xpbdOne, 1));
+    out.twoMs.push_back(timed(two, *xpbdTwo, 2));
+  }
+  if (interrupted()) return std::nullopt;
+  if (one.system->positions() != two.system->positions() || one.system->velocities() != two.system->velocities())
+    throw std::runtime_error("small-steps: the stiff cloth on two threads left the one-thread trajectory");
+  return out;
+}
+
 void writeFrames(Csv& csv, const std::string& method, int substeps, const Frames& frames) {
   const std::vector<double>& ms = frames.ms;
   csv << method << substeps << median(ms) << *std::min_element(ms.begin(), ms.end())
@@ -465,6 +522,36 @@ std::string targetText(const SmallStepsPlan& plan, const Results<Frames>& xpbd) 
            " ms with the worst spring at " + fixed(100 * frames.worst, 2) + " %";
   }
   return "is not met: no substep count measured keeps every spring within 3 %";
+}
+
+// The frame at plan.threadedSubsteps on one thread and on two (CSV rows
+// "xpbd-1-thread" and "xpbd-2-threads", wall time), when the process may use two CPUs.
+bool writeThreadedFrames(const LabOptions& options, const SmallStepsPlan& plan) {
+  const std::string key = "small_steps.cloth.threads";
+  recordValue(options, "small_steps.cloth.cpus", std::to_string(particles::affinityCpuCount()));
+  if (particles::affinityCpuCount() < 2) {
+    recordValue(options, key + ".text", "were not compared: this process may use one CPU only");
+    return true;
+  }
+  const auto frames = cell<ThreadedFrames>(
+      options, [&]() -> std::optional<ThreadedFrames> { return timeThreadedXpbdFrames(plan, plan.threadedSubsteps); });
+  if (!frames) return false;
+  Csv csv(options, "small_steps_cloth_threads.csv",
+          {"threads", "substeps", "frame_wall_ms_median", "frame_wall_ms_min", "frame_wall_ms_max"});
+  for (const auto& [threads, ms] : {std::pair<int, const std::vector<double>&>{1, frames->oneMs}, {2, frames->twoMs}}) {
+    csv << threads << plan.threadedSubsteps << median(ms) << *std::min_element(ms.begin(), ms.end())
+        << *std::max_element(ms.begin(), ms.end());
+    csv.endRow();
+  }
+  const double one = median(frames->oneMs), two = median(frames->twoMs);
+  recordValue(options, key + ".substeps", std::to_string(plan.threadedSubsteps));
+  recordValue(options, key + ".one_ms", fixed(one, 2));
+  recordValue(options, key + ".two_ms", fixed(two, 2));
+  recordValue(options, key + ".speedup", fixed(one / two, 2));
+  recordValue(options, key + ".text",
+              "take " + fixed(one, 2) + " ms on one thread and " + fixed(two, 2) + " ms on two (wall time, medians of " +
+                  std::to_string(frames->oneMs.size()) + " frames in turn): " + fixed(one / two, 2) + "×");
+  return true;
 }
 
 // Frame time against substeps beside one RK4 step, one at a time on this thread.
@@ -487,6 +574,7 @@ bool runStiffCloth(const LabOptions& options, const SmallStepsPlan& plan) {
   }
   if (interrupted()) return false;
   recordValue(options, "small_steps.cloth.target", targetText(plan, xpbd));
+  if (!writeThreadedFrames(options, plan)) return false;
   recordValue(options, "small_steps.cloth.size", std::to_string(plan.clothSize));
   return true;
 }

@@ -167,13 +167,13 @@ void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, 
 void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a) const {
   a.resize(s.x.size());
   double* ad = a.data();
-  if (headSegments_ == 0) {
+  if (fieldsOnly()) {
     // Fields alone: each range clears its own f as it goes, so no pass over
     // the whole of f runs on one thread (and pulls it into one core's cache).
     f.resize(s.x.size());
     double* fd = f.data();
     parallelRanges(s.size(), threadCount(), kParallelParticles,
-                   [&](int begin, int end) { tailAndDivide(begin, end, s, fd, ad, true); });
+                   [&](int begin, int end) { applyAndDivide(begin, end, s, fd, ad); });
     return;
   }
   applySegments(0, headSegments_, s, f,

@@ -99,7 +99,6 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
   const double h = dt / settings_.substeps;
   prepare(system, h);
   for (int k = 0; k < settings_.substeps; ++k) {
-    applyForces(system);
     predict(system, h);
     for (int pass = 0; pass < settings_.iterations; ++pass) project(system, pass);
     updateVelocities(system, h);
@@ -129,34 +128,44 @@ void XpbdIntegrator::prepare(const ParticleSystem& system, double h) {
   preparedStep_ = h;
 }
 
-// f = Σ of the forces without a position form at the substep's start, and
-// a = W f (force batches: fields and springs of zero stiffness as flat arrays).
-void XpbdIntegrator::applyForces(ParticleSystem& system) {
-  applied_.applyAndDivide(system.phase(), force_, acceleration_);
-}
-
-// v ← v + h a,  xⁿ ← x,  x ← x + h v; the multipliers restart at 0; vⁿ ← v
-// (before the forces) for the contacts.
+// f = Σ of the forces without a position form at the substep's start and
+// a = W f (force batches: fields and springs of zero stiffness as flat
+// arrays), then v ← v + h a, xⁿ ← x, x ← x + h v (vⁿ ← v before, for the
+// contacts); the multipliers restart at 0. When the forces are fields alone
+// both run in one loop over the particles, range by range.
 void XpbdIntegrator::predict(ParticleSystem& system, double h) {
+  const Phase s = system.phase();
   const bool colliding = system.colliding();
-  const int m = static_cast<int>(positionsOf(system).size());
-  xn_.resize(m);
-  if (colliding) vn_.resize(m);
+  const int n = system.size();
+  xn_.resize(2 * n);
+  if (colliding) vn_.resize(2 * n);
   double* x = positionsOf(system).data();
   double* v = velocitiesOf(system).data();
   double* xn = xn_.data();
   double* vn = vn_.data();
   const double* a = acceleration_.data();
-  parallelRanges(m, threadCount(), kParallelEntries, [&](int begin, int end) {
-    if (colliding)
-      std::copy(v + begin, v + end, vn + begin);
+  auto advance = [&](int begin, int end) {
+    if (colliding) std::copy(v + 2 * begin, v + 2 * end, vn + 2 * begin);
 #pragma omp simd
-    for (int k = begin; k < end; ++k) {
+    for (int k = 2 * begin; k < 2 * end; ++k) {
       v[k] += h * a[k];
       xn[k] = x[k];
       x[k] += h * v[k];
     }
-  });
+  };
+  if (applied_.fieldsOnly()) {
+    force_.resize(2 * n);
+    acceleration_.resize(2 * n);
+    a = acceleration_.data();
+    parallelRanges(n, threadCount(), kParallelParticles, [&](int begin, int end) {
+      applied_.applyAndDivide(begin, end, s, force_.data(), acceleration_.data());
+      advance(begin, end);
+    });
+  } else {
+    applied_.applyAndDivide(s, force_, acceleration_);
+    a = acceleration_.data();
+    parallelRanges(n, threadCount(), kParallelParticles, advance);
+  }
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
   std::fill(attachmentLambda_.begin(), attachmentLambda_.end(), Eigen::Vector2d::Zero());
 }

@@ -46,6 +46,14 @@ class ForceBatches {
   // f = Σ forces at s and a = W f, the trailing fields and the division by
   // the mass fused into one pass over the particles.
   void applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a) const;
+  // Whether every force is a field (gravity, drag): then f and a = W f on a
+  // particle depend on that particle alone, and applyAndDivide(begin, end, …)
+  // gives them range by range (f and a sized 2n by the caller), so that a
+  // caller can fuse its own per-particle pass into the same loop.
+  bool fieldsOnly() const { return headSegments_ == 0; }
+  void applyAndDivide(int begin, int end, const Phase& s, double* f, double* a) const {
+    tailAndDivide(begin, end, s, f, a, true);
+  }
 
   int springCount() const;
   const std::vector<SpringBatch>& springBatches() const { return springs_; }

@@ -60,7 +60,6 @@ class XpbdIntegrator : public Integrator {
 
  private:
   void prepare(const ParticleSystem& system, double h);
-  void applyForces(ParticleSystem& system);
   void predict(ParticleSystem& system, double h);
   void collide(ParticleSystem& system, double h);
   void project(ParticleSystem& system, int pass);
