@@ -529,8 +529,8 @@ std::string targetText(const SmallStepsPlan& plan, const Results<Frames>& xpbd) 
   return "is not met: no substep count measured keeps every spring within 3 %";
 }
 
-// The frame at plan.threadedSubsteps on one thread and on two (CSV rows
-// "xpbd-1-thread" and "xpbd-2-threads", wall time), when the process may use two CPUs.
+// The frame at plan.threadedSubsteps on one thread and on two (a CSV row per
+// count, wall time), when the process may use two CPUs.
 bool writeThreadedFrames(const LabOptions& options, const SmallStepsPlan& plan) {
   const std::string key = "small_steps.cloth.threads";
   recordValue(options, "small_steps.cloth.cpus", std::to_string(particles::affinityCpuCount()));
@@ -559,7 +559,8 @@ bool writeThreadedFrames(const LabOptions& options, const SmallStepsPlan& plan) 
   return true;
 }
 
-// Frame time against substeps beside one RK4 step, one at a time on this thread.
+// Frame time against substeps beside one RK4 step, one at a time on this
+// thread; then one thread against two.
 bool runStiffCloth(const LabOptions& options, const SmallStepsPlan& plan) {
   const auto rk4 = cell<Frames>(options, [&]() -> std::optional<Frames> { return timeRk4Step(plan); });
   const auto xpbd = resultsInTurn<Frames>(

@@ -143,8 +143,8 @@ void XpbdIntegrator::predict(ParticleSystem& system, double h) {
   double* v = velocitiesOf(system).data();
   double* xn = xn_.data();
   double* vn = vn_.data();
-  const double* a = acceleration_.data();
   auto advance = [&](int begin, int end) {
+    const double* a = acceleration_.data();
     if (colliding) std::copy(v + 2 * begin, v + 2 * end, vn + 2 * begin);
 #pragma omp simd
     for (int k = 2 * begin; k < 2 * end; ++k) {
@@ -156,14 +156,12 @@ void XpbdIntegrator::predict(ParticleSystem& system, double h) {
   if (applied_.fieldsOnly()) {
     force_.resize(2 * n);
     acceleration_.resize(2 * n);
-    a = acceleration_.data();
     parallelRanges(n, threadCount(), kParallelParticles, [&](int begin, int end) {
       applied_.applyAndDivide(begin, end, s, force_.data(), acceleration_.data());
       advance(begin, end);
     });
   } else {
     applied_.applyAndDivide(s, force_, acceleration_);
-    a = acceleration_.data();
     parallelRanges(n, threadCount(), kParallelParticles, advance);
   }
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
