@@ -242,11 +242,12 @@ TEST(ForceBatchThreads, OneThreadNeverStartsAThread) {
   EXPECT_THROW(particles::setThreadCount(0), std::invalid_argument);
 }
 
-// Every integrator on the big cloth and every built-in scene (that it accepts): 2 and 3
+// Every integrator (and xpbd with hanging lines) on the big cloth and every built-in scene (that it accepts): 2 and 3
 // threads give the one-thread trajectory bit for bit.
 TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
   std::vector<std::string> integrators;
   for (const particles::IntegratorInfo& info : particles::integratorTable()) integrators.push_back(info.name);
+  integrators.push_back("xpbd-lines");  // xpbd with XpbdSettings::lines
   auto run = [&](int threads, const std::string& scene, const std::string& integratorName) {
     particles::setThreadCount(threads);
     std::unique_ptr<ParticleSystem> system;
@@ -259,7 +260,9 @@ TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
       system = std::move(built.system);
       dt = built.dt;
     }
-    auto integrator = particles::makeIntegrator(integratorName);
+    particles::IntegratorSettings settings;
+    settings.xpbd.lines = integratorName == "xpbd-lines";
+    auto integrator = particles::makeIntegrator(settings.xpbd.lines ? "xpbd" : integratorName, settings);
     int contacts = 0;
     for (int k = 0; k < 10; ++k) {
       system->step(*integrator, dt);

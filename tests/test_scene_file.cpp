@@ -34,6 +34,17 @@ TEST(SceneFile, EveryBuiltInSceneRoundTripsBitForBitOver100Steps) {
 
 // Every solver setting survives export → read, for every method and
 // preconditioner; a file that asks for CG is solved by CG.
+// xpbd's hanging lines are written and read back; absent, they are off.
+TEST(SceneFile, XpbdLinesRoundTrip) {
+  scenes::Scene cloth = scenes::buildScene("cloth");
+  EXPECT_FALSE(scenes::readScene(scenes::writeScene(cloth), "cloth").integratorSettings.xpbd.lines);
+  cloth.integratorSettings.xpbd.lines = true;
+  const scenes::Scene loaded = scenes::readScene(scenes::writeScene(cloth), "cloth");
+  EXPECT_TRUE(loaded.integratorSettings.xpbd.lines);
+  EXPECT_FALSE(scenes::readScene(R"({"particles": [{"position": [0, 1], "mass": 1}]})", "bare")
+                   .integratorSettings.xpbd.lines);
+}
+
 TEST(SceneFile, EverySolverSettingRoundTripsAndMethodCgSolvesByCg) {
   for (const auto& method : particles::solveMethodNames())
     for (const auto& preconditioner : particles::preconditionerNames()) {
@@ -155,6 +166,8 @@ TEST(SceneFile, RefusedSettingsNameTheFieldsPath) {
   };
   EXPECT_EQ(messageFor(R"("integratorSettings": {"substeps": 0})"),
             "settings.json: $.integratorSettings.substeps: expected an integer in [1, 100000], got 0");
+  EXPECT_EQ(messageFor(R"("integratorSettings": {"lines": 1})"),
+            "settings.json: $.integratorSettings.lines: expected true or false, got 1");
   EXPECT_EQ(messageFor(R"("integratorSettings": {"tolerance": 9.9e-14})"),
             "settings.json: $.integratorSettings.tolerance: integrator tolerance must be >= 1e-13 (below it double "
             "precision cannot meet it), got 9.9e-14");

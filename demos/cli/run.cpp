@@ -28,11 +28,12 @@ constexpr long long kMaxSteps = 1000000000000LL;
 struct RunOptions {
   options::SceneSource source;
   std::string integrator;  // empty: the scene's own
-  // --tolerance, --substeps, --iterations: each given one overrides the scene's.
+  // --tolerance, --substeps, --iterations, --lines: each given one overrides the scene's.
   particles::IntegratorSettings integratorSettings;
   CLI::Option* toleranceOption = nullptr;
   CLI::Option* substepsOption = nullptr;
   CLI::Option* iterationsOption = nullptr;
+  CLI::Option* linesOption = nullptr;
   double dt = 0.0;
   CLI::Option* dtOption = nullptr;  // not given: the scene's own dt
   long long steps = 0;
@@ -70,6 +71,7 @@ std::unique_ptr<particles::Integrator> chosenIntegrator(const RunOptions& o, con
   if (o.toleranceOption->count()) settings.dopri5.tolerance = o.integratorSettings.dopri5.tolerance;
   if (o.substepsOption->count()) settings.xpbd.substeps = o.integratorSettings.xpbd.substeps;
   if (o.iterationsOption->count()) settings.xpbd.iterations = o.integratorSettings.xpbd.iterations;
+  if (o.linesOption->count()) settings.xpbd.lines = o.integratorSettings.xpbd.lines;
   return particles::makeIntegrator(integratorName, settings);
 }
 
@@ -171,6 +173,9 @@ void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& option
       sub->add_option("--iterations", options->integratorSettings.xpbd.iterations,
                       "xpbd: constraint passes per substep, in [1, 10000] (default: the scene's, 1)")
           ->check(options::decimalInteger(1, 10000));
+  options->linesOption = sub->add_flag("--lines,!--no-lines", options->integratorSettings.xpbd.lines,
+                                       "xpbd: solve each straight line of springs hanging from a held particle "
+                                       "directly before the Gauss-Seidel pass (default: the scene's, off)");
   options->dtOption = sub->add_option("--dt", options->dt, "time step, simulated seconds, > 0 (default: the scene's)")
                           ->check(options::positiveNumber());
   sub->add_option("--steps", options->steps, "number of steps, a decimal integer >= 0")

@@ -63,8 +63,7 @@ void App::enterBuildMode(bool currentState) {
   // What runs is what is built and saved: the pane's integrator, dt and settings.
   const particles::IntegratorSettings& settings = pane.integratorSettings();
   document["integrator"] = pane.integratorName();
-  document["integratorSettings"] = {
-      {"tolerance", settings.dopri5.tolerance}, {"substeps", settings.xpbd.substeps}, {"iterations", settings.xpbd.iterations}};
+  document["integratorSettings"] = scenes::integratorSettingsToJson(settings);
   document["dt"] = pane.dt();
   build_.setActive(true);
   startBuildFrom(std::move(document), "start from " + scene_.label + (currentState ? " as it is" : ""));

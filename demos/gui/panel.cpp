@@ -218,7 +218,7 @@ void App::drawPaneIntegrator(std::size_t k) {
 }
 
 // Schemes with settings of their own: dopri5's error tolerance, xpbd's
-// substeps per step and constraint passes per substep.
+// substeps per step, constraint passes per substep and hanging lines solved directly.
 void App::drawIntegratorSettings() {
   const auto& table = particles::integratorTable();
   bool anyTolerance = false;
@@ -237,7 +237,8 @@ void App::drawIntegratorSettings() {
     particles::IntegratorSettings settings = panes_.front()->integratorSettings();
     const bool substeps = ImGui::SliderInt("substeps", &settings.xpbd.substeps, 1, 200, "%d", ImGuiSliderFlags_Logarithmic);
     const bool iterations = ImGui::SliderInt("iterations", &settings.xpbd.iterations, 1, 64, "%d", ImGuiSliderFlags_Logarithmic);
-    if (substeps || iterations)
+    const bool lines = ImGui::Checkbox("solve hanging lines", &settings.xpbd.lines);
+    if (substeps || iterations || lines)
       for (auto& pane : panes_) pane->setIntegratorSettings(settings);
   }
 }

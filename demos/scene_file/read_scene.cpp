@@ -55,7 +55,7 @@ void readIntegrator(const JsonNode& node, Scene& scene) {
 
 void readIntegratorSettings(const JsonNode& node, particles::IntegratorSettings& s) {
   if (!node.present()) return;
-  node.allowOnly({"tolerance", "substeps", "iterations"});
+  node.allowOnly({"tolerance", "substeps", "iterations", "lines"});
   // Each field is checked by the engine's own rules as it is read, so a
   // refusal (a tolerance below rounding) names the field's path.
   const auto read = [&](const char* key, auto value) {
@@ -67,6 +67,7 @@ void readIntegratorSettings(const JsonNode& node, particles::IntegratorSettings&
   read("tolerance", [&](const JsonNode& field) { s.dopri5.tolerance = field.positive(); });
   read("substeps", [&](const JsonNode& field) { s.xpbd.substeps = field.integer(1, 100000); });
   read("iterations", [&](const JsonNode& field) { s.xpbd.iterations = field.integer(1, 10000); });
+  read("lines", [&](const JsonNode& field) { s.xpbd.lines = field.boolean(); });
 }
 
 void readView(const JsonNode& node, Scene& scene) {

@@ -24,6 +24,8 @@ Scene loadSceneFile(const std::string& path);
 
 // The scene as a JSON document (every field written, doubles exactly).
 Json sceneToJson(const Scene& scene);
+// Its "integratorSettings" member: the settings as a scene file holds them.
+Json integratorSettingsToJson(const particles::IntegratorSettings& settings);
 std::string writeScene(const Scene& scene);  // sceneToJson, indented, with a final newline
 
 }  // namespace scenes

@@ -22,15 +22,20 @@ Json writeCollider(const particles::Collider& collider) {
 }
 }  // namespace
 
+Json integratorSettingsToJson(const particles::IntegratorSettings& settings) {
+  return {{"tolerance", settings.dopri5.tolerance},
+          {"substeps", settings.xpbd.substeps},
+          {"iterations", settings.xpbd.iterations},
+          {"lines", settings.xpbd.lines}};
+}
+
 Json sceneToJson(const Scene& scene) {
   const particles::ParticleSystem& s = *scene.system;
   const particles::SolverSettings& solver = s.solver().settings;
   Json doc;
   doc["name"] = scene.name;
   doc["integrator"] = scene.integrator;
-  doc["integratorSettings"] = {{"tolerance", scene.integratorSettings.dopri5.tolerance},
-                               {"substeps", scene.integratorSettings.xpbd.substeps},
-                               {"iterations", scene.integratorSettings.xpbd.iterations}};
+  doc["integratorSettings"] = integratorSettingsToJson(scene.integratorSettings);
   doc["dt"] = scene.dt;
   doc["view"] = {{"min", toJson(scene.viewMin)}, {"max", toJson(scene.viewMax)}};
   doc["solver"] = {{"tolerance", solver.tolerance},

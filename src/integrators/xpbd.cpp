@@ -91,6 +91,7 @@ XpbdIntegrator::Forms XpbdIntegrator::positionForms(const ParticleSystem& system
 
 void XpbdIntegrator::configure(const IntegratorSettings& settings) {
   settings.validate();
+  if (settings.xpbd.lines != settings_.lines) preparedStamp_ = 0;  // the lines are part of the forms
   settings_ = settings.xpbd;
 }
 
@@ -120,7 +121,12 @@ void XpbdIntegrator::prepare(const ParticleSystem& system, double h) {
   if (system.structureStamp() == preparedStamp_ && h == preparedStep_) return;
   preparedStamp_ = 0;  // a refusal below leaves nothing prepared
   forms_ = positionForms(system, h);
-  distances_.build(forms_.distances, system.inverseMasses());
+  if (settings_.lines) {
+    distances_.build(lines_.build(forms_.distances, system.constraints(), system.phase()), system.inverseMasses());
+  } else {
+    lines_.clear();
+    distances_.build(forms_.distances, system.inverseMasses());
+  }
   applied_.update(forms_.applied, ++appliedStamp_);
   angleLambda_.resize(forms_.angles.size());
   attachmentLambda_.resize(forms_.attachments.size());
@@ -168,12 +174,13 @@ void XpbdIntegrator::predict(ParticleSystem& system, double h) {
   std::fill(attachmentLambda_.begin(), attachmentLambda_.end(), Eigen::Vector2d::Zero());
 }
 
-// One Gauss–Seidel pass: compliant springs in colour order (xpbd/distance.h),
-// angle springs, then the hard constraints, so that those hold as well as one
-// pass can make them.
+// One Gauss–Seidel pass: the hanging lines (with XpbdSettings::lines), the
+// other compliant springs in colour order (xpbd/distance.h), angle springs,
+// then the hard constraints, so that those hold as well as one pass can make them.
 void XpbdIntegrator::project(ParticleSystem& system, int pass) {
   Eigen::VectorXd& x = positionsOf(system);
   const Eigen::VectorXd& w = system.inverseMasses();
+  if (lines_.lines() > 0) lines_.project(xn_, x, velocitiesOf(system), system.masses(), w, pass);
   distances_.project(xn_.data(), x.data(), pass, settings_.iterations);
   for (std::size_t k = 0; k < forms_.angles.size(); ++k)
     projectAngle(forms_.angles[k], w, xn_, x, angleLambda_[k]);

@@ -43,6 +43,7 @@ void BM_StiffClothXpbdFrame(benchmark::State& state) {
   particles::IntegratorSettings settings;
   settings.xpbd.substeps = static_cast<int>(state.range(1));
   settings.xpbd.iterations = static_cast<int>(state.range(2));
+  settings.xpbd.lines = state.range(4) != 0;
   particles::setThreadCount(static_cast<int>(state.range(3)));
   auto xpbd = particles::makeIntegrator("xpbd", settings);
   particles::ParticleSystem& system = *scene.system;
@@ -80,17 +81,21 @@ void BM_StiffClothRk4Step(benchmark::State& state) {
 
 BENCHMARK(BM_StiffClothRk4Step)->ArgNames({"n"})->Arg(128)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StiffClothXpbdFrame)
-    ->ArgNames({"n", "substeps", "iterations", "threads"})
-    ->Args({128, 20, 1, 1})
-    ->Args({128, 24, 1, 1})
-    ->Args({128, 28, 1, 1})
-    ->Args({128, 30, 1, 1})
-    ->Args({128, 40, 1, 1})
-    ->Args({128, 10, 2, 1})
-    ->Args({128, 30, 1, 2})
-    ->Args({128, 40, 1, 2})
-    ->Args({256, 30, 1, 1})
-    ->Args({256, 30, 1, 2})
+    ->ArgNames({"n", "substeps", "iterations", "threads", "lines"})
+    ->Args({128, 20, 1, 1, 0})
+    ->Args({128, 24, 1, 1, 0})
+    ->Args({128, 28, 1, 1, 0})
+    ->Args({128, 30, 1, 1, 0})
+    ->Args({128, 40, 1, 1, 0})
+    ->Args({128, 10, 2, 1, 0})
+    ->Args({128, 30, 1, 2, 0})
+    ->Args({128, 40, 1, 2, 0})
+    ->Args({256, 30, 1, 1, 0})
+    ->Args({256, 30, 1, 2, 0})
+    ->Args({128, 3, 1, 1, 1})
+    ->Args({128, 4, 1, 1, 1})
+    ->Args({128, 6, 1, 1, 1})
+    ->Args({128, 4, 1, 2, 1})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -10,6 +10,7 @@
 #include "particles/xpbd/angle.h"
 #include "particles/xpbd/attachment.h"
 #include "particles/xpbd/distance.h"
+#include "particles/xpbd/hanging_lines.h"
 
 namespace particles {
 
@@ -22,7 +23,9 @@ class MouseSpringForce;
 //   applies the forces without a position form (gravity, drag, wind, springs
 //     of zero stiffness) at (x, v):   v ← v + h W f,  xⁿ ← x,  x ← x + h v;
 //   projects, `iterations` times in Gauss–Seidel order, the damped springs as
-//     compliant distance constraints (α = 1/k_s, β = k_d; xpbd/distance.h, in
+//     compliant distance constraints (α = 1/k_s, β = k_d; with
+//     XpbdSettings::lines first the lines hanging from held particles, each
+//     solved directly, xpbd/hanging_lines.h; then xpbd/distance.h, in
 //     colour order), the
 //     angle springs as compliant angle constraints (xpbd/angle.h), the mouse
 //     joint as a compliant attachment to its target (xpbd/attachment.h), then
@@ -69,7 +72,8 @@ class XpbdIntegrator : public Integrator {
   Forms forms_;
   std::uint64_t preparedStamp_ = 0;  // ParticleSystem::structureStamp() forms_ was built for
   double preparedStep_ = 0.0;        // and the substep h
-  DistanceBatch distances_;
+  HangingLines lines_;               // with XpbdSettings::lines
+  DistanceBatch distances_;          // the springs on no line
   std::vector<double> angleLambda_;
   std::vector<Eigen::Vector2d> attachmentLambda_;
   std::vector<Eigen::Vector2d> blocks_;

@@ -10,6 +10,10 @@ struct XpbdSettings {
   // `particle-lab small-steps` (report, "Small steps").
   int substeps = 20;     // in [1, 100000]
   int iterations = 1;    // in [1, 10000]
+  // Solve each straight line of springs hanging from a held particle
+  // directly, before each pass's Gauss–Seidel sweep (xpbd/hanging_lines.h):
+  // a hanging cloth or strand then holds its length with a few substeps.
+  bool lines = false;
 
   void validate() const;  // throws naming the bad field
 };
