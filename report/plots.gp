@@ -292,6 +292,8 @@ set y2tics
 rk4 = real(system(sprintf("awk -F, '$1==\"rk4-step\" {print $3}' '%s'", f)))
 plot f using 2:(strcol(1) eq 'xpbd' ? $3 : NaN) title 'xpbd frame (ms)', \
      f using 2:(strcol(1) eq 'xpbd' ? 100*$6 : NaN) axes x1y2 title 'worst strain (%)', \
+     f using 2:(strcol(1) eq 'xpbd-lines' ? $3 : NaN) with linespoints pt 5 title 'xpbd, hanging lines solved: frame (ms)', \
+     f using 2:(strcol(1) eq 'xpbd-lines' ? 100*$6 : NaN) axes x1y2 with linespoints pt 4 title 'hanging lines solved: worst strain (%)', \
      16 with lines dt 2 lc 'black' title '16 ms frame budget', \
      5*rk4 with lines dt 3 lc 'red' title 'five RK4 steps', \
      3 axes x1y2 with lines dt 4 lc 'blue' title '3 % strain'

@@ -41,7 +41,7 @@ const std::vector<IntegratorInfo>& integratorTable() {
        make<ImplicitEulerIntegrator>},
       {"dopri5", "Dormand-Prince 5(4), FSAL, PI step control: internal step chosen to meet --tolerance", 5,
        make<Dopri5Integrator>, true},
-      {"xpbd", "XPBD: --substeps substeps of --iterations constraint passes, springs as compliance", 1,
+      {"xpbd", "XPBD: --substeps substeps of --iterations constraint passes, springs as compliance (--lines: hanging lines solved directly)", 1,
        make<XpbdIntegrator>, false, true},
   };
   return table;

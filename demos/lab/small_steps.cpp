@@ -165,6 +165,7 @@ struct SmallStepsPlan {
   int clothSize = 0;                 // the 60 Hz stiff cloth: n × n particles
   int frameRepeats = 0;              // timed frames (RK4: twice as many steps)
   std::vector<int> clothSubsteps;    // xpbd's substeps per frame on it
+  std::vector<int> lineSubsteps;     // the same with its hanging lines solved (XpbdSettings::lines)
   int threadedSubsteps = 0;          // the substeps timed on one thread against two
   int loadFrames = 0;                // frames run before timing: one simulated second, the cloth hangs loaded
 };
@@ -196,6 +197,7 @@ SmallStepsPlan quickPlan() {
   plan.clothSize = 32;
   plan.frameRepeats = 3;
   plan.clothSubsteps = {10, 30};
+  plan.lineSubsteps = {3};
   plan.threadedSubsteps = 30;
   plan.loadFrames = 10;
   return plan;
@@ -212,6 +214,7 @@ SmallStepsPlan fullPlan() {
   plan.clothSize = 128;
   plan.frameRepeats = 5;
   plan.clothSubsteps = {10, 20, 30, 40, 60};
+  plan.lineSubsteps = {2, 3, 4, 6};
   plan.threadedSubsteps = 30;
   plan.loadFrames = 60;
   return plan;
@@ -451,10 +454,11 @@ Frames timeRk4Step(const SmallStepsPlan& plan) {
   return out;
 }
 
-std::optional<Frames> timeXpbdFrames(const SmallStepsPlan& plan, int substeps) {
+std::optional<Frames> timeXpbdFrames(const SmallStepsPlan& plan, int substeps, bool lines) {
   scenes::Scene scene = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
   particles::IntegratorSettings settings;
   settings.xpbd.substeps = substeps;
+  settings.xpbd.lines = lines;
   auto xpbd = particles::makeIntegrator("xpbd", settings);
   Frames out;
   for (int k = 0; k < plan.loadFrames && !interrupted(); ++k) {
@@ -516,17 +520,30 @@ void writeFrames(Csv& csv, const std::string& method, int substeps, const Frames
 }
 
 // The target: a frame in at most 16 ms with every spring within 3 %, by the
-// fewest substeps that keep the strain.
-std::string targetText(const SmallStepsPlan& plan, const Results<Frames>& xpbd) {
+// fewest substeps that keep the strain, and that frame in RK4 steps.
+std::string targetText(const std::vector<int>& substeps, const Results<Frames>& xpbd, const std::string& how,
+                       const std::optional<Frames>& rk4) {
   const double targetMs = 16.0, targetStrain = 0.03;
   for (const auto& [k, frames] : xpbd) {
     if (frames.worst > targetStrain) continue;
     const double ms = median(frames.ms);
     return (ms <= targetMs ? "is met by " : "is not met on this machine: the fewest substeps within 3 %, ") +
-           std::to_string(plan.clothSubsteps[k]) + " of one pass, take " + fixed(ms, 2) +
-           " ms with the worst spring at " + fixed(100 * frames.worst, 2) + " %";
+           std::to_string(substeps[k]) + " substeps of one pass" + how + ", take " + fixed(ms, 2) + " ms" +
+           (rk4 ? " (" + fixed(ms / median(rk4->ms), 2) + " RK4 steps)" : std::string()) +
+           " with the worst spring at " + fixed(100 * frames.worst, 2) + " %";
   }
   return "is not met: no substep count measured keeps every spring within 3 %";
+}
+
+// One series of xpbd frames: a CSV row and two values per substep count.
+void writeSeries(const LabOptions& options, Csv& cloth, const std::string& method, const std::string& key,
+                 const std::vector<int>& substeps, const Results<Frames>& frames) {
+  for (const auto& [k, f] : frames) {
+    const std::string name = "small_steps.cloth." + key + std::to_string(substeps[k]);
+    writeFrames(cloth, method, substeps[k], f);
+    recordValue(options, name + "_ms", fixed(median(f.ms), 2));
+    recordValue(options, name + "_strain_percent", fixed(100 * f.worst, 2));
+  }
 }
 
 // The frame at plan.threadedSubsteps on one thread and on two (a CSV row per
@@ -560,26 +577,28 @@ bool writeThreadedFrames(const LabOptions& options, const SmallStepsPlan& plan) 
 }
 
 // Frame time against substeps beside one RK4 step, one at a time on this
-// thread; then one thread against two.
+// thread, Gauss–Seidel alone and with the hanging lines solved; then one
+// thread against two.
 bool runStiffCloth(const LabOptions& options, const SmallStepsPlan& plan) {
   const auto rk4 = cell<Frames>(options, [&]() -> std::optional<Frames> { return timeRk4Step(plan); });
-  const auto xpbd = resultsInTurn<Frames>(
-      options, plan.clothSubsteps.size(), [&](std::size_t k) { return timeXpbdFrames(plan, plan.clothSubsteps[k]); },
-      true);
+  auto series = [&](const std::vector<int>& substeps, bool lines) {
+    return resultsInTurn<Frames>(
+        options, substeps.size(), [&](std::size_t k) { return timeXpbdFrames(plan, substeps[k], lines); }, true);
+  };
+  const auto xpbd = series(plan.clothSubsteps, false);
+  const auto lines = series(plan.lineSubsteps, true);
   Csv cloth(options, "small_steps_cloth.csv",
             {"method", "substeps", "frame_ms_median", "frame_ms_min", "frame_ms_max", "max_strain"});
   if (rk4) {
     writeFrames(cloth, "rk4-step", 0, *rk4);
     recordValue(options, "small_steps.cloth.rk4_step_ms", fixed(median(rk4->ms), 2));
   }
-  for (const auto& [k, frames] : xpbd) {
-    const std::string key = "small_steps.cloth.xpbd" + std::to_string(plan.clothSubsteps[k]);
-    writeFrames(cloth, "xpbd", plan.clothSubsteps[k], frames);
-    recordValue(options, key + "_ms", fixed(median(frames.ms), 2));
-    recordValue(options, key + "_strain_percent", fixed(100 * frames.worst, 2));
-  }
+  writeSeries(options, cloth, "xpbd", "xpbd", plan.clothSubsteps, xpbd);
+  writeSeries(options, cloth, "xpbd-lines", "lines", plan.lineSubsteps, lines);
   if (interrupted()) return false;
-  recordValue(options, "small_steps.cloth.target", targetText(plan, xpbd));
+  recordValue(options, "small_steps.cloth.target", targetText(plan.clothSubsteps, xpbd, "", rk4));
+  recordValue(options, "small_steps.cloth.lines_target",
+              targetText(plan.lineSubsteps, lines, " with the hanging lines solved", rk4));
   if (!writeThreadedFrames(options, plan)) return false;
   recordValue(options, "small_steps.cloth.size", std::to_string(plan.clothSize));
   return true;
