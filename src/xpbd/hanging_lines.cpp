@@ -128,70 +128,86 @@ struct BundleArrays {
   double *lambda, *ux, *uy, *diagonal, *upper, *rhs;
 };
 
-// The tridiagonal solve of hanging_lines.h for every lane at once, row 0 (the
-// holds) filled by the caller: the constraints' rows, forward elimination,
-// back substitution (Δλ left in rhs), then Δx particle by particle.
-PARTICLES_VECTOR_CLONES void solveBundle(const BundleArrays& b, const double* xn, double* x, const double* w,
-                                         bool start) {
-  const int L = b.lanes, m = b.length, step = b.step, ls = b.laneStride;
-  double *ux = b.ux, *uy = b.uy, *diagonal = b.diagonal, *upper = b.upper, *rhs = b.rhs;
-  for (int t = 0; t < m; ++t) {
+// The tridiagonal solve of hanging_lines.h for every lane at once, in four
+// phases, row 0 (the holds) filled by the caller; each phase's inner loop
+// runs across the lanes, so the lines' eliminations overlap.
+
+// The constraints' rows 1…m: directions, right sides and diagonals.
+PARTICLES_VECTOR_CLONES void constraintRows(const BundleArrays& b, const double* xn, const double* x, const double* w,
+                                            bool start) {
+  const int L = b.lanes;
+  for (int t = 0; t < b.length; ++t) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
-      const int pi = q * ls + t * step, pj = pi + step;
+      const int pi = q * b.laneStride + t * b.step, pj = pi + b.step;
       const int i = 2 * pi, j = 2 * pj, c = t * L + q, r = c + L;
       const double dx = x[i] - x[j], dy = x[i + 1] - x[j + 1];
       const double squared = dx * dx + dy * dy;
       const double inverse = 1.0 / std::sqrt(squared);
       const double inverseLength = inverse < kLargest ? inverse : kLargest;
-      const double uxt = dx * inverseLength, uyt = dy * inverseLength;
+      const double ux = dx * inverseLength, uy = dy * inverseLength;
       const double lambda = start ? 0.0 : b.lambda[c];
-      ux[r] = uxt;
-      uy[r] = uyt;
-      rhs[r] = b.rest[c] - squared * inverseLength - b.alphaTilde[c] * lambda -
-               b.gamma[c] * (uxt * (dx - (xn[i] - xn[j])) + uyt * (dy - (xn[i + 1] - xn[j + 1])));
-      diagonal[r] = (1.0 + b.gamma[c]) * (w[pi] + w[pj]) + b.alphaTilde[c];
+      b.ux[r] = ux;
+      b.uy[r] = uy;
+      b.rhs[r] = b.rest[c] - squared * inverseLength - b.alphaTilde[c] * lambda -
+                 b.gamma[c] * (ux * (dx - (xn[i] - xn[j])) + uy * (dy - (xn[i + 1] - xn[j + 1])));
+      b.diagonal[r] = (1.0 + b.gamma[c]) * (w[pi] + w[pj]) + b.alphaTilde[c];
       b.lambda[c] = lambda;
     }
   }
-  // Rows r and r + 1 share particle r: the hold's gradient at p_0 with +u_0,
-  // then −u_{r−1} with u_r; each row's coupling carries its own 1 + γ.
-  for (int r = 0; r < m; ++r) {
+}
+
+// Forward elimination. Rows r and r + 1 share particle r: the hold's
+// gradient at p_0 with +u_0, then −u_{r−1} with u_r; each row's coupling
+// carries its own 1 + γ. A zero pivot (nothing can move) eliminates nothing.
+PARTICLES_VECTOR_CLONES void eliminate(const BundleArrays& b, const double* w) {
+  const int L = b.lanes;
+  for (int r = 0; r < b.length; ++r) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
       const int a = r * L + q, below = a + L;
-      const double shared = r == 0 ? w[q * ls] : -w[q * ls + r * step];
-      const double coupling = shared * (ux[a] * ux[below] + uy[a] * uy[below]);
+      const double shared = r == 0 ? w[q * b.laneStride] : -w[q * b.laneStride + r * b.step];
+      const double coupling = shared * (b.ux[a] * b.ux[below] + b.uy[a] * b.uy[below]);
       const double up = r == 0 ? coupling : (1.0 + b.gamma[a - L]) * coupling;
       const double lower = (1.0 + b.gamma[a]) * coupling;
-      const double pivot = diagonal[a] > 0.0 ? diagonal[a] : 1.0;
-      const double factor = diagonal[a] > 0.0 ? lower / pivot : 0.0;
-      upper[a] = up;
-      diagonal[below] -= factor * up;
-      rhs[below] -= factor * rhs[a];
+      const double pivot = b.diagonal[a] > 0.0 ? b.diagonal[a] : 1.0;
+      const double factor = b.diagonal[a] > 0.0 ? lower / pivot : 0.0;
+      b.upper[a] = up;
+      b.diagonal[below] -= factor * up;
+      b.rhs[below] -= factor * b.rhs[a];
     }
   }
+}
+
+// Back substitution: Δλ left in rhs (0 on a zero pivot).
+PARTICLES_VECTOR_CLONES void substituteBack(const BundleArrays& b) {
+  const int L = b.lanes, m = b.length;
   for (int r = m; r >= 0; --r) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
       const int a = r * L + q;
-      const double pivot = diagonal[a] > 0.0 ? diagonal[a] : 1.0;
-      const double known = r == m ? rhs[a] : rhs[a] - upper[a] * rhs[a + L];
-      rhs[a] = diagonal[a] > 0.0 ? known / pivot : 0.0;
+      const double pivot = b.diagonal[a] > 0.0 ? b.diagonal[a] : 1.0;
+      const double known = r == m ? b.rhs[a] : b.rhs[a] - b.upper[a] * b.rhs[a + L];
+      b.rhs[a] = b.diagonal[a] > 0.0 ? known / pivot : 0.0;
     }
   }
-  // Particle t of a lane: + its constraint's row t + 1 (t < m), and the
-  // hold's row 0 for t = 0 or − the row t above it.
+}
+
+// Δx = W ∇Cᵀ Δλ particle by particle: particle t of a lane takes + its
+// constraint's row t + 1 (t < m), and the hold's row 0 for t = 0 or − the
+// row t above it; λ += Δλ.
+PARTICLES_VECTOR_CLONES void applyDisplacements(const BundleArrays& b, double* x, const double* w) {
+  const int L = b.lanes, m = b.length;
   for (int t = 0; t <= m; ++t) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
-      const int p = q * ls + t * step, a = t * L + q;
-      double gx = t == 0 ? ux[a] * rhs[a] : -ux[a] * rhs[a];
-      double gy = t == 0 ? uy[a] * rhs[a] : -uy[a] * rhs[a];
+      const int p = q * b.laneStride + t * b.step, a = t * L + q;
+      double gx = t == 0 ? b.ux[a] * b.rhs[a] : -b.ux[a] * b.rhs[a];
+      double gy = t == 0 ? b.uy[a] * b.rhs[a] : -b.uy[a] * b.rhs[a];
       if (t < m) {
-        gx += ux[a + L] * rhs[a + L];
-        gy += uy[a + L] * rhs[a + L];
-        b.lambda[a] += rhs[a + L];
+        gx += b.ux[a + L] * b.rhs[a + L];
+        gy += b.uy[a + L] * b.rhs[a + L];
+        b.lambda[a] += b.rhs[a + L];
       }
       x[2 * p] += w[p] * gx;
       x[2 * p + 1] += w[p] * gy;
@@ -298,7 +314,11 @@ void HangingLines::solve(std::size_t index, const Phase& s, const double* xn, do
                             diagonal_.data() + row0,
                             upper_.data() + row0,
                             rhs_.data() + row0};
-  solveBundle(arrays, xn + 2 * b.first, x + 2 * b.first, w + b.first, start);
+  const std::size_t at = static_cast<std::size_t>(b.first);
+  constraintRows(arrays, xn + 2 * at, x + 2 * at, w + at, start);
+  eliminate(arrays, w + at);
+  substituteBack(arrays);
+  applyDisplacements(arrays, x + 2 * at, w + at);
 }
 
 }  // namespace particles
