@@ -115,9 +115,10 @@ App::App(DemoOptions options)
   const double dt = options_.dt.value_or(scene.dt);
   scene_ = first;
   camera_.reset(scene.viewMin, scene.viewMax);
-  panes_.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
-  particles::IntegratorSettings integratorSettings;
+  particles::IntegratorSettings integratorSettings;  // xpbd's from the scene, as its integrator
+  integratorSettings.xpbd = scene.integratorSettings.xpbd;
   integratorSettings.dopri5.tolerance = options_.tolerance;
+  panes_.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
   panes_.front()->setIntegratorSettings(integratorSettings);
   if (!options_.compare.empty()) {
     // Each pane an integrator, with its own dt or the first pane's.
@@ -393,13 +394,17 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
   Eigen::Vector2d viewMin, viewMax;
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     scenes::Scene scene = buildChoice(choice);  // throws before anything changes
-    const int integrator = keepIntegrators || k > 0 ? panes_[k]->integratorIndex()
-                                                    : integratorIndexByName(scene.integrator);
+    // The first pane takes the scene's integrator and xpbd's settings with it;
+    // dopri5's tolerance stays the user's (--tolerance, the panel).
+    const bool fromScene = !keepIntegrators && k == 0;
+    const int integrator = fromScene ? integratorIndexByName(scene.integrator) : panes_[k]->integratorIndex();
+    particles::IntegratorSettings settings = panes_[k]->integratorSettings();
+    if (fromScene) settings.xpbd = scene.integratorSettings.xpbd;
     viewMin = scene.viewMin;
     viewMax = scene.viewMax;
     const double dt = scene.dt;
     fresh.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
-    fresh.back()->setIntegratorSettings(panes_[k]->integratorSettings());
+    fresh.back()->setIntegratorSettings(settings);
   }
   panes_ = std::move(fresh);
   scene_ = choice;

@@ -22,6 +22,7 @@ struct SceneChoice {
   std::string preset = scenes::kDefaultPreset;  // parameter preset of a built-in (scenes::presetTable())
   std::string integrator = "";  // non-empty: replaces the scene's integrator (the stiff cloth's xpbd)
   double dt = 0.0;         // > 0: replaces the scene's dt
+  bool xpbdLines = false;  // xpbd solves the scene's hanging lines (XpbdSettings::lines)
   std::string hint = "";   // non-empty: replaces the scene table's "try this" line
   // Set: the scene file's document (label names it in errors); shared, never
   // changed, so copies of the choice (the advice's worker) read it safely.
