@@ -130,51 +130,71 @@ struct BundleArrays {
 
 // The tridiagonal solve of hanging_lines.h for every lane at once, in four
 // phases, row 0 (the holds) filled by the caller; each phase's inner loop
-// runs across the lanes, so the lines' eliminations overlap.
+// runs across the lanes, so the lines' eliminations overlap. kLaneStride 1:
+// neighbouring lines (a grid's columns), whose particles the loops read as
+// pairs of doubles in a row; 0: any lane stride, read one by one. The loops hold
+// no branch (a row that differs, the first or the last, has a loop of its
+// own) and every quotient is taken before it is chosen, so that they run as
+// vector instructions.
 
 // The constraints' rows 1…m: directions, right sides and diagonals.
-PARTICLES_VECTOR_CLONES void constraintRows(const BundleArrays& b, const double* xn, const double* x, const double* w,
-                                            bool start) {
-  const int L = b.lanes;
+template <int kLaneStride>
+PARTICLES_VECTOR_CLONES void constraintRows(const BundleArrays& b, const double* xn, const double* x,
+                                            const double* w) {
+  const int L = b.lanes, step = b.step, ls = kLaneStride > 0 ? kLaneStride : b.laneStride;
+  const double *rest = b.rest, *alphaTilde = b.alphaTilde, *gamma = b.gamma, *lambda = b.lambda;
+  double *ux = b.ux, *uy = b.uy, *rhs = b.rhs, *diagonal = b.diagonal;
   for (int t = 0; t < b.length; ++t) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
-      const int pi = q * b.laneStride + t * b.step, pj = pi + b.step;
+      const int pi = q * ls + t * step, pj = pi + step;
       const int i = 2 * pi, j = 2 * pj, c = t * L + q, r = c + L;
       const double dx = x[i] - x[j], dy = x[i + 1] - x[j + 1];
       const double squared = dx * dx + dy * dy;
       const double inverse = 1.0 / std::sqrt(squared);
       const double inverseLength = inverse < kLargest ? inverse : kLargest;
-      const double ux = dx * inverseLength, uy = dy * inverseLength;
-      const double lambda = start ? 0.0 : b.lambda[c];
-      b.ux[r] = ux;
-      b.uy[r] = uy;
-      b.rhs[r] = b.rest[c] - squared * inverseLength - b.alphaTilde[c] * lambda -
-                 b.gamma[c] * (ux * (dx - (xn[i] - xn[j])) + uy * (dy - (xn[i + 1] - xn[j + 1])));
-      b.diagonal[r] = (1.0 + b.gamma[c]) * (w[pi] + w[pj]) + b.alphaTilde[c];
-      b.lambda[c] = lambda;
+      const double uxt = dx * inverseLength, uyt = dy * inverseLength;
+      ux[r] = uxt;
+      uy[r] = uyt;
+      rhs[r] = rest[c] - squared * inverseLength - alphaTilde[c] * lambda[c] -
+               gamma[c] * (uxt * (dx - (xn[i] - xn[j])) + uyt * (dy - (xn[i + 1] - xn[j + 1])));
+      diagonal[r] = (1.0 + gamma[c]) * (w[pi] + w[pj]) + alphaTilde[c];
     }
   }
 }
 
+// Rows a and a + L of a lane coupled by `coupling` (row a's γ factor
+// `upFactor`, row a + L's its own): the upper band, and row a eliminated from
+// row a + L. A zero pivot (nothing can move) eliminates nothing.
+inline void eliminateRow(double* diagonal, double* upper, double* rhs, int a, int L, double coupling,
+                         double upFactor, double downFactor) {
+  const double up = upFactor * coupling;
+  const double pivot = diagonal[a] > 0.0 ? diagonal[a] : 1.0;
+  const double quotient = downFactor * coupling / pivot;
+  const double factor = diagonal[a] > 0.0 ? quotient : 0.0;
+  upper[a] = up;
+  diagonal[a + L] -= factor * up;
+  rhs[a + L] -= factor * rhs[a];
+}
+
 // Forward elimination. Rows r and r + 1 share particle r: the hold's
 // gradient at p_0 with +u_0, then −u_{r−1} with u_r; each row's coupling
-// carries its own 1 + γ. A zero pivot (nothing can move) eliminates nothing.
+// carries its own 1 + γ (the hold's none).
+template <int kLaneStride>
 PARTICLES_VECTOR_CLONES void eliminate(const BundleArrays& b, const double* w) {
-  const int L = b.lanes;
-  for (int r = 0; r < b.length; ++r) {
+  const int L = b.lanes, step = b.step, ls = kLaneStride > 0 ? kLaneStride : b.laneStride;
+  const double* gamma = b.gamma;
+  double *ux = b.ux, *uy = b.uy, *diagonal = b.diagonal, *upper = b.upper, *rhs = b.rhs;
+#pragma omp simd
+  for (int q = 0; q < L; ++q)
+    eliminateRow(diagonal, upper, rhs, q, L, w[q * ls] * (ux[q] * ux[q + L] + uy[q] * uy[q + L]), 1.0,
+                 1.0 + gamma[q]);
+  for (int r = 1; r < b.length; ++r) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
-      const int a = r * L + q, below = a + L;
-      const double shared = r == 0 ? w[q * b.laneStride] : -w[q * b.laneStride + r * b.step];
-      const double coupling = shared * (b.ux[a] * b.ux[below] + b.uy[a] * b.uy[below]);
-      const double up = r == 0 ? coupling : (1.0 + b.gamma[a - L]) * coupling;
-      const double lower = (1.0 + b.gamma[a]) * coupling;
-      const double pivot = b.diagonal[a] > 0.0 ? b.diagonal[a] : 1.0;
-      const double factor = b.diagonal[a] > 0.0 ? lower / pivot : 0.0;
-      b.upper[a] = up;
-      b.diagonal[below] -= factor * up;
-      b.rhs[below] -= factor * b.rhs[a];
+      const int a = r * L + q;
+      const double coupling = -w[q * ls + r * step] * (ux[a] * ux[a + L] + uy[a] * uy[a + L]);
+      eliminateRow(diagonal, upper, rhs, a, L, coupling, 1.0 + gamma[a - L], 1.0 + gamma[a]);
     }
   }
 }
@@ -182,36 +202,52 @@ PARTICLES_VECTOR_CLONES void eliminate(const BundleArrays& b, const double* w) {
 // Back substitution: Δλ left in rhs (0 on a zero pivot).
 PARTICLES_VECTOR_CLONES void substituteBack(const BundleArrays& b) {
   const int L = b.lanes, m = b.length;
-  for (int r = m; r >= 0; --r) {
+  double *diagonal = b.diagonal, *upper = b.upper, *rhs = b.rhs;
+  auto solved = [&](int a, double known) {
+    const double pivot = diagonal[a] > 0.0 ? diagonal[a] : 1.0;
+    const double quotient = known / pivot;
+    rhs[a] = diagonal[a] > 0.0 ? quotient : 0.0;
+  };
+#pragma omp simd
+  for (int q = 0; q < L; ++q) solved(m * L + q, rhs[m * L + q]);
+  for (int r = m - 1; r >= 0; --r) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
       const int a = r * L + q;
-      const double pivot = b.diagonal[a] > 0.0 ? b.diagonal[a] : 1.0;
-      const double known = r == m ? b.rhs[a] : b.rhs[a] - b.upper[a] * b.rhs[a + L];
-      b.rhs[a] = b.diagonal[a] > 0.0 ? known / pivot : 0.0;
+      solved(a, rhs[a] - upper[a] * rhs[a + L]);
     }
   }
 }
 
-// Δx = W ∇Cᵀ Δλ particle by particle: particle t of a lane takes + its
-// constraint's row t + 1 (t < m), and the hold's row 0 for t = 0 or − the
-// row t above it; λ += Δλ.
+// Δx = W ∇Cᵀ Δλ particle by particle: particle t of a lane takes + the hold's
+// row 0 (t = 0) or − the row t above it (t ≥ 1), and + its constraint's row
+// t + 1 (t < m); λ += Δλ.
+template <int kLaneStride>
 PARTICLES_VECTOR_CLONES void applyDisplacements(const BundleArrays& b, double* x, const double* w) {
-  const int L = b.lanes, m = b.length;
-  for (int t = 0; t <= m; ++t) {
+  const int L = b.lanes, m = b.length, step = b.step, ls = kLaneStride > 0 ? kLaneStride : b.laneStride;
+  const double *ux = b.ux, *uy = b.uy, *rhs = b.rhs;
+  double* lambda = b.lambda;
+  auto move = [&](int p, double gx, double gy) {
+    x[2 * p] += w[p] * gx;
+    x[2 * p + 1] += w[p] * gy;
+  };
+#pragma omp simd
+  for (int q = 0; q < L; ++q) {
+    lambda[q] += rhs[q + L];
+    move(q * ls, ux[q] * rhs[q] + ux[q + L] * rhs[q + L], uy[q] * rhs[q] + uy[q + L] * rhs[q + L]);
+  }
+  for (int t = 1; t < m; ++t) {
 #pragma omp simd
     for (int q = 0; q < L; ++q) {
-      const int p = q * b.laneStride + t * b.step, a = t * L + q;
-      double gx = t == 0 ? b.ux[a] * b.rhs[a] : -b.ux[a] * b.rhs[a];
-      double gy = t == 0 ? b.uy[a] * b.rhs[a] : -b.uy[a] * b.rhs[a];
-      if (t < m) {
-        gx += b.ux[a + L] * b.rhs[a + L];
-        gy += b.uy[a + L] * b.rhs[a + L];
-        b.lambda[a] += b.rhs[a + L];
-      }
-      x[2 * p] += w[p] * gx;
-      x[2 * p + 1] += w[p] * gy;
+      const int a = t * L + q;
+      lambda[a] += rhs[a + L];
+      move(q * ls + t * step, ux[a + L] * rhs[a + L] - ux[a] * rhs[a], uy[a + L] * rhs[a + L] - uy[a] * rhs[a]);
     }
+  }
+#pragma omp simd
+  for (int q = 0; q < L; ++q) {
+    const int a = m * L + q;
+    move(q * ls + m * step, -ux[a] * rhs[a], -uy[a] * rhs[a]);
   }
 }
 
@@ -315,10 +351,18 @@ void HangingLines::solve(std::size_t index, const Phase& s, const double* xn, do
                             upper_.data() + row0,
                             rhs_.data() + row0};
   const std::size_t at = static_cast<std::size_t>(b.first);
-  constraintRows(arrays, xn + 2 * at, x + 2 * at, w + at, start);
-  eliminate(arrays, w + at);
-  substituteBack(arrays);
-  applyDisplacements(arrays, x + 2 * at, w + at);
+  if (start) std::fill_n(arrays.lambda, static_cast<std::size_t>(b.lanes) * static_cast<std::size_t>(b.length), 0.0);
+  if (b.laneStride == 1) {
+    constraintRows<1>(arrays, xn + 2 * at, x + 2 * at, w + at);
+    eliminate<1>(arrays, w + at);
+    substituteBack(arrays);
+    applyDisplacements<1>(arrays, x + 2 * at, w + at);
+  } else {
+    constraintRows<0>(arrays, xn + 2 * at, x + 2 * at, w + at);
+    eliminate<0>(arrays, w + at);
+    substituteBack(arrays);
+    applyDisplacements<0>(arrays, x + 2 * at, w + at);
+  }
 }
 
 }  // namespace particles
