@@ -5,9 +5,11 @@
 #include <cmath>
 
 #include "collision/contact_pass.h"
+#include "parallel_for.h"
 #include "particles/check.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/spring.h"
+#include "particles/threads.h"
 
 namespace particles {
 
@@ -194,12 +196,12 @@ void ParticleSystem::setVelocity(int i, const Eigen::Vector2d& v) {
 }
 
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
-                                  Eigen::VectorXd& a) {
+                                  Eigen::VectorXd& a, const ParticleRange& then) {
   const Phase s = phase(x, v);
   batches_.update(forces_, structureStamp_);
   ++evaluations_.forceEvaluations;
   if (constraints_.empty()) {  // nothing is added to f after the forces
-    batches_.applyAndDivide(s, f_, a);
+    batches_.applyAndDivide(s, f_, a, then);
     return;
   }
   batches_.apply(s, f_);
@@ -218,6 +220,7 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
   }
   a.resize(x.size());
   for (int i = 0; i < size(); ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
+  if (then) parallelRanges(size(), threadCount(), kParallelParticles, then);
 }
 
 void ParticleSystem::appliedForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f) {

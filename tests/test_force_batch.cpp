@@ -13,6 +13,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "particles/constraints/rod.h"
 #include "particles/forces/force_batch.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
@@ -197,8 +198,9 @@ int threadsOfThisProcess() {
 // colliders, 96 × 96 at rest with its grid's sides as collision edges, its
 // bottom row 0.2 mm above a box it meets within ten 1 ms steps (and a disc
 // below), for the contact broad phase's parallel blocks (kParallelEntries
-// particles and edges).
-std::unique_ptr<ParticleSystem> bigCloth(bool colliders = false) {
+// particles and edges). With ties, 400 springs more join scattered pairs of
+// particles: too few of one stride to make runs, they take the gathered path.
+std::unique_ptr<ParticleSystem> bigCloth(bool colliders = false, bool ties = false) {
   auto s = std::make_unique<ParticleSystem>();
   const int w = colliders ? 96 : 80;
   std::vector<Eigen::Vector2d> x;
@@ -215,6 +217,11 @@ std::unique_ptr<ParticleSystem> bigCloth(bool colliders = false) {
       if (r + 1 < w) spring(r + 1, c, 0.05);
       if (r + 1 < w && c + 1 < w) spring(r + 1, c + 1, 0.0707);
       if (r + 1 < w && c > 0) spring(r + 1, c - 1, 0.0707);
+    }
+  if (ties)
+    for (int k = 0; k < 400; ++k) {
+      const int i = (k * 7919) % (w * w), j = (k * 104729 + 13) % (w * w);
+      if (i != j) s->addForce(std::make_unique<particles::SpringForce>(i, j, 0.1, 5.0, 0.1));
     }
   s->addForce(std::make_unique<particles::GravityForce>(Eigen::Vector2d(0.0, -9.81)));
   if (colliders) {
@@ -242,8 +249,36 @@ TEST(ForceBatchThreads, OneThreadNeverStartsAThread) {
   EXPECT_THROW(particles::setThreadCount(0), std::invalid_argument);
 }
 
-// Every integrator (and xpbd with hanging lines) on the big cloth and every built-in scene (that it accepts): 2 and 3
-// threads give the one-thread trajectory bit for bit.
+// acceleration()'s then(begin, end) sees every particle once, with its entries of a already final:
+// fused into the force pass (the big cloth, with and without gathered springs; 1 and 2 threads) and
+// after the constraint solve (the cloth with a rod).
+TEST(ForceBatchThreads, AccelerationsThenSeesEachParticleOnceWithItsFinalAcceleration) {
+  for (const int threads : {1, 2})
+    for (const int variant : {0, 1, 2}) {
+      SCOPED_TRACE("threads " + std::to_string(threads) + " variant " + std::to_string(variant));
+      particles::setThreadCount(threads);
+      auto cloth = bigCloth(false, variant == 1);
+      if (variant == 2) cloth->addConstraint(std::make_unique<particles::RodConstraint>(100, 101, 0.05));
+      const int n = cloth->size();
+      Eigen::VectorXd a, seen = Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::quiet_NaN());
+      std::vector<int> calls(static_cast<std::size_t>(n), 0);
+      cloth->acceleration(cloth->positions(), cloth->velocities(), a, [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+          ++calls[static_cast<std::size_t>(i)];
+          seen.segment<2>(2 * i) = a.segment<2>(2 * i);
+        }
+      });
+      EXPECT_EQ(std::count(calls.begin(), calls.end(), 1), n);
+      Eigen::VectorXd plain;
+      cloth->acceleration(cloth->positions(), cloth->velocities(), plain);
+      expectSameBits(seen, plain, "then's view of a");
+      expectSameBits(a, plain, "a");
+    }
+  particles::setThreadCount(1);
+}
+
+// Every integrator (and xpbd with hanging lines) on the big cloth (with and without gathered springs) and every
+// built-in scene (that it accepts): 2 and 3 threads give the one-thread trajectory bit for bit.
 TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
   std::vector<std::string> integrators;
   for (const particles::IntegratorInfo& info : particles::integratorTable()) integrators.push_back(info.name);
@@ -253,8 +288,8 @@ TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
     std::unique_ptr<ParticleSystem> system;
     double dt = 0.001;
     scenes::Scene built;
-    if (scene == "big-cloth" || scene == "big-cloth-on-colliders") {
-      system = bigCloth(scene == "big-cloth-on-colliders");
+    if (scene.rfind("big-cloth", 0) == 0) {
+      system = bigCloth(scene == "big-cloth-on-colliders", scene == "big-cloth-with-ties");
     } else {
       built = scenes::buildScene(scene);
       system = std::move(built.system);
@@ -276,7 +311,7 @@ TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
     state << system->positions(), system->velocities();
     return state;
   };
-  std::vector<std::string> sceneNames = {"big-cloth", "big-cloth-on-colliders"};
+  std::vector<std::string> sceneNames = {"big-cloth", "big-cloth-with-ties", "big-cloth-on-colliders"};
   for (const scenes::SceneInfo& info : scenes::sceneTable()) sceneNames.push_back(info.name);
   for (const std::string& scene : sceneNames)
     for (const std::string& integrator : integrators) {

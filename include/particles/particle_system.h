@@ -131,7 +131,13 @@ class ParticleSystem {
   // q̈ at (x, v): clear forces → apply forces → solve λ → add Jᵀλ → a = W(Q + Q̂).
   // The constraint solve is skipped when there are no constraints. Each call
   // is tallied (one force evaluation, the solve's statistics) for takeEvaluationStats().
-  void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a);
+  // then(begin, end), when given, runs over ranges of particles covering them
+  // all once a's entries of those particles are final: fused into the force
+  // pass when nothing follows the forces, on threadCount() threads. Other
+  // ranges may still be reading x and v: then writes neither, and no entry of
+  // another range (ForceBatches::applyAndDivide).
+  void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a,
+                    const ParticleRange& then = {});
   // The applied forces Q at (x, v) alone (every force object, no constraint
   // forces) into f: the first two phases of acceleration(), for schemes that
   // impose the constraints themselves (RATTLE). Tallied as one force evaluation.

@@ -1,6 +1,7 @@
 #pragma once
 // A configuration at which forces and constraints are evaluated.
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace particles {
@@ -19,6 +20,11 @@ struct Phase {
   Eigen::Vector2d velocity(int i) const { return v.segment<2>(2 * i); }
   int size() const { return static_cast<int>(mass.size()); }
 };
+
+// A pass over the particles [begin, end) (entries [2 begin, 2 end) of a 2n
+// vector), called over ranges that cover every particle, on several threads
+// at once when the caller runs in parallel.
+using ParticleRange = std::function<void(int begin, int end)>;
 
 // World-space primitives that describe a force or constraint for drawing,
 // so that the core knows nothing of OpenGL.

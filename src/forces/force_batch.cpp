@@ -124,7 +124,7 @@ int ForceBatches::springCount() const {
 }
 
 void ForceBatches::applySegments(int begin, int end, const Phase& s, Eigen::VectorXd& f,
-                                 const SpringBatch::ParticleRange& finish) const {
+                                 const ParticleRange& finish) const {
   const int n = s.size(), threads = threadCount();
   if (begin == end || segments_[begin].kind != Segment::Kind::Springs) f.setZero(2 * n);
   bool finished = false;
@@ -133,7 +133,7 @@ void ForceBatches::applySegments(int begin, int end, const Phase& s, Eigen::Vect
     switch (seg.kind) {
       case Segment::Kind::Springs:
         finished = k == end - 1;
-        springs_[seg.springs].apply(s, f, k == 0, finished ? finish : SpringBatch::ParticleRange{});
+        springs_[seg.springs].apply(s, f, k == 0, finished ? finish : ParticleRange{});
         break;
       case Segment::Kind::Field: {
         double* fd = f.data();
@@ -164,7 +164,8 @@ void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, 
   }
 }
 
-void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a) const {
+void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a,
+                                  const ParticleRange& then) const {
   a.resize(s.x.size());
   double* ad = a.data();
   if (fieldsOnly()) {
@@ -172,12 +173,16 @@ void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::Vec
     // the whole of f runs on one thread (and pulls it into one core's cache).
     f.resize(s.x.size());
     double* fd = f.data();
-    parallelRanges(s.size(), threadCount(), kParallelParticles,
-                   [&](int begin, int end) { applyAndDivide(begin, end, s, fd, ad); });
+    parallelRanges(s.size(), threadCount(), kParallelParticles, [&](int begin, int end) {
+      applyAndDivide(begin, end, s, fd, ad);
+      if (then) then(begin, end);
+    });
     return;
   }
-  applySegments(0, headSegments_, s, f,
-                [&](int begin, int end) { tailAndDivide(begin, end, s, f.data(), ad, false); });
+  applySegments(0, headSegments_, s, f, [&](int begin, int end) {
+    tailAndDivide(begin, end, s, f.data(), ad, false);
+    if (then) then(begin, end);
+  });
 }
 
 }  // namespace particles

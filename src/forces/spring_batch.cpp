@@ -53,22 +53,23 @@ void uniformSpringForces(int count, const double* xi, const double* xj, const do
                vi[2 * t + 1] - vj[2 * t + 1], rest, stiffness, damping, out[2 * t], out[2 * t + 1]);
 }
 
-// The terms of a run's springs t < length, whose forces are terms[2t],
-// terms[2t + 1], on the particles of [begin, end) only: + at first + t, − at
-// first + stride + t. Each particle gets its two terms in the springs' order,
-// as the plain scatter loop gives them: for stride > 0 the − of spring
-// t − stride before the + of spring t.
-void addRunTerms(int first, int stride, int length, const double* terms, int begin, int end, double* f) {
-  auto clip = [&](int to, int& t0, int& t1) {
-    t0 = std::max(0, begin - to);
-    t1 = std::min(length, end - to);
-    return t0 < t1;
+// The terms of a run's springs on the particles of [begin, end) only: + at
+// first + t, − at first + stride + t, spring t's force at terms[2(t − t0)],
+// terms[2(t − t0) + 1] (t0: the first spring evaluated into terms, whose
+// range holds every spring that touches [begin, end)). Each particle gets its
+// two terms in the springs' order, as the plain scatter loop gives them: for
+// stride > 0 the − of spring t − stride before the + of spring t.
+void addRunTerms(int first, int stride, int length, const double* terms, int t0, int begin, int end, double* f) {
+  auto clip = [&](int to, int& c0, int& c1) {
+    c0 = std::max(0, begin - to);
+    c1 = std::min(length, end - to);
+    return c0 < c1;
   };
-  int t0, t1;
+  int c0, c1;
   const int second = first + stride;
-  if (stride > 0 && clip(second, t0, t1)) subtractTerms(2 * (t1 - t0), terms + 2 * t0, f + 2 * (second + t0));
-  if (clip(first, t0, t1)) addTerms(2 * (t1 - t0), terms + 2 * t0, f + 2 * (first + t0));
-  if (stride < 0 && clip(second, t0, t1)) subtractTerms(2 * (t1 - t0), terms + 2 * t0, f + 2 * (second + t0));
+  if (stride > 0 && clip(second, c0, c1)) subtractTerms(2 * (c1 - c0), terms + 2 * (c0 - t0), f + 2 * (second + c0));
+  if (clip(first, c0, c1)) addTerms(2 * (c1 - c0), terms + 2 * (c0 - t0), f + 2 * (first + c0));
+  if (stride < 0 && clip(second, c0, c1)) subtractTerms(2 * (c1 - c0), terms + 2 * (c0 - t0), f + 2 * (second + c0));
 }
 
 }  // namespace
@@ -106,43 +107,85 @@ void SpringBatch::build() {
 }
 
 void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const ParticleRange& finish) const {
-  const int threads = threadCount();
-  if (threads > 1 && size() >= kParallelSprings) {
-    applyParallel(s, f, clear, finish, threads);
-    return;
-  }
-  if (clear) f.setZero(s.x.size());
-  applySerial(s, f, finish);
-}
-
-void SpringBatch::runForces(const Run& r, const double* x, const double* v, double* out) const {
-  const int i = 2 * r.first, j = 2 * (r.first + r.stride), k = r.begin;
-  if (r.uniform)
-    uniformSpringForces(r.length, x + i, x + j, v + i, v + j, rest_[k], stiffness_[k], damping_[k], out);
-  else
-    springForces(r.length, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], out);
-}
-
-void SpringBatch::applySerial(const Phase& s, Eigen::VectorXd& f, const ParticleRange& finish) const {
+  const int n = s.size(), threads = threadCount();
+  if (clear) f.resize(2 * n);
   const double* x = s.x.data();
   const double* v = s.v.data();
   double* out = f.data();
-  const int n = s.size();
+  if (threads <= 1 || size() < kParallelSprings) {
+    if (clear) f.setZero();
+    addRunForces(0, n, x, v, out);
+    scatterGathered(x, v, out);
+    if (finish) finish(0, n);
+    return;
+  }
+  // Each thread adds the terms of its own range of particles, so no two
+  // write one entry of f. The gathered springs' forces are computed first
+  // (shared out among the threads, then a barrier); the runs need no barrier.
+  const bool gathered = gatherBegin_ < size();
+  if (gathered) {
+    buildIncidence(n);
+    forces_.resize(2 * static_cast<std::size_t>(size()));
+  }
+  double* fs = forces_.data();
+  const int springs = size();
+#pragma omp parallel num_threads(threads)
+  {
+    if (gathered) {
+#pragma omp for schedule(static)
+      for (int k = gatherBegin_; k < springs; ++k) {
+        const int i = 2 * first_[k], j = 2 * second_[k];
+        springForces(1, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], fs + 2 * k);
+      }
+    }
+    const int id = omp_get_thread_num(), team = omp_get_num_threads();
+    const int begin = static_cast<int>(static_cast<long long>(n) * id / team);
+    const int end = static_cast<int>(static_cast<long long>(n) * (id + 1) / team);
+    if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
+    addRunForces(begin, end, x, v, out);
+    if (gathered) gather(begin, end, out);
+    if (finish) finish(begin, end);
+  }
+}
+
+void SpringBatch::runForces(const Run& r, int t0, int t1, const double* x, const double* v, double* out) const {
+  const int i = 2 * (r.first + t0), j = 2 * (r.first + r.stride + t0), k = r.begin + t0;
+  if (r.uniform)
+    uniformSpringForces(t1 - t0, x + i, x + j, v + i, v + j, rest_[k], stiffness_[k], damping_[k], out);
+  else
+    springForces(t1 - t0, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], out);
+}
+
+// A run's springs that touch [begin, end) are evaluated into a scratch and
+// their terms of [begin, end) added: a spring across the edge of two
+// threads' ranges is evaluated by both, to the same bits.
+void SpringBatch::addRunForces(int begin, int end, const double* x, const double* v, double* f) const {
   alignas(64) double forces[2 * kRunLength];
   for (const Run& r : runs_) {
-    runForces(r, x, v, forces);
-    addRunTerms(r.first, r.stride, r.length, forces, 0, n, out);
+    int t0 = r.length, t1 = 0;
+    for (const int to : {r.first, r.first + r.stride}) {
+      const int c0 = std::max(0, begin - to), c1 = std::min(r.length, end - to);
+      if (c0 < c1) {
+        t0 = std::min(t0, c0);
+        t1 = std::max(t1, c1);
+      }
+    }
+    if (t0 >= t1) continue;
+    runForces(r, t0, t1, x, v, forces);
+    addRunTerms(r.first, r.stride, r.length, forces, t0, begin, end, f);
   }
+}
+
+void SpringBatch::scatterGathered(const double* x, const double* v, double* f) const {
   for (int k = gatherBegin_; k < size(); ++k) {
     const int i = 2 * first_[k], j = 2 * second_[k];
     double force[2];
     springForces(1, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], force);
-    out[i] += force[0];
-    out[i + 1] += force[1];
-    out[j] -= force[0];
-    out[j + 1] -= force[1];
+    f[i] += force[0];
+    f[i + 1] += force[1];
+    f[j] -= force[0];
+    f[j + 1] -= force[1];
   }
-  if (finish) finish(0, n);
 }
 
 void SpringBatch::buildIncidence(int particles) const {
@@ -180,41 +223,6 @@ void SpringBatch::gather(int begin, int end, double* f) const {
     }
     f[2 * p] = fx;
     f[2 * p + 1] = fy;
-  }
-}
-
-// Every spring's force into forces_ (independent, any split), then each
-// thread takes a contiguous range of particles and adds their terms in the
-// serial order: run by run (in the springs' order, clipped to the range),
-// then the gathered springs. No two threads write one entry of f.
-void SpringBatch::applyParallel(const Phase& s, Eigen::VectorXd& f, bool clear, const ParticleRange& finish,
-                                int threads) const {
-  const int n = s.size();
-  if (gatherBegin_ < size()) buildIncidence(n);
-  forces_.resize(2 * static_cast<std::size_t>(size()));
-  if (clear) f.resize(2 * n);
-  const double* x = s.x.data();
-  const double* v = s.v.data();
-  double* out = f.data();
-  double* fs = forces_.data();
-  const int runCount = runs(), springs = size();
-#pragma omp parallel num_threads(threads)
-  {
-#pragma omp for schedule(static) nowait
-    for (int r = 0; r < runCount; ++r) runForces(runs_[r], x, v, fs + 2 * runs_[r].begin);
-#pragma omp for schedule(static)
-    for (int k = gatherBegin_; k < springs; ++k) {
-      const int i = 2 * first_[k], j = 2 * second_[k];
-      springForces(1, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], fs + 2 * k);
-    }
-    const int id = omp_get_thread_num(), team = omp_get_num_threads();
-    const int begin = static_cast<int>(static_cast<long long>(n) * id / team);
-    const int end = static_cast<int>(static_cast<long long>(n) * (id + 1) / team);
-    if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
-    for (const Run& run : runs_)
-      addRunTerms(run.first, run.stride, run.length, fs + 2 * run.begin, begin, end, out);
-    if (gatherBegin_ < springs) gather(begin, end, out);
-    if (finish) finish(begin, end);
   }
 }
 

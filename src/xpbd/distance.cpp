@@ -1,5 +1,7 @@
 #include "particles/xpbd/distance.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -154,8 +156,11 @@ void DistanceBatch::build(const std::vector<CompliantDistance>& constraints, con
   order_.clear();
   runs_.clear();
   runColourEnd_.clear();
-  for (const auto& colour : byColour) {
+  for (auto& colour : byColour) {
     if (colour.empty()) continue;
+    // Within a colour by first particle: a thread's share of it is a region
+    // of the particles, the same region from one colour to the next.
+    std::stable_sort(colour.begin(), colour.end(), [](const Piece* a, const Piece* b) { return a->first < b->first; });
     for (const Piece* p : colour) {
       runs_.push_back({order_.size(), p->first, p->stride, p->step, p->length, entryOf[p->members[0]]});
       order_.insert(order_.end(), p->members.begin(), p->members.end());
@@ -208,6 +213,21 @@ void DistanceBatch::projectRuns(std::size_t begin, std::size_t end, const double
   }
 }
 
+// Runs [begin, end) of one colour, ordered by first particle, shared out by
+// their constraints: thread id of team takes the runs that begin in its
+// id-th part of the colour's constraints.
+std::pair<std::size_t, std::size_t> DistanceBatch::runShare(std::size_t begin, std::size_t end, int id, int team) const {
+  const std::size_t lo = runs_[begin].begin, hi = runs_[end - 1].begin + runs_[end - 1].length;
+  auto at = [&](int part) {
+    const std::size_t target = lo + (hi - lo) * static_cast<std::size_t>(part) / static_cast<std::size_t>(team);
+    return static_cast<std::size_t>(
+        std::lower_bound(runs_.begin() + static_cast<long>(begin), runs_.begin() + static_cast<long>(end), target,
+                         [](const Run& r, std::size_t t) { return r.begin < t; }) -
+        runs_.begin());
+  };
+  return {at(id), at(id + 1)};
+}
+
 void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
   // The loop's six variants (damped or not × how the multipliers are kept),
   // one table row per damping, chosen once per pass.
@@ -228,10 +248,12 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
     // stay in order.
 #pragma omp parallel num_threads(threads)
     {
+      const int id = omp_get_thread_num(), team = omp_get_num_threads();
       std::size_t begin = 0;
       for (std::size_t end : runColourEnd_) {
-#pragma omp for schedule(static)
-        for (std::size_t r = begin; r < end; ++r) projectRuns(r, r + 1, xn, x, lambdaMode);
+        const auto [from, to] = runShare(begin, end, id, team);
+        projectRuns(from, to, xn, x, lambdaMode);
+#pragma omp barrier
         begin = end;
       }
       begin = runConstraints_;

@@ -44,8 +44,11 @@ class ForceBatches {
   // f = Σ forces at s (f sized 2n here).
   void apply(const Phase& s, Eigen::VectorXd& f) const;
   // f = Σ forces at s and a = W f, the trailing fields and the division by
-  // the mass fused into one pass over the particles.
-  void applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a) const;
+  // the mass fused into one pass over the particles; then(begin, end) runs
+  // in that pass as soon as a's entries of particles [begin, end) are final.
+  // While it runs, other ranges may still be reading s: then writes no entry
+  // of s.x or s.v, nor any entry of another range.
+  void applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a, const ParticleRange& then = {}) const;
   // Whether every force is a field (gravity, drag): then f and a = W f on a
   // particle depend on that particle alone, and applyAndDivide(begin, end, …)
   // gives them range by range (f and a sized 2n by the caller), so that a
@@ -70,7 +73,7 @@ class ForceBatches {
   // Segments [begin, end) into f, which holds the earlier ones' sum; f is
   // cleared first when begin is 0. finish runs after the last one.
   void applySegments(int begin, int end, const Phase& s, Eigen::VectorXd& f,
-                     const SpringBatch::ParticleRange& finish) const;
+                     const ParticleRange& finish) const;
   // The trailing fields and a = W f on particles [begin, end), f cleared
   // there first when clear is set.
   void tailAndDivide(int begin, int end, const Phase& s, double* f, double* a, bool clear) const;

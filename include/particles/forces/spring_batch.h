@@ -19,10 +19,10 @@
 // spring t), then from the other springs in order. The order differs
 // from the plain loop over the force objects, so f differs from it by
 // rounding (|Δf_p| ≤ (m_p − 1) ε Σ |terms of p|, m_p terms); it does not
-// depend on the thread count: with several threads, every spring's force is
-// computed first, then each thread adds the terms of its own particles in the
-// same order (applyParallel), so f is the same bits for any count.
-#include <functional>
+// depend on the thread count: with several threads, each thread evaluates the
+// springs that touch its own range of particles (a spring joining two ranges
+// is evaluated by both, to the same bits) and adds their terms of its
+// particles in the same order, so f is the same bits for any count.
 #include <vector>
 
 #include <Eigen/Core>
@@ -39,10 +39,6 @@ class SpringBatch {
   // The longest run (its forces are kept in a 2 × kRunLength scratch) and the
   // shortest one worth a vector loop.
   static constexpr int kRunLength = 256, kMinRun = 4;
-
-  // A per-particle pass over [begin, end) run once the springs' terms of those
-  // particles are all in f (the caller's last pass, fused).
-  using ParticleRange = std::function<void(int begin, int end)>;
 
   void add(int i, int j, double rest, double stiffness, double damping);
   // Groups the springs added so far into runs; call after the last add().
@@ -64,12 +60,13 @@ class SpringBatch {
     int begin, first, stride, length;
     bool uniform;
   };
-  // The forces of run r's springs on their first particles into out (2 each).
-  void runForces(const Run& r, const double* x, const double* v, double* out) const;
-  void applySerial(const Phase& s, Eigen::VectorXd& f, const ParticleRange& finish) const;
-  void applyParallel(const Phase& s, Eigen::VectorXd& f, bool clear, const ParticleRange& finish,
-                     int threads) const;
-  // The gathered springs' terms of particles [begin, end), in order.
+  // The forces of run r's springs t0 … t1 − 1 on their first particles into out (2 each).
+  void runForces(const Run& r, int t0, int t1, const double* x, const double* v, double* out) const;
+  // f += the runs' terms of particles [begin, end).
+  void addRunForces(int begin, int end, const double* x, const double* v, double* f) const;
+  // f += the gathered springs' terms, spring by spring (one thread).
+  void scatterGathered(const double* x, const double* v, double* f) const;
+  // f += the gathered springs' terms of particles [begin, end), in order, from forces_.
   void gather(int begin, int end, double* f) const;
   // Gathered springs of each particle, ascending (k for a first end, ~k for a
   // second), rebuilt when the particle count changes.
@@ -80,7 +77,7 @@ class SpringBatch {
   std::vector<Run> runs_;
   int gatherBegin_ = 0;  // springs [gatherBegin_, size()) are evaluated one by one
   mutable std::vector<int> incidenceStart_, incidence_;
-  mutable std::vector<double> forces_;  // 2 per spring (applyParallel)
+  mutable std::vector<double> forces_;  // 2 per spring: the gathered springs' forces (threads)
   mutable int incidenceParticles_ = -1;
 };
 

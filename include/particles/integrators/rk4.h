@@ -12,7 +12,7 @@ class Rk4Integrator : public Integrator {
   StepStats step(ParticleSystem& system, double dt) override;
 
  private:
-  Eigen::VectorXd xs_, vs_, a_, dx_, dv_;
+  Eigen::VectorXd xs_, vs_, xt_, vt_, a_, dx_, dv_;  // stage points (xs, vs), (xt, vt)
 };
 
 }  // namespace particles

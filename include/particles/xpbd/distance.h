@@ -3,6 +3,7 @@
 // flat for the substep loop.
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,6 +63,8 @@ class DistanceBatch {
   void projectRange(std::size_t begin, std::size_t end, std::size_t block, const double* xn, double* x);
   // Runs [begin, end) of runs_ (lambdaMode: Multipliers as an int).
   void projectRuns(std::size_t begin, std::size_t end, const double* xn, double* x, int lambdaMode);
+  // Thread id's runs of one colour's runs [begin, end) among team threads.
+  std::pair<std::size_t, std::size_t> runShare(std::size_t begin, std::size_t end, int id, int team) const;
 
   // Constraints begin … begin + length − 1 join particles first + step·t and
   // first + step·t + stride, with entry `entry`.
