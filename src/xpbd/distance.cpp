@@ -249,24 +249,36 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
 #pragma omp parallel num_threads(threads)
     {
       const int id = omp_get_thread_num(), team = omp_get_num_threads();
+      // A barrier between one colour and the next; none after the last: the region's end is one.
+      bool started = false;
+      auto nextColour = [&started]() {
+        if (started) {
+#pragma omp barrier
+        }
+        started = true;
+      };
       std::size_t begin = 0;
       for (std::size_t end : runColourEnd_) {
+        nextColour();
         const auto [from, to] = runShare(begin, end, id, team);
         projectRuns(from, to, xn, x, lambdaMode);
-#pragma omp barrier
         begin = end;
       }
       begin = runConstraints_;
       for (std::size_t end : colourEnd_) {
+        nextColour();
         const long blocks = static_cast<long>((end - begin + kBlock - 1) / kBlock);
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
         for (long b = 0; b < blocks; ++b)
           (this->*run)(begin + static_cast<std::size_t>(b) * kBlock,
                        std::min(end, begin + static_cast<std::size_t>(b + 1) * kBlock), kBlock, xn, x);
         begin = end;
       }
-#pragma omp single
-      (this->*run)(serialBegin_, size(), 1, xn, x);
+      if (serialBegin_ < size()) {
+        nextColour();
+#pragma omp single nowait
+        (this->*run)(serialBegin_, size(), 1, xn, x);
+      }
     }
     return;
   }
