@@ -7,6 +7,7 @@
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
 #include "particles/threads.h"
+#include "vector_kernels.h"
 
 namespace particles {
 
@@ -20,6 +21,7 @@ constexpr int kParticleBlock = 512;
 // and DragForce::apply). The term is multiplied by 1 on a movable particle
 // (exact) and by 0 on a pinned one, whose f_i + 0 equals f_i: a branch would
 // keep the loops from being vectorised.
+PARTICLES_VECTOR_CLONES
 void addField(const FieldTerm& t, int begin, int end, const Phase& s, double* f) {
   const double* w = s.inverseMass.data();
   if (t.kind == FieldTerm::Kind::Gravity) {
@@ -74,6 +76,16 @@ const Batcher kBatchers[] = {
        return true;
      }},
 };
+
+// a_i = w_i f_i for particles i in [begin, end).
+PARTICLES_VECTOR_CLONES
+void divideByMass(int begin, int end, const double* w, const double* f, double* a) {
+#pragma omp simd
+  for (int i = begin; i < end; ++i) {
+    a[2 * i] = w[i] * f[2 * i];
+    a[2 * i + 1] = w[i] * f[2 * i + 1];
+  }
+}
 
 }  // namespace
 
@@ -156,11 +168,7 @@ void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, 
     const int e = std::min(end, b + kParticleBlock);
     if (clear) std::fill(f + 2 * b, f + 2 * e, 0.0);
     for (const FieldTerm& t : tail_) addField(t, b, e, s, f);
-#pragma omp simd
-    for (int i = b; i < e; ++i) {
-      a[2 * i] = w[i] * f[2 * i];
-      a[2 * i + 1] = w[i] * f[2 * i + 1];
-    }
+    divideByMass(b, e, w, f, a);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "particles/integrators/rk4.h"
 
 #include "particles/particle_system.h"
+#include "vector_kernels.h"
 
 namespace particles {
 
@@ -17,38 +18,43 @@ struct Stage {
   double *dx, *dv;
   const double *xs, *vs;  // the point a was evaluated at
   double *xn, *vn;        // the next point
-
-  // After k1 = (v0, a): dx = v0, dv = a, and the next point y0 + c k1.
-  void first(int begin, int end, double c) const {
-#pragma omp simd
-    for (int k = begin; k < end; ++k) {
-      dx[k] = v0[k];
-      dv[k] = a[k];
-      xn[k] = x0[k] + c * v0[k];
-      vn[k] = v0[k] + c * a[k];
-    }
-  }
-  // After k2 or k3 = (vs, a): d += 2 k, and the next point y0 + c k.
-  void middle(int begin, int end, double c) const {
-#pragma omp simd
-    for (int k = begin; k < end; ++k) {
-      dx[k] += 2.0 * vs[k];
-      dv[k] += 2.0 * a[k];
-      xn[k] = x0[k] + c * vs[k];
-      vn[k] = v0[k] + c * a[k];
-    }
-  }
-  // After k4 = (vs, a): d += k4, and y = y0 + (h/6) d written over y0.
-  void last(int begin, int end, double h6) const {
-#pragma omp simd
-    for (int k = begin; k < end; ++k) {
-      dx[k] += vs[k];
-      dv[k] += a[k];
-      x0[k] = x0[k] + h6 * dx[k];
-      v0[k] = v0[k] + h6 * dv[k];
-    }
-  }
 };
+
+// After k1 = (v0, a): dx = v0, dv = a, and the next point y0 + c k1.
+PARTICLES_VECTOR_CLONES
+void firstStage(const Stage& s, int begin, int end, double c) {
+#pragma omp simd
+  for (int k = begin; k < end; ++k) {
+    s.dx[k] = s.v0[k];
+    s.dv[k] = s.a[k];
+    s.xn[k] = s.x0[k] + c * s.v0[k];
+    s.vn[k] = s.v0[k] + c * s.a[k];
+  }
+}
+
+// After k2 or k3 = (vs, a): d += 2 k, and the next point y0 + c k.
+PARTICLES_VECTOR_CLONES
+void middleStage(const Stage& s, int begin, int end, double c) {
+#pragma omp simd
+  for (int k = begin; k < end; ++k) {
+    s.dx[k] += 2.0 * s.vs[k];
+    s.dv[k] += 2.0 * s.a[k];
+    s.xn[k] = s.x0[k] + c * s.vs[k];
+    s.vn[k] = s.v0[k] + c * s.a[k];
+  }
+}
+
+// After k4 = (vs, a): d += k4, and y = y0 + (h/6) d written over y0.
+PARTICLES_VECTOR_CLONES
+void lastStage(const Stage& s, int begin, int end, double h6) {
+#pragma omp simd
+  for (int k = begin; k < end; ++k) {
+    s.dx[k] += s.vs[k];
+    s.dv[k] += s.a[k];
+    s.x0[k] = s.x0[k] + h6 * s.dx[k];
+    s.v0[k] = s.v0[k] + h6 * s.dv[k];
+  }
+}
 
 }  // namespace
 
@@ -67,10 +73,10 @@ StepStats Rk4Integrator::step(ParticleSystem& system, double dt) {
     return Stage{x.data(), v.data(), a_.data(), dx_.data(), dv_.data(), xs.data(), vs.data(), xn.data(), vn.data()};
   };
   // a_ is sized by the first evaluation, before any pass reads it.
-  system.acceleration(x, v, a_, [&](int b, int e) { stage(x, v, xs_, vs_).first(2 * b, 2 * e, 0.5 * dt); });  // k1
-  system.acceleration(xs_, vs_, a_, [&](int b, int e) { stage(xs_, vs_, xt_, vt_).middle(2 * b, 2 * e, 0.5 * dt); });  // k2
-  system.acceleration(xt_, vt_, a_, [&](int b, int e) { stage(xt_, vt_, xs_, vs_).middle(2 * b, 2 * e, dt); });  // k3
-  system.acceleration(xs_, vs_, a_, [&](int b, int e) { stage(xs_, vs_, xs_, vs_).last(2 * b, 2 * e, dt / 6.0); });  // k4
+  system.acceleration(x, v, a_, [&](int b, int e) { firstStage(stage(x, v, xs_, vs_), 2 * b, 2 * e, 0.5 * dt); });  // k1
+  system.acceleration(xs_, vs_, a_, [&](int b, int e) { middleStage(stage(xs_, vs_, xt_, vt_), 2 * b, 2 * e, 0.5 * dt); });  // k2
+  system.acceleration(xt_, vt_, a_, [&](int b, int e) { middleStage(stage(xt_, vt_, xs_, vs_), 2 * b, 2 * e, dt); });  // k3
+  system.acceleration(xs_, vs_, a_, [&](int b, int e) { lastStage(stage(xs_, vs_, xs_, vs_), 2 * b, 2 * e, dt / 6.0); });  // k4
   lastStep_ = dt;
   return system.takeEvaluationStats();
 }
