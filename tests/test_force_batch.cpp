@@ -19,6 +19,7 @@
 #include "particles/forces/spring.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
+#include "particles/thread_balance.h"
 #include "particles/threads.h"
 #include "scene.h"
 
@@ -247,6 +248,34 @@ TEST(ForceBatchThreads, OneThreadNeverStartsAThread) {
   for (int k = 0; k < 3; ++k) cloth->step(*integrator, 0.001);
   EXPECT_EQ(threadsOfThisProcess(), 1);
   EXPECT_THROW(particles::setThreadCount(0), std::invalid_argument);
+}
+
+// The shares follow the threads' measured speeds: equal at first, then 2 : 1 when thread 0 does its
+// items twice as fast, never below a quarter of an equal share, unchanged by a pass with nothing
+// measured; the bounds cover [0, n) in order.
+TEST(ThreadBalance, SharesFollowTheThreadsSpeeds) {
+  particles::ThreadBalance balance;
+  EXPECT_EQ(balance.bounds(1000, 2), (std::vector<int>{0, 500, 1000}));
+  for (int pass = 0; pass < 100; ++pass) {
+    const std::vector<int> b = balance.bounds(1000, 2);
+    const double items0 = b[1] - b[0], items1 = b[2] - b[1];
+    balance.update({items0, items1}, {items0 / 2.0, items1 / 1.0});  // thread 0: 2 items a second, thread 1: 1
+  }
+  const std::vector<double> cuts = balance.cuts(2);
+  EXPECT_NEAR(cuts[1], 2.0 / 3.0, 1e-6);
+  EXPECT_EQ(cuts.front(), 0.0);
+  EXPECT_EQ(cuts.back(), 1.0);
+  balance.update({0.0, 10.0}, {0.0, 1.0});  // nothing measured on thread 0: kept
+  EXPECT_NEAR(balance.cuts(2)[1], 2.0 / 3.0, 1e-6);
+  for (int pass = 0; pass < 100; ++pass) balance.update({1.0, 1.0}, {1.0, 1e9});  // thread 1 all but stopped
+  // Thread 1 keeps about an eighth (a quarter of an equal share, before the shares are renormalised).
+  EXPECT_GT(1.0 - balance.cuts(2)[1], 0.11);
+  EXPECT_LT(1.0 - balance.cuts(2)[1], 0.13);
+  const std::vector<int> three = balance.bounds(10, 3);  // another thread count starts equal again
+  EXPECT_EQ(three.front(), 0);
+  EXPECT_EQ(three.back(), 10);
+  EXPECT_TRUE(std::is_sorted(three.begin(), three.end()));
+  EXPECT_NEAR(balance.cuts(3)[1], 1.0 / 3.0, 1e-12);
 }
 
 // acceleration()'s then(begin, end) sees every particle once, with its entries of a already final:

@@ -129,6 +129,8 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
   }
   double* fs = forces_.data();
   const int springs = size();
+  const std::vector<int> bounds = balance_.bounds(n, threads);
+  std::vector<double> items(threads, 0.0), busy(threads, 0.0);
 #pragma omp parallel num_threads(threads)
   {
     if (gathered) {
@@ -138,14 +140,19 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
         springForces(1, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], fs + 2 * k);
       }
     }
-    const int id = omp_get_thread_num(), team = omp_get_num_threads();
-    const int begin = static_cast<int>(static_cast<long long>(n) * id / team);
-    const int end = static_cast<int>(static_cast<long long>(n) * (id + 1) / team);
-    if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
-    addRunForces(begin, end, x, v, out);
-    if (gathered) gather(begin, end, out);
-    if (finish) finish(begin, end);
+    // One part per thread (a smaller team, as in a nested region, takes several each).
+    for (int part = omp_get_thread_num(); part < threads; part += omp_get_num_threads()) {
+      const double start = omp_get_wtime();
+      const int begin = bounds[part], end = bounds[part + 1];
+      if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
+      addRunForces(begin, end, x, v, out);
+      if (gathered) gather(begin, end, out);
+      if (finish) finish(begin, end);
+      busy[part] = omp_get_wtime() - start;
+      items[part] = end - begin;
+    }
   }
+  balance_.update(items, busy);
 }
 
 void SpringBatch::runForces(const Run& r, int t0, int t1, const double* x, const double* v, double* out) const {

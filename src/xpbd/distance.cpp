@@ -214,18 +214,19 @@ void DistanceBatch::projectRuns(std::size_t begin, std::size_t end, const double
 }
 
 // Runs [begin, end) of one colour, ordered by first particle, shared out by
-// their constraints: thread id of team takes the runs that begin in its
-// id-th part of the colour's constraints.
-std::pair<std::size_t, std::size_t> DistanceBatch::runShare(std::size_t begin, std::size_t end, int id, int team) const {
+// their constraints: the runs that begin in the fraction [from, to) of the
+// colour's constraints.
+std::pair<std::size_t, std::size_t> DistanceBatch::runShare(std::size_t begin, std::size_t end, double from,
+                                                            double to) const {
   const std::size_t lo = runs_[begin].begin, hi = runs_[end - 1].begin + runs_[end - 1].length;
-  auto at = [&](int part) {
-    const std::size_t target = lo + (hi - lo) * static_cast<std::size_t>(part) / static_cast<std::size_t>(team);
+  auto at = [&](double fraction) {
+    const std::size_t target = lo + static_cast<std::size_t>(std::llround(fraction * static_cast<double>(hi - lo)));
     return static_cast<std::size_t>(
         std::lower_bound(runs_.begin() + static_cast<long>(begin), runs_.begin() + static_cast<long>(end), target,
                          [](const Run& r, std::size_t t) { return r.begin < t; }) -
         runs_.begin());
   };
-  return {at(id), at(id + 1)};
+  return {at(from), to >= 1.0 ? end : at(to)};
 }
 
 void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
@@ -246,6 +247,10 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
     // Within a colour no two runs or constraints share a particle: its runs
     // and blocks are projected on any thread with the same bits; the colours
     // stay in order.
+    // Each colour's runs are shared out by the threads' speeds in the passes
+    // before (thread_balance.h): the threads reach each barrier together.
+    const std::vector<double> cuts = balance_.cuts(threads);
+    std::vector<double> items(threads, 0.0), busy(threads, 0.0);
 #pragma omp parallel num_threads(threads)
     {
       const int id = omp_get_thread_num(), team = omp_get_num_threads();
@@ -260,8 +265,13 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
       std::size_t begin = 0;
       for (std::size_t end : runColourEnd_) {
         nextColour();
-        const auto [from, to] = runShare(begin, end, id, team);
-        projectRuns(from, to, xn, x, lambdaMode);
+        for (int part = id; part < threads; part += team) {  // one part per thread, or several in a smaller team
+          const double start = omp_get_wtime();
+          const auto [from, to] = runShare(begin, end, cuts[part], cuts[part + 1]);
+          projectRuns(from, to, xn, x, lambdaMode);
+          busy[part] += omp_get_wtime() - start;
+          if (from < to) items[part] += static_cast<double>(runs_[to - 1].begin + runs_[to - 1].length - runs_[from].begin);
+        }
         begin = end;
       }
       begin = runConstraints_;
@@ -280,6 +290,7 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
         (this->*run)(serialBegin_, size(), 1, xn, x);
       }
     }
+    balance_.update(items, busy);
     return;
   }
   projectRuns(0, runs_.size(), xn, x, lambdaMode);

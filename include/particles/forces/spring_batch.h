@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "particles/phase.h"
+#include "particles/thread_balance.h"
 
 namespace particles {
 
@@ -79,6 +80,7 @@ class SpringBatch {
   mutable std::vector<int> incidenceStart_, incidence_;
   mutable std::vector<double> forces_;  // 2 per spring: the gathered springs' forces (threads)
   mutable int incidenceParticles_ = -1;
+  mutable ThreadBalance balance_;
 };
 
 }  // namespace particles

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "particles/thread_balance.h"
 #include "particles/xpbd/multiplier.h"
 
 namespace particles {
@@ -63,8 +64,8 @@ class DistanceBatch {
   void projectRange(std::size_t begin, std::size_t end, std::size_t block, const double* xn, double* x);
   // Runs [begin, end) of runs_ (lambdaMode: Multipliers as an int).
   void projectRuns(std::size_t begin, std::size_t end, const double* xn, double* x, int lambdaMode);
-  // Thread id's runs of one colour's runs [begin, end) among team threads.
-  std::pair<std::size_t, std::size_t> runShare(std::size_t begin, std::size_t end, int id, int team) const;
+  // The runs of one colour's runs [begin, end) that begin in the fraction [from, to) of its constraints.
+  std::pair<std::size_t, std::size_t> runShare(std::size_t begin, std::size_t end, double from, double to) const;
 
   // Constraints begin … begin + length − 1 join particles first + step·t and
   // first + step·t + stride, with entry `entry`.
@@ -93,6 +94,7 @@ class DistanceBatch {
   std::vector<std::size_t> colourEnd_;        // colour c is [colourEnd_[c−1], colourEnd_[c]), after the runs
   std::size_t serialBegin_ = 0;               // [serialBegin_, size()) one by one
   bool damped_ = false;                       // some γ ≠ 0
+  ThreadBalance balance_;                     // how the runs of a colour are shared out among threads
 };
 
 }  // namespace particles
