@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "cloth_grid.h"
+#include "repetition_reporter.h"
 #include "particles/integrators/rk4.h"
 #include "particles/threads.h"
 
@@ -160,27 +161,6 @@ void referenceStep(benchmark::State& state, int size) {
   state.counters["particles"] = plain.n;
 }
 
-// Keeps each repetition's CPU time per iteration, by benchmark name.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  std::map<std::string, std::vector<double>> times, wall;  // CPU and wall time per iteration
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs)
-      if (r.run_type == Run::RT_Iteration && !r.error_occurred)
-      {
-        times[r.run_name.function_name].push_back(r.GetAdjustedCPUTime());
-        wall[r.run_name.function_name].push_back(r.GetAdjustedRealTime());
-      }
-    ConsoleReporter::ReportRuns(runs);
-  }
-};
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -207,23 +187,23 @@ int main(int argc, char** argv) {
     if (check)
       std::printf("check %d^2: largest |engine - reference| after %d steps = %.3g\n", size, kCheckSteps,
                 checkDifference(size));
-  RatioReporter reporter;
+  bench::RepetitionReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   for (int size : kSizes) {
     const std::string n = std::to_string(size);
-    const auto& e = reporter.times["engine/" + n];
-    const auto& r = reporter.times["reference/" + n];
+    const auto& e = reporter.cpu["engine/" + n];
+    const auto& r = reporter.cpu["reference/" + n];
     if (e.empty() || r.empty()) continue;
     std::vector<double> ratios;
     for (std::size_t k = 0; k < std::min(e.size(), r.size()); ++k) ratios.push_back(e[k] / r[k]);
     std::printf("ratio engine/reference %d^2: median %.3f (repetitions %.3f-%.3f), engine %.1f us, reference %.1f us\n",
-                size, median(e) / median(r), *std::min_element(ratios.begin(), ratios.end()),
-                *std::max_element(ratios.begin(), ratios.end()), median(e), median(r));
+                size, bench::median(e) / bench::median(r), *std::min_element(ratios.begin(), ratios.end()),
+                *std::max_element(ratios.begin(), ratios.end()), bench::median(e), bench::median(r));
     const auto& e1 = reporter.wall["engine/" + n];
-    const auto& e2 = reporter.wall["engine-2threads/" + n];
+    const auto& e2 = reporter.wall["engine-2threads/" + n + "/real_time"];
     if (!e1.empty() && !e2.empty())
       std::printf("speed-up 1 -> 2 threads %d^2 (wall time): %.3f, 1 thread %.1f us, 2 threads %.1f us\n", size,
-                  median(e1) / median(e2), median(e1), median(e2));
+                  bench::median(e1) / bench::median(e2), bench::median(e1), bench::median(e2));
   }
   benchmark::Shutdown();
   return 0;

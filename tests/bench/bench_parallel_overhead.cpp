@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "parallel_for.h"
+#include "repetition_reporter.h"
 
 namespace {
 
@@ -68,23 +69,6 @@ void BM_Pass(benchmark::State& state) {
   benchmark::DoNotOptimize(pa);
 }
 
-// Collects each run's wall time per iteration by name.
-class Collector : public benchmark::ConsoleReporter {
- public:
-  std::map<std::string, std::vector<double>> wall;
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs)
-      if (r.run_type == Run::RT_Iteration) wall[r.benchmark_name()].push_back(r.GetAdjustedRealTime());
-    ConsoleReporter::ReportRuns(runs);
-  }
-};
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 }  // namespace
 
 BENCHMARK(BM_Region)->ArgName("threads")->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
@@ -95,7 +79,7 @@ BENCHMARK_TEMPLATE(BM_Pass, true)->ArgNames({"n", "threads"})->ArgsProduct({{327
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  Collector collector;
+  bench::RepetitionReporter collector;
   benchmark::RunSpecifiedBenchmarks(&collector);
   for (const char* kind : {"BM_Pass<false>", "BM_Pass<true>"})
     for (const char* n : {"32768", "131072"}) {
@@ -103,8 +87,8 @@ int main(int argc, char** argv) {
       const auto& two = collector.wall[std::string(kind) + "/n:" + n + "/threads:2/real_time"];
       if (one.empty() || two.empty()) continue;
       std::printf("speed-up 1 -> 2 threads, %s pass of n = %s (wall time): %.3f, 1 thread %.2f us, 2 threads %.2f us\n",
-                  std::string(kind) == "BM_Pass<true>" ? "compute" : "memory", n, median(one) / median(two),
-                  median(one), median(two));
+                  std::string(kind) == "BM_Pass<true>" ? "compute" : "memory", n, bench::median(one) / bench::median(two),
+                  bench::median(one), bench::median(two));
     }
   benchmark::Shutdown();
   return 0;
