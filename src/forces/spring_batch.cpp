@@ -53,6 +53,15 @@ void uniformSpringForces(int count, const double* xi, const double* xj, const do
                vi[2 * t + 1] - vj[2 * t + 1], rest, stiffness, damping, out[2 * t], out[2 * t + 1]);
 }
 
+// The springs t ∈ [c0, c1) of a run of `length` whose particles first + t
+// (to = first) or first + stride + t (to = first + stride) lie in [begin, end);
+// false when there are none.
+bool clipRun(int to, int length, int begin, int end, int& c0, int& c1) {
+  c0 = std::max(0, begin - to);
+  c1 = std::min(length, end - to);
+  return c0 < c1;
+}
+
 // The terms of a run's springs on the particles of [begin, end) only: + at
 // first + t, − at first + stride + t, spring t's force at terms[2(t − t0)],
 // terms[2(t − t0) + 1] (t0: the first spring evaluated into terms, whose
@@ -60,11 +69,7 @@ void uniformSpringForces(int count, const double* xi, const double* xj, const do
 // two terms in the springs' order, as the plain scatter loop gives them: for
 // stride > 0 the − of spring t − stride before the + of spring t.
 void addRunTerms(int first, int stride, int length, const double* terms, int t0, int begin, int end, double* f) {
-  auto clip = [&](int to, int& c0, int& c1) {
-    c0 = std::max(0, begin - to);
-    c1 = std::min(length, end - to);
-    return c0 < c1;
-  };
+  auto clip = [&](int to, int& c0, int& c1) { return clipRun(to, length, begin, end, c0, c1); };
   int c0, c1;
   const int second = first + stride;
   if (stride > 0 && clip(second, c0, c1)) subtractTerms(2 * (c1 - c0), terms + 2 * (c0 - t0), f + 2 * (second + c0));
@@ -171,8 +176,8 @@ void SpringBatch::addRunForces(int begin, int end, const double* x, const double
   for (const Run& r : runs_) {
     int t0 = r.length, t1 = 0;
     for (const int to : {r.first, r.first + r.stride}) {
-      const int c0 = std::max(0, begin - to), c1 = std::min(r.length, end - to);
-      if (c0 < c1) {
+      int c0, c1;
+      if (clipRun(to, r.length, begin, end, c0, c1)) {
         t0 = std::min(t0, c0);
         t1 = std::max(t1, c1);
       }
