@@ -1,5 +1,7 @@
 #include "particles/thread_balance.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,6 +14,10 @@ constexpr double kFollow = 0.2;
 // No thread's share falls below this fraction of an equal one.
 constexpr double kLeastShare = 0.25;
 }  // namespace
+
+int ThreadBalance::Pass::teamMember() { return omp_get_thread_num(); }
+int ThreadBalance::Pass::teamSize() { return omp_get_num_threads(); }
+double ThreadBalance::Pass::wallClock() { return omp_get_wtime(); }
 
 std::vector<double> ThreadBalance::cuts(int threads) {
   if (static_cast<int>(share_.size()) != threads) share_.assign(threads, 1.0 / threads);

@@ -18,7 +18,9 @@
 #include "particles/forces/spring.h"
 #include "particles/integrators/xpbd.h"
 #include "particles/particle_system.h"
+#include "particles/threads.h"
 #include "particles/xpbd/distance.h"
+#include "particles/xpbd/distance_blocks.h"
 #include "scenes/cloth.h"
 #include "test_support.h"
 
@@ -152,6 +154,67 @@ TEST(DistanceBatch, ColouredPassEqualsTheSerialGaussSeidelPassInItsOrder) {
     EXPECT_GT((batched - x).norm(), 1e-3);
     for (int k = 0; k < 2 * n * n; ++k) ASSERT_EQ(batched[k], serial[k]) << passes << " passes, coordinate " << k;
   }
+}
+
+// The blocks' pass (xpbd/distance_blocks.h) is the one-by-one Gauss–Seidel
+// pass in the order it reports, with the multipliers it reports, on one
+// thread and on two (where the blocks are shared out and the cuts run in
+// parallel): a 40×40 8-way grid cut into blocks of two rows, with ties
+// between far particles left to the rest.
+TEST(DistanceBlocks, PassEqualsTheSerialGaussSeidelPassInItsOrderOnAnyThreadCount) {
+  const int n = 40;
+  std::vector<CompliantDistance> springs;
+  auto id = [&](int r, int c) { return r * n + c; };
+  auto add = [&](int a, int b, double rest) {
+    CompliantDistance d;
+    d.i = a;
+    d.j = b;
+    d.rest = rest;
+    d.compliance = springCompliance(1e3, 0.5, 1e-3);
+    springs.push_back(d);
+  };
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      if (c + 1 < n) add(id(r, c), id(r, c + 1), 0.1);
+      if (r + 1 < n) add(id(r, c), id(r + 1, c), 0.1);
+      if (r + 1 < n && c + 1 < n) add(id(r, c), id(r + 1, c + 1), 0.1 * std::sqrt(2.0));
+      if (r + 1 < n && c + 1 < n) add(id(r, c + 1), id(r + 1, c), 0.1 * std::sqrt(2.0));
+    }
+  for (int k = 0; k < 30; ++k) add(id(k, 0), id(n - 1 - k, n - 1), 3.0);  // far apart: the rest
+  Eigen::VectorXd w = Eigen::VectorXd::Constant(n * n, 2.0), xn(2 * n * n);
+  w[0] = 0.0;  // pinned
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) xn.segment<2>(2 * id(r, c)) = Vector2d(0.1 * c, -0.1 * r);
+  Eigen::VectorXd x = xn + 0.02 * Eigen::VectorXd::Random(2 * n * n);
+  x.segment<2>(0) = xn.segment<2>(0);
+  DistanceBlocks blocks;
+  blocks.build(springs, w, 2 * n);
+  ASSERT_EQ(blocks.blocks(), 20u);
+  ASSERT_EQ(blocks.cuts(), 19u);
+  ASSERT_GE(blocks.rest(), 20u);
+  ASSERT_EQ(blocks.size(), springs.size());
+  std::vector<int> sorted = blocks.order();
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < sorted.size(); ++k) ASSERT_EQ(sorted[k], static_cast<int>(k)) << "each constraint once";
+  for (int threads : {1, 2})
+    for (int passes : {1, 3}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, " << passes << " passes");
+      setThreadCount(threads);
+      Eigen::VectorXd blocked = x, serial = x;
+      for (int pass = 0; pass < passes; ++pass) blocks.project(xn.data(), blocked.data(), pass, passes);
+      setThreadCount(1);
+      std::vector<DistanceBatch> ones(springs.size());
+      for (int pass = 0; pass < passes; ++pass)
+        for (int k : blocks.order()) {
+          if (pass == 0) ones[k].build({springs[k]}, w);
+          ones[k].project(xn.data(), serial.data(), pass, passes);
+        }
+      EXPECT_GT((blocked - x).norm(), 1e-3);  // moved
+      for (int k = 0; k < 2 * n * n; ++k) ASSERT_EQ(blocked[k], serial[k]) << "coordinate " << k;
+      if (passes > 1)
+        for (std::size_t k = 0; k < blocks.size(); ++k)
+          ASSERT_EQ(blocks.multiplier(k), ones[blocks.order()[k]].multiplier(0)) << "constraint " << k;
+    }
 }
 
 TEST(Xpbd, CompliantSpringSettlesAtTheStaticStretch) {

@@ -18,6 +18,34 @@ class ThreadBalance {
   // After a pass: each thread's items done and its busy time (s), waiting excluded.
   void update(const std::vector<double>& items, const std::vector<double>& busy);
 
+  // One pass's measurement, taken inside its parallel region: run(work)
+  // calls work(part) for each of the pass's parts (thread t's share is part
+  // t), one part per thread, or several each in a smaller team (as in a
+  // nested region); work returns the items it did and is timed. run() may
+  // be called several times in one region: the items and times add up.
+  class Pass {
+   public:
+    explicit Pass(int parts) : items_(parts, 0.0), busy_(parts, 0.0) {}
+    template <class Work>
+    void run(const Work& work) {
+      const int parts = static_cast<int>(busy_.size());
+      for (int part = teamMember(); part < parts; part += teamSize()) {
+        const double start = wallClock();
+        const double done = work(part);
+        busy_[part] += wallClock() - start;
+        items_[part] += done;
+      }
+    }
+
+   private:
+    friend class ThreadBalance;
+    static int teamMember();  // omp_get_thread_num(), omp_get_num_threads(), omp_get_wtime()
+    static int teamSize();
+    static double wallClock();
+    std::vector<double> items_, busy_;
+  };
+  void update(const Pass& pass) { update(pass.items_, pass.busy_); }
+
  private:
   std::vector<double> share_;  // each thread's fraction of the items, summing to 1
 };

@@ -17,30 +17,31 @@ namespace {
 // stay in the first-level cache between the passes of its field terms.
 constexpr int kParticleBlock = 512;
 
-// f_i += term on movable particles i in [begin, end) (as GravityForce::apply
-// and DragForce::apply). The term is multiplied by 1 on a movable particle
+// f_i += term on movable particles i in [begin, end), f from the range's
+// first entry (as GravityForce::apply and DragForce::apply). The term is multiplied by 1 on a movable particle
 // (exact) and by 0 on a pinned one, whose f_i + 0 equals f_i: a branch would
 // keep the loops from being vectorised.
 PARTICLES_VECTOR_CLONES
 void addField(const FieldTerm& t, int begin, int end, const Phase& s, double* f) {
-  const double* w = s.inverseMass.data();
+  const int count = end - begin;
+  const double* w = s.inverseMass.data() + begin;
   if (t.kind == FieldTerm::Kind::Gravity) {
-    const double* m = s.mass.data();
+    const double* m = s.mass.data() + begin;
     const double gx = t.gravity.x(), gy = t.gravity.y();
 #pragma omp simd
-    for (int i = begin; i < end; ++i) {
-      const double movable = w[i] > 0.0 ? 1.0 : 0.0;
-      f[2 * i] += movable * (m[i] * gx);
-      f[2 * i + 1] += movable * (m[i] * gy);
+    for (int u = 0; u < count; ++u) {
+      const double movable = w[u] > 0.0 ? 1.0 : 0.0;
+      f[2 * u] += movable * (m[u] * gx);
+      f[2 * u + 1] += movable * (m[u] * gy);
     }
   } else {
-    const double* v = s.v.data();
+    const double* v = s.v.data() + 2 * static_cast<std::ptrdiff_t>(begin);
     const double k = t.drag;
 #pragma omp simd
-    for (int i = begin; i < end; ++i) {
-      const double movable = w[i] > 0.0 ? 1.0 : 0.0;
-      f[2 * i] -= movable * (k * v[2 * i]);
-      f[2 * i + 1] -= movable * (k * v[2 * i + 1]);
+    for (int u = 0; u < count; ++u) {
+      const double movable = w[u] > 0.0 ? 1.0 : 0.0;
+      f[2 * u] -= movable * (k * v[2 * u]);
+      f[2 * u + 1] -= movable * (k * v[2 * u + 1]);
     }
   }
 }
@@ -77,13 +78,15 @@ const Batcher kBatchers[] = {
      }},
 };
 
-// a_i = w_i f_i for particles i in [begin, end).
+// a_i = w_i f_i for particles i in [begin, end) (f and a from the range's first entry).
 PARTICLES_VECTOR_CLONES
 void divideByMass(int begin, int end, const double* w, const double* f, double* a) {
+  const int count = end - begin;
+  w += begin;
 #pragma omp simd
-  for (int i = begin; i < end; ++i) {
-    a[2 * i] = w[i] * f[2 * i];
-    a[2 * i + 1] = w[i] * f[2 * i + 1];
+  for (int u = 0; u < count; ++u) {
+    a[2 * u] = w[u] * f[2 * u];
+    a[2 * u + 1] = w[u] * f[2 * u + 1];
   }
 }
 
@@ -149,7 +152,8 @@ void ForceBatches::applySegments(int begin, int end, const Phase& s, Eigen::Vect
         break;
       case Segment::Kind::Field: {
         double* fd = f.data();
-        parallelRanges(n, threads, kParallelParticles, [&](int from, int to) { addField(seg.field, from, to, s, fd); });
+        parallelRanges(n, threads, kParallelParticles,
+                       [&](int from, int to) { addField(seg.field, from, to, s, fd + 2 * from); });
         break;
       }
       case Segment::Kind::Virtual: seg.force->apply(s, f); break;
@@ -166,9 +170,10 @@ void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, 
   const double* w = s.inverseMass.data();
   for (int b = begin; b < end; b += kParticleBlock) {
     const int e = std::min(end, b + kParticleBlock);
-    if (clear) std::fill(f + 2 * b, f + 2 * e, 0.0);
-    for (const FieldTerm& t : tail_) addField(t, b, e, s, f);
-    divideByMass(b, e, w, f, a);
+    double* fb = f + 2 * (b - begin);
+    if (clear) std::fill(fb, fb + 2 * (e - b), 0.0);
+    for (const FieldTerm& t : tail_) addField(t, b, e, s, fb);
+    divideByMass(b, e, w, fb, a + 2 * (b - begin));
   }
 }
 
@@ -182,13 +187,13 @@ void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::Vec
     f.resize(s.x.size());
     double* fd = f.data();
     parallelRanges(s.size(), threadCount(), kParallelParticles, [&](int begin, int end) {
-      applyAndDivide(begin, end, s, fd, ad);
+      applyAndDivide(begin, end, s, fd + 2 * begin, ad + 2 * begin);
       if (then) then(begin, end);
     });
     return;
   }
   applySegments(0, headSegments_, s, f, [&](int begin, int end) {
-    tailAndDivide(begin, end, s, f.data(), ad, false);
+    tailAndDivide(begin, end, s, f.data() + 2 * begin, ad + 2 * begin, false);
     if (then) then(begin, end);
   });
 }

@@ -1,7 +1,5 @@
 #include "particles/forces/spring_batch.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -135,7 +133,7 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
   double* fs = forces_.data();
   const int springs = size();
   const std::vector<int> bounds = balance_.bounds(n, threads);
-  std::vector<double> items(threads, 0.0), busy(threads, 0.0);
+  ThreadBalance::Pass measured(threads);
 #pragma omp parallel num_threads(threads)
   {
     if (gathered) {
@@ -145,19 +143,16 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
         springForces(1, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], fs + 2 * k);
       }
     }
-    // One part per thread (a smaller team, as in a nested region, takes several each).
-    for (int part = omp_get_thread_num(); part < threads; part += omp_get_num_threads()) {
-      const double start = omp_get_wtime();
+    measured.run([&](int part) {
       const int begin = bounds[part], end = bounds[part + 1];
       if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
       addRunForces(begin, end, x, v, out);
       if (gathered) gather(begin, end, out);
       if (finish) finish(begin, end);
-      busy[part] = omp_get_wtime() - start;
-      items[part] = end - begin;
-    }
+      return static_cast<double>(end - begin);
+    });
   }
-  balance_.update(items, busy);
+  balance_.update(measured);
 }
 
 void SpringBatch::runForces(const Run& r, int t0, int t1, const double* x, const double* v, double* out) const {

@@ -1,7 +1,5 @@
 #include "particles/xpbd/distance.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,21 +23,23 @@ constexpr int kRunLength = 256, kMinRun = 8;        // strided runs (strided_run
 
 // Greedy colouring: each item takes the lowest of the kColours colours none
 // of its particles has yet, and marks them; kColours when none is free.
+// Particles lo … hi − 1 are the ones the items may name.
 class GreedyColours {
  public:
-  explicit GreedyColours(int particles) : used_(particles, 0) {}
+  GreedyColours(int lo, int hi) : lo_(lo), used_(std::max(0, hi - lo), 0) {}
   template <class Particles>
   int take(const Particles& particles) {
     std::uint64_t taken = 0;
-    for (int p : particles) taken |= used_[p];
+    for (int p : particles) taken |= used_[p - lo_];
     const std::uint64_t free = ~taken & ((std::uint64_t{1} << kColours) - 1);
     const int c = free == 0 ? kColours : __builtin_ctzll(free);
     if (c < kColours)
-      for (int p : particles) used_[p] |= std::uint64_t{1} << c;
+      for (int p : particles) used_[p - lo_] |= std::uint64_t{1} << c;
     return c;
   }
 
  private:
+  int lo_;
   std::vector<std::uint64_t> used_;
 };
 
@@ -113,7 +113,13 @@ PARTICLES_VECTOR_CLONES void projectRun(int length, int stride, const double* xn
 // other constraints colour by colour, then the serial ones.
 void DistanceBatch::build(const std::vector<CompliantDistance>& constraints, const Eigen::VectorXd& inverseMass) {
   const std::size_t n = constraints.size();
-  const int particles = static_cast<int>(inverseMass.size());
+  // The colour tables cover the particles the constraints name, not the
+  // whole state: a block of a large cloth (xpbd/distance_blocks.h) is small.
+  int lo = static_cast<int>(inverseMass.size()), hi = 0;
+  for (const CompliantDistance& c : constraints) {
+    lo = std::min({lo, c.i, c.j});
+    hi = std::max({hi, c.i + 1, c.j + 1});
+  }
   std::vector<int> entryOf(n), firsts(n), seconds(n);
   entries_.clear();
   damped_ = false;
@@ -139,7 +145,7 @@ void DistanceBatch::build(const std::vector<CompliantDistance>& constraints, con
   std::vector<Piece> pieces = independentPieces(findStridedRuns(firsts, seconds, kRunLength, kMinRun, entryOf));
   std::stable_sort(pieces.begin(), pieces.end(),
                    [](const Piece& a, const Piece& b) { return std::abs(a.stride) < std::abs(b.stride); });
-  GreedyColours runColours(particles);
+  GreedyColours runColours(lo, hi);
   std::vector<std::vector<const Piece*>> byColour(kColours);
   std::vector<bool> inRun(n, false);
   for (const Piece& p : pieces) {
@@ -170,7 +176,7 @@ void DistanceBatch::build(const std::vector<CompliantDistance>& constraints, con
   runConstraints_ = order_.size();
 
   // The rest, constraint by constraint in their order.
-  GreedyColours colours(particles);
+  GreedyColours colours(lo, hi);
   std::vector<std::vector<int>> rest(kColours + 1);
   for (std::size_t k = 0; k < n; ++k)
     if (!inRun[k]) rest[colours.take(std::array<int, 2>{constraints[k].i, constraints[k].j})].push_back(static_cast<int>(k));
@@ -229,19 +235,25 @@ std::pair<std::size_t, std::size_t> DistanceBatch::runShare(std::size_t begin, s
   return {at(from), to >= 1.0 ? end : at(to)};
 }
 
-void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
+DistanceBatch::Multipliers DistanceBatch::multipliers(int pass, int passes) {
+  return passes == 1 ? Multipliers::None : pass == 0 ? Multipliers::Start : Multipliers::Accumulate;
+}
+
+DistanceBatch::Range DistanceBatch::rangeVariant(int lambdaMode) const {
   // The loop's six variants (damped or not × how the multipliers are kept),
   // one table row per damping, chosen once per pass.
-  using Range = void (DistanceBatch::*)(std::size_t, std::size_t, std::size_t, const double*, double*);
   static constexpr Range variants[2][3] = {
       {&DistanceBatch::projectRange<false, Multipliers::None>, &DistanceBatch::projectRange<false, Multipliers::Start>,
        &DistanceBatch::projectRange<false, Multipliers::Accumulate>},
       {&DistanceBatch::projectRange<true, Multipliers::None>, &DistanceBatch::projectRange<true, Multipliers::Start>,
        &DistanceBatch::projectRange<true, Multipliers::Accumulate>},
   };
-  const Multipliers lambda = passes == 1 ? Multipliers::None : pass == 0 ? Multipliers::Start : Multipliers::Accumulate;
-  const int lambdaMode = static_cast<int>(lambda);
-  const Range run = variants[damped_ ? 1 : 0][lambdaMode];
+  return variants[damped_ ? 1 : 0][lambdaMode];
+}
+
+void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
+  const int lambdaMode = static_cast<int>(multipliers(pass, passes));
+  const Range run = rangeVariant(lambdaMode);
   const int threads = threadCount();
   if (threads > 1 && size() >= kParallelConstraints) {
     // Within a colour no two runs or constraints share a particle: its runs
@@ -250,10 +262,9 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
     // Each colour's runs are shared out by the threads' speeds in the passes
     // before (thread_balance.h): the threads reach each barrier together.
     const std::vector<double> cuts = balance_.cuts(threads);
-    std::vector<double> items(threads, 0.0), busy(threads, 0.0);
+    ThreadBalance::Pass measured(threads);
 #pragma omp parallel num_threads(threads)
     {
-      const int id = omp_get_thread_num(), team = omp_get_num_threads();
       // A barrier between one colour and the next; none after the last: the region's end is one.
       bool started = false;
       auto nextColour = [&started]() {
@@ -265,13 +276,11 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
       std::size_t begin = 0;
       for (std::size_t end : runColourEnd_) {
         nextColour();
-        for (int part = id; part < threads; part += team) {  // one part per thread, or several in a smaller team
-          const double start = omp_get_wtime();
+        measured.run([&](int part) {
           const auto [from, to] = runShare(begin, end, cuts[part], cuts[part + 1]);
           projectRuns(from, to, xn, x, lambdaMode);
-          busy[part] += omp_get_wtime() - start;
-          if (from < to) items[part] += static_cast<double>(runs_[to - 1].begin + runs_[to - 1].length - runs_[from].begin);
-        }
+          return from < to ? static_cast<double>(runs_[to - 1].begin + runs_[to - 1].length - runs_[from].begin) : 0.0;
+        });
         begin = end;
       }
       begin = runConstraints_;
@@ -290,9 +299,15 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
         (this->*run)(serialBegin_, size(), 1, xn, x);
       }
     }
-    balance_.update(items, busy);
+    balance_.update(measured);
     return;
   }
+  projectOnThisThread(xn, x, pass, passes);
+}
+
+void DistanceBatch::projectOnThisThread(const double* xn, double* x, int pass, int passes) {
+  const int lambdaMode = static_cast<int>(multipliers(pass, passes));
+  const Range run = rangeVariant(lambdaMode);
   projectRuns(0, runs_.size(), xn, x, lambdaMode);
   std::size_t begin = runConstraints_;
   for (std::size_t end : colourEnd_) {

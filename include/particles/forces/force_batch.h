@@ -51,8 +51,10 @@ class ForceBatches {
   void applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a, const ParticleRange& then = {}) const;
   // Whether every force is a field (gravity, drag): then f and a = W f on a
   // particle depend on that particle alone, and applyAndDivide(begin, end, …)
-  // gives them range by range (f and a sized 2n by the caller), so that a
-  // caller can fuse its own per-particle pass into the same loop.
+  // gives them range by range, so that a caller can fuse its own
+  // per-particle pass into the same loop. f and a hold the range alone,
+  // 2(end − begin) entries each from particle begin's x: a caller's scratch
+  // for one block, or its full vectors from entry 2·begin.
   bool fieldsOnly() const { return headSegments_ == 0; }
   void applyAndDivide(int begin, int end, const Phase& s, double* f, double* a) const {
     tailAndDivide(begin, end, s, f, a, true);
@@ -75,7 +77,7 @@ class ForceBatches {
   void applySegments(int begin, int end, const Phase& s, Eigen::VectorXd& f,
                      const ParticleRange& finish) const;
   // The trailing fields and a = W f on particles [begin, end), f cleared
-  // there first when clear is set.
+  // there first when clear is set (f and a hold the range alone, as above).
   void tailAndDivide(int begin, int end, const Phase& s, double* f, double* a, bool clear) const;
 
   std::vector<Segment> segments_;

@@ -9,7 +9,7 @@
 #include "particles/integrator.h"
 #include "particles/xpbd/angle.h"
 #include "particles/xpbd/attachment.h"
-#include "particles/xpbd/distance.h"
+#include "particles/xpbd/distance_blocks.h"
 #include "particles/xpbd/hanging_lines.h"
 
 namespace particles {
@@ -26,7 +26,7 @@ class MouseSpringForce;
 //     compliant distance constraints (α = 1/k_s, β = k_d; with
 //     XpbdSettings::lines first the lines hanging from held particles, each
 //     solved directly, xpbd/hanging_lines.h; then xpbd/distance.h, in
-//     colour order), the
+//     colour order, block by block of particles, xpbd/distance_blocks.h), the
 //     angle springs as compliant angle constraints (xpbd/angle.h), the mouse
 //     joint as a compliant attachment to its target (xpbd/attachment.h), then
 //     the rods, wires and lines as hard constraints through their C and J kernels
@@ -73,7 +73,7 @@ class XpbdIntegrator : public Integrator {
   std::uint64_t preparedStamp_ = 0;  // ParticleSystem::structureStamp() forms_ was built for
   double preparedStep_ = 0.0;        // and the substep h
   HangingLines lines_;               // with XpbdSettings::lines
-  DistanceBatch distances_;          // the springs on no line
+  DistanceBlocks distances_;         // the springs on no line
   std::vector<double> angleLambda_;
   std::vector<Eigen::Vector2d> attachmentLambda_;
   std::vector<Eigen::Vector2d> blocks_;

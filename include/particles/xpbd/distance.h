@@ -50,6 +50,9 @@ class DistanceBatch {
   // the substep. The multipliers start at 0 on pass 0 and are kept between
   // passes (not stored when there is one pass).
   void project(const double* xn, double* x, int pass, int passes);
+  // The same pass on the calling thread alone, whatever the thread count
+  // (the same bits as project()).
+  void projectOnThisThread(const double* xn, double* x, int pass, int passes);
   // λ of the k-th constraint in the batch's order after a pass of several.
   double multiplier(std::size_t k) const { return lambda_[k]; }
   // The batch's order: order()[k] is the index, in build()'s list, of the
@@ -60,6 +63,9 @@ class DistanceBatch {
 
  private:
   enum class Multipliers { None, Start, Accumulate };
+  using Range = void (DistanceBatch::*)(std::size_t, std::size_t, std::size_t, const double*, double*);
+  static Multipliers multipliers(int pass, int passes);
+  Range rangeVariant(int lambdaMode) const;
   template <bool kDamped, Multipliers kLambda>
   void projectRange(std::size_t begin, std::size_t end, std::size_t block, const double* xn, double* x);
   // Runs [begin, end) of runs_ (lambdaMode: Multipliers as an int).

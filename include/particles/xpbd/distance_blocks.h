@@ -1,0 +1,68 @@
+#pragma once
+// The compliant distance constraints of a large scene cut along blocks of
+// particles, so that a Gauss–Seidel pass works through the state one
+// cache-sized piece at a time and threads meet at two barriers a pass, not
+// at one per colour.
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "particles/thread_balance.h"
+#include "particles/xpbd/distance.h"
+
+namespace particles {
+
+// Particles per block: a block's positions and start positions (32 KB)
+// stay in the first-level cache through its colours.
+constexpr int kBlockParticles = 1024;
+
+// Particles b·B … (b + 1)·B − 1 form block b (B = blockParticles). A
+// constraint is
+//  - in block b when both its particles are,
+//  - in cut b when one is in block b and the other in block b + 1,
+//  - in the rest otherwise (particles more than a block apart),
+// and each of these groups is a DistanceBatch of its own. A pass projects
+// every block, then the even cuts, then the odd cuts, then the rest, each
+// group in its own colour order. No two blocks share a particle, nor two
+// even cuts (cut b touches blocks b and b + 1 alone), nor two odd ones: the
+// groups of each stage run on any thread in any order with the same bits.
+// The blocks are shared among the threads by their speeds in the passes
+// before (thread_balance.h); a thread takes contiguous blocks. Below two
+// blocks of particles every constraint is in the rest: one DistanceBatch,
+// as before blocks.
+class DistanceBlocks {
+ public:
+  void build(const std::vector<CompliantDistance>& constraints, const Eigen::VectorXd& inverseMass,
+             int blockParticles = kBlockParticles);
+  std::size_t size() const { return order_.size(); }
+  std::size_t blocks() const { return blocks_.size(); }
+  std::size_t cuts() const { return evenCuts_.size() + oddCuts_.size(); }
+  std::size_t rest() const { return rest_.size(); }
+
+  // As DistanceBatch::project, over the groups in the order above.
+  void project(const double* xn, double* x, int pass, int passes);
+  // The pass's order: order()[k] is the index, in build()'s list, of the
+  // k-th constraint projected, and multiplier(k) its λ after a pass of several.
+  const std::vector<int>& order() const { return order_; }
+  double multiplier(std::size_t k) const;
+
+ private:
+  // A group: its constraints' indices in build()'s list and their batch.
+  struct Group {
+    std::vector<int> members;
+    DistanceBatch batch;
+  };
+  // The blocks [first, last) whose constraints begin in the fraction [from, to) of the blocks' constraints.
+  std::pair<std::size_t, std::size_t> blockShare(double from, double to) const;
+
+  std::vector<Group> blocks_, evenCuts_, oddCuts_;  // non-empty groups only
+  DistanceBatch rest_;
+  std::vector<int> restMembers_;
+  std::vector<std::size_t> blockStart_;  // constraints in blocks_[0, b): blockStart_[b]
+  std::vector<int> order_;
+  std::vector<std::pair<std::size_t, const DistanceBatch*>> starts_;  // where each group begins in order_
+  ThreadBalance balance_;
+};
+
+}  // namespace particles

@@ -1,0 +1,110 @@
+#include "particles/xpbd/distance_blocks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "particles/threads.h"
+
+namespace particles {
+
+namespace {
+constexpr std::size_t kParallelConstraints = 4096;  // fewer in the blocks: one thread whatever the count
+
+std::vector<CompliantDistance> subset(const std::vector<CompliantDistance>& constraints,
+                                      const std::vector<int>& members) {
+  std::vector<CompliantDistance> picked;
+  picked.reserve(members.size());
+  for (int k : members) picked.push_back(constraints[k]);
+  return picked;
+}
+}  // namespace
+
+void DistanceBlocks::build(const std::vector<CompliantDistance>& constraints, const Eigen::VectorXd& inverseMass,
+                           int blockParticles) {
+  const int particles = static_cast<int>(inverseMass.size());
+  const int count = blockParticles > 0 ? (particles + blockParticles - 1) / blockParticles : 0;
+  std::vector<std::vector<int>> inBlock(count >= 2 ? count : 0), inCut(count >= 2 ? count - 1 : 0);
+  restMembers_.clear();
+  for (std::size_t k = 0; k < constraints.size(); ++k) {
+    const int bi = constraints[k].i / blockParticles, bj = constraints[k].j / blockParticles;
+    const int member = static_cast<int>(k);
+    if (count < 2 || std::abs(bi - bj) > 1)
+      restMembers_.push_back(member);
+    else if (bi == bj)
+      inBlock[bi].push_back(member);
+    else
+      inCut[std::min(bi, bj)].push_back(member);
+  }
+  auto groups = [&](const std::vector<std::vector<int>>& lists, int first, int step) {
+    std::vector<Group> made;
+    for (std::size_t b = first; b < lists.size(); b += step)
+      if (!lists[b].empty()) {
+        made.push_back({lists[b], DistanceBatch{}});
+        made.back().batch.build(subset(constraints, lists[b]), inverseMass);
+      }
+    return made;
+  };
+  blocks_ = groups(inBlock, 0, 1);
+  evenCuts_ = groups(inCut, 0, 2);
+  oddCuts_ = groups(inCut, 1, 2);
+  rest_.build(subset(constraints, restMembers_), inverseMass);
+
+  blockStart_.assign(1, 0);
+  for (const Group& g : blocks_) blockStart_.push_back(blockStart_.back() + g.batch.size());
+  order_.clear();
+  starts_.clear();
+  auto append = [&](const std::vector<int>& members, const DistanceBatch& batch) {
+    starts_.emplace_back(order_.size(), &batch);
+    for (int k : batch.order()) order_.push_back(members[k]);
+  };
+  for (const auto* stage : {&blocks_, &evenCuts_, &oddCuts_})
+    for (const Group& g : *stage) append(g.members, g.batch);
+  append(restMembers_, rest_);
+}
+
+double DistanceBlocks::multiplier(std::size_t k) const {
+  const auto at = std::upper_bound(starts_.begin(), starts_.end(), k,
+                                   [](std::size_t value, const auto& start) { return value < start.first; }) -
+                  1;
+  return at->second->multiplier(k - at->first);
+}
+
+std::pair<std::size_t, std::size_t> DistanceBlocks::blockShare(double from, double to) const {
+  const double total = static_cast<double>(blockStart_.back());
+  auto at = [&](double fraction) {
+    const auto target = static_cast<std::size_t>(std::llround(fraction * total));
+    return static_cast<std::size_t>(std::lower_bound(blockStart_.begin(), blockStart_.end() - 1, target) -
+                                    blockStart_.begin());
+  };
+  return {at(from), to >= 1.0 ? blocks_.size() : at(to)};
+}
+
+void DistanceBlocks::project(const double* xn, double* x, int pass, int passes) {
+  const int threads = threadCount();
+  if (threads > 1 && blockStart_.back() >= kParallelConstraints) {
+    const std::vector<double> cuts = balance_.cuts(threads);
+    ThreadBalance::Pass measured(threads);
+#pragma omp parallel num_threads(threads)
+    {
+      measured.run([&](int part) {
+        const auto [first, last] = blockShare(cuts[part], cuts[part + 1]);
+        for (std::size_t b = first; b < last; ++b) blocks_[b].batch.projectOnThisThread(xn, x, pass, passes);
+        return static_cast<double>(blockStart_[last] - blockStart_[first]);
+      });
+#pragma omp barrier
+      const long even = static_cast<long>(evenCuts_.size()), odd = static_cast<long>(oddCuts_.size());
+#pragma omp for schedule(static)
+      for (long g = 0; g < even; ++g) evenCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
+#pragma omp for schedule(static) nowait
+      for (long g = 0; g < odd; ++g) oddCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
+    }
+    balance_.update(measured);
+  } else {
+    for (auto* stage : {&blocks_, &evenCuts_, &oddCuts_})
+      for (Group& g : *stage) g.batch.projectOnThisThread(xn, x, pass, passes);
+  }
+  rest_.project(xn, x, pass, passes);
+}
+
+}  // namespace particles
