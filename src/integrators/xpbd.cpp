@@ -120,9 +120,17 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
 
   const double h = dt / settings_.substeps;
   prepare(system, h);
+  // With fields alone and no hanging lines, each block of particles is
+  // predicted just before its springs are first projected, on the thread
+  // that projects them (DistanceBlocks::project's `before`).
+  const bool fused = applied_.fieldsOnly() && lines_.lines() == 0;
   for (int k = 0; k < settings_.substeps; ++k) {
-    predict(system, h);
-    for (int pass = 0; pass < settings_.iterations; ++pass) project(system, pass);
+    beginSubstep(system);
+    if (!fused) predict(system, h);
+    for (int pass = 0; pass < settings_.iterations; ++pass)
+      project(system, pass,
+              fused && pass == 0 ? ParticleRange([&](int begin, int end) { predictFields(system, h, begin, end); })
+                                 : ParticleRange());
     updateVelocities(system, h);
     collide(system, h);
   }
@@ -155,54 +163,62 @@ void XpbdIntegrator::prepare(const ParticleSystem& system, double h) {
   preparedStep_ = h;
 }
 
-// f = Σ of the forces without a position form at the substep's start and
-// a = W f (force batches: fields and springs of zero stiffness as flat
-// arrays), then v ← v + h a, xⁿ ← x, x ← x + h v (vⁿ ← v before, for the
-// contacts); the multipliers restart at 0. When the forces are fields alone
-// both run in one loop over the particles, range by range.
-void XpbdIntegrator::predict(ParticleSystem& system, double h) {
-  const Phase s = system.phase();
-  const bool colliding = system.colliding();
+// xⁿ (and vⁿ) sized; the multipliers restart at 0.
+void XpbdIntegrator::beginSubstep(const ParticleSystem& system) {
   const int n = system.size();
   xn_.resize(2 * n);
-  if (colliding) vn_.resize(2 * n);
-  double* x = positionsOf(system).data();
-  double* v = velocitiesOf(system).data();
-  double* xn = xn_.data();
-  double* vn = vn_.data();
-  // Particles [begin, end) with a from its first entry.
-  auto advance = [&](int begin, int end, const double* a) {
-    if (colliding) std::copy(v + 2 * begin, v + 2 * end, vn + 2 * begin);
-    advanceEntries(2 * (end - begin), h, a, v + 2 * begin, x + 2 * begin, xn + 2 * begin);
-  };
-  if (applied_.fieldsOnly()) {
-    // Block by block, f and a in a block's scratch on the stack: they never
-    // reach memory, and a substep's vectors fit in a core's cache sooner.
-    parallelRanges(n, threadCount(), kParallelParticles, [&](int begin, int end) {
-      alignas(64) double f[2 * kPredictBlock], a[2 * kPredictBlock];
-      for (int block = begin; block < end; block += kPredictBlock) {
-        const int blockEnd = std::min(end, block + kPredictBlock);
-        applied_.applyAndDivide(block, blockEnd, s, f, a);
-        advance(block, blockEnd, a);
-      }
-    });
-  } else {
-    applied_.applyAndDivide(s, force_, acceleration_);
-    parallelRanges(n, threadCount(), kParallelParticles,
-                   [&](int begin, int end) { advance(begin, end, acceleration_.data() + 2 * begin); });
-  }
+  if (system.colliding()) vn_.resize(2 * n);
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
   std::fill(attachmentLambda_.begin(), attachmentLambda_.end(), Eigen::Vector2d::Zero());
 }
 
+// f = Σ of the forces without a position form at the substep's start and
+// a = W f (force batches: fields and springs of zero stiffness as flat
+// arrays), then v ← v + h a, xⁿ ← x, x ← x + h v (vⁿ ← v before, for the
+// contacts). When the forces are fields alone, range by range.
+void XpbdIntegrator::predict(ParticleSystem& system, double h) {
+  const int n = system.size();
+  if (applied_.fieldsOnly()) {
+    parallelRanges(n, threadCount(), kParallelParticles,
+                   [&](int begin, int end) { predictFields(system, h, begin, end); });
+    return;
+  }
+  applied_.applyAndDivide(system.phase(), force_, acceleration_);
+  parallelRanges(n, threadCount(), kParallelParticles,
+                 [&](int begin, int end) { advance(system, h, begin, end, acceleration_.data() + 2 * begin); });
+}
+
+// The prediction of particles [begin, end) when the forces are fields alone:
+// block by block, f and a in a block's scratch on the stack, so that they
+// never reach memory.
+void XpbdIntegrator::predictFields(ParticleSystem& system, double h, int begin, int end) {
+  const Phase s = system.phase();
+  alignas(64) double f[2 * kPredictBlock], a[2 * kPredictBlock];
+  for (int block = begin; block < end; block += kPredictBlock) {
+    const int blockEnd = std::min(end, block + kPredictBlock);
+    applied_.applyAndDivide(block, blockEnd, s, f, a);
+    advance(system, h, block, blockEnd, a);
+  }
+}
+
+// v ← v + h a, xⁿ ← x, x ← x + h v on particles [begin, end) (vⁿ ← v first
+// when colliding), a from the range's first entry.
+void XpbdIntegrator::advance(ParticleSystem& system, double h, int begin, int end, const double* a) {
+  double* x = positionsOf(system).data() + 2 * begin;
+  double* v = velocitiesOf(system).data() + 2 * begin;
+  if (system.colliding()) std::copy(v, v + 2 * (end - begin), vn_.data() + 2 * begin);
+  advanceEntries(2 * (end - begin), h, a, v, x, xn_.data() + 2 * begin);
+}
+
 // One Gauss–Seidel pass: the hanging lines (with XpbdSettings::lines), the
-// other compliant springs in colour order, block by block (xpbd/distance_blocks.h), angle springs,
+// other compliant springs in colour order, block by block (xpbd/distance_blocks.h,
+// which runs predictFirst, when given, on each block first), angle springs,
 // then the hard constraints, so that those hold as well as one pass can make them.
-void XpbdIntegrator::project(ParticleSystem& system, int pass) {
+void XpbdIntegrator::project(ParticleSystem& system, int pass, const ParticleRange& predictFirst) {
   Eigen::VectorXd& x = positionsOf(system);
   const Eigen::VectorXd& w = system.inverseMasses();
   if (lines_.lines() > 0) lines_.project(xn_, x, velocitiesOf(system), system.masses(), w, pass);
-  distances_.project(xn_.data(), x.data(), pass, settings_.iterations);
+  distances_.project(xn_.data(), x.data(), pass, settings_.iterations, predictFirst);
   for (std::size_t k = 0; k < forms_.angles.size(); ++k)
     projectAngle(forms_.angles[k], w, xn_, x, angleLambda_[k]);
   for (std::size_t k = 0; k < forms_.attachments.size(); ++k) {

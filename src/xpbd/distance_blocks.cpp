@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "particles/forces/force_batch.h"
 #include "particles/threads.h"
 
 namespace particles {
@@ -36,18 +37,22 @@ void DistanceBlocks::build(const std::vector<CompliantDistance>& constraints, co
     else
       inCut[std::min(bi, bj)].push_back(member);
   }
-  auto groups = [&](const std::vector<std::vector<int>>& lists, int first, int step) {
+  // Every block, empty or not (block b is particles [b·B, (b + 1)·B)); the
+  // cuts that hold constraints.
+  auto groups = [&](const std::vector<std::vector<int>>& lists, int first, int step, bool keepEmpty) {
     std::vector<Group> made;
     for (std::size_t b = first; b < lists.size(); b += step)
-      if (!lists[b].empty()) {
+      if (keepEmpty || !lists[b].empty()) {
         made.push_back({lists[b], DistanceBatch{}});
         made.back().batch.build(subset(constraints, lists[b]), inverseMass);
       }
     return made;
   };
-  blocks_ = groups(inBlock, 0, 1);
-  evenCuts_ = groups(inCut, 0, 2);
-  oddCuts_ = groups(inCut, 1, 2);
+  blocks_ = groups(inBlock, 0, 1, true);
+  evenCuts_ = groups(inCut, 0, 2, false);
+  oddCuts_ = groups(inCut, 1, 2, false);
+  particles_ = particles;
+  blockParticles_ = blockParticles;
   rest_.build(subset(constraints, restMembers_), inverseMass);
 
   blockStart_.assign(1, 0);
@@ -80,16 +85,24 @@ std::pair<std::size_t, std::size_t> DistanceBlocks::blockShare(double from, doub
   return {at(from), to >= 1.0 ? blocks_.size() : at(to)};
 }
 
-void DistanceBlocks::project(const double* xn, double* x, int pass, int passes) {
+void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, const ParticleRange& before) {
   const int threads = threadCount();
-  if (threads > 1 && blockStart_.back() >= kParallelConstraints) {
+  auto projectBlocks = [&](std::size_t first, std::size_t last) {
+    for (std::size_t b = first; b < last; ++b) {
+      if (before) before(blockBegin(b), blockBegin(b + 1));
+      blocks_[b].batch.projectOnThisThread(xn, x, pass, passes);
+    }
+  };
+  if (blocks_.empty() && before) before(0, particles_);
+  if (threads > 1 &&
+      (blockStart_.back() >= kParallelConstraints || (before && !blocks_.empty() && particles_ >= kParallelParticles))) {
     const std::vector<double> cuts = balance_.cuts(threads);
     ThreadBalance::Pass measured(threads);
 #pragma omp parallel num_threads(threads)
     {
       measured.run([&](int part) {
         const auto [first, last] = blockShare(cuts[part], cuts[part + 1]);
-        for (std::size_t b = first; b < last; ++b) blocks_[b].batch.projectOnThisThread(xn, x, pass, passes);
+        projectBlocks(first, last);
         return static_cast<double>(blockStart_[last] - blockStart_[first]);
       });
 #pragma omp barrier
@@ -101,10 +114,15 @@ void DistanceBlocks::project(const double* xn, double* x, int pass, int passes) 
     }
     balance_.update(measured);
   } else {
-    for (auto* stage : {&blocks_, &evenCuts_, &oddCuts_})
+    projectBlocks(0, blocks_.size());
+    for (auto* stage : {&evenCuts_, &oddCuts_})
       for (Group& g : *stage) g.batch.projectOnThisThread(xn, x, pass, passes);
   }
   rest_.project(xn, x, pass, passes);
+}
+
+int DistanceBlocks::blockBegin(std::size_t b) const {
+  return static_cast<int>(std::min<long long>(particles_, static_cast<long long>(b) * blockParticles_));
 }
 
 }  // namespace particles

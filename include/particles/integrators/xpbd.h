@@ -63,9 +63,12 @@ class XpbdIntegrator : public Integrator {
 
  private:
   void prepare(const ParticleSystem& system, double h);
+  void beginSubstep(const ParticleSystem& system);
   void predict(ParticleSystem& system, double h);
+  void predictFields(ParticleSystem& system, double h, int begin, int end);
+  void advance(ParticleSystem& system, double h, int begin, int end, const double* a);
   void collide(ParticleSystem& system, double h);
-  void project(ParticleSystem& system, int pass);
+  void project(ParticleSystem& system, int pass, const ParticleRange& predictFirst);
   void updateVelocities(ParticleSystem& system, double h);
 
   XpbdSettings settings_;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "particles/phase.h"
 #include "particles/thread_balance.h"
 #include "particles/xpbd/distance.h"
 
@@ -41,7 +42,12 @@ class DistanceBlocks {
   std::size_t rest() const { return rest_.size(); }
 
   // As DistanceBatch::project, over the groups in the order above.
-  void project(const double* xn, double* x, int pass, int passes);
+  // before(begin, end), when given, runs once on every particle before any
+  // constraint on it is projected: on each block's particles just before
+  // the block, on the thread that projects it (on [0, n) first when there
+  // are no blocks). A caller's per-particle pass (xpbd's prediction) is
+  // fused into the pass so; it may write x and xⁿ of its range alone.
+  void project(const double* xn, double* x, int pass, int passes, const ParticleRange& before = {});
   // The pass's order: order()[k] is the index, in build()'s list, of the
   // k-th constraint projected, and multiplier(k) its λ after a pass of several.
   const std::vector<int>& order() const { return order_; }
@@ -55,8 +61,11 @@ class DistanceBlocks {
   };
   // The blocks [first, last) whose constraints begin in the fraction [from, to) of the blocks' constraints.
   std::pair<std::size_t, std::size_t> blockShare(double from, double to) const;
+  int blockBegin(std::size_t b) const;  // block b's first particle (n past the last block)
 
-  std::vector<Group> blocks_, evenCuts_, oddCuts_;  // non-empty groups only
+  std::vector<Group> blocks_;               // every block, empty or not (none below two blocks)
+  std::vector<Group> evenCuts_, oddCuts_;  // the cuts that hold constraints
+  int particles_ = 0, blockParticles_ = 1;
   DistanceBatch rest_;
   std::vector<int> restMembers_;
   std::vector<std::size_t> blockStart_;  // constraints in blocks_[0, b): blockStart_[b]
