@@ -269,8 +269,9 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   return stats;
 }
 
-int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt) {
-  return contacts_->collide(contactScene(), StepStart{x0, v0, dt}, ContactCoupling{}, x_, v_);
+int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt,
+                                const PathBounds* paths) {
+  return contacts_->collide(contactScene(), StepStart{x0, v0, dt, paths}, ContactCoupling{}, x_, v_);
 }
 
 double ParticleSystem::kineticEnergy() const {

@@ -38,6 +38,22 @@ struct ContactSettings {
   void validate() const;  // throws naming the bad field
 };
 
+// The box around the straight paths of particles over an interval, from x0
+// to x, and their largest radius: when it meets no collider (and there are
+// no discs or edges) no contact can begin, and the contact pass does nothing.
+// of() gives it for particles [begin, end) of flat arrays (x0, y0, x1, …);
+// merge() takes minima and maxima, so the box is the same however the
+// particles were split. A coordinate that is not finite makes it unbounded.
+struct PathBounds {
+  double lo[2] = {kUnbounded, kUnbounded}, hi[2] = {-kUnbounded, -kUnbounded};
+  double radius = 0.0;
+  bool finite = true;
+
+  static PathBounds of(const double* x0, const double* x, const double* radius, int begin, int end);
+  void merge(const PathBounds& other);
+  static constexpr double kUnbounded = 1.0e308;
+};
+
 // A collision edge: the segment between two particles (a spring of a cloth),
 // which collider corners and discs cannot cross.
 struct CollisionEdge {

@@ -168,7 +168,10 @@ class ParticleSystem {
   // the present state, each particle on its own. An
   // integrator that collides inside its substeps (Integrator::collidesInSubsteps)
   // runs it after each substep. Returns the contacts, which contactsLastStep() sums.
-  int collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt);
+  // paths: the box of the paths from x0 to the present state (PathBounds),
+  // when the caller measured it in a pass of its own; else the pass measures it.
+  int collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt,
+                  const PathBounds* paths = nullptr);
 
   // --- diagnostics --------------------------------------------------------
   double kineticEnergy() const;

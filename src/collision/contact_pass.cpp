@@ -18,28 +18,25 @@ namespace {
 // in the box around all of x0 and x grown by the largest radius and the slop:
 // when that box meets no collider's bounds (a half-plane has none), no sweep
 // can hit, and a substep's collision pass over a cloth far from the walls
-// costs one pass over the positions and radii.
-bool pathsMayReachColliders(const std::vector<Collider>& colliders, const Eigen::VectorXd& x0,
-                            const Eigen::VectorXd& x, const Eigen::VectorXd& radius, double slop) {
+// costs one pass over the positions and radii (or none, when the caller
+// measured the box in a pass of its own).
+PathBounds measurePaths(const Eigen::VectorXd& x0, const Eigen::VectorXd& x, const Eigen::VectorXd& radius) {
   const int n = static_cast<int>(x.size() / 2);
-  if (n == 0) return false;
-  // The box and largest radius of each thread's range, then of the ranges':
-  // minima are exact, so the box is the same on any thread count.
-  using Box = Eigen::Array<double, 5, 1>;  // lo x, lo y, −hi x, −hi y, −largest radius
-  const std::vector<Box> boxes =
-      parallelRangeResults<Box>(n, threadCount(), kParallelEntries / 2, [&](int begin, int end) -> Box {
-        const Eigen::Map<const Eigen::Array2Xd> start(x0.data() + 2 * begin, 2, end - begin),
-            finish(x.data() + 2 * begin, 2, end - begin);
-        Box box;
-        box << start.rowwise().minCoeff().min(finish.rowwise().minCoeff()),
-            -start.rowwise().maxCoeff().max(finish.rowwise().maxCoeff()), -radius.segment(begin, end - begin).maxCoeff();
-        return box;
+  const std::vector<PathBounds> parts =
+      parallelRangeResults<PathBounds>(n, threadCount(), kParallelEntries / 2, [&](int begin, int end) {
+        return PathBounds::of(x0.data(), x.data(), radius.data(), begin, end);
       });
-  Box all = boxes.front();
-  for (const Box& box : boxes) all = all.min(box);
-  const double grow = -all(4) + slop;
-  const Eigen::Array2d lo = all.head<2>() - grow, hi = -all.segment<2>(2) + grow;
-  if (!lo.allFinite() || !hi.allFinite()) return true;  // the per-particle passes deal with it
+  PathBounds all;
+  for (const PathBounds& part : parts) all.merge(part);
+  return all;
+}
+
+bool pathsMayReachColliders(const std::vector<Collider>& colliders, const PathBounds& paths, double slop) {
+  if (!paths.finite) return true;            // the per-particle passes deal with it
+  if (paths.lo[0] > paths.hi[0]) return false;  // no particle
+  const double grow = paths.radius + slop;
+  const Eigen::Array2d lo = Eigen::Array2d(paths.lo[0], paths.lo[1]) - grow,
+                       hi = Eigen::Array2d(paths.hi[0], paths.hi[1]) + grow;
   for (const Collider& c : colliders) {
     Eigen::Vector2d cLo, cHi;
     if (!c.bounds(cLo, cHi)) return true;
@@ -72,7 +69,9 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
                          Eigen::VectorXd& x, Eigen::VectorXd& v) {
   const bool discs = scene.discs.size() > 1, walls = !scene.colliders.empty();
   if (!discs && scene.edges.empty() &&
-      !pathsMayReachColliders(scene.colliders, start.x, x, scene.radius, settings_.slop)) {
+      !pathsMayReachColliders(scene.colliders,
+                              start.paths != nullptr ? *start.paths : measurePaths(start.x, x, scene.radius),
+                              settings_.slop)) {
     coupled_.resetWarmStart();
     return 0;
   }

@@ -3,6 +3,8 @@
 // and the count of what a pass did.
 #include <Eigen/Core>
 
+#include "particles/collision.h"
+
 namespace particles {
 
 // The state at the start of the step, from which continuous detection sweeps.
@@ -13,6 +15,7 @@ struct StepStart {
   const Eigen::VectorXd& x;  // 2n positions
   const Eigen::VectorXd& v;  // 2n velocities
   double dt;
+  const PathBounds* paths = nullptr;  // the paths' box (x here → the present), when the caller has it
 };
 
 // What one contact pass did: the contacts it resolved and the particles that

@@ -18,7 +18,7 @@ namespace particles {
 
 namespace {
 
-constexpr int kPredictBlock = 512;  // particles whose f and a are made and used together (8 KB each)
+constexpr int kPassBlock = 512;  // particles a per-particle pass takes at a time (f and a: 8 KB each)
 
 // v ← v + h a, xⁿ ← x, x ← x + h v over `count` entries.
 PARTICLES_VECTOR_CLONES void advanceEntries(int count, double h, const double* a, double* v, double* x, double* xn) {
@@ -131,8 +131,7 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
       project(system, pass,
               fused && pass == 0 ? ParticleRange([&](int begin, int end) { predictFields(system, h, begin, end); })
                                  : ParticleRange());
-    updateVelocities(system, h);
-    collide(system, h);
+    collide(system, h, updateVelocities(system, h));
   }
   lastStep_ = h;
   // The constraint passes are Gauss–Seidel sweeps, not linear solves: solves
@@ -193,9 +192,9 @@ void XpbdIntegrator::predict(ParticleSystem& system, double h) {
 // never reach memory.
 void XpbdIntegrator::predictFields(ParticleSystem& system, double h, int begin, int end) {
   const Phase s = system.phase();
-  alignas(64) double f[2 * kPredictBlock], a[2 * kPredictBlock];
-  for (int block = begin; block < end; block += kPredictBlock) {
-    const int blockEnd = std::min(end, block + kPredictBlock);
+  alignas(64) double f[2 * kPassBlock], a[2 * kPassBlock];
+  for (int block = begin; block < end; block += kPassBlock) {
+    const int blockEnd = std::min(end, block + kPassBlock);
     applied_.applyAndDivide(block, blockEnd, s, f, a);
     advance(system, h, block, blockEnd, a);
   }
@@ -232,18 +231,33 @@ void XpbdIntegrator::project(ParticleSystem& system, int pass, const ParticleRan
 }
 
 // Contacts over the substep, from (xⁿ, vⁿ) to the projected state.
-void XpbdIntegrator::collide(ParticleSystem& system, double h) {
-  if (system.colliding()) system.collideOver(xn_, vn_, h);
+void XpbdIntegrator::collide(ParticleSystem& system, double h, const PathBounds& paths) {
+  if (system.colliding()) system.collideOver(xn_, vn_, h, &paths);
 }
 
-// v ← (x − xⁿ)/h; pinned particles (w = 0) never moved and keep v = 0.
-void XpbdIntegrator::updateVelocities(ParticleSystem& system, double h) {
+// v ← (x − xⁿ)/h; pinned particles (w = 0) never moved and keep v = 0. When
+// the scene collides, the same pass measures the box of the substep's paths
+// for the contact pass (min and max: the same on any split).
+PathBounds XpbdIntegrator::updateVelocities(ParticleSystem& system, double h) {
   const double* x = positionsOf(system).data();
   const double* xn = xn_.data();
   double* v = velocitiesOf(system).data();
+  const double* radius = system.radii().data();
+  const bool colliding = system.colliding();
   const double inverseStep = 1.0 / h;
-  parallelRanges(static_cast<int>(xn_.size()), threadCount(), kParallelEntries,
-                 [&](int begin, int end) { velocitiesFromPositions(begin, end, inverseStep, x, xn, v); });
+  const std::vector<PathBounds> parts = parallelRangeResults<PathBounds>(
+      system.size(), threadCount(), kParallelParticles, [&](int begin, int end) {
+        PathBounds paths;
+        for (int block = begin; block < end; block += kPassBlock) {
+          const int blockEnd = std::min(end, block + kPassBlock);
+          velocitiesFromPositions(2 * block, 2 * blockEnd, inverseStep, x, xn, v);
+          if (colliding) paths.merge(PathBounds::of(xn, x, radius, block, blockEnd));
+        }
+        return paths;
+      });
+  PathBounds paths;
+  for (const PathBounds& part : parts) paths.merge(part);
+  return paths;
 }
 
 }  // namespace particles

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "particles/forces/force_batch.h"
 #include "particles/threads.h"
@@ -11,6 +12,17 @@ namespace particles {
 
 namespace {
 constexpr std::size_t kParallelConstraints = 4096;  // fewer in the blocks: one thread whatever the count
+
+// The 90th percentile of |i − j| (0 for no constraints).
+int reach(const std::vector<CompliantDistance>& constraints) {
+  if (constraints.empty()) return 0;
+  std::vector<int> spans;
+  spans.reserve(constraints.size());
+  for (const CompliantDistance& c : constraints) spans.push_back(std::abs(c.i - c.j));
+  const auto at = spans.begin() + static_cast<long>(spans.size() * 9 / 10);
+  std::nth_element(spans.begin(), at, spans.end());
+  return *at;
+}
 
 std::vector<CompliantDistance> subset(const std::vector<CompliantDistance>& constraints,
                                       const std::vector<int>& members) {
@@ -23,8 +35,12 @@ std::vector<CompliantDistance> subset(const std::vector<CompliantDistance>& cons
 
 void DistanceBlocks::build(const std::vector<CompliantDistance>& constraints, const Eigen::VectorXd& inverseMass,
                            int blockParticles) {
+  if (blockParticles <= 0)
+    blockParticles = static_cast<int>(std::min<long long>(
+        std::numeric_limits<int>::max(),
+        std::max<long long>(kBlockParticles, static_cast<long long>(kBlockReaches) * reach(constraints))));
   const int particles = static_cast<int>(inverseMass.size());
-  const int count = blockParticles > 0 ? (particles + blockParticles - 1) / blockParticles : 0;
+  const int count = static_cast<int>((static_cast<long long>(particles) + blockParticles - 1) / blockParticles);
   std::vector<std::vector<int>> inBlock(count >= 2 ? count : 0), inCut(count >= 2 ? count - 1 : 0);
   restMembers_.clear();
   for (std::size_t k = 0; k < constraints.size(); ++k) {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "particles/collision.h"
 #include "particles/force.h"
 #include "particles/forces/force_batch.h"
 #include "particles/integrator.h"
@@ -67,9 +68,9 @@ class XpbdIntegrator : public Integrator {
   void predict(ParticleSystem& system, double h);
   void predictFields(ParticleSystem& system, double h, int begin, int end);
   void advance(ParticleSystem& system, double h, int begin, int end, const double* a);
-  void collide(ParticleSystem& system, double h);
+  void collide(ParticleSystem& system, double h, const PathBounds& paths);
   void project(ParticleSystem& system, int pass, const ParticleRange& predictFirst);
-  void updateVelocities(ParticleSystem& system, double h);
+  PathBounds updateVelocities(ParticleSystem& system, double h);
 
   XpbdSettings settings_;
   Forms forms_;
