@@ -93,10 +93,16 @@ double DistanceBlocks::multiplier(std::size_t k) const {
 
 std::pair<std::size_t, std::size_t> DistanceBlocks::blockShare(double from, double to) const {
   const double total = static_cast<double>(blockStart_.back());
+  // The block boundary nearest the fraction: blocks are coarse (8 on the
+  // 128² cloth), and always rounding up would hand a thread a whole block
+  // more whenever its share crept past an even split.
   auto at = [&](double fraction) {
-    const auto target = static_cast<std::size_t>(std::llround(fraction * total));
-    return static_cast<std::size_t>(std::lower_bound(blockStart_.begin(), blockStart_.end() - 1, target) -
-                                    blockStart_.begin());
+    const double target = fraction * total;
+    auto next = std::lower_bound(blockStart_.begin(), blockStart_.end() - 1, target,
+                                 [](std::size_t start, double t) { return static_cast<double>(start) < t; });
+    if (next != blockStart_.begin() && target - static_cast<double>(*(next - 1)) < static_cast<double>(*next) - target)
+      --next;
+    return static_cast<std::size_t>(next - blockStart_.begin());
   };
   return {at(from), to >= 1.0 ? blocks_.size() : at(to)};
 }
