@@ -18,7 +18,6 @@ namespace {
 constexpr int kColours = 63;        // colours of independent constraints; the rest are serial
 constexpr std::size_t kBlock = 64;  // constraints whose lengths are taken together
 constexpr double kLargest = std::numeric_limits<double>::max();
-constexpr std::size_t kParallelConstraints = 4096;  // fewer: one thread whatever the count
 constexpr int kRunLength = 256, kMinRun = 8;        // strided runs (strided_runs.h)
 
 // Greedy colouring: each item takes the lowest of the kColours colours none

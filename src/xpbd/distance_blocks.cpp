@@ -11,8 +11,6 @@
 namespace particles {
 
 namespace {
-constexpr std::size_t kParallelConstraints = 4096;  // fewer in the blocks: one thread whatever the count
-
 // The 90th percentile of |i − j| (0 for no constraints).
 int reach(const std::vector<CompliantDistance>& constraints) {
   if (constraints.empty()) return 0;

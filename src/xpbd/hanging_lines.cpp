@@ -14,9 +14,8 @@ namespace particles {
 namespace {
 
 constexpr double kLargest = std::numeric_limits<double>::max();
-constexpr std::size_t kParallelConstraints = 4096;  // fewer: one thread whatever the count
-constexpr int kShortest = 2;                        // constraints on a line
-constexpr int kLanes = 8;                           // lines solved side by side
+constexpr int kShortest = 2;  // constraints on a line
+constexpr int kLanes = 8;     // lines solved side by side
 
 // The constraint from particle p to p + step, by (p, step); a pair listed
 // twice is on no line (its key is marked ambiguous).

@@ -13,6 +13,10 @@
 
 namespace particles {
 
+// Below this many constraints a parallel stage of a pass runs on one thread,
+// whatever the thread count.
+constexpr std::size_t kParallelConstraints = 4096;
+
 // Between particles i and j with d = x_i − x_j, u = d/|d|:
 //   C = |d| − r,   ∇_i C = u,   ∇_j C = −u,   ∇C W ∇Cᵀ = w_i + w_j,
 // and with compliance α = 1/k_s and damping β = k_d it is the spring

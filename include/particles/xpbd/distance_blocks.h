@@ -4,6 +4,7 @@
 // cache-sized piece at a time and threads meet at two barriers a pass, not
 // at one per colour.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -14,8 +15,8 @@
 
 namespace particles {
 
-// Particles per block, at least: a block's positions and start positions
-// (32 KB) stay in the first-level cache through its colours.
+// Particles per block, at least (their positions and start positions, 32 KB,
+// fit in the first-level cache).
 constexpr int kBlockParticles = 1024;
 // And at least this many times the constraints' reach (the 90th percentile
 // of |i − j|: a cloth's width): the cuts are projected after the blocks, and
