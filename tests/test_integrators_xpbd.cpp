@@ -81,6 +81,28 @@ class SteadyPush : public Force {
   Eigen::Vector2d push_;
 };
 
+// An n×n 8-way grid of compliant, damped springs 0.1 apart, particles row by row.
+std::vector<CompliantDistance> compliantGrid(int n) {
+  std::vector<CompliantDistance> springs;
+  auto id = [&](int r, int c) { return r * n + c; };
+  auto add = [&](int a, int b, double rest) {
+    CompliantDistance d;
+    d.i = a;
+    d.j = b;
+    d.rest = rest;
+    d.compliance = springCompliance(1e3, 0.5, 1e-3);
+    springs.push_back(d);
+  };
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      if (c + 1 < n) add(id(r, c), id(r, c + 1), 0.1);
+      if (r + 1 < n) add(id(r, c), id(r + 1, c), 0.1);
+      if (r + 1 < n && c + 1 < n) add(id(r, c), id(r + 1, c + 1), 0.1 * std::sqrt(2.0));
+      if (r + 1 < n && c + 1 < n) add(id(r, c + 1), id(r + 1, c), 0.1 * std::sqrt(2.0));
+    }
+  return springs;
+}
+
 }  // namespace
 
 TEST(DistanceBatch, ProjectionOfAStretchedHardSpringRestoresItsLength) {
@@ -110,23 +132,8 @@ TEST(DistanceBatch, ColouredPassEqualsTheSerialGaussSeidelPassInItsOrder) {
   // position another constraint of it moved. Pinned particles and two rest
   // lengths give runs of several entries.
   const int n = 12;
-  std::vector<CompliantDistance> springs;
+  std::vector<CompliantDistance> springs = compliantGrid(n);
   auto id = [&](int r, int c) { return r * n + c; };
-  for (int r = 0; r < n; ++r)
-    for (int c = 0; c < n; ++c) {
-      auto add = [&](int a, int b, double rest) {
-        CompliantDistance d;
-        d.i = a;
-        d.j = b;
-        d.rest = rest;
-        d.compliance = springCompliance(1e3, 0.5, 1e-3);
-        springs.push_back(d);
-      };
-      if (c + 1 < n) add(id(r, c), id(r, c + 1), 0.1);
-      if (r + 1 < n) add(id(r, c), id(r + 1, c), 0.1);
-      if (r + 1 < n && c + 1 < n) add(id(r, c), id(r + 1, c + 1), 0.1 * std::sqrt(2.0));
-      if (r + 1 < n && c + 1 < n) add(id(r, c + 1), id(r + 1, c), 0.1 * std::sqrt(2.0));
-    }
   springs[7].rest = 0.12;  // a run of another entry inside the first row's
   Eigen::VectorXd w = Eigen::VectorXd::Constant(n * n, 2.0), xn(2 * n * n);
   w[0] = w[5] = 0.0;  // pinned
@@ -163,24 +170,15 @@ TEST(DistanceBatch, ColouredPassEqualsTheSerialGaussSeidelPassInItsOrder) {
 // between far particles left to the rest.
 TEST(DistanceBlocks, PassEqualsTheSerialGaussSeidelPassInItsOrderOnAnyThreadCount) {
   const int n = 40;
-  std::vector<CompliantDistance> springs;
+  std::vector<CompliantDistance> springs = compliantGrid(n);
   auto id = [&](int r, int c) { return r * n + c; };
-  auto add = [&](int a, int b, double rest) {
-    CompliantDistance d;
-    d.i = a;
-    d.j = b;
-    d.rest = rest;
-    d.compliance = springCompliance(1e3, 0.5, 1e-3);
-    springs.push_back(d);
-  };
-  for (int r = 0; r < n; ++r)
-    for (int c = 0; c < n; ++c) {
-      if (c + 1 < n) add(id(r, c), id(r, c + 1), 0.1);
-      if (r + 1 < n) add(id(r, c), id(r + 1, c), 0.1);
-      if (r + 1 < n && c + 1 < n) add(id(r, c), id(r + 1, c + 1), 0.1 * std::sqrt(2.0));
-      if (r + 1 < n && c + 1 < n) add(id(r, c + 1), id(r + 1, c), 0.1 * std::sqrt(2.0));
-    }
-  for (int k = 0; k < 30; ++k) add(id(k, 0), id(n - 1 - k, n - 1), 3.0);  // far apart: the rest
+  for (int k = 0; k < 30; ++k) {  // far apart: the rest
+    CompliantDistance tie = springs.front();
+    tie.i = id(k, 0);
+    tie.j = id(n - 1 - k, n - 1);
+    tie.rest = 3.0;
+    springs.push_back(tie);
+  }
   Eigen::VectorXd w = Eigen::VectorXd::Constant(n * n, 2.0), xn(2 * n * n);
   w[0] = 0.0;  // pinned
   for (int r = 0; r < n; ++r)
