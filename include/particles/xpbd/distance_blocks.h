@@ -25,7 +25,7 @@ constexpr int kBlockParticles = 1024;
 // they held for 20 and 40 s, as with no blocks (test_integrators_xpbd).
 constexpr int kBlockReaches = 16;
 
-// Particles b·B … (b + 1)·B − 1 form block b (B = blockParticles()). A
+// Particles b·B … (b + 1)·B − 1 form block b (B: build()'s blockParticles). A
 // constraint is
 //  - in block b when both its particles are,
 //  - in cut b when one is in block b and the other in block b + 1,
@@ -44,7 +44,6 @@ class DistanceBlocks {
   // blockParticles 0: max(kBlockParticles, kBlockReaches × reach).
   void build(const std::vector<CompliantDistance>& constraints, const Eigen::VectorXd& inverseMass,
              int blockParticles = 0);
-  int blockParticles() const { return blockParticles_; }
   std::size_t size() const { return order_.size(); }
   std::size_t blocks() const { return blocks_.size(); }
   std::size_t cuts() const { return evenCuts_.size() + oddCuts_.size(); }
