@@ -5,7 +5,10 @@
 // potential and Jacobians.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -19,6 +22,7 @@
 #include "particles/forces/spring.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
+#include "particles/shared_chunks.h"
 #include "particles/thread_balance.h"
 #include "particles/threads.h"
 #include "scene.h"
@@ -276,6 +280,44 @@ TEST(ThreadBalance, SharesFollowTheThreadsSpeeds) {
   EXPECT_EQ(three.back(), 10);
   EXPECT_TRUE(std::is_sorted(three.begin(), three.end()));
   EXPECT_NEAR(balance.cuts(3)[1], 1.0 / 3.0, 1e-12);
+}
+
+// Every item of every part is done exactly once, by whichever thread takes its chunk, and never
+// before its part's owner opened it: parts of uneven sizes (one empty, one shorter than a chunk), owners
+// that open late (each owner spins a while, longer for higher parts), 1 to 4 threads, and a team
+// smaller than the parts (one thread owning all of them).
+TEST(SharedChunks, EachItemOnceAndOnlyAfterItsPartOpens) {
+  const std::vector<int> bounds = {0, 1000, 1000, 1003, 2500};
+  const int parts = static_cast<int>(bounds.size()) - 1, n = bounds.back();
+  particles::SharedChunks chunks;
+  for (const int threads : {1, 2, 3, 4})
+    for (int round = 0; round < 20; ++round) {
+      SCOPED_TRACE("threads " + std::to_string(threads) + " round " + std::to_string(round));
+      chunks.reset(bounds, 64);
+      std::vector<std::atomic<int>> done(static_cast<std::size_t>(n));
+      std::vector<std::atomic<bool>> opened(static_cast<std::size_t>(parts));
+      for (auto& d : done) d = 0;
+      for (auto& o : opened) o = false;
+      std::atomic<int> early{0}, total{0};
+#pragma omp parallel num_threads(threads)
+      {
+        const int member = omp_get_thread_num(), team = omp_get_num_threads();
+        for (int part = member; part < parts; part += team) {
+          volatile double spin = 0.0;
+          for (int k = 0; k < 20000 * (part + 1); ++k) spin = spin + 1.0;
+          opened[static_cast<std::size_t>(part)] = true;
+          chunks.open(part);
+        }
+        total += chunks.drain(member, [&](int begin, int end) {
+          const int part = static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), begin) - bounds.begin()) - 1;
+          if (!opened[static_cast<std::size_t>(part)] || end > bounds[part + 1]) ++early;
+          for (int i = begin; i < end; ++i) ++done[static_cast<std::size_t>(i)];
+        });
+      }
+      EXPECT_EQ(early.load(), 0) << "a chunk taken before its part opened, or past its part's end";
+      EXPECT_EQ(total.load(), n);
+      for (int i = 0; i < n; ++i) ASSERT_EQ(done[static_cast<std::size_t>(i)].load(), 1) << "item " << i;
+    }
 }
 
 // acceleration()'s then(begin, end) sees every particle once, with its entries of a already final:

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "particles/threads.h"
+#include "particles/shared_chunks.h"
 #include "strided_runs.h"
 #include "vector_kernels.h"
 
@@ -134,6 +137,7 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
   const int springs = size();
   const std::vector<int> bounds = balance_.bounds(n, threads);
   ThreadBalance::Pass measured(threads);
+  finishing_.reset(bounds, kFinishChunk);
 #pragma omp parallel num_threads(threads)
   {
     if (gathered) {
@@ -148,9 +152,10 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
       if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
       addRunForces(begin, end, x, v, out);
       if (gathered) gather(begin, end, out);
-      if (finish) finish(begin, end);
+      finishing_.open(part);
       return static_cast<double>(end - begin);
     });
+    if (finish) finishing_.drain(omp_get_thread_num(), finish);
   }
   balance_.update(measured);
 }

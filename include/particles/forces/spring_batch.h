@@ -29,6 +29,7 @@
 
 #include "particles/phase.h"
 #include "particles/thread_balance.h"
+#include "particles/shared_chunks.h"
 
 namespace particles {
 
@@ -40,6 +41,8 @@ class SpringBatch {
   // The longest run (its forces are kept in a 2 × kRunLength scratch) and the
   // shortest one worth a vector loop.
   static constexpr int kRunLength = 256, kMinRun = 4;
+  // Particles per chunk of the finish, shared out among the threads.
+  static constexpr int kFinishChunk = 512;
 
   void add(int i, int j, double rest, double stiffness, double damping);
   // Groups the springs added so far into runs; call after the last add().
@@ -80,7 +83,8 @@ class SpringBatch {
   mutable std::vector<int> incidenceStart_, incidence_;
   mutable std::vector<double> forces_;  // 2 per spring: the gathered springs' forces (threads)
   mutable int incidenceParticles_ = -1;
-  mutable ThreadBalance balance_;
+  mutable ThreadBalance balance_;  // the split of the springs' phase
+  mutable SharedChunks finishing_;  // the finish, shared out in chunks
 };
 
 }  // namespace particles
