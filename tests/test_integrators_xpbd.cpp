@@ -3,8 +3,10 @@
 // the damping term, first-order position error, and a user's force without a
 // position form applied in the prediction.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -168,8 +170,16 @@ TEST(DistanceBatch, ColouredPassEqualsTheSerialGaussSeidelPassInItsOrder) {
 // thread and on two (where the blocks are shared out and the cuts run in
 // parallel): a 40×40 8-way grid cut into blocks of two rows, with ties
 // between far particles left to the rest.
+// Constraints with both particles in one block of B particles: the blocks'
+// share, which must reach kParallelConstraints for a pass to run its blocks
+// on several threads.
+std::size_t inBlocks(const std::vector<CompliantDistance>& springs, int B) {
+  return static_cast<std::size_t>(std::count_if(springs.begin(), springs.end(),
+                                                [&](const CompliantDistance& c) { return c.i / B == c.j / B; }));
+}
+
 TEST(DistanceBlocks, PassEqualsTheSerialGaussSeidelPassInItsOrderOnAnyThreadCount) {
-  const int n = 40;
+  const int n = 48;
   std::vector<CompliantDistance> springs = compliantGrid(n);
   auto id = [&](int r, int c) { return r * n + c; };
   for (int k = 0; k < 30; ++k) {  // far apart: the rest
@@ -187,8 +197,9 @@ TEST(DistanceBlocks, PassEqualsTheSerialGaussSeidelPassInItsOrderOnAnyThreadCoun
   x.segment<2>(0) = xn.segment<2>(0);
   DistanceBlocks blocks;
   blocks.build(springs, w, 2 * n);
-  ASSERT_EQ(blocks.blocks(), 20u);
-  ASSERT_EQ(blocks.cuts(), 19u);
+  ASSERT_EQ(blocks.blocks(), 24u);
+  ASSERT_EQ(blocks.cuts(), 23u);
+  ASSERT_GE(inBlocks(springs, 2 * n), particles::kParallelConstraints);  // the blocks run on the threads
   ASSERT_GE(blocks.rest(), 20u);
   ASSERT_EQ(blocks.size(), springs.size());
   std::vector<int> sorted = blocks.order();
@@ -212,6 +223,57 @@ TEST(DistanceBlocks, PassEqualsTheSerialGaussSeidelPassInItsOrderOnAnyThreadCoun
       if (passes > 1) {
         for (std::size_t k = 0; k < blocks.size(); ++k)
           ASSERT_EQ(blocks.multiplier(k), ones[blocks.order()[k]].multiplier(0)) << "constraint " << k;
+      }
+    }
+}
+
+// project()'s after(begin, end) runs once on every particle, after the last constraint on it: the
+// positions it sees are the pass's final ones, the same as a pass with no after gives. With every constraint in a block or a cut it runs in
+// the blocks' region (on the threads that projected them); with far ties in the rest, after the rest.
+TEST(DistanceBlocks, AfterSeesEveryParticleOnceAtItsFinalPosition) {
+  const int n = 48;
+  for (const bool ties : {false, true})
+    for (const int threads : {1, 2}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, ties " << ties);
+      std::vector<CompliantDistance> springs = compliantGrid(n);
+      for (int k = 0; ties && k < 30; ++k) {
+        CompliantDistance tie = springs.front();
+        tie.i = k * n;
+        tie.j = (n - 1 - k) * n + n - 1;
+        tie.rest = 3.0;
+        springs.push_back(tie);
+      }
+      Eigen::VectorXd w = Eigen::VectorXd::Constant(n * n, 2.0), xn(2 * n * n);
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) xn.segment<2>(2 * (r * n + c)) = Vector2d(0.1 * c, -0.1 * r);
+      Eigen::VectorXd x = xn + 0.02 * Eigen::VectorXd::Random(2 * n * n);
+      DistanceBlocks blocks;
+      blocks.build(springs, w, 2 * n);
+      ASSERT_EQ(blocks.rest() > 0, ties);
+      ASSERT_GE(inBlocks(springs, 2 * n), particles::kParallelConstraints);
+      setThreadCount(threads);
+      Eigen::VectorXd seen = Eigen::VectorXd::Constant(2 * n * n, std::numeric_limits<double>::quiet_NaN());
+      std::vector<std::atomic<int>> calls(static_cast<std::size_t>(n * n));
+      for (auto& c : calls) c = 0;
+      const Eigen::VectorXd start = x;
+      blocks.project(xn.data(), x.data(), 0, 1, {}, [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+          ++calls[static_cast<std::size_t>(i)];
+          seen.segment<2>(2 * i) = x.segment<2>(2 * i);
+        }
+      });
+      DistanceBlocks without;  // the same pass with no after: the same positions
+      without.build(springs, w, 2 * n);
+      Eigen::VectorXd plain = start;
+      without.project(xn.data(), plain.data(), 0, 1);
+      setThreadCount(1);
+      EXPECT_GT((x - start).norm(), 1e-3);  // moved
+      for (int i = 0; i < n * n; ++i) {
+        ASSERT_EQ(x[2 * i], plain[2 * i]) << "particle " << i;
+        ASSERT_EQ(x[2 * i + 1], plain[2 * i + 1]) << "particle " << i;
+        ASSERT_EQ(calls[static_cast<std::size_t>(i)].load(), 1) << "particle " << i;
+        ASSERT_EQ(seen[2 * i], x[2 * i]) << "particle " << i;
+        ASSERT_EQ(seen[2 * i + 1], x[2 * i + 1]) << "particle " << i;
       }
     }
 }

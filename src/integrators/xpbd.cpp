@@ -1,5 +1,7 @@
 #include "particles/integrators/xpbd.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <stdexcept>
@@ -123,14 +125,34 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
   // predicted just before its springs are first projected, on the thread
   // that projects them (DistanceBlocks::project's `before`).
   const bool fused = applied_.fieldsOnly() && lines_.lines() == 0;
+  // When the springs are the last projection of a pass (no angle springs,
+  // mouse joints or hard constraints after them), the last pass updates the
+  // velocities of each block of particles once its springs are done, on the
+  // thread that projected them (DistanceBlocks::project's `after`); the
+  // paths' box is merged over the threads' parts (minima and maxima: the
+  // same on any split).
+  const bool velocitiesInPass =
+      forms_.angles.empty() && forms_.attachments.empty() && system.constraints().empty();
+  std::vector<PathBounds> parts(static_cast<std::size_t>(threadCount()));
+  const ParticleRange predictRange = [&](int begin, int end) { predictFields(system, h, begin, end); };
+  const ParticleRange velocityRange = [&](int begin, int end) {
+    parts[static_cast<std::size_t>(omp_get_thread_num())].merge(updateVelocities(system, h, begin, end));
+  };
   for (int k = 0; k < settings_.substeps; ++k) {
     beginSubstep(system);
     if (!fused) predict(system, h);
-    for (int pass = 0; pass < settings_.iterations; ++pass)
-      project(system, pass,
-              fused && pass == 0 ? ParticleRange([&](int begin, int end) { predictFields(system, h, begin, end); })
-                                 : ParticleRange());
-    collide(system, h, updateVelocities(system, h));
+    std::fill(parts.begin(), parts.end(), PathBounds{});
+    for (int pass = 0; pass < settings_.iterations; ++pass) {
+      const bool last = pass + 1 == settings_.iterations;
+      project(system, pass, fused && pass == 0 ? predictRange : ParticleRange(),
+              velocitiesInPass && last ? velocityRange : ParticleRange());
+    }
+    PathBounds paths;
+    if (velocitiesInPass)
+      for (const PathBounds& part : parts) paths.merge(part);
+    else
+      paths = updateVelocities(system, h);
+    collide(system, h, paths);
   }
   lastStep_ = h;
   // The constraint passes are Gauss–Seidel sweeps, not linear solves: solves
@@ -210,13 +232,16 @@ void XpbdIntegrator::advance(ParticleSystem& system, double h, int begin, int en
 
 // One Gauss–Seidel pass: the hanging lines (with XpbdSettings::lines), the
 // other compliant springs in colour order, block by block (xpbd/distance_blocks.h,
-// which runs predictFirst, when given, on each block first), angle springs,
+// which runs predictFirst, when given, on each block first, and
+// thenVelocities, when given, on each block's particles once the springs are
+// done: the caller gives it only when nothing below follows), angle springs,
 // then the hard constraints, so that those hold as well as one pass can make them.
-void XpbdIntegrator::project(ParticleSystem& system, int pass, const ParticleRange& predictFirst) {
+void XpbdIntegrator::project(ParticleSystem& system, int pass, const ParticleRange& predictFirst,
+                             const ParticleRange& thenVelocities) {
   Eigen::VectorXd& x = positionsOf(system);
   const Eigen::VectorXd& w = system.inverseMasses();
   if (lines_.lines() > 0) lines_.project(xn_, x, velocitiesOf(system), system.masses(), w, pass);
-  distances_.project(xn_.data(), x.data(), pass, settings_.iterations, predictFirst);
+  distances_.project(xn_.data(), x.data(), pass, settings_.iterations, predictFirst, thenVelocities);
   for (std::size_t k = 0; k < forms_.angles.size(); ++k)
     projectAngle(forms_.angles[k], w, xn_, x, angleLambda_[k]);
   for (std::size_t k = 0; k < forms_.attachments.size(); ++k) {
@@ -238,23 +263,27 @@ void XpbdIntegrator::collide(ParticleSystem& system, double h, const PathBounds&
 // the scene collides, the same pass measures the box of the substep's paths
 // for the contact pass (min and max: the same on any split).
 PathBounds XpbdIntegrator::updateVelocities(ParticleSystem& system, double h) {
+  const std::vector<PathBounds> parts = parallelRangeResults<PathBounds>(
+      system.size(), threadCount(), kParallelParticles,
+      [&](int begin, int end) { return updateVelocities(system, h, begin, end); });
+  PathBounds paths;
+  for (const PathBounds& part : parts) paths.merge(part);
+  return paths;
+}
+
+// The same on particles [begin, end), block by block.
+PathBounds XpbdIntegrator::updateVelocities(ParticleSystem& system, double h, int begin, int end) {
   const double* x = positionsOf(system).data();
   const double* xn = xn_.data();
   double* v = velocitiesOf(system).data();
   const double* radius = system.radii().data();
   const bool colliding = system.colliding();
-  const std::vector<PathBounds> parts = parallelRangeResults<PathBounds>(
-      system.size(), threadCount(), kParallelParticles, [&](int begin, int end) {
-        PathBounds paths;
-        for (int block = begin; block < end; block += kPassBlock) {
-          const int blockEnd = std::min(end, block + kPassBlock);
-          velocitiesFromPositions(2 * block, 2 * blockEnd, h, x, xn, v);
-          if (colliding) paths.merge(PathBounds::of(xn, x, radius, block, blockEnd));
-        }
-        return paths;
-      });
   PathBounds paths;
-  for (const PathBounds& part : parts) paths.merge(part);
+  for (int block = begin; block < end; block += kPassBlock) {
+    const int blockEnd = std::min(end, block + kPassBlock);
+    velocitiesFromPositions(2 * block, 2 * blockEnd, h, x, xn, v);
+    if (colliding) paths.merge(PathBounds::of(xn, x, radius, block, blockEnd));
+  }
   return paths;
 }
 

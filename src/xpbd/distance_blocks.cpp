@@ -1,10 +1,13 @@
 #include "particles/xpbd/distance_blocks.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 
+#include "parallel_for.h"
 #include "particles/forces/force_batch.h"
 #include "particles/threads.h"
 
@@ -105,7 +108,8 @@ std::pair<std::size_t, std::size_t> DistanceBlocks::blockShare(double from, doub
   return {at(from), to >= 1.0 ? blocks_.size() : at(to)};
 }
 
-void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, const ParticleRange& before) {
+void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, const ParticleRange& before,
+                             const ParticleRange& after) {
   const int threads = threadCount();
   auto projectBlocks = [&](std::size_t first, std::size_t last) {
     for (std::size_t b = first; b < last; ++b) {
@@ -118,6 +122,7 @@ void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, 
       (blockStart_.back() >= kParallelConstraints || (before && !blocks_.empty() && particles_ >= kParallelParticles))) {
     const std::vector<double> cuts = balance_.cuts(threads);
     ThreadBalance::Pass measured(threads);
+    const bool afterInRegion = after && rest_.size() == 0;
 #pragma omp parallel num_threads(threads)
     {
       measured.run([&](int part) {
@@ -131,14 +136,25 @@ void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, 
       for (long g = 0; g < even; ++g) evenCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
 #pragma omp for schedule(static) nowait
       for (long g = 0; g < odd; ++g) oddCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
+      if (afterInRegion) {
+        // Every constraint is in a block or a cut, all projected: each thread
+        // takes the particles of the blocks it projected, still in its cache.
+#pragma omp barrier
+        for (int part = omp_get_thread_num(); part < threads; part += omp_get_num_threads()) {
+          const auto [first, last] = blockShare(cuts[part], cuts[part + 1]);
+          if (first < last) after(blockBegin(first), blockBegin(last));
+        }
+      }
     }
     balance_.update(measured);
+    if (afterInRegion) return;
   } else {
     projectBlocks(0, blocks_.size());
     for (auto* stage : {&evenCuts_, &oddCuts_})
       for (Group& g : *stage) g.batch.projectOnThisThread(xn, x, pass, passes);
   }
   rest_.project(xn, x, pass, passes);
+  if (after) parallelRanges(particles_, threads, kParallelParticles, after);
 }
 
 int DistanceBlocks::blockBegin(std::size_t b) const {

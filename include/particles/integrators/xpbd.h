@@ -69,8 +69,10 @@ class XpbdIntegrator : public Integrator {
   void predictFields(ParticleSystem& system, double h, int begin, int end);
   void advance(ParticleSystem& system, double h, int begin, int end, const double* a);
   void collide(ParticleSystem& system, double h, const PathBounds& paths);
-  void project(ParticleSystem& system, int pass, const ParticleRange& predictFirst);
+  void project(ParticleSystem& system, int pass, const ParticleRange& predictFirst,
+               const ParticleRange& thenVelocities);
   PathBounds updateVelocities(ParticleSystem& system, double h);
+  PathBounds updateVelocities(ParticleSystem& system, double h, int begin, int end);
 
   XpbdSettings settings_;
   Forms forms_;

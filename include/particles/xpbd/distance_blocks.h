@@ -55,7 +55,13 @@ class DistanceBlocks {
   // the block, on the thread that projects it (on [0, n) first when there
   // are no blocks). A caller's per-particle pass (xpbd's prediction) is
   // fused into the pass so; it may write x and xⁿ of its range alone.
-  void project(const double* xn, double* x, int pass, int passes, const ParticleRange& before = {});
+  // after(begin, end), when given, runs once on every particle after every
+  // constraint on it is projected, on ranges covering [0, n): on the blocks
+  // each thread projected, in the same parallel region, when every
+  // constraint is in a block or a cut (xpbd's velocity update, on the last
+  // pass). It may read x and write anything of its range but x and xⁿ.
+  void project(const double* xn, double* x, int pass, int passes, const ParticleRange& before = {},
+               const ParticleRange& after = {});
   // The pass's order: order()[k] is the index, in build()'s list, of the
   // k-th constraint projected, and multiplier(k) its λ after a pass of several.
   const std::vector<int>& order() const { return order_; }
