@@ -1,9 +1,8 @@
 #include "particles/integrators/xpbd.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cstdint>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -128,30 +127,29 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
   // When the springs are the last projection of a pass (no angle springs,
   // mouse joints or hard constraints after them), the last pass updates the
   // velocities of each block of particles once its springs are done, on the
-  // thread that projected them (DistanceBlocks::project's `after`); the
-  // paths' box is merged over the threads' parts (minima and maxima: the
-  // same on any split).
+  // thread that projected them (DistanceBlocks::project's `after`); each
+  // thread's part of the paths' box is merged into the substep's under a
+  // lock (minima and maxima: the same in any order).
   const bool velocitiesInPass =
       forms_.angles.empty() && forms_.attachments.empty() && system.constraints().empty();
-  std::vector<PathBounds> parts(static_cast<std::size_t>(threadCount()));
+  PathBounds paths;
+  std::mutex merging;
   const ParticleRange predictRange = [&](int begin, int end) { predictFields(system, h, begin, end); };
   const ParticleRange velocityRange = [&](int begin, int end) {
-    parts[static_cast<std::size_t>(omp_get_thread_num())].merge(updateVelocities(system, h, begin, end));
+    const PathBounds part = updateVelocities(system, h, begin, end);
+    const std::lock_guard<std::mutex> lock(merging);
+    paths.merge(part);
   };
   for (int k = 0; k < settings_.substeps; ++k) {
     beginSubstep(system);
     if (!fused) predict(system, h);
-    std::fill(parts.begin(), parts.end(), PathBounds{});
+    paths = PathBounds{};
     for (int pass = 0; pass < settings_.iterations; ++pass) {
       const bool last = pass + 1 == settings_.iterations;
       project(system, pass, fused && pass == 0 ? predictRange : ParticleRange(),
               velocitiesInPass && last ? velocityRange : ParticleRange());
     }
-    PathBounds paths;
-    if (velocitiesInPass)
-      for (const PathBounds& part : parts) paths.merge(part);
-    else
-      paths = updateVelocities(system, h);
+    if (!velocitiesInPass) paths = updateVelocities(system, h);
     collide(system, h, paths);
   }
   lastStep_ = h;
