@@ -124,11 +124,12 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
   // predicted just before its springs are first projected, on the thread
   // that projects them (DistanceBlocks::project's `before`).
   const bool fused = applied_.fieldsOnly() && lines_.lines() == 0;
-  // When the springs are the last projection of a pass (no angle springs,
-  // mouse joints or hard constraints after them), the last pass updates the
-  // velocities of each block of particles once its springs are done, on the
-  // thread that projected them (DistanceBlocks::project's `after`); each
-  // thread's part of the paths' box is merged into the substep's under a
+  // The velocity update runs range by range: when the springs are the last
+  // projection of a pass (no angle springs, mouse joints or hard constraints
+  // after them), inside the last pass, on each block of particles once its
+  // springs are done, on the thread that projected them
+  // (DistanceBlocks::project's `after`); otherwise as a pass of its own.
+  // Each range's part of the paths' box is merged into the substep's under a
   // lock (minima and maxima: the same in any order).
   const bool velocitiesInPass =
       forms_.angles.empty() && forms_.attachments.empty() && system.constraints().empty();
@@ -149,7 +150,7 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
       project(system, pass, fused && pass == 0 ? predictRange : ParticleRange(),
               velocitiesInPass && last ? velocityRange : ParticleRange());
     }
-    if (!velocitiesInPass) paths = updateVelocities(system, h);
+    if (!velocitiesInPass) parallelRanges(system.size(), threadCount(), kParallelParticles, velocityRange);
     collide(system, h, paths);
   }
   lastStep_ = h;
@@ -257,19 +258,9 @@ void XpbdIntegrator::collide(ParticleSystem& system, double h, const PathBounds&
   if (system.colliding()) system.collideOver(xn_, vn_, h, &paths);
 }
 
-// v ← (x − xⁿ)/h; pinned particles (w = 0) never moved and keep v = 0. When
-// the scene collides, the same pass measures the box of the substep's paths
-// for the contact pass (min and max: the same on any split).
-PathBounds XpbdIntegrator::updateVelocities(ParticleSystem& system, double h) {
-  const std::vector<PathBounds> parts = parallelRangeResults<PathBounds>(
-      system.size(), threadCount(), kParallelParticles,
-      [&](int begin, int end) { return updateVelocities(system, h, begin, end); });
-  PathBounds paths;
-  for (const PathBounds& part : parts) paths.merge(part);
-  return paths;
-}
-
-// The same on particles [begin, end), block by block.
+// v ← (x − xⁿ)/h on particles [begin, end), block by block; pinned particles
+// (w = 0) never moved and keep v = 0. When the scene collides, the same loop
+// measures the box of their paths for the contact pass.
 PathBounds XpbdIntegrator::updateVelocities(ParticleSystem& system, double h, int begin, int end) {
   const double* x = positionsOf(system).data();
   const double* xn = xn_.data();

@@ -71,7 +71,6 @@ class XpbdIntegrator : public Integrator {
   void collide(ParticleSystem& system, double h, const PathBounds& paths);
   void project(ParticleSystem& system, int pass, const ParticleRange& predictFirst,
                const ParticleRange& thenVelocities);
-  PathBounds updateVelocities(ParticleSystem& system, double h);
   PathBounds updateVelocities(ParticleSystem& system, double h, int begin, int end);
 
   XpbdSettings settings_;
