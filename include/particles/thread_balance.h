@@ -23,18 +23,24 @@ class ThreadBalance {
   // t), one part per thread, or several each in a smaller team (as in a
   // nested region); work returns the items it did and is timed. run() may
   // be called several times in one region: the items and times add up.
+  // each(work) calls work(part) on the same parts, untimed (a later phase
+  // of the pass on the same shares).
   class Pass {
    public:
     explicit Pass(int parts) : items_(parts, 0.0), busy_(parts, 0.0) {}
     template <class Work>
     void run(const Work& work) {
-      const int parts = static_cast<int>(busy_.size());
-      for (int part = teamMember(); part < parts; part += teamSize()) {
+      each([&](int part) {
         const double start = wallClock();
         const double done = work(part);
         busy_[part] += wallClock() - start;
         items_[part] += done;
-      }
+      });
+    }
+    template <class Work>
+    void each(const Work& work) const {
+      const int parts = static_cast<int>(busy_.size());
+      for (int part = teamMember(); part < parts; part += teamSize()) work(part);
     }
 
    private:

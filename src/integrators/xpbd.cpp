@@ -124,15 +124,9 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
   // predicted just before its springs are first projected, on the thread
   // that projects them (DistanceBlocks::project's `before`).
   const bool fused = applied_.fieldsOnly() && lines_.lines() == 0;
-  // The velocity update runs range by range: when the springs are the last
-  // projection of a pass (no angle springs, mouse joints or hard constraints
-  // after them), inside the last pass, on each block of particles once its
-  // springs are done, on the thread that projected them
-  // (DistanceBlocks::project's `after`); otherwise as a pass of its own.
-  // Each range's part of the paths' box is merged into the substep's under a
-  // lock (minima and maxima: the same in any order).
-  const bool velocitiesInPass =
-      forms_.angles.empty() && forms_.attachments.empty() && system.constraints().empty();
+  // The last pass updates the velocities range by range (project()'s
+  // thenVelocities); each range's part of the paths' box is merged into the
+  // substep's under a lock (minima and maxima: the same in any order).
   PathBounds paths;
   std::mutex merging;
   const ParticleRange predictRange = [&](int begin, int end) { predictFields(system, h, begin, end); };
@@ -145,12 +139,9 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
     beginSubstep(system);
     if (!fused) predict(system, h);
     paths = PathBounds{};
-    for (int pass = 0; pass < settings_.iterations; ++pass) {
-      const bool last = pass + 1 == settings_.iterations;
+    for (int pass = 0; pass < settings_.iterations; ++pass)
       project(system, pass, fused && pass == 0 ? predictRange : ParticleRange(),
-              velocitiesInPass && last ? velocityRange : ParticleRange());
-    }
-    if (!velocitiesInPass) parallelRanges(system.size(), threadCount(), kParallelParticles, velocityRange);
+              pass + 1 == settings_.iterations ? velocityRange : ParticleRange());
     collide(system, h, paths);
   }
   lastStep_ = h;
@@ -231,16 +222,20 @@ void XpbdIntegrator::advance(ParticleSystem& system, double h, int begin, int en
 
 // One Gauss–Seidel pass: the hanging lines (with XpbdSettings::lines), the
 // other compliant springs in colour order, block by block (xpbd/distance_blocks.h,
-// which runs predictFirst, when given, on each block first, and
-// thenVelocities, when given, on each block's particles once the springs are
-// done: the caller gives it only when nothing below follows), angle springs,
+// which runs predictFirst, when given, on each block first), angle springs,
 // then the hard constraints, so that those hold as well as one pass can make them.
+// thenVelocities, when given, runs on every particle once the pass is done:
+// when the springs are the pass's last projection, inside their parallel
+// region, on each block once its springs are done, on the thread that
+// projected them (DistanceBlocks::project's after); otherwise at the end.
 void XpbdIntegrator::project(ParticleSystem& system, int pass, const ParticleRange& predictFirst,
                              const ParticleRange& thenVelocities) {
   Eigen::VectorXd& x = positionsOf(system);
   const Eigen::VectorXd& w = system.inverseMasses();
+  const bool springsLast = forms_.angles.empty() && forms_.attachments.empty() && system.constraints().empty();
   if (lines_.lines() > 0) lines_.project(xn_, x, velocitiesOf(system), system.masses(), w, pass);
-  distances_.project(xn_.data(), x.data(), pass, settings_.iterations, predictFirst, thenVelocities);
+  distances_.project(xn_.data(), x.data(), pass, settings_.iterations, predictFirst,
+                     springsLast ? thenVelocities : ParticleRange());
   for (std::size_t k = 0; k < forms_.angles.size(); ++k)
     projectAngle(forms_.angles[k], w, xn_, x, angleLambda_[k]);
   for (std::size_t k = 0; k < forms_.attachments.size(); ++k) {
@@ -251,6 +246,7 @@ void XpbdIntegrator::project(ParticleSystem& system, int pass, const ParticleRan
   }
   for (const auto& constraint : system.constraints())
     projectConstraint(*constraint, velocitiesOf(system), system.masses(), w, x, blocks_);
+  if (thenVelocities && !springsLast) parallelRanges(system.size(), threadCount(), kParallelParticles, thenVelocities);
 }
 
 // Contacts over the substep, from (xⁿ, vⁿ) to the projected state.

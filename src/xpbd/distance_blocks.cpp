@@ -1,7 +1,5 @@
 #include "particles/xpbd/distance_blocks.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -121,12 +119,14 @@ void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, 
   if (threads > 1 &&
       (blockStart_.back() >= kParallelConstraints || (before && !blocks_.empty() && particles_ >= kParallelParticles))) {
     const std::vector<double> cuts = balance_.cuts(threads);
+    std::vector<std::pair<std::size_t, std::size_t>> shares;  // each part's blocks [first, last)
+    for (int part = 0; part < threads; ++part) shares.push_back(blockShare(cuts[part], cuts[part + 1]));
     ThreadBalance::Pass measured(threads);
     const bool afterInRegion = after && rest_.size() == 0;
 #pragma omp parallel num_threads(threads)
     {
       measured.run([&](int part) {
-        const auto [first, last] = blockShare(cuts[part], cuts[part + 1]);
+        const auto [first, last] = shares[part];
         projectBlocks(first, last);
         return static_cast<double>(blockStart_[last] - blockStart_[first]);
       });
@@ -140,10 +140,10 @@ void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, 
         // Every constraint is in a block or a cut, all projected: each thread
         // takes the particles of the blocks it projected, still in its cache.
 #pragma omp barrier
-        for (int part = omp_get_thread_num(); part < threads; part += omp_get_num_threads()) {
-          const auto [first, last] = blockShare(cuts[part], cuts[part + 1]);
+        measured.each([&](int part) {
+          const auto [first, last] = shares[part];
           if (first < last) after(blockBegin(first), blockBegin(last));
-        }
+        });
       }
     }
     balance_.update(measured);
