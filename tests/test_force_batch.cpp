@@ -8,7 +8,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -20,9 +19,9 @@
 #include "particles/forces/force_batch.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
+#include "particles/forces/spring_batch.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
-#include "particles/shared_chunks.h"
 #include "particles/thread_balance.h"
 #include "particles/threads.h"
 #include "scene.h"
@@ -282,42 +281,56 @@ TEST(ThreadBalance, SharesFollowTheThreadsSpeeds) {
   EXPECT_NEAR(balance.cuts(3)[1], 1.0 / 3.0, 1e-12);
 }
 
-// Every item of every part is done exactly once, by whichever thread takes its chunk, and never
-// before its part's owner opened it: parts of uneven sizes (one empty, one shorter than a chunk), owners
-// that open late (each owner spins a while, longer for higher parts), 1 to 4 threads, and a team
-// smaller than the parts (one thread owning all of them).
-TEST(SharedChunks, EachItemOnceAndOnlyAfterItsPartOpens) {
-  const std::vector<int> bounds = {0, 1000, 1000, 1003, 2500};
-  const int parts = static_cast<int>(bounds.size()) - 1, n = bounds.back();
-  particles::SharedChunks chunks;
-  for (const int threads : {1, 2, 3, 4})
-    for (int round = 0; round < 20; ++round) {
-      SCOPED_TRACE("threads " + std::to_string(threads) + " round " + std::to_string(round));
-      chunks.reset(bounds, 64);
-      std::vector<std::atomic<int>> done(static_cast<std::size_t>(n));
-      std::vector<std::atomic<bool>> opened(static_cast<std::size_t>(parts));
-      for (auto& d : done) d = 0;
-      for (auto& o : opened) o = false;
-      std::atomic<int> early{0}, total{0};
-#pragma omp parallel num_threads(threads)
-      {
-        const int member = omp_get_thread_num(), team = omp_get_num_threads();
-        for (int part = member; part < parts; part += team) {
-          volatile double spin = 0.0;
-          for (int k = 0; k < 20000 * (part + 1); ++k) spin = spin + 1.0;
-          opened[static_cast<std::size_t>(part)] = true;
-          chunks.open(part);
-        }
-        total += chunks.drain(member, [&](int begin, int end) {
-          const int part = static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), begin) - bounds.begin()) - 1;
-          if (!opened[static_cast<std::size_t>(part)] || end > bounds[part + 1]) ++early;
-          for (int i = begin; i < end; ++i) ++done[static_cast<std::size_t>(i)];
-        });
-      }
-      EXPECT_EQ(early.load(), 0) << "a chunk taken before its part opened, or past its part's end";
-      EXPECT_EQ(total.load(), n);
-      for (int i = 0; i < n; ++i) ASSERT_EQ(done[static_cast<std::size_t>(i)].load(), 1) << "item " << i;
+// A thread evaluates only the runs that can reach its range of particles
+// (found by the runs' first particles): runs of both orientations (second end
+// before or after the first) with strides from 1 to past a whole thread's
+// range, cut wherever the threads' shares fall, give on 2, 3 and 5 threads
+// the one-thread force bit for bit, and that force is the force objects' sum
+// to rounding.
+TEST(ForceBatchThreads, RunsOfEveryStrideAndOrientationReachEveryThreadsRange) {
+  const int n = 6000;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Eigen::VectorXd x(2 * n), v(2 * n), mass = Eigen::VectorXd::Ones(n), inverse = Eigen::VectorXd::Ones(n);
+  for (int k = 0; k < 2 * n; ++k) {
+    x[k] = 10.0 * unit(random);
+    v[k] = unit(random);
+  }
+  const particles::Phase phase{x, v, mass, inverse};
+  particles::SpringBatch batch;
+  std::vector<std::unique_ptr<particles::SpringForce>> objects;
+  for (const int stride : {1, -1, 3, -40, 129, -700, 2500, -3100})
+    for (int i = 0; i < n - std::abs(stride); ++i) {
+      if (i % 97 == 0 || i % 31 == 7) continue;  // gaps: runs of many lengths
+      const int a = stride > 0 ? i : i - stride, b = a + stride;   // b after a (stride > 0) or before it
+      const double rest = 0.5 + 0.001 * (i % 7);
+      batch.add(a, b, rest, 30.0, 0.2);
+      objects.push_back(std::make_unique<particles::SpringForce>(a, b, rest, 30.0, 0.2));
     }
+  batch.build();
+  ASSERT_GE(batch.size(), particles::kParallelSprings) << "the threaded path is taken";
+  ASSERT_GT(batch.runs(), 8);
+  particles::setThreadCount(1);
+  Eigen::VectorXd one;
+  batch.apply(phase, one, true);
+  Eigen::VectorXd plain = Eigen::VectorXd::Zero(2 * n), magnitude = Eigen::VectorXd::Zero(2 * n);
+  for (const auto& spring : objects) {
+    Eigen::VectorXd term = Eigen::VectorXd::Zero(2 * n);
+    spring->apply(phase, term);
+    plain += term;
+    magnitude += term.cwiseAbs();
+  }
+  for (int k = 0; k < 2 * n; ++k)
+    ASSERT_LE(std::abs(one[k] - plain[k]), 16.0 * std::numeric_limits<double>::epsilon() * magnitude[k]) << k;
+  for (const int threads : {2, 3, 5}) {
+    particles::setThreadCount(threads);
+    for (int pass = 0; pass < 4; ++pass) {  // the shares move as the passes are measured
+      Eigen::VectorXd threaded;
+      batch.apply(phase, threaded, true);
+      expectSameBits(threaded, one, "threads " + std::to_string(threads) + " pass " + std::to_string(pass));
+    }
+  }
+  particles::setThreadCount(1);
 }
 
 // acceleration()'s then(begin, end) sees every particle once, with its entries of a already final:

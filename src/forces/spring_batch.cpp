@@ -3,10 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <omp.h>
-
 #include "particles/threads.h"
-#include "particles/shared_chunks.h"
 #include "strided_runs.h"
 #include "vector_kernels.h"
 
@@ -109,6 +106,11 @@ void SpringBatch::build() {
     for (int k = r.begin + 1; k < r.begin + r.length; ++k)
       r.uniform = r.uniform && rest_[k] == rest_[r.begin] && stiffness_[k] == stiffness_[r.begin] &&
                   damping_[k] == damping_[r.begin];
+  spanAfter_ = spanBefore_ = 0;
+  for (const Run& r : runs_) {
+    spanAfter_ = std::max(spanAfter_, r.length + std::max(0, r.stride));
+    spanBefore_ = std::max(spanBefore_, std::max(0, -r.stride));
+  }
   incidenceParticles_ = -1;
 }
 
@@ -126,8 +128,12 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
     return;
   }
   // Each thread adds the terms of its own range of particles, so no two
-  // write one entry of f. The gathered springs' forces are computed first
-  // (shared out among the threads, then a barrier); the runs need no barrier.
+  // write one entry of f, and finishes the range as soon as its terms are
+  // in: the range's f, a and integrator vectors stay in that thread's cache
+  // from one pass to the next (a range finished by another thread would move
+  // them between cores, which cost more than the other thread's wait saved).
+  // The gathered springs' forces are computed first (shared out among the
+  // threads, then a barrier); the runs need no barrier.
   const bool gathered = gatherBegin_ < size();
   if (gathered) {
     buildIncidence(n);
@@ -137,7 +143,6 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
   const int springs = size();
   const std::vector<int> bounds = balance_.bounds(n, threads);
   ThreadBalance::Pass measured(threads);
-  finishing_.reset(bounds, kFinishChunk);
 #pragma omp parallel num_threads(threads)
   {
     if (gathered) {
@@ -152,10 +157,9 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
       if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
       addRunForces(begin, end, x, v, out);
       if (gathered) gather(begin, end, out);
-      finishing_.open(part);
+      if (finish) finish(begin, end);
       return static_cast<double>(end - begin);
     });
-    if (finish) finishing_.drain(omp_get_thread_num(), finish);
   }
   balance_.update(measured);
 }
@@ -173,7 +177,12 @@ void SpringBatch::runForces(const Run& r, int t0, int t1, const double* x, const
 // threads' ranges is evaluated by both, to the same bits.
 void SpringBatch::addRunForces(int begin, int end, const double* x, const double* v, double* f) const {
   alignas(64) double forces[2 * kRunLength];
-  for (const Run& r : runs_) {
+  // Runs are sorted by first particle: those that can touch [begin, end) have
+  // first in (begin − spanAfter_, end + spanBefore_).
+  auto from = std::partition_point(runs_.begin(), runs_.end(),
+                                   [&](const Run& r) { return r.first <= begin - spanAfter_; });
+  for (auto it = from; it != runs_.end() && it->first < end + spanBefore_; ++it) {
+    const Run& r = *it;
     int t0 = r.length, t1 = 0;
     for (const int to : {r.first, r.first + r.stride}) {
       int c0, c1;

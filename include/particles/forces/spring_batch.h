@@ -29,7 +29,6 @@
 
 #include "particles/phase.h"
 #include "particles/thread_balance.h"
-#include "particles/shared_chunks.h"
 
 namespace particles {
 
@@ -41,8 +40,6 @@ class SpringBatch {
   // The longest run (its forces are kept in a 2 × kRunLength scratch) and the
   // shortest one worth a vector loop.
   static constexpr int kRunLength = 256, kMinRun = 4;
-  // Particles per chunk of the finish, shared out among the threads.
-  static constexpr int kFinishChunk = 512;
 
   void add(int i, int j, double rest, double stiffness, double damping);
   // Groups the springs added so far into runs; call after the last add().
@@ -79,12 +76,13 @@ class SpringBatch {
   std::vector<int> first_, second_;  // in evaluation order: runs, then gathered springs
   std::vector<double> rest_, stiffness_, damping_;
   std::vector<Run> runs_;
+  // A run r touches particles only in [r.first − spanBefore_, r.first + spanAfter_).
+  int spanAfter_ = 0, spanBefore_ = 0;
   int gatherBegin_ = 0;  // springs [gatherBegin_, size()) are evaluated one by one
   mutable std::vector<int> incidenceStart_, incidence_;
   mutable std::vector<double> forces_;  // 2 per spring: the gathered springs' forces (threads)
   mutable int incidenceParticles_ = -1;
-  mutable ThreadBalance balance_;  // the split of the springs' phase
-  mutable SharedChunks finishing_;  // the finish, shared out in chunks
+  mutable ThreadBalance balance_;  // the split of the particles among the threads
 };
 
 }  // namespace particles
