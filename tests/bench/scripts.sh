@@ -7,11 +7,17 @@ source_dir=$1 build=$2 WORK=$3 PROGRAM=bash
 source "$source_dir/tests/cli/common.sh"
 rm -rf "$WORK" && mkdir -p "$WORK"
 ratio=$source_dir/scripts/bench-ratio.sh callgrind=$source_dir/scripts/callgrind-step.sh
+speedup=$source_dir/scripts/speedup-rounds.sh
 
 expect ratio-runs-not-a-number 2 "^bench-ratio: runs must be a positive integer, got 'x'$" -- "$ratio" "$build" x
 expect ratio-runs-zero 2 "^bench-ratio: runs must be a positive integer, got '0'$" -- "$ratio" "$build" 0
 expect ratio-no-build 2 "^bench-ratio: no $WORK/none/tests/bench_step \(build the bench_step target first\)$" -- \
   "$ratio" "$WORK/none"
+expect speedup-no-build 2 \
+  "^speedup-rounds: no $WORK/none/tests/bench_cloth_reference \(build the bench_cloth_reference target first\)$" -- \
+  "$speedup" "$WORK/none"
+expect speedup-size 2 "^speedup-rounds: size must be 64, 128 or 256, got '100'$" -- "$speedup" "$build" 100
+expect speedup-rounds-zero 2 "^speedup-rounds: rounds must be a positive integer, got '0'$" -- "$speedup" "$build" 64 0
 expect callgrind-no-build 2 \
   "^callgrind-step: no $WORK/none/tests/bench_step \(build the bench_step target first\)$" -- "$callgrind" "$WORK/none"
 
@@ -31,6 +37,9 @@ outputs() {
 outputs ratio-one-run "$ratio" "$build" 1 -- \
   "^run 1: rk4 [0-9.]+ us, dopri5 [0-9.]+ us \(CPU-time medians of 9\), dopri5 / rk4 = [0-9.]+$" \
   "^dopri5 / rk4 over 1 runs: median [0-9.]+, range [0-9.]+-[0-9.]+$"
+outputs speedup-one-round "$speedup" "$build" 64 1 -- \
+  "^round 1: 1 thread [0-9.]+ us, 2 threads [0-9.]+ us \(wall-time medians of 5\), speed-up [0-9.]+$" \
+  "^speed-up 1 -> 2 threads 64\^2 over 1 rounds: median [0-9.]+, range [0-9.]+-[0-9.]+$"
 if command -v valgrind >/dev/null; then
   outputs callgrind-counts "$callgrind" "$build" -- \
     "^chain80-dt10ms/dopri5: 1200 timed steps, [0-9]+ instructions per step$" "^dopri5 / rk4 = [0-9]+\.[0-9]{3}$"
