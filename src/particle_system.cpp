@@ -223,6 +223,22 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
   if (then) parallelRanges(size(), threadCount(), kParallelParticles, then);
 }
 
+void ParticleSystem::accelerations(const std::vector<StatePoint>& points, Eigen::VectorXd& a,
+                                   const StageRange& then) {
+  const int count = static_cast<int>(points.size());
+  if (!constraints_.empty()) {  // a solve between the forces and a: evaluations one by one
+    for (int k = 0; k < count; ++k)
+      acceleration(points[k].x, points[k].v, a, stagePass(then, k));
+    return;
+  }
+  batches_.update(forces_, structureStamp_);
+  evaluations_.forceEvaluations += count;
+  std::vector<Phase> phases;
+  phases.reserve(points.size());
+  for (const StatePoint& p : points) phases.push_back(phase(p.x, p.v));
+  batches_.applyAndDivide(phases, f_, a, then);
+}
+
 void ParticleSystem::appliedForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
   batches_.update(forces_, structureStamp_);
   batches_.apply(phase(x, v), f);

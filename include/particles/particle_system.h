@@ -138,6 +138,18 @@ class ParticleSystem {
   // another range (ForceBatches::applyAndDivide).
   void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a,
                     const ParticleRange& then = {});
+  // acceleration() at points[0], points[1], … in turn, with then(k, begin,
+  // end) as evaluation k's then; evaluation k + 1 starts once every range of
+  // evaluation k is final, so points[k + 1] may be what then(k, ·) writes
+  // (the stages of an explicit Runge–Kutta method). a holds the last
+  // evaluation's accelerations. Without constraints the whole sequence is one
+  // pass of the force batches (one parallel region, ForceBatches::applyAndDivide);
+  // tallied as points.size() force evaluations.
+  struct StatePoint {
+    const Eigen::VectorXd& x;
+    const Eigen::VectorXd& v;
+  };
+  void accelerations(const std::vector<StatePoint>& points, Eigen::VectorXd& a, const StageRange& then);
   // The applied forces Q at (x, v) alone (every force object, no constraint
   // forces) into f: the first two phases of acceleration(), for schemes that
   // impose the constraints themselves (RATTLE). Tallied as one force evaluation.

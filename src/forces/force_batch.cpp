@@ -198,4 +198,18 @@ void ForceBatches::applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::Vec
   });
 }
 
+void ForceBatches::applyAndDivide(const std::vector<Phase>& phases, Eigen::VectorXd& f, Eigen::VectorXd& a,
+                                  const StageRange& then) const {
+  if (headSegments_ == 1 && segments_[0].kind == Segment::Kind::Springs && !phases.empty()) {
+    a.resize(phases[0].x.size());
+    springs_[segments_[0].springs].applySequence(phases, f, [&](int k, int begin, int end) {
+      tailAndDivide(begin, end, phases[k], f.data() + 2 * begin, a.data() + 2 * begin, false);
+      if (then) then(k, begin, end);
+    });
+    return;
+  }
+  for (int k = 0; k < static_cast<int>(phases.size()); ++k)
+    applyAndDivide(phases[k], f, a, stagePass(then, k));
+}
+
 }  // namespace particles

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <utility>
 
 #include "particles/threads.h"
+#include "stage_progress.h"
 #include "strided_runs.h"
 #include "vector_kernels.h"
 
@@ -106,7 +109,8 @@ void SpringBatch::build() {
     for (int k = r.begin + 1; k < r.begin + r.length; ++k)
       r.uniform = r.uniform && rest_[k] == rest_[r.begin] && stiffness_[k] == stiffness_[r.begin] &&
                   damping_[k] == damping_[r.begin];
-  spanAfter_ = spanBefore_ = 0;
+  spanAfter_ = spanBefore_ = reach_ = 0;
+  for (int k = 0; k < size(); ++k) reach_ = std::max(reach_, std::abs(second_[k] - first_[k]));
   for (const Run& r : runs_) {
     spanAfter_ = std::max(spanAfter_, r.length + std::max(0, r.stride));
     spanBefore_ = std::max(spanBefore_, std::max(0, -r.stride));
@@ -115,16 +119,28 @@ void SpringBatch::build() {
 }
 
 void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const ParticleRange& finish) const {
-  const int n = s.size(), threads = threadCount();
+  evaluate({s}, f, clear, finish ? StageRange([&](int, int begin, int end) { finish(begin, end); }) : StageRange());
+}
+
+void SpringBatch::applySequence(const std::vector<Phase>& phases, Eigen::VectorXd& f,
+                                const StageRange& finish) const {
+  evaluate(phases, f, true, finish);
+}
+
+void SpringBatch::evaluate(const std::vector<Phase>& phases, Eigen::VectorXd& f, bool clear,
+                           const StageRange& finish) const {
+  const int stages = static_cast<int>(phases.size());
+  if (stages == 0) return;
+  const int n = phases[0].size(), threads = threadCount();
   if (clear) f.resize(2 * n);
-  const double* x = s.x.data();
-  const double* v = s.v.data();
   double* out = f.data();
   if (threads <= 1 || size() < kParallelSprings) {
-    if (clear) f.setZero();
-    addRunForces(0, n, x, v, out);
-    scatterGathered(x, v, out);
-    if (finish) finish(0, n);
+    for (int k = 0; k < stages; ++k) {
+      if (clear) f.setZero();
+      addRunForces(0, n, phases[k].x.data(), phases[k].v.data(), out);
+      scatterGathered(phases[k].x.data(), phases[k].v.data(), out);
+      if (finish) finish(k, 0, n);
+    }
     return;
   }
   // Each thread adds the terms of its own range of particles, so no two
@@ -132,8 +148,7 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
   // in: the range's f, a and integrator vectors stay in that thread's cache
   // from one pass to the next (a range finished by another thread would move
   // them between cores, which cost more than the other thread's wait saved).
-  // The gathered springs' forces are computed first (shared out among the
-  // threads, then a barrier); the runs need no barrier.
+  // The ranges stay the same through the sequence.
   const bool gathered = gatherBegin_ < size();
   if (gathered) {
     buildIncidence(n);
@@ -143,23 +158,66 @@ void SpringBatch::apply(const Phase& s, Eigen::VectorXd& f, bool clear, const Pa
   const int springs = size();
   const std::vector<int> bounds = balance_.bounds(n, threads);
   ThreadBalance::Pass measured(threads);
+  // Evaluation k on particles [begin, end): their f, then finish.
+  auto piece = [&](int k, int begin, int end) {
+    if (begin >= end) return 0.0;
+    if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
+    addRunForces(begin, end, phases[k].x.data(), phases[k].v.data(), out);
+    if (gathered) gather(begin, end, out);
+    if (finish) finish(k, begin, end);
+    return static_cast<double>(end - begin);
+  };
+  // Pipelined: a range's particles within reach_ of a neighbouring range
+  // (its edges) are the only ones another thread reads, and the only ones
+  // whose evaluation reads another range. Each thread does its edges first
+  // and publishes them, then its interior; evaluation k of the edges waits
+  // for the neighbours' edges of evaluation k − 1 only (which also ends their
+  // reading of the buffer k − 1 read, should evaluation k write it), so a
+  // thread a little late on one evaluation delays no one. It needs every
+  // range at least reach_ long (a spring then never skips a range) and no
+  // gathered springs (their forces are computed for all before any range);
+  // otherwise a barrier separates the evaluations.
+  bool pipelined = !gathered && stages > 1 && reach_ > 0;
+  for (int t = 0; t < threads; ++t) pipelined = pipelined && bounds[t + 1] - bounds[t] >= reach_;
+  StageProgress edges(pipelined ? threads : 0);
+  auto interiorOf = [&](int part) {
+    const int begin = bounds[part], end = bounds[part + 1];
+    const int from = part > 0 ? begin + reach_ : begin;
+    return std::pair<int, int>{from, std::max(from, part + 1 < threads ? end - reach_ : end)};
+  };
 #pragma omp parallel num_threads(threads)
-  {
-    if (gathered) {
+  for (int k = 0; k < stages; ++k) {
+    if (pipelined) {
+      if (k > 0)
+        measured.each([&](int part) {
+          if (part > 0) edges.waitFor(part - 1, k);
+          if (part + 1 < threads) edges.waitFor(part + 1, k);
+        });
+      measured.run([&](int part) {
+        const auto [from, to] = interiorOf(part);
+        const double done = piece(k, bounds[part], from) + piece(k, to, bounds[part + 1]);
+        edges.publish(part, k + 1);
+        return done;
+      });
+      measured.run([&](int part) {
+        const auto [from, to] = interiorOf(part);
+        return piece(k, from, to);
+      });
+      continue;
+    }
+    if (k > 0) {
+#pragma omp barrier
+    }
+    if (gathered) {  // the gathered springs' forces, shared out among the threads, then a barrier
+      const double* x = phases[k].x.data();
+      const double* v = phases[k].v.data();
 #pragma omp for schedule(static)
-      for (int k = gatherBegin_; k < springs; ++k) {
-        const int i = 2 * first_[k], j = 2 * second_[k];
-        springForces(1, x + i, x + j, v + i, v + j, &rest_[k], &stiffness_[k], &damping_[k], fs + 2 * k);
+      for (int g = gatherBegin_; g < springs; ++g) {
+        const int i = 2 * first_[g], j = 2 * second_[g];
+        springForces(1, x + i, x + j, v + i, v + j, &rest_[g], &stiffness_[g], &damping_[g], fs + 2 * g);
       }
     }
-    measured.run([&](int part) {
-      const int begin = bounds[part], end = bounds[part + 1];
-      if (clear) std::fill(out + 2 * begin, out + 2 * end, 0.0);
-      addRunForces(begin, end, x, v, out);
-      if (gathered) gather(begin, end, out);
-      if (finish) finish(begin, end);
-      return static_cast<double>(end - begin);
-    });
+    measured.run([&](int part) { return piece(k, bounds[part], bounds[part + 1]); });
   }
   balance_.update(measured);
 }

@@ -61,22 +61,31 @@ void lastStage(const Stage& s, int begin, int end, double h6) {
 // For y = (x, v) and y' = (v, a(x, v)), the four stages are evaluated at
 // y, y + (h/2) k1, y + (h/2) k2, y + h k3; dx_, dv_ accumulate the weighted
 // sum. Each stage's combination runs in its force pass, particle range by
-// particle range (ParticleSystem::acceleration's then), so a step is four
-// passes over the particles; the stage points alternate between (xs_, vs_)
-// and (xt_, vt_). The start y0 is the system's own state, read until the
-// last pass writes y0 + (h/6) d over it.
+// particle range (ParticleSystem::accelerations's then), so a step is four
+// passes over the particles, evaluated as one sequence (one parallel region
+// when the forces allow); the stage points alternate between (xs_, vs_) and
+// (xt_, vt_). The start y0 is the system's own state, read until the last
+// pass writes y0 + (h/6) d over it.
 StepStats Rk4Integrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = positionsOf(system);
   Eigen::VectorXd& v = velocitiesOf(system);
-  for (Eigen::VectorXd* w : {&xs_, &vs_, &xt_, &vt_, &dx_, &dv_}) w->resize(x.size());
+  for (Eigen::VectorXd* w : {&xs_, &vs_, &xt_, &vt_, &dx_, &dv_, &a_}) w->resize(x.size());
   auto stage = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& vs, Eigen::VectorXd& xn, Eigen::VectorXd& vn) {
     return Stage{x.data(), v.data(), a_.data(), dx_.data(), dv_.data(), xs.data(), vs.data(), xn.data(), vn.data()};
   };
-  // a_ is sized by the first evaluation, before any pass reads it.
-  system.acceleration(x, v, a_, [&](int b, int e) { firstStage(stage(x, v, xs_, vs_), 2 * b, 2 * e, 0.5 * dt); });  // k1
-  system.acceleration(xs_, vs_, a_, [&](int b, int e) { middleStage(stage(xs_, vs_, xt_, vt_), 2 * b, 2 * e, 0.5 * dt); });  // k2
-  system.acceleration(xt_, vt_, a_, [&](int b, int e) { middleStage(stage(xt_, vt_, xs_, vs_), 2 * b, 2 * e, dt); });  // k3
-  system.acceleration(xs_, vs_, a_, [&](int b, int e) { lastStage(stage(xs_, vs_, xs_, vs_), 2 * b, 2 * e, dt / 6.0); });  // k4
+  // Stage k: the point its forces are evaluated at, its combination, the step it takes.
+  struct Rule {
+    Stage stage;
+    void (*combine)(const Stage&, int, int, double);
+    double c;
+  };
+  const Rule rules[] = {{stage(x, v, xs_, vs_), firstStage, 0.5 * dt},       // k1
+                        {stage(xs_, vs_, xt_, vt_), middleStage, 0.5 * dt},  // k2
+                        {stage(xt_, vt_, xs_, vs_), middleStage, dt},        // k3
+                        {stage(xs_, vs_, xs_, vs_), lastStage, dt / 6.0}};   // k4
+  system.accelerations({{x, v}, {xs_, vs_}, {xt_, vt_}, {xs_, vs_}}, a_, [&](int k, int begin, int end) {
+    rules[k].combine(rules[k].stage, 2 * begin, 2 * end, rules[k].c);
+  });
   lastStep_ = dt;
   return system.takeEvaluationStats();
 }

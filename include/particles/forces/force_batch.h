@@ -49,6 +49,14 @@ class ForceBatches {
   // While it runs, other ranges may still be reading s: then writes no entry
   // of s.x or s.v, nor any entry of another range.
   void applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a, const ParticleRange& then = {}) const;
+  // applyAndDivide at phases[0], phases[1], … in turn, then(k, begin, end)
+  // in evaluation k's pass; evaluation k + 1 starts once every range of
+  // evaluation k is final, so phases[k + 1] may be what then(k, ·) writes.
+  // When the forces are one spring batch and trailing fields, the sequence
+  // is one pass of the batch (SpringBatch::applySequence: one parallel
+  // region); otherwise the evaluations run one by one.
+  void applyAndDivide(const std::vector<Phase>& phases, Eigen::VectorXd& f, Eigen::VectorXd& a,
+                      const StageRange& then) const;
   // Whether every force is a field (gravity, drag): then f and a = W f on a
   // particle depend on that particle alone, and applyAndDivide(begin, end, …)
   // gives them range by range, so that a caller can fuse its own

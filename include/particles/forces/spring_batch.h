@@ -53,6 +53,14 @@ class SpringBatch {
   // finish(begin, end) over ranges of particles covering every particle.
   // On threadCount() threads when there are several and size() ≥ kParallelSprings.
   void apply(const Phase& s, Eigen::VectorXd& f, bool clear = false, const ParticleRange& finish = {}) const;
+  // f = the springs' forces at phases[k] and finish(k, begin, end) over
+  // ranges covering every particle, for k = 0, 1, … in turn: evaluation k + 1
+  // starts once every range of evaluation k is finished, so phases[k + 1] may
+  // be what finish(k, ·) writes. With several threads the whole sequence runs
+  // in one parallel region, the threads keeping their ranges from one
+  // evaluation to the next and meeting at a barrier between them (entering
+  // and leaving a region costs more than a barrier).
+  void applySequence(const std::vector<Phase>& phases, Eigen::VectorXd& f, const StageRange& finish) const;
 
  private:
   // Springs begin … begin + length − 1 join first + t and first + t + stride.
@@ -61,6 +69,9 @@ class SpringBatch {
     int begin, first, stride, length;
     bool uniform;
   };
+  // apply() and applySequence(): f cleared at each phase when clear is set
+  // (with more than one phase it is).
+  void evaluate(const std::vector<Phase>& phases, Eigen::VectorXd& f, bool clear, const StageRange& finish) const;
   // The forces of run r's springs t0 … t1 − 1 on their first particles into out (2 each).
   void runForces(const Run& r, int t0, int t1, const double* x, const double* v, double* out) const;
   // f += the runs' terms of particles [begin, end).
@@ -78,6 +89,7 @@ class SpringBatch {
   std::vector<Run> runs_;
   // A run r touches particles only in [r.first − spanBefore_, r.first + spanAfter_).
   int spanAfter_ = 0, spanBefore_ = 0;
+  int reach_ = 0;  // the largest |j − i| of a spring (i, j)
   int gatherBegin_ = 0;  // springs [gatherBegin_, size()) are evaluated one by one
   mutable std::vector<int> incidenceStart_, incidence_;
   mutable std::vector<double> forces_;  // 2 per spring: the gathered springs' forces (threads)
