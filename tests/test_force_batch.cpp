@@ -281,6 +281,20 @@ TEST(ThreadBalance, SharesFollowTheThreadsSpeeds) {
   EXPECT_NEAR(balance.cuts(3)[1], 1.0 / 3.0, 1e-12);
 }
 
+namespace {
+// n particles at random in [−10, 10]², moving at random in [−1, 1]² (seeded).
+void scatter(int n, unsigned seed, Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  x.resize(2 * n);
+  v.resize(2 * n);
+  for (int k = 0; k < 2 * n; ++k) {
+    x[k] = 10.0 * unit(random);
+    v[k] = unit(random);
+  }
+}
+}  // namespace
+
 // A thread evaluates only the runs that can reach its range of particles
 // (found by the runs' first particles): runs of both orientations (second end
 // before or after the first) with strides from 1 to past a whole thread's
@@ -289,13 +303,8 @@ TEST(ThreadBalance, SharesFollowTheThreadsSpeeds) {
 // to rounding.
 TEST(ForceBatchThreads, RunsOfEveryStrideAndOrientationReachEveryThreadsRange) {
   const int n = 6000;
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Eigen::VectorXd x(2 * n), v(2 * n), mass = Eigen::VectorXd::Ones(n), inverse = Eigen::VectorXd::Ones(n);
-  for (int k = 0; k < 2 * n; ++k) {
-    x[k] = 10.0 * unit(random);
-    v[k] = unit(random);
-  }
+  Eigen::VectorXd x, v, mass = Eigen::VectorXd::Ones(n), inverse = Eigen::VectorXd::Ones(n);
+  scatter(n, 11, x, v);
   const particles::Phase phase{x, v, mass, inverse};
   particles::SpringBatch batch;
   std::vector<std::unique_ptr<particles::SpringForce>> objects;
@@ -346,13 +355,8 @@ TEST(ForceBatchThreads, ASequenceOfEvaluationsGivesTheOneThreadResultWhileAThrea
   const int n = 6000, stages = 4;
   for (const int longest : {700, 3100}) {
     SCOPED_TRACE("longest stride " + std::to_string(longest));
-    std::mt19937 random(5);
-    std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    Eigen::VectorXd x0(2 * n), v0(2 * n), mass = Eigen::VectorXd::Ones(n), inverse = Eigen::VectorXd::Ones(n);
-    for (int k = 0; k < 2 * n; ++k) {
-      x0[k] = 10.0 * unit(random);
-      v0[k] = unit(random);
-    }
+    Eigen::VectorXd x0, v0, mass = Eigen::VectorXd::Ones(n), inverse = Eigen::VectorXd::Ones(n);
+    scatter(n, 5, x0, v0);
     particles::SpringBatch batch;
     for (const int stride : {1, -1, 3, -40, 129, -longest})
       for (int i = 0; i < n - std::abs(stride); ++i) {
@@ -418,6 +422,50 @@ TEST(ForceBatchThreads, AccelerationsThenSeesEachParticleOnceWithItsFinalAcceler
       cloth->acceleration(cloth->positions(), cloth->velocities(), plain);
       expectSameBits(seen, plain, "then's view of a");
       expectSameBits(a, plain, "a");
+    }
+  particles::setThreadCount(1);
+}
+
+// accelerations() over three points: then(k, begin, end) sees every particle once in each
+// evaluation k, in order, with a's entries the acceleration() at point k, and the tally counts three
+// force evaluations; on the big cloth (the pipelined path), with gathered springs (barriers between
+// the evaluations) and with a rod (one evaluation after another), on 1 and 2 threads.
+TEST(ForceBatchThreads, AccelerationsSequenceSeesEachParticleOnceAnEvaluationWithItsAcceleration) {
+  for (const int threads : {1, 2})
+    for (const int variant : {0, 1, 2}) {
+      SCOPED_TRACE("threads " + std::to_string(threads) + " variant " + std::to_string(variant));
+      particles::setThreadCount(threads);
+      auto cloth = bigCloth(false, variant == 1);
+      if (variant == 2) cloth->addConstraint(std::make_unique<particles::RodConstraint>(100, 101, 0.05));
+      const int n = cloth->size(), stages = 3;
+      std::vector<Eigen::VectorXd> xs, vs;
+      for (int k = 0; k < stages; ++k) {
+        xs.push_back(cloth->positions() + (0.002 * k) * cloth->velocities());
+        vs.push_back(cloth->velocities() * (1.0 + 0.5 * k) + Eigen::VectorXd::Constant(2 * n, 0.01 * k));
+      }
+      std::vector<Eigen::VectorXd> seen(stages, Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::quiet_NaN()));
+      std::vector<std::vector<int>> calls(stages, std::vector<int>(static_cast<std::size_t>(n), 0));
+      std::vector<int> stageOrder;  // then may run on several threads: appended under a lock
+      Eigen::VectorXd a;
+      cloth->takeEvaluationStats();
+      cloth->accelerations({{xs[0], vs[0]}, {xs[1], vs[1]}, {xs[2], vs[2]}}, a, [&](int k, int begin, int end) {
+#pragma omp critical
+        stageOrder.push_back(k);
+        for (int i = begin; i < end; ++i) {
+          ++calls[k][static_cast<std::size_t>(i)];
+          seen[k].segment<2>(2 * i) = a.segment<2>(2 * i);
+        }
+      });
+      EXPECT_EQ(cloth->takeEvaluationStats().forceEvaluations, stages);
+      if (threads == 1) {
+        EXPECT_TRUE(std::is_sorted(stageOrder.begin(), stageOrder.end()));
+      }
+      for (int k = 0; k < stages; ++k) {
+        EXPECT_EQ(std::count(calls[k].begin(), calls[k].end(), 1), n) << "evaluation " << k;
+        Eigen::VectorXd plain;
+        cloth->acceleration(xs[k], vs[k], plain);
+        expectSameBits(seen[k], plain, "evaluation " + std::to_string(k));
+      }
     }
   particles::setThreadCount(1);
 }
