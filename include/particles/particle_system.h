@@ -139,9 +139,12 @@ class ParticleSystem {
   void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a,
                     const ParticleRange& then = {});
   // acceleration() at points[0], points[1], … in turn, with then(k, begin,
-  // end) as evaluation k's then; evaluation k + 1 starts once every range of
-  // evaluation k is final, so points[k + 1] may be what then(k, ·) writes
-  // (the stages of an explicit Runge–Kutta method). a holds the last
+  // end) as evaluation k's then. A particle's point k + 1 is read only after
+  // then(k, ·) has run on every range whose particles its forces read, so
+  // points[k + 1] may be what then(k, ·) writes (the stages of an explicit
+  // Runge–Kutta method), and then(k, ·) may write what evaluation k − 1 read.
+  // then reads and writes the entries of its own range only: other ranges may
+  // meanwhile be in evaluation k − 1 or k + 1. a holds the last
   // evaluation's accelerations. Without constraints the whole sequence is one
   // pass of the force batches (one parallel region, ForceBatches::applyAndDivide);
   // tallied as points.size() force evaluations.

@@ -50,8 +50,9 @@ class ForceBatches {
   // of s.x or s.v, nor any entry of another range.
   void applyAndDivide(const Phase& s, Eigen::VectorXd& f, Eigen::VectorXd& a, const ParticleRange& then = {}) const;
   // applyAndDivide at phases[0], phases[1], … in turn, then(k, begin, end)
-  // in evaluation k's pass; evaluation k + 1 starts once every range of
-  // evaluation k is final, so phases[k + 1] may be what then(k, ·) writes.
+  // in evaluation k's pass, on the terms of ParticleSystem::accelerations:
+  // phases[k + 1] may be what then(k, ·) writes, and then touches its own
+  // range only.
   // When the forces are one spring batch and trailing fields, the sequence
   // is one pass of the batch (SpringBatch::applySequence: one parallel
   // region); otherwise the evaluations run one by one.

@@ -54,12 +54,14 @@ class SpringBatch {
   // On threadCount() threads when there are several and size() ≥ kParallelSprings.
   void apply(const Phase& s, Eigen::VectorXd& f, bool clear = false, const ParticleRange& finish = {}) const;
   // f = the springs' forces at phases[k] and finish(k, begin, end) over
-  // ranges covering every particle, for k = 0, 1, … in turn: evaluation k + 1
-  // starts once every range of evaluation k is finished, so phases[k + 1] may
-  // be what finish(k, ·) writes. With several threads the whole sequence runs
-  // in one parallel region, the threads keeping their ranges from one
-  // evaluation to the next and meeting at a barrier between them (entering
-  // and leaving a region costs more than a barrier).
+  // ranges covering every particle, for k = 0, 1, … in turn: a particle's
+  // phase k + 1 is read only after finish(k, ·) has run on every range its
+  // springs reach, so phases[k + 1] may be what finish(k, ·) writes (and
+  // finish(k, ·) may write what evaluation k − 1 read); finish reads and
+  // writes its own range only. With several threads the whole sequence runs
+  // in one parallel region, each thread keeping its range from one
+  // evaluation to the next and waiting only for its neighbours' edges of the
+  // evaluation before (see evaluate()).
   void applySequence(const std::vector<Phase>& phases, Eigen::VectorXd& f, const StageRange& finish) const;
 
  private:
