@@ -326,13 +326,13 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
   s.duration = 10.0;
   ASSERT_EQ(runStability(o, s), 0);
   const Table rows = readCsv(o.outDir + "/stability_boundary.csv",
-                             {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
-                              "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
-                              "omega_chain", "omega_whip", "stiffest"});
+                             {"integrator", "chain_length", "feedback_ks", "duration", "largest_surviving_dt",
+                              "first_failure_dt", "first_failure", "survival_above", "grid_lo", "grid_hi", "members",
+                              "omega_feedback", "omega_chain", "omega_whip", "stiffest"});
   std::map<std::string, std::map<std::string, double>> safe;
   for (const auto& row : rows)
     if (row.at("duration") == "10" && row.at("feedback_ks") == "60")
-      safe[row.at("integrator")][row.at("chain_length")] = std::stod(row.at("safe_dt"));
+      safe[row.at("integrator")][row.at("chain_length")] = std::stod(row.at("largest_surviving_dt"));
   ASSERT_FALSE(safe["rk4"].empty());
   // A longer chain whips faster: the measured link rate grows with its length.
   std::map<int, double> whip;
@@ -359,24 +359,34 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
       EXPECT_LE(std::stod(row.at("max_energy_rise")), o.criterion.energyRiseFraction) << row.at("dt");
       EXPECT_LE(std::stod(row.at("max_relative_stretch")), o.criterion.maxRelativeConstraintError) << row.at("dt");
     }
-  // Table 2's certificates: one per integrator and table length, each below
-  // its smallest failure with a whole decade of survival under that failure.
+  // Table 2: one scan per integrator and table length, each survived dt below
+  // its smallest failure with a whole decade of survival under that failure,
+  // and the bound its runs support.
   const Table certified = readCsv(
       o.outDir + "/stability_certified.csv",
-      {"integrator", "chain_length", "duration", "safe_dt", "smallest_failure_dt", "smallest_failure", "grid_lo",
-       "grid_hi", "resolution", "members", "points", "runs", "full_decades", "points_1_1.1", "failed_1_1.1",
-       "points_1.1_1.25", "failed_1.1_1.25", "points_1.25_1.5", "failed_1.25_1.5", "points_1.5_2", "failed_1.5_2"});
-  EXPECT_EQ(certified.size(), safe.size());  // the quick plan certifies one chain length
+      {"integrator", "chain_length", "duration", "survived_dt", "runs_at_and_below", "failure_bound",
+       "smallest_failure_dt", "smallest_failure", "grid_lo", "grid_hi", "resolution", "members", "points", "runs",
+       "full_decades", "points_0.1_0.5", "failed_points_0.1_0.5", "runs_0.1_0.5", "failed_runs_0.1_0.5",
+       "points_0.5_1", "failed_points_0.5_1", "runs_0.5_1", "failed_runs_0.5_1", "points_1_1.1",
+       "failed_points_1_1.1", "runs_1_1.1", "failed_runs_1_1.1", "points_1.1_1.25", "failed_points_1.1_1.25",
+       "runs_1.1_1.25", "failed_runs_1.1_1.25", "points_1.25_1.5", "failed_points_1.25_1.5", "runs_1.25_1.5",
+       "failed_runs_1.25_1.5", "points_1.5_2", "failed_points_1.5_2", "runs_1.5_2", "failed_runs_1.5_2",
+       "coarse_surviving_dt"});
+  EXPECT_EQ(certified.size(), safe.size());  // the quick plan scans one chain length
   for (const auto& row : certified) {
     EXPECT_EQ(row.at("members"), "10");
     EXPECT_EQ(row.at("resolution"), "0.01");
     const double smallest = std::stod(row.at("smallest_failure_dt"));
     if (smallest == 0.0 || row.at("full_decades") != "1") continue;
-    EXPECT_LT(std::stod(row.at("safe_dt")), smallest) << row.at("integrator");
+    EXPECT_LT(std::stod(row.at("survived_dt")), smallest) << row.at("integrator");
     EXPECT_LE(std::stod(row.at("grid_lo")), smallest / 10.0 * (1 + 1e-9)) << row.at("integrator");
-    // Every start ran at every grid dt (70 per octave) from the bottom up to the certified one.
-    const long below = std::lround(70.0 * std::log2(std::stod(row.at("safe_dt")) / std::stod(row.at("grid_lo")))) + 1;
-    EXPECT_GE(std::stol(row.at("runs")), 10 * below) << row.at("integrator");
+    // Every start ran at every grid dt (70 per octave) from the bottom up to the survived one,
+    // and the bound is that of those runs, none failing.
+    const long below = std::lround(70.0 * std::log2(std::stod(row.at("survived_dt")) / std::stod(row.at("grid_lo")))) + 1;
+    EXPECT_EQ(std::stol(row.at("runs_at_and_below")), 10 * below) << row.at("integrator");
+    EXPECT_NEAR(std::stod(row.at("failure_bound")), 1.0 - std::pow(0.05, 1.0 / (10.0 * below)), 1e-9);
+    EXPECT_EQ(row.at("failed_runs_0.1_0.5"), "0");
+    EXPECT_EQ(row.at("failed_runs_0.5_1"), "0");
   }
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/stability_certified.md"));
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/table1.md"));

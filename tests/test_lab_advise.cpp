@@ -16,6 +16,7 @@
 #include "lab/scan.h"
 #include "scenes/oscillator.h"
 #include "scenes/pendulum.h"
+#include "scene_file/scene_file.h"
 
 using namespace lab;
 
@@ -215,18 +216,105 @@ TEST(Advise, PastTheChaoticHorizonSaysSoAndNamesTheHorizonItCanCertify) {
   ASSERT_EQ(shorter.integrators.size(), 1u);
 }
 
-TEST(Advise, AReferenceThatMeetsAContactCertifiesNothingPastIt) {
-  // The hair's discs meet one another or its colliders early; the
-  // reference models no contact, so advise names the contact and a shorter horizon.
+TEST(Advise, AReferenceThatMeetsAContactNamesItAndWithoutContactReferencesCertifiesNothingPastIt) {
+  // The hair's discs meet one another early (it has no walls); odeint models
+  // no contact, so with contact references off advise names the contact (the
+  // discs that touch, and when) and a shorter horizon.
   SurveySettings settings;
   settings.horizon = 0.2;
   settings.targetError = settings.abortError = 1e-3;
   settings.integrators = {"rk4"};
   settings.repeats = 1;
+  settings.contactReference = false;
   const Survey survey = surveyScene([] { return scenes::buildScene("hair"); }, settings);
-  EXPECT_NE(survey.limit.find("contact"), std::string::npos) << survey.limit;
+  EXPECT_TRUE(survey.touchedWall);
+  EXPECT_NE(survey.contact.find("the discs of particles"), std::string::npos) << survey.contact;
+  EXPECT_NE(survey.contact.find("touch at t = "), std::string::npos) << survey.contact;
+  EXPECT_NE(survey.limit.find(survey.contact), std::string::npos) << survey.limit;
+  EXPECT_EQ(survey.limit.find("wall"), std::string::npos) << survey.limit;
   EXPECT_TRUE(survey.integrators.empty());
   EXPECT_LT(survey.certifiableHorizon, 0.2);
+}
+
+namespace {
+
+// A finer run than the reference: its scheme at half its step, sampled as it is.
+Trajectory finerRun(const std::function<scenes::Scene()>& build, const Survey& survey) {
+  const SelfConvergence& r = survey.contactReference;
+  const long stride = std::lround(survey.referenceTrajectory->interval / r.dt);
+  const std::optional<Trajectory> finer =
+      steppedTrajectory(build, r.scheme, 0.5 * r.dt, 2 * stride, survey.horizon, FailureCriterion{});
+  EXPECT_TRUE(finer.has_value());
+  return finer ? *finer : Trajectory{};
+}
+
+// What advise must do on a scene with contacts, whatever the contact solver:
+// either its contact reference converged (two successive halvings within
+// E/10, an order observed) and its pick is within E of a run finer than the
+// reference, from every start it claims; or it refused, saying that
+// self-convergence was not reached and how far the last runs were apart.
+void expectContactAdvice(const std::function<scenes::Scene()>& build, SurveySettings settings, const char* what) {
+  const double error = settings.targetError;
+  const Advice advice = advise(build, settings);
+  ASSERT_TRUE(advice.complete) << what;
+  const Survey& survey = advice.survey;
+  ASSERT_TRUE(survey.touchedWall) << what << ": the scene meets no contact: no test";
+  const SelfConvergence& reference = survey.contactReference;
+  ASSERT_GE(reference.halvings.size(), 1u) << what;
+  if (!reference.converged) {
+    EXPECT_NE(survey.limit.find("self-convergence"), std::string::npos) << what << ": " << survey.limit;
+    EXPECT_GT(reference.halvings.back().difference, error / 10.0) << what;
+    EXPECT_TRUE(advice.picks.empty()) << what;
+    return;
+  }
+  EXPECT_TRUE(survey.limit.empty()) << what << ": " << survey.limit;
+  EXPECT_LE(reference.difference, error / 10.0) << what;
+  EXPECT_NE(survey.reference.find("self-convergence of " + reference.scheme), std::string::npos) << survey.reference;
+  EXPECT_NEAR(reference.dt, reference.halvings.back().dt, 1e-15) << what;
+  ASSERT_GE(advice.best, 0) << what << ": the reference converged but nothing meets E";
+  const Pick& pick = advice.picks[advice.best];
+  ASSERT_TRUE(pick.certified()) << what;
+  EXPECT_LE(pick.error(), error) << what;
+  EXPECT_GE(pick.worstError, pick.candidate.maxError) << what;
+  // The pick against a run twice as fine as the reference, from every start it was certified on.
+  const Trajectory fine = finerRun(build, survey);
+  for (int member = 0; member < pick.starts; ++member) {
+    const auto perturbed = [&] {
+      scenes::Scene scene = build();
+      perturbStart(scene, member);
+      return scene;
+    };
+    const Candidate again = measureRun(perturbed, fine, pick.candidate.integrator, pick.candidate.dt,
+                                       pick.candidate.tolerance, settings.horizon, settings.failure, 1.0);
+    EXPECT_TRUE(again.survived) << what << " start " << member;
+    EXPECT_LE(again.maxError, error) << what << " " << pickArguments(pick.candidate) << " start " << member;
+  }
+}
+
+SurveySettings contactSettings(double horizon, double error) {
+  SurveySettings settings;
+  settings.horizon = horizon;
+  settings.targetError = settings.abortError = error;
+  settings.integrators = {"symplectic-euler", "rk4", "verlet"};
+  settings.repeats = 1;
+  settings.certifyMembers = 3;
+  settings.maxSteps = 20000;
+  return settings;
+}
+
+}  // namespace
+
+// A small hair (2 strands of 12) whose discs meet within 0.2 s.
+TEST(Advise, AHairWithContactsGetsAPickAFinerRunConfirmsOrARefusalThatSaysWhy) {
+  expectContactAdvice([] { return scenes::buildScene("hair", {{"curls", "2"}, {"particles", "12"}}); },
+                      contactSettings(0.2, 1e-3), "hair");
+}
+
+// Discs falling through a funnel of two capsules onto a floor (the example
+// scene file capsule.json): impacts with restitution and friction.
+TEST(Advise, DiscsInAFunnelGetAPickAFinerRunConfirmsOrARefusalThatSaysWhy) {
+  const std::string file = std::string(SCENES_DIR) + "/capsule.json";
+  expectContactAdvice([&] { return scenes::loadSceneFile(file); }, contactSettings(3.0, 1e-3), "funnel");
 }
 
 TEST(Advise, NothingWithinAnUnreachableBudget) {
@@ -348,6 +436,65 @@ TEST(Advise, APickIsMovedBelowTheFailuresInItsMarginAndHoldsBetweenItsGridPoints
     for (int member = 0; member < settings.certifyMembers; ++member)
       ASSERT_TRUE(runMember(build, "rk4", dt, member, horizon, settings.failure)->survives(horizon, dt))
           << "dt " << dt << " start " << member;
+}
+
+// The margin of a fixed-step pick keeps the error within E, not only the
+// run alive: on the pendulum every dt of each certified margin (and between
+// its 1% grid points) is within E of the reference from the start as built,
+// and a pick whose margin's top missed E was moved below it.
+TEST(Advise, AFixedStepPicksMarginKeepsTheErrorWithinE) {
+  const double error = 1e-3, horizon = 20.0;
+  const auto build = [] { return scenes::buildScene("pendulum"); };
+  SurveySettings settings;
+  settings.horizon = horizon;
+  settings.targetError = settings.abortError = error;
+  settings.integrators = {"midpoint", "rk4", "verlet"};
+  settings.repeats = 1;
+  settings.certifyMembers = 2;
+  settings.certifyAll = true;
+  const Survey survey = surveyScene(build, settings);
+  ASSERT_TRUE(survey.limit.empty()) << survey.limit;
+  SurveySettings scanOnly = settings;
+  scanOnly.certifyMembers = 0;
+  const std::vector<Pick> first = pickPerIntegrator(build, survey, scanOnly, error);
+  const std::vector<Pick> picks = pickPerIntegrator(build, survey, settings, error);
+  int moved = 0;
+  for (std::size_t k = 0; k < picks.size(); ++k) {
+    const Pick& p = picks[k];
+    ASSERT_TRUE(p.found && p.certified()) << p.candidate.integrator << ": " << p.uncertified;
+    EXPECT_LE(p.marginError, error) << p.candidate.integrator;
+    EXPECT_EQ(p.marginRuns.failures, 0);
+    EXPECT_GE(p.marginRuns.runs, 40L * settings.certifyMembers);
+    moved += p.candidate.dt < first[k].candidate.dt;
+    for (double dt = p.certifiedLo; dt <= p.certifiedHi * (1 + 1e-12); dt *= 1.005) {
+      const Candidate c = measureRun(build, *survey.referenceTrajectory, p.candidate.integrator, dt, 0.0, horizon,
+                                     settings.failure, survey.energyScale);
+      ASSERT_TRUE(c.survived) << p.candidate.integrator << " dt " << dt;
+      EXPECT_LE(c.maxError, error) << p.candidate.integrator << " dt " << dt;
+    }
+  }
+  EXPECT_GT(moved, 0) << "every first pick's margin already kept E: the test shows nothing";
+}
+
+// The flags of a pick: headroom against E, thin within 5%, and the timing spread behind a tie.
+TEST(Advise, HeadroomIsFlaggedWithinFivePercentAndNoisyTiesShowTheirSpread) {
+  Pick p;
+  p.found = true;
+  p.candidate.maxError = 0.9e-3;
+  EXPECT_NEAR(headroom(p, 1e-3), 0.1, 1e-12);
+  EXPECT_FALSE(thinHeadroom(p, 1e-3));
+  p.certifiedLo = 0.1, p.certifiedHi = 0.2, p.worstError = 0.995e-3;  // certified: the worst start counts
+  EXPECT_TRUE(thinHeadroom(p, 1e-3));
+  std::vector<Pick> picks(3, p);
+  picks[0].cpuPerSimulatedSecond = 1.0, picks[0].cpuMin = 0.5, picks[0].cpuMax = 4.0;
+  picks[1].cpuPerSimulatedSecond = 1.2, picks[1].cpuMin = 1.1, picks[1].cpuMax = 1.3;
+  picks[2].cpuPerSimulatedSecond = 9.0, picks[2].cpuMin = 8.0, picks[2].cpuMax = 10.0;
+  markTies(picks, 0);
+  const TimingSpread spread = timingSpread(picks, 0);
+  EXPECT_EQ(spread.ties, 1);
+  EXPECT_NEAR(spread.spread, 8.0, 1e-12);
+  EXPECT_EQ(spread.lo, 0.5);
+  EXPECT_EQ(spread.hi, 4.0);
 }
 
 TEST(Advise, PicksWhoseTimingRangesOverlapTheCheapestAreTies) {
