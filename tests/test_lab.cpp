@@ -22,6 +22,7 @@
 #include "output/format_number.h"
 #include "lab/render.h"
 #include "lab/values.h"
+#include "particles/integrator.h"
 
 using namespace lab;
 
@@ -496,11 +497,18 @@ TEST(CostQuick, CostAgainstSizeFitsItsOwnRows) {
   ASSERT_EQ(runCost(o), 0);
   const Table rows = readCsv(o.outDir + "/cost_vs_size.csv",
                              {"family", "scene", "particles", "horizon", "size", "budget_relative", "integrator", "dt",
-                              "tolerance", "max_error", "cpu_per_simulated_second", "cpu_min", "cpu_max",
-                              "reference_agreement"});
+                              "tolerance", "max_error", "worst_error", "cpu_per_simulated_second", "cpu_min",
+                              "cpu_max", "reference_agreement", "certified_lo", "certified_hi", "margin_runs",
+                              "failure_bound"});
   std::map<std::pair<std::string, std::string>, std::vector<std::pair<double, double>>> series;
   for (const auto& row : rows) {
     EXPECT_LE(std::stod(row.at("max_error")), std::stod(row.at("budget_relative")) * std::stod(row.at("size")));
+    // Certified: the bound is that of the margin's runs, none failing, and every start is within budget.
+    const long runs = std::stol(row.at("margin_runs"));
+    EXPECT_GT(runs, 0);
+    EXPECT_NEAR(std::stod(row.at("failure_bound")), 1.0 - std::pow(0.05, 1.0 / runs), 1e-9);
+    EXPECT_LE(std::stod(row.at("max_error")), std::stod(row.at("worst_error")));
+    EXPECT_LE(std::stod(row.at("worst_error")), std::stod(row.at("budget_relative")) * std::stod(row.at("size")));
     EXPECT_GT(std::stod(row.at("cpu_per_simulated_second")), 0.0);
     series[{row.at("family"), row.at("budget_relative")}].emplace_back(std::stod(row.at("particles")),
                                                                        std::stod(row.at("cpu_per_simulated_second")));
@@ -515,6 +523,29 @@ TEST(CostQuick, CostAgainstSizeFitsItsOwnRows) {
     const std::string name = "cost.size_slope." + key.first + "." + lab::general(std::stod(key.second));
     ASSERT_TRUE(value.count(name)) << name;
     EXPECT_NEAR(std::stod(value[name]), slope, 0.006) << name;
+  }
+  // Where each integrator is the cheapest pick, as the report's advice quotes it, agrees with the rows.
+  std::map<std::string, std::string> quoted = readValues(o.outDir);
+  for (const auto& row : rows)
+    EXPECT_NE(quoted["cost.where_cheapest." + row.at("integrator")].find(row.at("particles") + "-particle " +
+                                                                          row.at("family")),
+              std::string::npos)
+        << row.at("integrator") << ": " << quoted["cost.where_cheapest." + row.at("integrator")];
+  for (const auto& info : particles::integratorTable())  // every scheme has its clause, picked or not
+    EXPECT_EQ(quoted["cost.where_cheapest." + std::string(info.name)].rfind("is ", 0), 0u) << info.name;
+  // The contact question of the quick plan: a reference by self-convergence and a pick, or a refusal saying why.
+  const Table contacts = readCsv(o.outDir + "/cost_contacts.csv",
+                                 {"scene", "particles", "horizon", "error", "contact", "reference", "refused",
+                                  "certifiable_horizon", "integrator", "dt", "worst_error", "headroom", "certified_lo",
+                                  "certified_hi", "margin_runs", "failure_bound", "cpu_per_simulated_second"});
+  ASSERT_EQ(contacts.size(), 1u);
+  const auto& contact = contacts[0];
+  EXPECT_NE(contact.at("contact").find("touch"), std::string::npos) << contact.at("contact");
+  if (contact.at("refused") == "0") {
+    EXPECT_NE(contact.at("reference").find("self-convergence"), std::string::npos) << contact.at("reference");
+    if (!contact.at("integrator").empty()) {
+      EXPECT_LE(std::stod(contact.at("worst_error")), std::stod(contact.at("error")));
+    }
   }
 }
 
@@ -544,9 +575,9 @@ TEST(ExtremesQuick, WritesEverySweep) {
   LabOptions o = quickOptions("extremes");
   o.integrators = {"midpoint", "rk4"};
   ASSERT_EQ(runExtremes(o), 0);
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_stiffness.csv", {"integrator", "stiffness", "safe_dt", "first_failure_dt",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_stiffness.csv", {"integrator", "stiffness", "largest_surviving_dt", "first_failure_dt",
                                                               "first_failure", "grid_lo", "grid_hi"}).empty());
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_mass_ratio.csv", {"integrator", "mass_ratio", "safe_dt", "first_failure_dt",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_mass_ratio.csv", {"integrator", "mass_ratio", "largest_surviving_dt", "first_failure_dt",
                                                                "first_failure", "cg_iterations_per_step"}).empty());
   EXPECT_FALSE(readCsv(o.outDir + "/extremes_feedback.csv", {"ks", "kd", "critical_kd", "survived", "failure",
                                                               "max_relative_stretch", "final_relative_stretch"}).empty());
@@ -554,7 +585,7 @@ TEST(ExtremesQuick, WritesEverySweep) {
                                                                       "failure", "max_relative_stretch",
                                                                       "cg_iterations_per_step"});
   EXPECT_FALSE(budget.empty());
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_rod_form.csv", {"integrator", "rod", "safe_dt", "step_seconds",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_rod_form.csv", {"integrator", "rod", "largest_surviving_dt", "step_seconds",
                                                               "cg_iterations_per_step", "max_relative_stretch"}).empty());
   EXPECT_FALSE(readCsv(o.outDir + "/extremes_taut_chain.csv", {"integrator", "max_iterations", "survived", "reason",
                                                                 "time", "max_relative_stretch",

@@ -3,6 +3,8 @@
 // chain checked by an independent, finer scan below the certified step.
 #include <cmath>
 #include <cstdint>
+#include <algorithm>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <set>
@@ -12,6 +14,7 @@
 #include "lab/certify.h"
 #include "lab/chain.h"
 #include "lab/lab.h"
+#include "output/csv_writer.h"
 
 using namespace lab;
 
@@ -239,4 +242,62 @@ TEST(Certify, AFinerScanOnOtherStartsFallsWithinTheBound) {
     }
   EXPECT_LE(failureLowerBound(finer.failures, finer.runs), c->bound())
       << finer.failures << " of " << finer.runs << " failed";
+}
+
+namespace {
+
+// The rows of the report's stability_certified.csv, by column name.
+std::vector<std::map<std::string, std::string>> reportRows(const std::string& file) {
+  std::ifstream in(std::string(REPORT_DATA_DIR) + "/" + file);
+  std::vector<std::map<std::string, std::string>> rows;
+  std::string line;
+  std::vector<std::string> header;
+  if (std::getline(in, line)) header = output::csvSplit(line);
+  while (std::getline(in, line)) {
+    const std::vector<std::string> cells = output::csvSplit(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k) row[header[k]] = cells[k];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+// Table 2's bounds against an independent scan in quick form: for the three
+// entries where a finer scan of 21 starts once found failures below the step
+// then called certified (rk4 cl 12, verlet cl 6, midpoint cl 24), one new
+// start at each dt of a 0.25% grid over [0.5, 1] × the survived dt, none of
+// the ten starts the report ran. The failures seen must be consistent with
+// the report's bound (their 95% lower bound below it); above the step, on
+// (1, 1.5] ×, the same scan does meet failures, so it can see them.
+TEST(Certify, TableTwosBoundsHoldOnAnIndependentScan) {
+  const std::vector<std::pair<std::string, int>> entries = {{"rk4", 12}, {"verlet", 6}, {"midpoint", 24}};
+  const auto rows = reportRows("stability_certified.csv");
+  ASSERT_FALSE(rows.empty()) << "no report/data/stability_certified.csv";
+  for (const auto& [integrator, length] : entries) {
+    const auto row = std::find_if(rows.begin(), rows.end(), [&](const auto& r) {
+      return r.count("integrator") && r.at("integrator") == integrator && r.at("chain_length") == std::to_string(length);
+    });
+    ASSERT_NE(row, rows.end()) << integrator << " cl " << length;
+    ASSERT_TRUE(row->count("survived_dt") && row->count("failure_bound")) << "the report's data predates the bounds";
+    const double survived = std::stod(row->at("survived_dt")), bound = std::stod(row->at("failure_bound"));
+    const double duration = std::stod(row->at("duration"));
+    ASSERT_GT(survived, 0.0);
+    const auto build = [length = length] { return buildChain({length}); };
+    FailureCount below, above;
+    int start = 100;  // the report's starts are 0-9
+    for (double dt = survived; dt >= 0.5 * survived; dt /= 1.0025, ++start) {
+      ++below.runs;
+      below.failures += !runMember(build, integrator, dt, start, duration, FailureCriterion{})->survives(duration, dt);
+    }
+    for (double dt = survived * 1.0025; dt <= 1.5 * survived; dt *= 1.0025, ++start) {
+      ++above.runs;
+      above.failures += !runMember(build, integrator, dt, start, duration, FailureCriterion{})->survives(duration, dt);
+    }
+    EXPECT_LE(failureLowerBound(below.failures, below.runs), bound)
+        << integrator << " cl " << length << ": " << countText(below) << " failed below " << survived;
+    EXPECT_GT(above.failures, 0) << integrator << " cl " << length << ": " << countText(above)
+                                 << " above: the scan sees no failure anywhere";
+  }
 }

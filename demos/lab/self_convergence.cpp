@@ -113,7 +113,7 @@ SelfConvergence halveUntilAgreed(const std::function<scenes::Scene()>& build, do
     if (std::isnan(order)) continue;
     // dt at which the differences would reach the threshold at that order.
     const double needed = order > 0.1 ? halving.dt * std::pow(s.threshold / halving.difference, 1.0 / order) : 0.0;
-    if (needed < finest / 4.0)
+    if (needed < finest / 16.0)
       hopeless = "at the order its last three differences show, " + output::formatFixed(order, 2) +
                  (order > 0.1 ? ", they would reach it only near dt " + output::formatGeneral(needed, 2)
                               : ", they do not shrink") +
