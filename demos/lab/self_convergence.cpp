@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "lab/lab.h"
+#include "lab/lab_scene.h"
 #include "output/format_number.h"
 
 namespace lab {
@@ -120,11 +121,29 @@ SelfConvergence halveUntilAgreed(const std::function<scenes::Scene()>& build, do
                  ", far below the smallest step allowed";
   }
   const Halving* last = out.halvings.empty() ? nullptr : &out.halvings.back();
+  if (last && previous) {
+    // The same run from a start moved by 1e-6 of the scene's size: chaos, or slow convergence?
+    const auto moved = [&] {
+      scenes::Scene scene = build();
+      perturbStart(scene, 1);
+      return scene;
+    };
+    const long stride = std::lround(previous->interval / last->dt);
+    if (const auto run = steppedTrajectory(moved, scheme, last->dt, stride, horizon, s.failure, s.cancel))
+      out.startSensitivity = maxTrajectoryDistance(*previous, *run);
+  }
   out.why = scheme + " halved from dt " + output::formatGeneral(dt0, 3) + " to " +
             output::formatGeneral(last ? last->dt : dt0, 3) + " (T / " + std::to_string(s.maxSteps) + " = " +
             output::formatGeneral(finest, 2) + " is the smallest step allowed); successive runs part by " +
             differencesText(out.halvings) + ", not within " + output::formatGeneral(s.threshold, 2) +
             (hopeless.empty() ? "" : "; " + hopeless);
+  if (std::isfinite(out.startSensitivity))
+    out.why += "; at that dt a start moved by 1e-6 of the scene's size ends " +
+               output::formatGeneral(out.startSensitivity, 2) + " away" +
+               (out.startSensitivity > s.threshold
+                    ? ", more than E/10: at this error and step the motion depends on its start (chaos, or "
+                      "contacts that a tiny change sends to other steps)"
+                    : ", within E/10: the runs converge too slowly in dt");
   return out;
 }
 

@@ -70,6 +70,12 @@ struct SelfConvergence {
   // runs of the scheme tried last agreed within the threshold (0 if none did).
   std::string why;
   double agreesUntil = 0.0;
+  // When not converged: how far a start moved by 1e-6 of the scene's size
+  // (perturbStart) ends from the start as built at the last dt run, over T. Above the
+  // threshold, the motion depends on its start at this error and step (chaos,
+  // or contacts a tiny change sends to other steps); below it, the runs
+  // converge too slowly in dt. NaN: not measured.
+  double startSensitivity = std::numeric_limits<double>::quiet_NaN();
   // "rk4 at dt 3.9e-06 (7 halvings from 0.0005; the last two runs agree within 8.1e-05, observed order 1.02)".
   std::string description() const;
 };
