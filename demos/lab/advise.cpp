@@ -348,6 +348,8 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
       survey.reference = reference.description;
       return survey;
     }
+    // The whole motion's size, where no budget was taken of the size up to the contact.
+    if (!s.relativeToSize) survey.size = reference.trajectory.size();
   }
   survey.referenceAgreement = reference.agreement;
   survey.reference = reference.description;
