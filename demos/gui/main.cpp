@@ -88,6 +88,9 @@ int main(int argc, char** argv) {
 
   glutInit(&argc, argv);
   glutInitDisplayMode(GLUT_RGBA | GLUT_DOUBLE);
+  // The scene's shaders and ImGui's OpenGL3 backend (painter.h).
+  glutInitContextVersion(3, 3);
+  glutInitContextProfile(GLUT_CORE_PROFILE);
   glutInitWindowSize(options.windowWidth, options.windowHeight);
   glutSetOption(GLUT_ACTION_ON_WINDOW_CLOSE, GLUT_ACTION_GLUTMAINLOOP_RETURNS);
   glutCreateWindow("particle-lab demo");
