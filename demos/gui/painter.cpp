@@ -6,7 +6,6 @@
 #include <string>
 
 #include "gl_api.h"
-#include "particles/constants.h"
 
 namespace demo {
 
@@ -73,7 +72,6 @@ unsigned compile(unsigned type, const char* body) {
 }
 
 constexpr float featherPixels = 1.0f;  // the soft edge of smooth lines and points
-constexpr int discSegments = 48;       // a point too large for GL_POINTS, as a polygon
 }  // namespace
 
 Painter::~Painter() {
@@ -214,36 +212,18 @@ void Painter::lines(const ShapeBatch& batch, double widthPixels, bool smooth) {
   draw(GL_TRIANGLES, Kind::Line, edge, feather);
 }
 
+// A point is at most the GL's largest point size (llvmpipe: 255 px), as GL
+// points always were here: a collision disc zoomed past it is drawn that size
+// rather than filling the pane once per particle.
 void Painter::points(const ShapeBatch& batch, double diameterPixels, bool smooth) {
   const float feather = smooth ? featherPixels : 0.f;
-  const float size = static_cast<float>(diameterPixels) + feather;
+  const float size = std::min(static_cast<float>(diameterPixels) + feather, largestPoint_);
   vertices_.clear();
-  if (size > largestPoint_) {
-    // Larger than the GL draws a point (llvmpipe: 255 px): polygons instead.
-    for (std::size_t k = 0; k < batch.vertices(); ++k) fillDisc(batch, k, 0.5 * diameterPixels / pixelsPerUnit_);
-    draw(GL_TRIANGLES, Kind::Fill, 0.f, 0.f);
-    return;
-  }
   for (std::size_t k = 0; k < batch.vertices(); ++k)
     vertices_.push_back({batch.xy[2 * k], batch.xy[2 * k + 1], 0.f,
                          {batch.rgba[4 * k], batch.rgba[4 * k + 1], batch.rgba[4 * k + 2], batch.rgba[4 * k + 3]}});
   // u_edge is half the point's square; the disc's soft edge ends at its side.
   draw(GL_POINTS, Kind::Point, 0.5f * size, feather);
-}
-
-void Painter::fillDisc(const ShapeBatch& batch, std::size_t k, double radiusWorld) {
-  const float cx = batch.xy[2 * k], cy = batch.xy[2 * k + 1];
-  const std::uint8_t* c = &batch.rgba[4 * k];
-  auto at = [&](int s) {
-    const double angle = 2.0 * particles::kPi * s / discSegments;
-    return Vertex{static_cast<float>(cx + radiusWorld * std::cos(angle)),
-                  static_cast<float>(cy + radiusWorld * std::sin(angle)), 0.f, {c[0], c[1], c[2], c[3]}};
-  };
-  for (int s = 0; s < discSegments; ++s) {
-    vertices_.push_back({cx, cy, 0.f, {c[0], c[1], c[2], c[3]}});
-    vertices_.push_back(at(s));
-    vertices_.push_back(at(s + 1));
-  }
 }
 
 }  // namespace demo

@@ -74,7 +74,6 @@ class Painter {
   // Uploads vertices_ and draws them; edge and feather are the shader's
   // uniforms (pixels): a line's half width with its soft edge, a point's size.
   void draw(unsigned mode, Kind kind, float edge, float feather);
-  void fillDisc(const ShapeBatch& batch, std::size_t k, double radiusWorld);
 
   unsigned program_ = 0, vertexArray_ = 0, buffer_ = 0;
   int kindLocation_ = -1, edgeLocation_ = -1, featherLocation_ = -1, matrixLocation_ = -1;
