@@ -65,7 +65,9 @@ webTest('EveryNumberKeyLoadsItsScene', async () => {
 // the cloth's corner, dragged 0.3 right and down, follows the cursor; let go,
 // the mouse spring is gone.
 webTest('DragMovesTheGrabbedParticleTowardTheCursor', async () => {
-  const scene = 'scene=cloth&preset=seed&param=links=4';
+  // No stepping budget: every frame steps its whole simulated time, on a
+  // loaded machine too, so that the page's run and the desktop's are one run.
+  const scene = 'scene=cloth&preset=seed&param=links=4&step-budget=1000000';
   const start = (await session.run(`${scene}&frames=1&paused`)).state.panes[0];
   let corner = 0;
   start.particles.forEach((p, i) => {
@@ -84,20 +86,23 @@ webTest('DragMovesTheGrabbedParticleTowardTheCursor', async () => {
   assert.ok(distance(dragging.particles[corner].x, to) < distance(alone.particles[corner].x, to) - 0.1);
   assert.equal(after.mouseSprings, 0);
   // The desktop, given the same script, holds the particle where the page does.
-  const native = nativeState('drag', ['--scene', 'cloth', '--preset', 'seed', '--param', 'links=4', '--frames', '150'], held);
+  const native = nativeState('drag', ['--scene', 'cloth', '--preset', 'seed', '--param', 'links=4', '--step-budget', '1000000',
+                                      '--frames', '150'], held);
   assert.ok(distance(native.panes[0].particles[corner].x, dragging.particles[corner].x) < 1e-9);
 });
 
 // i moves every pane to the next integrator of the table, keeping the state,
-// as on the desktop.
+// as on the desktop (one step a frame: the same steps on any machine).
 webTest('IntegratorKeyChangesTheIntegrator', async () => {
   const script = '5 key i\n';
-  const page = (await session.run('scene=test-chain&frames=10&no-panel', script)).state.panes[0];
-  const scene = (await session.run('scene=test-chain&frames=10&no-panel')).state.panes[0];
-  const native = nativeState('integrator', ['--scene', 'test-chain', '--frames', '10', '--no-panel'], script).panes[0];
+  const page = (await session.run('scene=test-chain&frames=10&no-panel&lockstep', script)).state.panes[0];
+  const scene = (await session.run('scene=test-chain&frames=10&no-panel&lockstep')).state.panes[0];
+  const native = nativeState('integrator', ['--scene', 'test-chain', '--frames', '10', '--no-panel', '--lockstep'], script).panes[0];
   assert.notEqual(page.integrator, scene.integrator);
   assert.equal(page.integrator, native.integrator);
   assert.equal(page.steps, native.steps);
+  for (let i = 0; i < page.particles.length; ++i)
+    assert.ok(distance(page.particles[i].x, native.particles[i].x) < 1e-9, `particle ${i}`);
 });
 
 // As DemoScreenshot.ParticlesWhereTheLogSays…: on the page's screenshot each
