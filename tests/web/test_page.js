@@ -148,7 +148,9 @@ webTest('ScreenshotParticlesWhereTheLogSays', async () => {
   }
   assert.ok(empty >= 20, `${empty} background pixels checked`);
   const shot = await session.run('key=3&frames=150', null);
-  await screenshot(shot.page, path.join(output, 'page.png'));
+  const picture = await screenshot(shot.page, path.join(output, 'page.png'), true);
+  assert.equal(picture.width, 1180);  // the canvas: the desktop's default window
+  assert.equal(picture.height, 760);
 });
 
 // The first 100 steps on the page ('.' steps once while paused) equal
