@@ -179,6 +179,30 @@ for (const scene of ['cloth', 'hair', 'test-chain']) {
   });
 }
 
+// As DemoKeys.EveryScenePlusEveryIntegratorByKey…: the keys that change
+// what is drawn and how it steps (forces, constraints, help, compare mode,
+// build mode in and out, lockstep, dt, rewind) and q end in the state the
+// desktop ends in, given the same script.
+webTest('KeysEndInTheDesktopsState', async () => {
+  const script = '0 key 6\n2 key f\n3 key c\n4 key h\n5 key v\n6 key +\n8 key e\n10 key e\n12 key l\n' +
+                 '14 key -\n20 key b\n22 key .\n24 key v\n26 key q\n';
+  const run = await session.run('lockstep&frames=500', script);
+  assert.equal(run.exitCode, 0, run.output);
+  const native = nativeState('keys', ['--lockstep', '--frames', '500'], script);
+  assert.equal(run.state.frames, native.frames);
+  assert.equal(run.state.panes.length, native.panes.length);
+  run.state.panes.forEach((pane, k) => {
+    const expected = native.panes[k];
+    assert.equal(pane.scene, expected.scene);
+    assert.equal(pane.integrator, expected.integrator);
+    assert.equal(pane.dt, expected.dt);
+    assert.equal(pane.steps, expected.steps);
+    pane.particles.forEach((p, i) => assert.ok(distance(p.x, expected.particles[i].x) < 1e-9, `pane ${k}, particle ${i}`));
+  });
+  const kinds = state => (state.overlays || []).map(o => o.kind).sort().join(',');
+  assert.equal(kinds(run.state), kinds(native));
+});
+
 // A bad option gets the desktop's one line and exit code 2, and no frame.
 webTest('BadOptionIsRefusedInOneLine', async () => {
   const run = await session.run('scene=nonsense');
