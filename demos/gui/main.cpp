@@ -49,7 +49,15 @@ void onMouse(int button, int state, int x, int y) {
   // freeglut reports the wheel as buttons 3 and 4 when no wheel callback
   // takes it (Emscripten's GLUT always does): a press is a turn.
   if (button == 3 || button == 4) {
-    if (state == GLUT_DOWN) guarded([&] { app().inputWheel(button == 3 ? 1 : -1, x, y); });
+#ifdef __EMSCRIPTEN__
+    // Emscripten 3.1.6's GLUT reads the browser's legacy mousewheel event
+    // (wheelDelta > 0 away from the user) as if it were a wheel event's
+    // deltaY, whose sign is the other way: its button 4 is the wheel turned up.
+    const int up = 4;
+#else
+    const int up = 3;
+#endif
+    if (state == GLUT_DOWN) guarded([&] { app().inputWheel(button == up ? 1 : -1, x, y); });
     return;
   }
   const bool shift = shiftHeld();
