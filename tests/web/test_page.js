@@ -203,6 +203,33 @@ webTest('KeysEndInTheDesktopsState', async () => {
   assert.equal(kinds(run.state), kinds(native));
 });
 
+// The browser's mouse, through Emscripten's GLUT: a press on a particle and
+// a drag hold it with the mouse spring, the release lets it go, and the
+// wheel turned up (away from the user) zooms in about the cursor as on the
+// desktop.
+webTest('TheBrowsersMouseGrabsAndTheWheelZooms', async () => {
+  const page = await session.open('scene=cloth&preset=seed&param=links=4&no-panel');
+  await waitFrames(page, 2);
+  const pane = (await stateOf(page)).panes[0];
+  const [x, y] = toPixel(pane.view, pane.particles[pane.particles.length - 1].x);
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let k = 1; k <= 10; ++k) {
+    await page.mouse.move(x + 3 * k, y + 3 * k);
+    await waitFrames(page, 1);
+  }
+  assert.equal((await stateOf(page)).panes[0].mouseSprings, 1);
+  await page.mouse.up();
+  await waitFrames(page, 2);
+  assert.equal((await stateOf(page)).panes[0].mouseSprings, 0);
+  const width = view => view.max[0] - view.min[0];
+  const before = width((await stateOf(page)).panes[0].view);
+  await page.mouse.wheel({ deltaY: -100 });
+  await waitFrames(page, 3);
+  assert.ok(width((await stateOf(page)).panes[0].view) < before / 1.1);
+  await page.close();
+});
+
 // A bad option gets the desktop's one line and exit code 2, and no frame.
 webTest('BadOptionIsRefusedInOneLine', async () => {
   const run = await session.run('scene=nonsense');
