@@ -27,9 +27,9 @@ fi
 if [ -n "${DESKTOP_TIMES:-}" ]; then cp "$DESKTOP_TIMES" "$desktop"; else bash scripts/demo-frame-times.sh "$frames" > "$desktop"; fi
 machine="$(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load $(cut -d' ' -f1 /proc/loadavg)"
 {
-  echo "Page: particle-demo.wasm $(kb "$(size $page/particle-demo.wasm)") KiB ($(kb "$(gz $page/particle-demo.wasm)") KiB gzipped),"
-  echo "particle-demo.js $(kb "$(size $page/particle-demo.js)") KiB ($(kb "$(gz $page/particle-demo.js)") KiB gzipped, the scene files and the font"
-  echo "embedded), particle-demo.html $(kb "$(size $page/particle-demo.html)") KiB. First frame after navigation: median"
+  echo "Page: particle-demo.wasm $(kb "$(size $page/particle-demo.wasm)") KiB ($(kb "$(gz $page/particle-demo.wasm)") KiB gzipped; the scene files and"
+  echo "the font embedded in it), particle-demo.js $(kb "$(size $page/particle-demo.js)") KiB ($(kb "$(gz $page/particle-demo.js)") KiB gzipped),"
+  echo "particle-demo.html $(kb "$(size $page/particle-demo.html)") KiB. First frame after navigation: median"
   awk -F, '$1 == "first frame ms" {printf "%s ms (%s to %s ms) over '"$repeats"' loads of ?key=1.\n", $2, $3, $4}' "$web"
   echo ""
   echo "| scene | page (headless Chromium) | desktop (Xvfb) |"
@@ -37,6 +37,6 @@ machine="$(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | x
   paste -d, <(grep -v '^first frame' "$web") <(tail -n +2 "$desktop") |
     awk -F, '{name = $1; gsub(/&/, " ", name); printf "| %s | %s | %s |\n", name, $2, $NF}'
   echo ""
-  echo "Real-time ratio: simulated over wall seconds, $frames frames paced at 60 per second with the panel shown"
-  echo "($machine)."
+  echo "Real-time ratio: simulated over wall seconds, $frames frames paced at 60 per second with the panel shown;"
+  echo "the page on one thread, the desktop on OpenMP's threads ($machine at the end)."
 } | tee report/data/web_demo.md
