@@ -10,18 +10,10 @@
 # desktop's (cmake/ParticlesWebDeps.cmake); OpenMP is off (one thread).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+# dpkg-dev unpacks the sources; fonts-dejavu-core has the panel's font.
+bash scripts/install-deps.sh emscripten dpkg-dev fonts-dejavu-core
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-packages=(emscripten dpkg-dev fonts-dejavu-core)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
 # Emscripten runs its JavaScript tools (acorn) under /usr/bin/node, which
 # may be a build other than Debian's that does not look in Debian's folder.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}

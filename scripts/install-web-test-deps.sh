@@ -5,16 +5,10 @@
 # with npm into build/web-tests/node_modules (not the source tree).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-missing=()
-dpkg-query -W -f='${Status}' chromium 2>/dev/null | grep -q "install ok installed" || missing+=(chromium)
-# npm comes with some builds of node; Debian's is its own package.
-command -v npm >/dev/null || missing+=(npm)
-if [ ${#missing[@]} -gt 0 ]; then
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+# npm comes with some builds of node (which then conflict with Debian's npm).
+extra=(chromium)
+command -v npm >/dev/null || extra+=(npm)
+bash scripts/install-deps.sh "${extra[@]}"
 modules=build/web-tests
 mkdir -p "$modules"
 if ! cmp -s tests/web/package-lock.json "$modules/package-lock.json" || [ ! -d "$modules/node_modules/puppeteer-core" ]; then
