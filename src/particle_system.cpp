@@ -274,7 +274,7 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   addEvaluationStats(stats);  // evaluations the integrator left in the tally
   // Collide.
   if (collideAfter)
-    contacts_->collideStep(scene, dt, {true, integrator.driftCorrection()}, x_, v_);
+    contacts_->collideStep(scene, dt, ContactCoupling{true}, x_, v_);
   stats += contacts_->stepStats();
   // Tear: springs stretched past the limit break, decided once from the
   // step's end state, so every stage of the next step sees the same springs.

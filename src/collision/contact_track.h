@@ -67,17 +67,21 @@ struct ColliderImpact {
 };
 std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& colliders, const ColliderBoxes& boxes,
                                                  const Track& track, double r, double slop, double dt);
-// Applies it: a bounce (−e times the normal velocity, Coulomb friction) or a
-// resting contact for the rest of the step; the track then starts at τ.
-// Returns false when the impact changed nothing: met again at the time of
-// the last event, with the step's end moved by no more than `slop` and its
-// velocity by no more than would move it that far in the time left. That is
-// a resting contact (a particle sliding over the edge of a face, whose chord
-// lies on the face: the rest of the track lies on the surface and is
-// settled), or a corner the chord only grazes, on a face the particle is
-// leaving (no impulse: the next search would find the same event).
-bool applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double slop, double dt,
-                         Track& track);
+// What an impact did to a track.
+enum class ImpactOutcome {
+  Bounced,  // the velocity jumped at τ and the track starts there
+  Rests,    // the bounce would not clear the surface by the step's end: left for the solver
+  Nothing,  // met again at the time of the last event with no change (a grazed corner it leaves)
+};
+// Applies it when it is a bounce (−e times the normal velocity, Coulomb
+// friction along the surface); the track then starts at τ. An impact that
+// changes nothing — met again at the time of the last event, with the step's
+// end moved by no more than `slop` and its velocity by no more than would move
+// it that far in the time left (a corner the chord only grazes, on a face the
+// particle is leaving) — is reported as such, since the next search would
+// find the same event.
+ImpactOutcome applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double slop,
+                                  double dt, Track& track);
 // Out of impacts (the work cap ContactSettings::maxImpacts): if the rest of
 // the track still enters a collider, its end is put back to its last event,
 // which is outside every collider, and true is returned (the step then fails
