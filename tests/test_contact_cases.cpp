@@ -309,13 +309,18 @@ double worstOverlap(const ParticleSystem& s) {
 TEST(ContactCasesNext, DiscPileComesToRest) {
   // 200 discs dropped into a box with disc–disc friction (particleFriction):
   // over the last second the overlap stays ≤ 1% of a radius, the kinetic
-  // energy at 6 s is ≤ 1e-4 of the initial, and the energy never rises above
-  // its start (explicit Euler: above its own gain in free fall, ½ Σm g² dt t,
-  // FORMAT.md). Until the reader knows particleFriction it refuses the file.
-  for (const std::string& integrator : integratorsBut()) {
+  // energy at the end is ≤ 1e-4 of the initial, and the energy never rises
+  // above its start (explicit Euler: above its own gain in free fall,
+  // ½ Σm g² dt t, FORMAT.md). Until the reader knows particleFriction it
+  // refuses the file. 3 s, not the script's 6 s: the pile has landed by 0.7 s
+  // (xpbd's, today's one that rests, is still by 1.5 s). xpbd is left out here
+  // for its cost alone (today 80 CPU-s for the 6 s, 20 times rk4's); the
+  // script judges it.
+  constexpr double horizon = 3.0;
+  for (const std::string& integrator : integratorsBut({"xpbd"})) {
     double kinetic0 = 0.0, energy0 = 0.0, mass = 0.0, overlap = 0.0, rise = -1e300, kinetic = 0.0;
     const bool euler = integrator == "euler";
-    const Outcome out = runCase("disc-pile.json", integrator, 6.0, [&](const ParticleSystem& s, int step) {
+    const Outcome out = runCase("disc-pile.json", integrator, horizon, [&](const ParticleSystem& s, int step) {
       const double t = s.time(), dt = step > 0 ? t / step : 0.0;
       if (step == 0) {
         kinetic0 = s.kineticEnergy();
@@ -324,37 +329,44 @@ TEST(ContactCasesNext, DiscPileComesToRest) {
       }
       const double own = euler ? 0.5 * mass * g * g * dt * t : 0.0;
       rise = std::max(rise, s.totalEnergy() - energy0 - own);
-      if (s.time() >= 5.0 - 1e-9) overlap = std::max(overlap, worstOverlap(s));
+      if (t >= horizon - 1.0 - 1e-9) overlap = std::max(overlap, worstOverlap(s));
       kinetic = s.kineticEnergy();
       return true;
     });
     expectCompleted(integrator, out);
     if (!out.stopped.empty()) continue;
-    EXPECT_LE(overlap, 0.01) << integrator << ": two discs overlapped by " << overlap * 100 << "% of a radius in the last second (at most 1%)";
-    EXPECT_LE(kinetic, 1e-4 * kinetic0) << integrator << ": kinetic energy " << kinetic << " J at 6 s, "
+    EXPECT_LE(overlap, 0.01) << integrator << ": two discs overlapped by " << overlap * 100
+                             << "% of a radius in the last second (at most 1%)";
+    EXPECT_LE(kinetic, 1e-4 * kinetic0) << integrator << ": kinetic energy " << kinetic << " J at " << horizon << " s, "
                                         << kinetic / kinetic0 << " of the initial " << kinetic0 << " J (at most 1e-4)";
-    EXPECT_LE(rise, 1e-9 * std::abs(energy0)) << integrator << ": the energy rose " << rise << " J above its start " << energy0 << " J";
+    EXPECT_LE(rise, 1e-9 * std::abs(energy0)) << integrator << ": the energy rose " << rise << " J above its start "
+                                              << energy0 << " J";
   }
 }
 
 TEST(ContactCasesNext, ClosedBoxOfTouchingSlabsHoldsBouncingParticles) {
   // 40 particles thrown up (e 0.9) and along the floor of a box of four
-  // touching slabs: none leaves it (|x|, |y| ≤ 1 m). 10 s, not the script's
-  // 20 s: the bounces have died out by 9 s and the particles slide or rest.
-  for (const std::string& integrator : integratorsBut()) {
-    int left = -1, leftAt = 0;
-    const Outcome out = runCase("box-of-slabs-bouncing.json", integrator, 10.0, [&](const ParticleSystem& s, int step) {
-      for (int i = 0; i < s.size() && left < 0; ++i)
-        if (s.position(i).cwiseAbs().maxCoeff() > 1.0 + 1e-9) {
-          left = i;
-          leftAt = step;
-        }
-      return left < 0;
-    });
-    EXPECT_EQ(left, -1) << integrator << ": particle " << left << " left the box at step " << leftAt << " (t = "
-                        << leftAt * out.dt << " s)";
-    if (left < 0) expectCompleted(integrator, out);
-  }
+  // touching slabs, tiled both ways at its corners: none leaves it (|x|, |y|
+  // ≤ 1 m). 10 s, not the script's 20 s: the bounces have died out by then
+  // and the particles slide or rest.
+  for (const char* file : {"box-of-slabs-bouncing.json", "box-of-slabs-bouncing-walls.json"})
+    for (const std::string& integrator : integratorsBut()) {
+      std::vector<int> leftAt;  // step at which each particle first left (-1: never)
+      int count = 0, first = -1;
+      const Outcome out = runCase(file, integrator, 10.0, [&](const ParticleSystem& s, int step) {
+        leftAt.resize(s.size(), -1);
+        for (int i = 0; i < s.size(); ++i)
+          if (leftAt[i] < 0 && s.position(i).cwiseAbs().maxCoeff() > 1.0 + 1e-9) {
+            leftAt[i] = step;
+            if (count++ == 0) first = i;
+          }
+        return true;
+      });
+      const std::string what = std::string(file) + " under " + integrator;
+      expectCompleted(what, out);
+      EXPECT_EQ(count, 0) << what << ": " << count << " of 40 particles left the box, the first (particle " << first
+                          << ") at t = " << (first < 0 ? 0.0 : leftAt[first] * out.dt) << " s";
+    }
 }
 
 TEST(ContactCasesNext, SymmetricRibbonStaysOnTheDisc) {
