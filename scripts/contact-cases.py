@@ -922,6 +922,8 @@ def slip_cell(ratio, mu, radius, tolerance, rod_limit=None):
 
 def rod_cell(length, limit):
     def cell(run, result):
+        if run.variant == "no contact":
+            return left_out(run, result)
         rod = worst_rod(result, length)
         return judged(["%.3g %%" % (100 * rod), g(energy_rise(result.rows))], rod <= limit, result)
     return cell
@@ -1114,8 +1116,8 @@ JUDGED = [
     Case("disc-chains", "Chain of 10 rods (0.1 m) and 1 cm discs: pinned, landing on a floor; free, dropped on a "
          "20° slope (μ 0.5); 3 s", "rods within 2% (max \\|C\\|/L over the run)",
          ["chain", "integrator", "dt (s)", "max \\|C\\|/L", "max energy rise (J)"],
-         lambda: [r for scene in ("disc-chain-floor.json", "disc-chain-slope.json")
-                  for r in every_integrator(scene, (0.002,), 3.0)],
+         lambda: every_integrator("disc-chain-floor.json", (0.002,), 3.0, leave_out=("euler",))
+         + every_integrator("disc-chain-slope.json", (0.002,), 3.0),
          rod_cell(0.1, 0.02)),
     Case("edge-corners", "A 5 cm spring with a collision edge falling onto a triangle's apex (from 1 mm) and onto "
          "a 4 mm post (from 2 cm), 1 s", "no edge passes a corner (scripts/edge-crossings.py, every step, 32 sub-steps)",

