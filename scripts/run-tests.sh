@@ -2,7 +2,11 @@
 # Installs what is needed, builds, and runs the whole test suite under Xvfb.
 # With --sanitize: builds the engine, the laboratory and their tests (not the
 # demo) with ASan+UBSan and runs the unit tests but the *Sweep suites.
+# Both runs leave out the tests labelled contacts-next (tests/test_contact_cases.cpp:
+# the contact cases that the one contact solver of issue 43 must pass and
+# today's engine fails); drop the exclusion when that solver lands.
 set -euo pipefail
+next='contacts-next'
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs=$(nproc)
@@ -20,9 +24,9 @@ if [ "${1:-}" = "--sanitize" ]; then
   long='Sweep\.|^HairScene\.(APulled|Ringlets)|^CoupledContacts\.Pinned|^Grab\.Follows|^SceneDefaults\.EveryScene'
   long+='|^Rattle\.ChainEnergy|^ImplicitEuler\.ChainEnergyNever|^Advise\.APickIsMovedBelow'
   long+='|^ClosedBox\.ParticlesSlidingOnTheFloor|^ForceBatchThreads\.ThreadedTrajectories'
-  ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -E "$long" --output-on-failure -j"$jobs"
+  ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -LE "$next" -E "$long" --output-on-failure -j"$jobs"
 else
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
   cmake --build build -j"$jobs"
-  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --test-dir build --output-on-failure -j"$jobs"
+  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --test-dir build -LE "$next" --output-on-failure -j"$jobs"
 fi
