@@ -287,7 +287,7 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
 
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt,
                                 const PathBounds* paths) {
-  return contacts_->collide(contactScene(), StepStart{x0, v0, dt, paths}, ContactCoupling{}, x_, v_);
+  return contacts_->collide(contactScene(), StepStart{x0, v0, dt, paths}, ContactCoupling{true}, x_, v_);
 }
 
 double ParticleSystem::kineticEnergy() const {

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <vector>
 
@@ -187,11 +189,13 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const std::vector
       const std::optional<int> hit = firstCollider(colliders, boxes, from, x1, r, settings.slop);
       if (!hit) break;
       const Collider& c = colliders[*hit];
+      if (std::getenv("PL_DEBUG") && pass < 4) std::fprintf(stderr, "guard p%d pass %d collider %d from %.12g %.12g to %.12g %.12g\n", i, pass, *hit, from.x(), from.y(), x1.x(), x1.y());
       // The face entered on the way from the last free position: back onto
       // it along its normal, the approach removed, Coulomb friction applied.
       Eigen::Vector2d normal;
       const double s = *c.sweep(from, x1, r, settings.slop);
       const Eigen::Vector2d p = contact::ontoSurface(c, from + s * (x1 - from), r, &normal);
+      if (r == 0.0) normal = c.entryNormal(p, x1 - from, settings.slop);  // a corner: the face the path went into
       x1 += std::max(0.0, normal.dot(p - x1)) * normal;
       const double vn = v1.dot(normal);
       if (vn < 0.0) v1 += -vn * normal + contact::coulomb(v1 - vn * normal, vn, c.friction);

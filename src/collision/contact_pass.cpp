@@ -61,6 +61,9 @@ bool pathsMayReachColliders(const std::vector<Collider>& colliders, const PathBo
   return false;
 }
 
+// Solves after the first that a step may make for contacts the solve ran into.
+constexpr int kSolveRounds = 3;
+
 double largestRadius(const Eigen::VectorXd& radius) { return radius.size() > 0 ? radius.maxCoeff() : 0.0; }
 }  // namespace
 
@@ -109,7 +112,22 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
   if (!nearEdges_.empty()) edgeCornerContacts(narrow, scene.edges, nearEdges_, x, v, found_);
   // 4. Solve: the contacts and the constraints that hold their particles.
   const ContactSolveInput input{scene.constraints, scene.mass, scene.inverseMass, refs_, coupling.withConstraints};
-  const ContactSolveStats solved = solver_.solve(found_, input, scene.structure, settings_, x, v);
+  if (!found_.empty()) {
+    freeX_ = x;
+    freeV_ = v;
+  }
+  ContactSolveStats solved = solver_.solve(found_, input, scene.structure, settings_, x, v);
+  // Contacts the solve ran into (a particle slid along one collider into
+  // another) join, and the solve starts again from the free state.
+  for (int round = 0; round < kSolveRounds && !found_.empty(); ++round) {
+    const std::vector<int> moved = solver_.lastParticles();
+    if (missedContacts(narrow, moved, scene.discs, discPairs_, x, freeV_, found_) == 0) break;
+    for (const int p : moved) {
+      x.segment<2>(2 * p) = freeX_.segment<2>(2 * p);
+      v.segment<2>(2 * p) = freeV_.segment<2>(2 * p);
+    }
+    solved = solver_.solve(found_, input, scene.structure, settings_, x, v);
+  }
   stats_.contactIterations += solved.iterations;
   stats_.contactResidual = std::max(stats_.contactResidual, solved.residual);
   counted.contacts += static_cast<int>(found_.size());

@@ -104,7 +104,7 @@ class ContactPass {
   Impacts impacts_;
   // Narrow phase and solve.
   std::vector<Contact> found_;
-  Eigen::VectorXd lastFree_;
+  Eigen::VectorXd lastFree_, freeX_, freeV_;  // the guards' last free positions; the state before the solve
   ContactSolver solver_;
   StepStats stats_;
   int contacts_ = 0;

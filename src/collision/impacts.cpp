@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <cstdio>
+#include <cstdlib>
 
 #include "contact_track.h"
 
@@ -227,9 +229,9 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
       const std::optional<contact::ColliderImpact> impact =
           contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
       if (!impact) break;
-      if (contact::applyColliderImpact(colliders[impact->collider], *impact, r, settings.slop, dt, track) !=
-          contact::ImpactOutcome::Bounced)
-        break;
+      const auto outcome = contact::applyColliderImpact(colliders[impact->collider], *impact, r, settings.slop, dt, track);
+      if (std::getenv("PL_DEBUG") && track.impacts < 6) std::fprintf(stderr, "p%d impact %d collider %d s %g tau %g outcome %d x1 %.12g %.12g v1 %g %g\n", i, track.impacts, impact->collider, impact->s, impact->tau, (int)outcome, track.x1.x(), track.x1.y(), track.v1.x(), track.v1.y());
+      if (outcome != contact::ImpactOutcome::Bounced) break;
     }
     if (track.impacts == settings.maxImpacts && contact::stopIfStillEntering(colliders, boxes, r, settings.slop, track))
       ++counted.capped;

@@ -59,11 +59,18 @@ void colliderContacts(const NarrowInput& in, const std::vector<int>& particles, 
         c.point = contact::ontoSurface(collider, a + *s * (b - a), r, &c.normal);
         if (r == 0.0) c.normal = collider.entryNormal(c.point, b - a, slop);  // a corner: the face headed into
         c.swept = true;
-      } else if (collider.distance(b).distance - r <= slop + (b - a).norm()) {
-        // Touching, or near enough to touch within another such step: a
-        // speculative row (it holds nothing while open) keeps the contact's
-        // impulses from one step to the next.
+      } else if (collider.distance(b).distance - r <= slop + (in.last.persists(colliderContactKey(i, k)) ? (b - a).norm() : 0.0)) {
+        // Touching at the end (or, for a contact of the last step, near
+        // enough to touch within another such step: its row holds nothing
+        // while open, and keeps its impulses from one step to the next). At a
+        // corner of a box or polygon, the face the path heads into; a path
+        // that leaves that face is not in contact (two boxes that meet in a
+        // seam: the face of one that lies against the other is no surface).
         c.point = contact::ontoSurface(collider, b, r, &c.normal);
+        if (r == 0.0) {
+          c.normal = collider.entryNormal(c.point, b - a, slop);
+          if (c.normal.dot(b - a) > slop) continue;
+        }
       } else {
         continue;
       }
@@ -151,6 +158,60 @@ void edgeCornerContacts(const NarrowInput& in, const std::vector<CollisionEdge>&
       }
     }
   }
+}
+
+int missedContacts(const NarrowInput& in, const std::vector<int>& particles, const std::vector<int>& discs,
+                   const std::vector<std::pair<int, int>>& pairs, const Eigen::VectorXd& x,
+                   const Eigen::VectorXd& before, std::vector<Contact>& found) {
+  std::vector<std::uint64_t> keys(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) keys[k] = found[k].key;
+  std::sort(keys.begin(), keys.end());
+  const auto known = [&](std::uint64_t key) { return std::binary_search(keys.begin(), keys.end(), key); };
+  const std::size_t count = found.size();
+  const std::vector<Collider>& colliders = in.colliders;
+  const contact::ColliderBoxes boxes(colliders);
+  const double slop = in.settings.slop;
+  for (const int i : particles) {
+    if (in.inverseMass[i] == 0.0) continue;
+    const double r = in.radius[i];
+    const Eigen::Vector2d a = in.refs.x.segment<2>(2 * i), b = x.segment<2>(2 * i);
+    if (colliders.empty() || !boxes.near(colliders, a, b, r + slop)) continue;
+    for (int k = 0; k < static_cast<int>(colliders.size()); ++k) {
+      if (known(colliderContactKey(i, k))) continue;
+      const std::optional<double> s = colliders[k].sweep(a, b, r, slop);
+      if (!s) continue;
+      Contact c;
+      c.kind = ContactKind::Collider;
+      c.particle[0] = i;
+      c.point = contact::ontoSurface(colliders[k], a + *s * (b - a), r, &c.normal);
+      if (r == 0.0) c.normal = colliders[k].entryNormal(c.point, b - a, slop);
+      c.swept = true;
+      c.friction = colliders[k].friction;
+      c.restitution = colliders[k].restitution;
+      c.key = colliderContactKey(i, k);
+      add(in, c, x, before, found);
+    }
+  }
+  for (const auto& [a, b] : pairs) {
+    const int i = discs[a], j = discs[b];
+    if (in.inverseMass[i] + in.inverseMass[j] == 0.0 || known(discPairKey(i, j))) continue;
+    const double reach = in.radius[i] + in.radius[j];
+    const Eigen::Vector2d d = x.segment<2>(2 * i) - x.segment<2>(2 * j);
+    if (!(d.squaredNorm() < (reach - slop) * (reach - slop))) continue;
+    Contact c;
+    c.kind = ContactKind::DiscPair;
+    c.particle[0] = i;
+    c.particle[1] = j;
+    c.beta[1] = -1.0;
+    c.reach = reach;
+    c.normal = d.norm() > 0.0 ? Eigen::Vector2d(d.normalized()) : Eigen::Vector2d(1.0, 0.0);
+    c.swept = true;
+    c.friction = in.settings.particleFriction;
+    c.restitution = in.settings.particleRestitution;
+    c.key = discPairKey(i, j);
+    add(in, c, x, before, found);
+  }
+  return static_cast<int>(found.size() - count);
 }
 
 }  // namespace particles

@@ -61,4 +61,14 @@ void edgeCornerContacts(const NarrowInput& in, const std::vector<CollisionEdge>&
                         const std::vector<int>& candidates, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                         std::vector<Contact>& out);
 
+// Contacts the solve ran into: particles (of `particles`) whose path from
+// their reference to the solved position x enters a collider they had no
+// contact with (a particle sliding along a floor into a wall that stands on
+// it: its free path went down, not into the wall), and disc pairs (of
+// `pairs`) left overlapping with no contact. Their bounces are judged on the
+// velocities `before` the solve. Appends to `found`; returns how many.
+int missedContacts(const NarrowInput& in, const std::vector<int>& particles, const std::vector<int>& discs,
+                   const std::vector<std::pair<int, int>>& pairs, const Eigen::VectorXd& x,
+                   const Eigen::VectorXd& before, std::vector<Contact>& found);
+
 }  // namespace particles
