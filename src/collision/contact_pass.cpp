@@ -1,6 +1,7 @@
 #include "contact_pass.h"
 
 #include <algorithm>
+#include <Eigen/Dense>
 #include <cstdlib>
 
 #include "boundary_guard.h"
@@ -101,8 +102,8 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
   broadPhase(scene, start, x);
   // 2. Impacts: what moves alone bounces at its exact times.
   refs_.reset(start);
-  sortMovers(scene);
-  ContactCount counted = impacts_.resolve(scene.colliders, points_, moverDiscs_, moverPairs_, start,
+  sortMovers(scene, x, v);
+  ContactCount counted = impacts_.resolve(scene.colliders, points_, moverDiscs_, moverPairs_, anchored_, start,
                                           scene.inverseMass, scene.radius, settings_, x, v, refs_);
   // 3. Narrow phase: every contact at the step's end.
   found_.clear();
@@ -166,30 +167,63 @@ void ContactPass::broadPhase(const ContactScene& scene, const StepStart& start, 
   }
 }
 
-// The particles that move alone (in no constraint) take the impacts stage:
-// the points near a collider, every disc, and the pairs among those discs.
-void ContactPass::sortMovers(const ContactScene& scene) {
+// The particles that move alone take the impacts stage: those in no
+// constraint and those held only by constraints whose other particles are
+// pinned (with the projector onto what their constraints leave them, from
+// the constraints' gradients at the step's end) — the points near a collider,
+// every such disc, and the pairs among those discs.
+void ContactPass::sortMovers(const ContactScene& scene, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
   const int n = static_cast<int>(scene.mass.size());
-  if (moversStructure_ != scene.structure || static_cast<int>(constrained_.size()) != n) {
-    constrained_.assign(n, 0);
+  if (moversStructure_ != scene.structure || static_cast<int>(alone_.size()) != n) {
+    alone_.assign(n, Alone::Free);
     for (const auto& c : scene.constraints)
-      for (int p : c->particles()) constrained_[p] = 1;
+      for (int p : c->particles()) {
+        bool anchored = true;
+        for (int q : c->particles())
+          if (q != p && scene.inverseMass[q] != 0.0) anchored = false;
+        if (!anchored) alone_[p] = Alone::Held;
+        else if (alone_[p] == Alone::Free) alone_[p] = Alone::Anchored;
+      }
+    constraintsOf_.assign(n, {});
+    for (int k = 0; k < static_cast<int>(scene.constraints.size()); ++k)
+      for (int p : scene.constraints[k]->particles())
+        if (alone_[p] == Alone::Anchored) constraintsOf_[p].push_back(k);
     moversStructure_ = scene.structure;
   }
   points_.clear();
   for (int i : nearList_)
-    if (scene.radius[i] == 0.0 && !constrained_[i]) points_.push_back(i);
+    if (scene.radius[i] == 0.0 && alone_[i] != Alone::Held) points_.push_back(i);
   moverDiscs_.clear();
   moverPairs_.clear();
-  if (scene.discs.size() < 2 && scene.colliders.empty()) return;
   moverIndex_.assign(scene.discs.size(), -1);
   for (std::size_t a = 0; a < scene.discs.size(); ++a)
-    if (!constrained_[scene.discs[a]]) {
+    if (alone_[scene.discs[a]] != Alone::Held) {
       moverIndex_[a] = static_cast<int>(moverDiscs_.size());
       moverDiscs_.push_back(scene.discs[a]);
     }
   for (const auto& [a, b] : discPairs_)
     if (moverIndex_[a] >= 0 && moverIndex_[b] >= 0) moverPairs_.emplace_back(moverIndex_[a], moverIndex_[b]);
+  anchored_.clear();
+  const auto anchor = [&](int p) {
+    if (alone_[p] != Alone::Anchored) return;
+    // P = I − Jᵀ (J Jᵀ)⁻¹ J over the particle's rows of its constraints' J.
+    Eigen::Matrix<double, Eigen::Dynamic, 2> J(constraintsOf_[p].size(), 2);
+    for (std::size_t k = 0; k < constraintsOf_[p].size(); ++k) {
+      const Constraint& c = *scene.constraints[constraintsOf_[p][k]];
+      std::vector<Eigen::Vector2d> blocks(c.particles().size()), dots(c.particles().size());
+      ConstraintRow row{0.0, 0.0, blocks.data(), dots.data()};
+      c.evaluate(Phase{x, v, scene.mass, scene.inverseMass}, row);
+      const auto at = std::find(c.particles().begin(), c.particles().end(), p) - c.particles().begin();
+      J.row(static_cast<Eigen::Index>(k)) = blocks[at].transpose();
+    }
+    const Eigen::Matrix2d held = J.transpose() * J;
+    Eigen::Matrix2d P = Eigen::Matrix2d::Identity();
+    if (held.trace() > 0.0) P -= J.transpose() * (J * J.transpose()).completeOrthogonalDecomposition().solve(J);
+    anchored_.push_back({p, P});
+  };
+  for (int p : points_) anchor(p);
+  for (int p : moverDiscs_) anchor(p);
+  std::sort(anchored_.begin(), anchored_.end(), [](const Anchored& a, const Anchored& b) { return a.particle < b.particle; });
 }
 
 // Stage 5: whatever the solve left inside a collider (its caps reached) is

@@ -83,7 +83,7 @@ class ContactPass {
 
  private:
   void broadPhase(const ContactScene& scene, const StepStart& start, const Eigen::VectorXd& x);
-  void sortMovers(const ContactScene& scene);
+  void sortMovers(const ContactScene& scene, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   ContactCount guard(const ContactScene& scene, const StepStart& start, Eigen::VectorXd& x, Eigen::VectorXd& v);
 
   ContactSettings settings_;
@@ -96,8 +96,11 @@ class ContactPass {
   DiscGrid grid_;
   std::vector<std::pair<int, int>> discPairs_;  // indices into the scene's discs
   // Impacts: the particles that move alone.
+  enum class Alone : std::uint8_t { Free, Anchored, Held };  // no constraint; only to pinned particles; else
   std::uint64_t moversStructure_ = 0;
-  std::vector<char> constrained_;  // per particle: in some constraint
+  std::vector<Alone> alone_;
+  std::vector<std::vector<int>> constraintsOf_;  // an anchored particle's constraints
+  std::vector<Anchored> anchored_;               // this step's anchored movers, by particle
   std::vector<int> points_, moverDiscs_, moverIndex_;
   std::vector<std::pair<int, int>> moverPairs_;  // indices into moverDiscs_
   References refs_;

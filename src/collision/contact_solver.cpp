@@ -232,7 +232,9 @@ void ContactSolver::Rows::prepareSolve(const ContactSolveInput& in, const Contac
     // not held back by a linear guess at its path).
     const Contact& c = (*R.contacts)[row.source];
     const double gap = c.linearGap(in.refs.x);
-    row.target = row.h > 0.0 && (c.swept || gap <= settings.slop) ? -gap / row.h : kOpen;
+    // An overlap is pushed out by the projection (stage 3), in positions
+    // only: a velocity that closes no gap here would stay as speed.
+    row.target = row.h > 0.0 && (c.swept || gap <= settings.slop) ? -std::max(gap, 0.0) / row.h : kOpen;
   }
 }
 

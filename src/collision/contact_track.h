@@ -1,8 +1,6 @@
 #pragma once
-// One particle's motion through the contact pass of a step, and its impacts
-// against colliders found and applied one at a time, so that a pass that
-// orders disc and collider impacts by time (particle_contacts.cpp) and the
-// pass over colliders alone (collider_contacts.cpp) share one definition.
+// One particle's motion through the impacts stage of a step (impacts.h), and
+// its impacts against colliders found and applied one at a time.
 #include <algorithm>
 #include <limits>
 #include <optional>
@@ -14,13 +12,19 @@ namespace particles::contact {
 
 // The particle's path since its last event (path.t0, at path.x0: the step's
 // start or its last impact) and the step's end it leads to.
+// mobility: the velocities the particle's constraints leave it, as the
+// projector P onto them (the identity for a particle in no constraint; for a
+// bead on a wire or a bob on a rod to a pin, the tangent of its circle): an
+// impulse along n changes its velocity along P n only, as the constraint's
+// own impulse takes the rest.
 struct Track {
   Path path;
   Eigen::Vector2d x1, v1;  // end of the step
   int impacts = 0;         // events so far in this step
+  Eigen::Matrix2d mobility = Eigen::Matrix2d::Identity();
 
   static Track of(const StepStart& start, int i, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
-    return {Path::of(start, i, x, v), x.segment<2>(2 * i), v.segment<2>(2 * i), 0};
+    return {Path::of(start, i, x, v), x.segment<2>(2 * i), v.segment<2>(2 * i), 0, Eigen::Matrix2d::Identity()};
   }
   Eigen::Vector2d from() const { return path.x0; }
   double t() const { return path.t0; }

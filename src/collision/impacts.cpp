@@ -74,8 +74,11 @@ std::optional<PairImpact> nextPairImpact(const contact::Track& ti, const contact
   // alike, as in a uniform field) meets |d| = reach at s, the time of impact
   // t0 + s·(dt − t0). Touching or overlapping at t0 (a third disc pushed one
   // into the other): s = 0.
+  // (A gap within the slop counts as touching: the chord entering the circle
+  // of radius reach + slop strikes, so a pair that closes to within round-off
+  // of touching at the step's end strikes there.)
   std::optional<double> s = 0.0;
-  if (d0.norm() - reach > slop) s = contact::enterCircle(d0, d1 - d0, Eigen::Vector2d::Zero(), reach);
+  if (d0.norm() - reach > slop) s = contact::enterCircle(d0, d1 - d0, Eigen::Vector2d::Zero(), reach + slop);
   if (!s) return std::nullopt;
   const double tau = t0 + *s * span, remaining = dt - tau;
   const Eigen::Vector2d dTau = d0 + *s * (d1 - d0);
@@ -95,7 +98,9 @@ std::optional<PairImpact> nextPairImpact(const contact::Track& ti, const contact
 // and the rest of its path, and so the step's end, is displaced by Δv (dt − τ).
 void applyPairImpact(const PairImpact& impact, double wi, double wj, double dt, contact::Track& ti,
                      contact::Track& tj) {
-  const double impulse = impact.dv / (wi + wj);
+  // Each disc moves along P n (its constraints take the rest of an impulse along n).
+  const Eigen::Vector2d& n = impact.n;
+  const double impulse = impact.dv / (wi * n.dot(ti.mobility * n) + wj * n.dot(tj.mobility * n));
   auto kick = [&](contact::Track& t, const Eigen::Vector2d& dv) {
     if (dv.isZero(0.0)) return;  // a pinned disc
     t.path = {t.path.position(impact.tau), t.path.velocity(impact.tau) + dv, t.path.a, impact.tau};
@@ -103,8 +108,18 @@ void applyPairImpact(const PairImpact& impact, double wi, double wj, double dt, 
     t.x1 = t.path.position(dt);
     ++t.impacts;
   };
-  kick(ti, impulse * wi * impact.n);
-  kick(tj, -impulse * wj * impact.n);
+  kick(ti, impulse * wi * (ti.mobility * n));
+  kick(tj, -impulse * wj * (tj.mobility * n));
+}
+
+// Particle i's track, with its constraints' mobility if it is anchored.
+contact::Track trackOf(const StepStart& start, int i, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                       const std::vector<Anchored>& anchored) {
+  contact::Track track = contact::Track::of(start, i, x, v);
+  const auto found = std::lower_bound(anchored.begin(), anchored.end(), i,
+                                      [](const Anchored& a, int particle) { return a.particle < particle; });
+  if (found != anchored.end() && found->particle == i) track.mobility = found->mobility;
+  return track;
 }
 
 // The track's end and, if it met anything, its reference (its last impact).
@@ -158,8 +173,14 @@ ImpactOutcome applyColliderImpact(const Collider& c, const ColliderImpact& impac
   const NormalChange change = normalChange(un, path.a.dot(normal), remaining, c.restitution);
   if (change.resting) return ImpactOutcome::Rests;
   // An impulse at τ: the velocity jumps by Δv there and the rest of the
-  // path, and so the step's end, is displaced by Δv·(dt − τ).
-  const Eigen::Vector2d dv = change.dv * normal + coulomb(u - un * normal, change.dv, c.friction);
+  // path, and so the step's end, is displaced by Δv·(dt − τ). Held by
+  // constraints, the particle moves along P n: the impulse that changes its
+  // normal speed by Δv_n is Δv_n / (nᵀ P n) along it.
+  const Eigen::Matrix2d& P = track.mobility;
+  const double along = normal.dot(P * normal);
+  if (!(along > 1e-12)) return ImpactOutcome::Rests;  // its constraints hold it against the face
+  const Eigen::Vector2d dv =
+      P * (normal * (change.dv / along) + coulomb(u - un * normal, change.dv / along, c.friction));
   path = {p, u + dv, path.a, tau};
   track.v1 += dv;
   track.x1 = path.position(dt);
@@ -201,20 +222,21 @@ Impacts& Impacts::operator=(Impacts&&) noexcept = default;
 
 ContactCount Impacts::resolve(const std::vector<Collider>& colliders, const std::vector<int>& points,
                               const std::vector<int>& discs, const std::vector<std::pair<int, int>>& pairs,
-                              const StepStart& start, const Eigen::VectorXd& inverseMass,
-                              const Eigen::VectorXd& radius, const ContactSettings& settings, Eigen::VectorXd& x,
-                              Eigen::VectorXd& v, References& refs) {
+                              const std::vector<Anchored>& anchored, const StepStart& start,
+                              const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                              const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                              References& refs) {
   ContactCount counted;
   if (!colliders.empty())
-    counted += resolvePoints(colliders, points, start, inverseMass, radius, settings, x, v, refs);
+    counted += resolvePoints(colliders, points, anchored, start, inverseMass, radius, settings, x, v, refs);
   if (!discs.empty())
-    counted += resolveDiscs(colliders, discs, pairs, start, inverseMass, radius, settings, x, v, refs);
+    counted += resolveDiscs(colliders, discs, pairs, anchored, start, inverseMass, radius, settings, x, v, refs);
   return counted;
 }
 
 // Points meet only colliders: each one's impacts one after another.
 ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, const std::vector<int>& points,
-                                    const StepStart& start, const Eigen::VectorXd& inverseMass,
+                                    const std::vector<Anchored>& anchored, const StepStart& start, const Eigen::VectorXd& inverseMass,
                                     const Eigen::VectorXd& radius, const ContactSettings& settings,
                                     Eigen::VectorXd& x, Eigen::VectorXd& v, References& refs) {
   const double dt = start.dt;
@@ -224,7 +246,7 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];
     if (!boxes.near(colliders, start.x.segment<2>(2 * i), x.segment<2>(2 * i), r + settings.slop)) continue;
-    contact::Track track = contact::Track::of(start, i, x, v);
+    contact::Track track = trackOf(start, i, x, v, anchored);
     while (track.impacts < settings.maxImpacts) {
       const std::optional<contact::ColliderImpact> impact =
           contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
@@ -249,7 +271,8 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
 // most maxImpacts impacts (the work cap): one that would take more is counted
 // in `capped`.
 ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const std::vector<int>& discs,
-                                   const std::vector<std::pair<int, int>>& pairs, const StepStart& start,
+                                   const std::vector<std::pair<int, int>>& pairs,
+                                   const std::vector<Anchored>& anchored, const StepStart& start,
                                    const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
                                    const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
                                    References& refs) {
@@ -260,7 +283,7 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
   S.tracks.resize(count);
   S.stamp.assign(count, 0);
   S.resting.assign(count, 0);
-  for (int a = 0; a < count; ++a) S.tracks[a] = contact::Track::of(start, discs[a], x, v);
+  for (int a = 0; a < count; ++a) S.tracks[a] = trackOf(start, discs[a], x, v, anchored);
   S.pairsOfStart.assign(count + 1, 0);
   for (const auto& [a, b] : pairs) ++S.pairsOfStart[a + 1], ++S.pairsOfStart[b + 1];
   for (int a = 0; a < count; ++a) S.pairsOfStart[a + 1] += S.pairsOfStart[a];
@@ -297,6 +320,7 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
   };
   for (int a = 0; a < count; ++a) predictWall(a);
   for (int p = 0; p < static_cast<int>(pairs.size()); ++p) predictPair(p);
+  if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "discs %d pairs %zu queue %zu\n", count, pairs.size(), S.queue.size());
 
   ContactCount counted;
   while (!S.queue.empty()) {
@@ -304,6 +328,7 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
     const Scratch::Event e = S.queue.back();
     S.queue.pop_back();
     if (e.stampA != S.stamp[e.a] || (e.b >= 0 && e.stampB != S.stamp[e.b])) continue;  // stale
+    if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "event tau %.17g a %d b %d\n", e.tau, discs[e.a], e.b >= 0 ? discs[e.b] : -1);
     if (e.b < 0) {
       const contact::ImpactOutcome outcome = contact::applyColliderImpact(
           colliders[e.wall.collider], e.wall, radius[discs[e.a]], settings.slop, dt, S.tracks[e.a]);
