@@ -271,8 +271,16 @@ void ContactSolver::Rows::prepareRelax(const ContactSettings& settings, const Ei
     if (row.kind == RowKind::Bilateral) {
       R.evaluateConstraint(row, x);
     } else if (row.kind == RowKind::Normal) {
-      const double gap = R.evaluateContact(static_cast<int>(r), x);
-      row.target = gap > settings.slop ? kOpen : (*R.contacts)[row.source].bounce;
+      // The contact's normal of the solve is kept (as Box2D keeps a
+      // contact's normal through its substeps and relax): the impulses of
+      // stage 1 continue along the rows they were applied along.
+      // A row left open holds nothing, unless it pushed in the solve: then it
+      // may let go only as far as its gap closes over a step (a row left a
+      // hair open by an unconverged solve does not hand back the speed it
+      // took, so a position moved by a velocity keeps that velocity).
+      const double gap = (*R.contacts)[row.source].linearGap(x);
+      if (gap <= settings.slop) row.target = (*R.contacts)[row.source].bounce;
+      else row.target = row.lambda > 0.0 && row.h > 0.0 ? -gap / row.h : kOpen;
     }
   }
 }
@@ -346,7 +354,9 @@ ContactSolveStats ContactSolver::solve(std::vector<Contact>& contacts, const Con
     double e = 0.0, c = 0.0;
     for (int p : island_) e += 0.5 * in.mass[p] * v.segment<2>(2 * p).squaredNorm();
     for (const auto& con : in.constraints) c = std::max(c, con->violation(Phase{x, v, in.mass, in.inverseMass}));
-    std::fprintf(stderr, "  %s KE %.6e maxC %.3e\n", what, e, c);
+    double vmax = 0.0; int who = -1;
+    for (int p : island_) if (v.segment<2>(2 * p).norm() > vmax) vmax = v.segment<2>(2 * p).norm(), who = p;
+    std::fprintf(stderr, "  %s KE %.6e maxC %.3e vmax %.4f (%d)\n", what, e, c, vmax, who);
   };
   ke("start");
   // 0. The references and the ends on the constraints; a contact the path

@@ -78,14 +78,15 @@ enum class ImpactOutcome {
   Nothing,  // met again at the time of the last event with no change (a grazed corner it leaves)
 };
 // Applies it when it is a bounce (−e times the normal velocity, Coulomb
-// friction along the surface); the track then starts at τ. An impact that
+// friction along the surface, faster than ContactSettings::
+// restitutionThreshold); the track then starts at τ. An impact that
 // changes nothing — met again at the time of the last event, with the step's
 // end moved by no more than `slop` and its velocity by no more than would move
 // it that far in the time left (a corner the chord only grazes, on a face the
 // particle is leaving) — is reported as such, since the next search would
 // find the same event.
-ImpactOutcome applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double slop,
-                                  double dt, Track& track);
+ImpactOutcome applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r,
+                                  const ContactSettings& settings, double dt, Track& track);
 // Out of impacts (the work cap ContactSettings::maxImpacts): if the rest of
 // the track still enters a collider, its end is put back to its last event,
 // which is outside every collider, and true is returned (the step then fails

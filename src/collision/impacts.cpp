@@ -67,7 +67,8 @@ struct PairImpact {
 // The first bounce of discs i and j on their tracks, if any. Both tracks hold
 // from the later of their last events, t0.
 std::optional<PairImpact> nextPairImpact(const contact::Track& ti, const contact::Track& tj, double reach,
-                                         double restitution, double slop, double dt) {
+                                         const ContactSettings& settings, double dt) {
+  const double slop = settings.slop, restitution = settings.particleRestitution;
   const double t0 = std::max(ti.t(), tj.t()), span = dt - t0;
   const Eigen::Vector2d d0 = ti.path.position(t0) - tj.path.position(t0), d1 = ti.x1 - tj.x1;
   // Apart at t0: the relative chord d0 → d1 (exact when both accelerate
@@ -90,7 +91,7 @@ std::optional<PairImpact> nextPairImpact(const contact::Track& ti, const contact
   // is a resting contact pressed on (a stack), not an impact.
   const double settled = slop / dt;
   const double resting = *s > 0.0 ? settled : std::max(settled, (ai.norm() + aj.norm()) * dt);
-  if (!(un < -resting) || change.resting) return std::nullopt;
+  if (!(un < -resting) || change.resting || change.dv + un < settings.restitutionThreshold) return std::nullopt;
   return PairImpact{tau, n, change.dv};
 }
 
@@ -155,8 +156,9 @@ std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& co
   return ColliderImpact{hit.collider, hit.s, tau};
 }
 
-ImpactOutcome applyColliderImpact(const Collider& c, const ColliderImpact& impact, double r, double slop, double dt,
-                                  Track& track) {
+ImpactOutcome applyColliderImpact(const Collider& c, const ColliderImpact& impact, double r,
+                                  const ContactSettings& settings, double dt, Track& track) {
+  const double slop = settings.slop;
   const double t = track.t();
   const Eigen::Vector2d x1Before = track.x1, v1Before = track.v1;
   const Eigen::Vector2d from = track.from();
@@ -171,7 +173,9 @@ ImpactOutcome applyColliderImpact(const Collider& c, const ColliderImpact& impac
   const Eigen::Vector2d u = path.velocity(tau);
   const double un = u.dot(normal), remaining = dt - tau;
   const NormalChange change = normalChange(un, path.a.dot(normal), remaining, c.restitution);
-  if (change.resting) return ImpactOutcome::Rests;
+  // A bounce slower than the threshold rests (a pile's contacts, pressed by
+  // a step's gravity, are held, not bounced).
+  if (change.resting || change.dv + un < settings.restitutionThreshold) return ImpactOutcome::Rests;
   // An impulse at τ: the velocity jumps by Δv there and the rest of the
   // path, and so the step's end, is displaced by Δv·(dt − τ). Held by
   // constraints, the particle moves along P n: the impulse that changes its
@@ -251,7 +255,7 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
       const std::optional<contact::ColliderImpact> impact =
           contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
       if (!impact) break;
-      const auto outcome = contact::applyColliderImpact(colliders[impact->collider], *impact, r, settings.slop, dt, track);
+      const auto outcome = contact::applyColliderImpact(colliders[impact->collider], *impact, r, settings, dt, track);
       if (std::getenv("PL_DEBUG") && track.impacts < 6) std::fprintf(stderr, "p%d impact %d collider %d s %g tau %g outcome %d x1 %.12g %.12g v1 %g %g\n", i, track.impacts, impact->collider, impact->s, impact->tau, (int)outcome, track.x1.x(), track.x1.y(), track.v1.x(), track.v1.y());
       if (outcome != contact::ImpactOutcome::Bounced) break;
     }
@@ -311,8 +315,8 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
     const auto [a, b] = pairs[p];
     if (inverseMass[discs[a]] + inverseMass[discs[b]] == 0.0) return;
     if (S.tracks[a].impacts >= settings.maxImpacts || S.tracks[b].impacts >= settings.maxImpacts) return;
-    const std::optional<PairImpact> hit = nextPairImpact(S.tracks[a], S.tracks[b], radius[discs[a]] + radius[discs[b]],
-                                                         settings.particleRestitution, settings.slop, dt);
+    const std::optional<PairImpact> hit =
+        nextPairImpact(S.tracks[a], S.tracks[b], radius[discs[a]] + radius[discs[b]], settings, dt);
     if (hit) push({hit->tau, a, b, S.stamp[a], S.stamp[b], {}, *hit});
   };
   auto predictPairsOf = [&](int a) {
@@ -330,8 +334,7 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
     if (e.stampA != S.stamp[e.a] || (e.b >= 0 && e.stampB != S.stamp[e.b])) continue;  // stale
     if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "event tau %.17g a %d b %d\n", e.tau, discs[e.a], e.b >= 0 ? discs[e.b] : -1);
     if (e.b < 0) {
-      const contact::ImpactOutcome outcome = contact::applyColliderImpact(
-          colliders[e.wall.collider], e.wall, radius[discs[e.a]], settings.slop, dt, S.tracks[e.a]);
+      const contact::ImpactOutcome outcome = contact::applyColliderImpact(colliders[e.wall.collider], e.wall, radius[discs[e.a]], settings, dt, S.tracks[e.a]);
       if (outcome == contact::ImpactOutcome::Rests) {
         S.resting[e.a] = 1;  // the solver holds it there; its pairs may still strike
         continue;

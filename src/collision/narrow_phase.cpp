@@ -140,8 +140,13 @@ void edgeCornerContacts(const NarrowInput& in, const std::vector<CollisionEdge>&
         const Eigen::Vector2d& q = collider.points[m];
         const double b = (q - xi).dot(edge) / length2;
         if (!(b > 0.0 && b < 1.0)) continue;  // beyond an end: the end's own contacts hold it
-        const double side0 = cross(sj - si, q - si);
-        if (side0 == 0.0) continue;  // on the edge's line at the start: on no side of it
+        // The corner's side of the edge at the step's start; for an edge
+        // that starts on the corner (resting on it), the side it moves
+        // towards.
+        const Eigen::Vector2d e0 = sj - si, left = Eigen::Vector2d(-e0.y(), e0.x());
+        double side0 = cross(e0, q - si);
+        if (std::abs(side0) <= slop * e0.norm()) side0 = left.dot((1.0 - b) * (xi - si) + b * (xj - sj));
+        if (side0 == 0.0) continue;  // on the edge's line and not moving off it
         Contact c;
         c.kind = ContactKind::EdgeCorner;
         c.particle[0] = i;

@@ -52,7 +52,7 @@ Relaxed projectPositions(RowSystem& R, const std::vector<int>& contactRows, Dire
     for (const int r : contactRows) {
       Row& row = R.rows[r];
       if (row.kind != RowKind::Normal) continue;
-      const double gap = R.evaluateContact(r, x);
+      const double gap = (*R.contacts)[row.source].linearGap(x);  // along the solve's normal, as Box2D keeps it
       worst = std::max(worst, -gap);
       if (row.invK == 0.0) continue;
       // A push accumulates (μ ≥ 0): a row pulls back only what it pushed.
