@@ -2,11 +2,10 @@
 # Installs what is needed, builds, and runs the whole test suite under Xvfb.
 # With --sanitize: builds the engine, the laboratory and their tests (not the
 # demo) with ASan+UBSan and runs the unit tests but the *Sweep suites.
-# Both runs leave out the tests labelled contacts-next (tests/test_contact_cases.cpp:
-# the contact cases that the one contact solver of issue 43 must pass and
-# today's engine fails); drop the exclusion when that solver lands.
+# Both runs leave out the tests labelled contacts-open (tests/test_contact_cases.cpp,
+# suite ContactCasesOpen: contact cases the engine does not get right yet).
 set -euo pipefail
-next='contacts-next'
+next='contacts-open'
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs=$(nproc)
@@ -23,7 +22,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   # the Release run keeps them.
   long='Sweep\.|^HairScene\.(APulled|Ringlets)|^CoupledContacts\.Pinned|^Grab\.Follows|^SceneDefaults\.EveryScene'
   long+='|^Rattle\.ChainEnergy|^ImplicitEuler\.ChainEnergyNever|^Advise\.APickIsMovedBelow'
-  long+='|^ClosedBox\.ParticlesSlidingOnTheFloor|^ForceBatchThreads\.ThreadedTrajectories'
+  long+='|^ContactCases\.(Capstan|Frictionless|Strand|SymmetricRibbon|DiscChains)|^ClosedBox\.ParticlesSlidingOnTheFloor|^ForceBatchThreads\.ThreadedTrajectories'
   ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -LE "$next" -E "$long" --output-on-failure -j"$jobs"
 else
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release

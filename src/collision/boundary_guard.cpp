@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <vector>
@@ -189,7 +188,6 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const std::vector
       const std::optional<int> hit = firstCollider(colliders, boxes, from, x1, r, settings.slop);
       if (!hit) break;
       const Collider& c = colliders[*hit];
-      if (std::getenv("PL_DEBUG") && pass < 4) std::fprintf(stderr, "guard p%d pass %d collider %d from %.12g %.12g to %.12g %.12g\n", i, pass, *hit, from.x(), from.y(), x1.x(), x1.y());
       // The face entered on the way from the last free position: back onto
       // it along its normal, the approach removed, Coulomb friction applied.
       Eigen::Vector2d normal;
@@ -277,8 +275,8 @@ bool hasCore(const Collider& c) { return c.shape == ColliderShape::Capsule || c.
 // neither end is inside a collider, and their approach to the core is
 // removed. A disc's centre and the ends of a capsule's core are kept off
 // the held edge's line by half their distance from the edge at the start (at
-// most half the radius): an edge left with such a point on its line would
-// start the next step on no side of it.
+// most half the radius, at least a thousandth of it): an edge left with such
+// a point on its line would start the next step on no side of it.
 int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, const StepStart& start,
                     const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const CollisionEdge& edge,
                     Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
@@ -292,7 +290,10 @@ int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, c
   double keep = c.radius;
   for (const Eigen::Vector2d& point : c.points)
     keep = std::min(keep, (point - nearestOnSegment(point, from[0], from[1])).norm());
-  keep *= 0.5;
+  // Never less than a thousandth of the radius: halved step after step, the
+  // distance would shrink until a motion below rounding put the point on the
+  // other side.
+  keep = std::max(0.5 * keep, 1e-3 * c.radius);
   const auto placed = [&](double s) {
     bool inside = false;
     for (int k = 0; k < 2; ++k) {

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <Eigen/Dense>
-#include <cstdlib>
-#include <cstdio>
 
 #include "boundary_guard.h"
 #include "narrow_phase.h"
@@ -97,8 +95,6 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
     solver_.resetWarmStart();
     return 0;
   }
-  if (const char* e = std::getenv("PL_POSITER")) settings_.positionIterations = std::atoi(e);  // DEBUG
-  if (const char* e = std::getenv("PL_VELITER")) settings_.coupledIterations = std::atoi(e);  // DEBUG
   // 1. Broad phase.
   broadPhase(scene, start, x);
   // 2. Impacts: what moves alone bounces at its exact times.
@@ -118,11 +114,6 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
     freeX_ = x;
     freeV_ = v;
   }
-  if (std::getenv("PL_STATS")) {
-    int bounces = 0, swept = 0, persisting = 0;
-    for (const Contact& c : found_) bounces += c.bounce > 0.0, swept += c.swept, persisting += solver_.persists(c.key);
-    std::fprintf(stderr, "contacts %zu bounces %d swept %d persisting %d impacts %d\n", found_.size(), bounces, swept, persisting, counted.contacts);
-  }
   ContactSolveStats solved = solver_.solve(found_, input, scene.structure, settings_, x, v);
   // Contacts the solve ran into (a particle slid along one collider into
   // another) join, and the solve starts again from the free state.
@@ -139,10 +130,7 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
   stats_.contactResidual = std::max(stats_.contactResidual, solved.residual);
   counted.contacts += static_cast<int>(found_.size());
   // 5. Guards: the colliders are a hard boundary.
-  auto vmax = [&]() { double m = 0.0; for (int i = 0; i < static_cast<int>(scene.mass.size()); ++i) m = std::max(m, v.segment<2>(2 * i).norm()); return m; };
-  const double before = std::getenv("PL_DEBUG") ? vmax() : 0.0;
   counted += guard(scene, start, x, v);
-  if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "  guard vmax %.4f -> %.4f\n", before, vmax());
   if (counted.capped > 0 && stats_.failure == StepFailure::None) stats_.failure = StepFailure::ContactCapReached;
   contacts_ += counted.contacts;
   return counted.contacts;

@@ -8,8 +8,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <cstdio>
-#include <cstdlib>
 
 #include "solver_rows.h"
 
@@ -305,21 +303,17 @@ void ContactSolver::Rows::keep(int constraintCount) {
   kept.swap(keeping);
 }
 
-// An island's velocities: those held by constraints by the active set (and
-// relaxation for what it leaves), the rest (contacts alone: a pile) by
-// relaxation from its warm start.
+// An island's velocities: an island with constraints and not too many
+// contact rows by relaxation on the Schur complement of its constraints
+// (reduced.cpp), any other (a pile, contacts alone) by block relaxation from
+// its warm start (relax.cpp).
 void ContactSolver::solveIsland(Rows& S, int island, const ContactSettings& settings, Eigen::VectorXd& v,
                                 ContactSolveStats& stats) {
   solve::RowSystem& R = S.system;
   solve::Relaxed done;
-  bool settled = false;
-  if (std::getenv("PL_ACTIVE") && !S.blocks[island].empty())
-    done = solve::activeSetVelocities(R, S.contactRows[island], S.blocks[island].rows(), settings, v, settled);
-  if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "island %d rows %zu+%zu active %d settled %d %g\n", island, S.contactRows[island].size(), S.blocks[island].rows().size(), done.passes, (int)settled, done.largest);
   const bool reduced = !S.blocks[island].empty() && static_cast<int>(S.contactRows[island].size()) <= solve::kReducedRows;
-  if (!settled && reduced) done = solve::relaxReduced(R, S.contactRows[island], S.blocks[island], settings, v);
-  if (!settled && !reduced) done = solve::relaxVelocities(R, S.contactRows[island], S.blocks[island], settings, v);
-  if (std::getenv("PL_DEBUG") && !settled) std::fprintf(stderr, "   relax %d %g\n", done.passes, done.largest);
+  if (reduced) done = solve::relaxReduced(R, S.contactRows[island], S.blocks[island], settings, v);
+  else done = solve::relaxVelocities(R, S.contactRows[island], S.blocks[island], settings, v);
   stats.iterations = std::max(stats.iterations, done.passes);
   stats.residual = std::max(stats.residual, done.largest);
 }
@@ -349,16 +343,6 @@ ContactSolveStats ContactSolver::solve(std::vector<Contact>& contacts, const Con
   S.addRows(in, x);
   const int islands = S.findIslands(particles);
   stats.rows = static_cast<int>(R.rows.size());
-  auto ke = [&](const char* what) {
-    if (!std::getenv("PL_DEBUG")) return;
-    double e = 0.0, c = 0.0;
-    for (int p : island_) e += 0.5 * in.mass[p] * v.segment<2>(2 * p).squaredNorm();
-    for (const auto& con : in.constraints) c = std::max(c, con->violation(Phase{x, v, in.mass, in.inverseMass}));
-    double vmax = 0.0; int who = -1;
-    for (int p : island_) if (v.segment<2>(2 * p).norm() > vmax) vmax = v.segment<2>(2 * p).norm(), who = p;
-    std::fprintf(stderr, "  %s KE %.6e maxC %.3e vmax %.4f (%d)\n", what, e, c, vmax, who);
-  };
-  ke("start");
   // 0. The references and the ends on the constraints; a contact the path
   // entered only by drifting off them is not entered.
   for (int i = 0; i < islands; ++i) {
@@ -375,23 +359,18 @@ ContactSolveStats ContactSolver::solve(std::vector<Contact>& contacts, const Con
   S.prepareSolve(in, settings);
   S.warmStart(v);
   for (int i = 0; i < islands; ++i) solveIsland(S, i, settings, v, stats);
-  ke("solved");
   // 2. Integrate the positions the rows hold from their references.
   for (const int p : island_) x.segment<2>(2 * p) = in.refs.x.segment<2>(2 * p) + in.refs.h[p] * v.segment<2>(2 * p);
-  ke("integrated");
   // 3. Project: the constraints' drift, the overlap left.
   for (int i = 0; i < islands; ++i) {
     const solve::Relaxed done = solve::projectPositions(R, S.contactRows[i], S.blocks[i], settings, x, v);
     stats.positionPasses = std::max(stats.positionPasses, done.passes);
-    if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "  project %d %g\n", done.passes, done.largest);
   }
-  ke("projected");
   // 4. Relax the velocities at the final positions.
   S.prepareRelax(settings, x);
   stats.iterations = 0;
   stats.residual = 0.0;
   for (int i = 0; i < islands; ++i) solveIsland(S, i, settings, v, stats);
-  ke("relaxed");
   S.keep(static_cast<int>(in.constraints.size()));
   return stats;
 }

@@ -6,8 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <cstdio>
-#include <cstdlib>
 
 #include "contact_track.h"
 
@@ -256,7 +254,6 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
           contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
       if (!impact) break;
       const auto outcome = contact::applyColliderImpact(colliders[impact->collider], *impact, r, settings, dt, track);
-      if (std::getenv("PL_DEBUG") && track.impacts < 6) std::fprintf(stderr, "p%d impact %d collider %d s %g tau %g outcome %d x1 %.12g %.12g v1 %g %g\n", i, track.impacts, impact->collider, impact->s, impact->tau, (int)outcome, track.x1.x(), track.x1.y(), track.v1.x(), track.v1.y());
       if (outcome != contact::ImpactOutcome::Bounced) break;
     }
     if (track.impacts == settings.maxImpacts && contact::stopIfStillEntering(colliders, boxes, r, settings.slop, track))
@@ -324,7 +321,6 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
   };
   for (int a = 0; a < count; ++a) predictWall(a);
   for (int p = 0; p < static_cast<int>(pairs.size()); ++p) predictPair(p);
-  if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "discs %d pairs %zu queue %zu\n", count, pairs.size(), S.queue.size());
 
   ContactCount counted;
   while (!S.queue.empty()) {
@@ -332,7 +328,6 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
     const Scratch::Event e = S.queue.back();
     S.queue.pop_back();
     if (e.stampA != S.stamp[e.a] || (e.b >= 0 && e.stampB != S.stamp[e.b])) continue;  // stale
-    if (std::getenv("PL_DEBUG")) std::fprintf(stderr, "event tau %.17g a %d b %d\n", e.tau, discs[e.a], e.b >= 0 ? discs[e.b] : -1);
     if (e.b < 0) {
       const contact::ImpactOutcome outcome = contact::applyColliderImpact(colliders[e.wall.collider], e.wall, radius[discs[e.a]], settings, dt, S.tracks[e.a]);
       if (outcome == contact::ImpactOutcome::Rests) {

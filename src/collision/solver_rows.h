@@ -114,18 +114,6 @@ Relaxed relaxVelocities(RowSystem& R, const std::vector<int>& contactRows, Direc
 constexpr int kReducedRows = 1500;
 Relaxed relaxReduced(RowSystem& R, const std::vector<int>& contactRows, DirectBlock& block,
                      const ContactSettings& settings, Eigen::VectorXd& v);
-// The same velocity problem solved exactly by an active set: the
-// constraints, the normals that push and the friction rows that stick solved
-// together (DirectBlock), the set updated — a normal whose impulse turned
-// negative lets go, friction past μ λ_n slides at that bound and sticks again
-// when the velocity it resists turns round — until it holds and every row is
-// within ContactSettings::coupledTolerance. A chain of constraints over a
-// curved contact, which Gauss–Seidel relaxes in a number of sweeps that grows
-// with the square of its length, takes a few solves whatever its length.
-// `settled` is false when the set did not settle within its iterations (the
-// caller relaxes what is left).
-Relaxed activeSetVelocities(RowSystem& R, const std::vector<int>& contactRows, const std::vector<int>& constraints,
-                            const ContactSettings& settings, Eigen::VectorXd& v, bool& settled);
 // The projection: Newton steps of the constraint block in turn with
 // Gauss–Seidel pushes of the normals out of overlap, until every error is
 // within the slop. Returns the passes made and the last pass's largest error.
