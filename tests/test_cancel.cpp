@@ -62,6 +62,12 @@ class FlagRaisingLine : public particles::LineConstraint {
   int raiseAt_;
 };
 
+// One particle falling under gravity.
+void addFallingParticle(particles::ParticleSystem& system, double height) {
+  system.addParticle(Eigen::Vector2d(0.0, height), 1.0);
+  system.addForce(std::make_unique<particles::GravityForce>(Eigen::Vector2d(0.0, -9.81)));
+}
+
 particles::IntegratorSettings xpbdSettings(int substeps, int iterations) {
   particles::IntegratorSettings settings;
   settings.xpbd.substeps = substeps;
@@ -88,8 +94,7 @@ TEST(Cancel, XpbdStopsInTheSubstepTheFlagIsRaisedIn) {
 TEST(Cancel, XpbdStopsAfterThePassTheFlagIsRaisedIn) {
   WatchedFlag flag;
   particles::ParticleSystem system;
-  system.addParticle(Eigen::Vector2d(0.0, 0.5), 1.0);
-  system.addForce(std::make_unique<particles::GravityForce>(Eigen::Vector2d(0.0, -9.81)));
+  addFallingParticle(system, 0.5);
   auto& line = static_cast<FlagRaisingLine&>(system.addConstraint(std::make_unique<FlagRaisingLine>(flag, 5)));
   const auto xpbd = particles::makeIntegrator("xpbd", xpbdSettings(1, 10000));
   system.step(*xpbd, 0.01);
@@ -102,8 +107,7 @@ TEST(Cancel, XpbdStopsAfterThePassTheFlagIsRaisedIn) {
 TEST(Cancel, Dopri5StopsAfterTheAttemptTheFlagIsRaisedIn) {
   WatchedFlag flag;
   particles::ParticleSystem system;
-  system.addParticle(Eigen::Vector2d(0.0, 1.0), 1.0);
-  system.addForce(std::make_unique<particles::GravityForce>(Eigen::Vector2d(0.0, -9.81)));
+  addFallingParticle(system, 1.0);
   auto& force = static_cast<FlagRaisingForce&>(system.addForce(std::make_unique<FlagRaisingForce>(flag, 2)));
   particles::IntegratorSettings settings;
   settings.dopri5.tolerance = 1e-13;

@@ -45,16 +45,23 @@ using scenes::Json;
 
 enum class Outcome { Rejected, SteppedFinite, CaughtNonFinite };
 
-Outcome loadAndStep(const std::string& text) {
-  scenes::Scene scene;
+// The scene of a text, or none when the reader rejects it; a rejection's
+// message is checked to be one line naming the source and a JSON path.
+std::optional<scenes::Scene> readMutant(const std::string& text) {
   try {
-    scene = scenes::readScene(text, "mutant");
+    return scenes::readScene(text, "mutant");
   } catch (const scenes::SceneFileError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     EXPECT_EQ(message.rfind("mutant: $", 0), 0u) << message;
-    return Outcome::Rejected;
+    return std::nullopt;
   }
+}
+
+Outcome loadAndStep(const std::string& text) {
+  std::optional<scenes::Scene> read = readMutant(text);
+  if (!read) return Outcome::Rejected;
+  scenes::Scene& scene = *read;
   auto integrator = particles::makeIntegrator(scene.integrator);
   for (int k = 0; k < 10; ++k) {
     scene.system->step(*integrator, scene.dt);
@@ -421,16 +428,12 @@ TEST(SceneFileFuzz, CollidersAtEveryScaleAreRefusedOrStopAParticle) {
                            {"particles", Json::array({{{"position", point(start)}, {"mass", 1}, {"velocity", point(velocity)}}})},
                            {"colliders", Json::array({collider})}};
     const std::string text = document.dump();
-    scenes::Scene scene;
-    try {
-      scene = scenes::readScene(text, "mutant");
-    } catch (const scenes::SceneFileError& e) {
-      const std::string message = e.what();
-      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-      EXPECT_EQ(message.rfind("mutant: $", 0), 0u) << message;
+    std::optional<scenes::Scene> read = readMutant(text);
+    if (!read) {
       ++refused;
       continue;
     }
+    scenes::Scene& scene = *read;
     // Accepted: the particle, thrown at the collider from a gap of its size,
     // stays outside it to rounding at every step.
     const particles::Collider& shape = scene.system->colliders().at(0);
