@@ -5,9 +5,11 @@
 // the scene reader watches it:
 //   - each conjugate-gradient iteration (linear/conjugate_gradient.h);
 //   - xpbd's substeps and its constraint passes within a substep;
-//   - the contact passes and the impact search (src/collision/);
+//   - dopri5's attempts (seven evaluations each, up to 100,000 a step);
 //   - reading a scene file: the parser, the reader's lists and the check of
 //     particles starting inside colliders.
+// A loop whose iterations are cheap but may be many (a contact pass's pairs
+// and impacts, src/collision/) checks through a CancelPoll.
 // A loop that sees the flag up ends early and leaves its result unfinished:
 // a step cut short is not a result, and the caller that raised the flag
 // discards it (the runner writes no row for it; the laboratory records no
