@@ -139,8 +139,11 @@ void refuseUnrepresentable(const JsonNode& node, const particles::Collider& c) {
     node.reject(kind + ": a coordinate or radius of " + particles::formatValue(largest) + " is beyond " +
                 particles::formatValue(kColliderReach) + ", which the contact arithmetic cannot hold (it multiplies up "
                 "to four lengths); bring the collider nearer the origin");
+  // A length of exactly 0 (a capsule's ends or a polygon's vertices that
+  // coincide) is left to the collider's own check, which names it so.
   const auto requireLength = [&](double length, const std::string& what) {
     const double rounding = 1e-12 * (1.0 + largest);
+    if (length == 0.0) return;
     if (!(length >= 1.0 / kColliderReach))
       node.reject(kind + ": " + what + " of " + particles::formatValue(length) + " is shorter than " +
                   particles::formatValue(1.0 / kColliderReach) + ", which the contact arithmetic cannot hold");
