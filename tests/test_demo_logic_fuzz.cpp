@@ -197,6 +197,23 @@ class DemoLogic {
   std::unique_ptr<Simulation> pane_;
 };
 
+// A new dt or integrator while a particle is held sets the joint's gains
+// again and keeps its target (the retune read the target of the spring it
+// had just removed: a use after free, which the sanitizer build reports).
+TEST(DemoLogic, ANewDtOrIntegratorWhileAParticleIsHeldKeepsItsTarget) {
+  scenes::Scene scene = scenes::buildScene("pendulum");
+  Simulation pane(std::move(scene), integratorIndexByName("rk4"), 0.01);
+  const Eigen::Vector2d target(0.3, -0.2);
+  pane.grab(0, pane.system().position(0), particles::MouseJointSettings{});
+  pane.moveGrab(target);
+  pane.setDt(0.005);
+  ASSERT_NE(pane.mouseSpring(), nullptr);
+  EXPECT_EQ(pane.mouseSpring()->target(), target);
+  pane.setIntegrator(integratorIndexByName("symplectic-euler"));
+  ASSERT_NE(pane.mouseSpring(), nullptr);
+  EXPECT_EQ(pane.mouseSpring()->target(), target);
+}
+
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kActions = 1500;
 #else
