@@ -41,8 +41,17 @@ expect substeps-octal 2 'substeps: expected a decimal integer in \[1, 100000\] \
 expect substeps-hex 2 'substeps: expected a decimal integer in \[1, 100000\] \(no leading zeros or 0x\), got 0x10$' -- \
   run --scene cloth --integrator xpbd --steps 1 --substeps 0x10
 # advise: a horizon whose reference would not fit memory, a reference tolerance below rounding.
-expect advise-horizon 2 'horizon 1e\+300 s needs .* reference samples .*more than the limit of 2.5e\+07$' -- \
+expect advise-horizon 2 'horizon 1e\+300 s needs a reference of 2e\+302 samples .* of 1 particle, about 3\.04e\+295 GB, more than the limit of 1 GB$' -- \
   advise --scene pendulum --error 1e-3 --horizon 1e300
+# The limit is on the reference's memory, not on its samples times the particles: a one-particle
+# reference costs 152 bytes a sample, not 16 (25 million samples of the pendulum, within the old
+# limit of samples, peaked at 3.9 GB); 100 particles cost 48 bytes each a sample.
+for scene in "pendulum 125000 2\.5e\+07 1 particle 3\.8" "pendulum 33000 6\.6e\+06 1 particle 1\.003" \
+             "cloth 1000 5e\+05 100 particles 2\.452"; do
+  set -- $scene
+  expect "advise-memory-$1-$2" 2 "^particle-lab: horizon [0-9.e+]+ s needs a reference of $3 samples \(T / interval [0-9.]+ s\) of $4 $5, about $6 GB, more than the limit of 1 GB$" -- \
+    advise --scene "$1" --error 1e-3 --horizon "$2"
+done
 expect advise-certify-starts 2 '^particle-lab: --certify-starts: expected a decimal integer in \[0, 1000\], got -1$' -- \
   advise --scene pendulum --error 1e-3 --horizon 1 --certify-starts -1
 expect advise-certify-starts-octal 2 '^particle-lab: --certify-starts: expected a decimal integer in \[0, 1000\] \(no leading zeros or 0x\), got 010$' -- \
