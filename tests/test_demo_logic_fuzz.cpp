@@ -21,6 +21,7 @@
 #include "scene_document.h"
 #include "scene_file/scene_file.h"
 #include "simulation.h"
+#include "test_support.h"
 
 namespace demo {
 namespace {
@@ -214,11 +215,7 @@ TEST(DemoLogic, ANewDtOrIntegratorWhileAParticleIsHeldKeepsItsTarget) {
   EXPECT_EQ(pane.mouseSpring()->target(), target);
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kActions = 1500;
-#else
-constexpr int kActions = 4000;
-#endif
+constexpr int kActions = test_support::kSanitizerBuild ? 1500 : 4000;
 
 TEST(DemoLogicFuzz, RandomEditsGesturesStepsAndPinsNeverFault) {
   DemoLogic logic(20261221);

@@ -38,6 +38,7 @@
 #include "scene_file/scene_file.h"
 #include "scene_limits.h"
 #include "starting_overlap.h"
+#include "test_support.h"
 
 namespace {
 
@@ -143,14 +144,9 @@ class Mutator {
   std::mt19937 rng_;
 };
 
-// Under ASan+UBSan (CI's second run) each case costs about ten times as much:
-// the fuzz tests take the first third of their cases there (1,000 mutants,
-// every nesting depth twice); the Release run takes them all.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kCaseDivisor = 3;
-#else
-constexpr int kCaseDivisor = 1;
-#endif
+// The sanitizer build takes the first third of the cases (1,000 mutants, every
+// nesting depth twice); the Release run takes them all.
+constexpr int kCaseDivisor = test_support::kSanitizerBuild ? 3 : 1;
 
 TEST(SceneFileFuzz, EveryMutantIsRejectedOrStepsOrIsCaughtNonFinite) {
   const std::vector<std::string> bases = baseFiles();
