@@ -89,6 +89,10 @@ void printSummary(const scenes::Scene& scene, const particles::Integrator& integ
 }
 
 int run(const RunOptions& o) {
+  // From here SIGINT, SIGTERM and SIGHUP only set a flag: reading a large
+  // scene file stops (particles::Cancelled, exit 130), and the loop below
+  // stops at the next step boundary with the files closed on complete rows.
+  lab::installInterruptHandler();
   // Check every input before the first output.
   particles::setThreadCount(o.threads);
   scenes::Scene scene = o.source.load();
@@ -99,9 +103,6 @@ int run(const RunOptions& o) {
     throw std::invalid_argument(o.source.describe() +
                                 ": its particles and view span more than a double holds (their extent overflows); "
                                 "bring them nearer the origin");
-  // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
-  // step boundary and the files are closed with complete rows.
-  lab::installInterruptHandler();
   const Outputs out = openOutputs(o);
   output::CsvWriter* const csv = out.csv.get();
   output::CsvWriter* const trajectory = out.trajectory.get();
@@ -232,7 +233,8 @@ Command addRunCommand(CLI::App& app) {
       "a relative residual above 10, or a diagnostic is not finite: the run stops,\n"
       "stderr names the step, time and reason, and the CSV holds every step before it (finite numbers\n"
       "only); 4 an output file or stdout could not be written (disk full); 130 SIGINT, SIGTERM or SIGHUP: the run stops at\n"
-      "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"
+      "a step boundary (a long step is cut short and not written) and the files hold complete rows; while the scene\n"
+      "file is read, nothing is written. An output file is locked while it is written:\n"
       "a second run given the same path is refused (exit 2).");
   return {sub, [options](const Context&) { return run(*options); }};
 }

@@ -213,12 +213,14 @@ TEST(DemoCommandLine, BadSceneOptionsGetParticleLabsMessages) {
 TEST(DemoCommandLine, BadCompareValuesAreNamedInOneLine) {
   const std::string dir = outputDirectory("BadCompare");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"rk4:x,euler", "--compare: dt in 'rk4:x' must be a finite number > 0"},
-      {"rk4:0.01s,euler", "--compare: dt in 'rk4:0.01s' must be a finite number > 0"},
+      {"rk4:x,euler", "--compare: dt in 'rk4:x': expected a decimal number, got 'x'"},
+      {"rk4:0.01s,euler", "--compare: dt in 'rk4:0.01s': expected a decimal number, got '0.01s'"},
+      {"rk4:0x1p-8,euler", "--compare: dt in 'rk4:0x1p-8': expected a decimal number, got '0x1p-8'"},
+      {"rk4:1e-3000,euler", "--compare: dt in 'rk4:1e-3000': '1e-3000' is too small for a double: it would read as 0"},
       {"rk4:-0.01,euler", "--compare: dt in 'rk4:-0.01' must be a finite number > 0"},
       {"rk4:inf,euler", "--compare: dt in 'rk4:inf' must be a finite number > 0"},
       {"rk4:nan,euler", "--compare: dt in 'rk4:nan' must be a finite number > 0"},
-      {"rk4:,euler", "--compare: dt in 'rk4:' must be a finite number > 0"},
+      {"rk4:,euler", "--compare: dt in 'rk4:': expected a decimal number, got ''"},
       {"euler,rk5", "--compare: unknown integrator 'rk5' (valid: euler, "},
       {":0.01,euler", "--compare: unknown integrator '' (valid: euler, "},
       {"euler", "--compare: "},
