@@ -265,6 +265,10 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   evaluations_ = StepStats{};
   solver_.settings.validate();
   tearing_.settings.validate();
+  threadUse_.settings.validate();
+  const int threads = threadUse_.begin(threadCount());
+  if (threadUse_.releasesThreads()) releaseIdleThreads();
+  const ThreadCountScope scope(threads);
   for (Force* force : clocked_) force->setTime(time_);
   const ContactScene scene = contactScene();
   const bool collideAfter = scene.colliding() && !integrator.collidesInSubsteps();
@@ -281,6 +285,8 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   tearing_.tear(*this);
   // Advance the clock.
   time_ += dt;
+  threadUse_.end();
+  stats.threads = threads;
   lastStepStats_ = stats;
   return stats;
 }

@@ -10,8 +10,10 @@
 // Repetitions are interleaved (--benchmark_enable_random_interleaving) and
 // at the end the ratio engine / reference of the medians of the CPU time per
 // step is printed for each size, with the ratio's range over the repetitions.
-// engine-2threads/<n>: the engine on 2 threads (wall time); the speed-up
-// 1 -> 2 threads printed is the ratio of the wall-time medians.
+// engine-2threads/<n>: the engine on at most 2 threads (wall time; it runs a
+// step on one while two are not faster, and its `threads` counter gives the
+// mean count its steps ran on); the speed-up 1 -> 2 threads printed is the
+// ratio of the wall-time medians.
 //
 //   ./build/tests/bench_cloth_reference --benchmark_repetitions=7
 //     --benchmark_enable_random_interleaving=true (one command line)
@@ -148,10 +150,16 @@ void engineStep(benchmark::State& state, int size, int threads) {
   particles::ParticleSystem s = warmCloth(size);
   particles::setThreadCount(threads);
   particles::Rk4Integrator rk4;
-  for (auto _ : state) s.step(rk4, kDt);
+  long steps = 0, threadSteps = 0;
+  for (auto _ : state) {
+    threadSteps += s.step(rk4, kDt).threads;
+    ++steps;
+  }
   particles::setThreadCount(1);
   benchmark::DoNotOptimize(s.positions().data());
   state.counters["particles"] = s.size();
+  // The threads the steps ran on, on average (ParticleSystem::step chooses: particles/thread_use.h).
+  state.counters["threads"] = steps ? static_cast<double>(threadSteps) / steps : 0.0;
 }
 
 void referenceStep(benchmark::State& state, int size) {
