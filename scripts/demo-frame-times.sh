@@ -11,10 +11,10 @@
 # text and panel's drawing on the last timed frame, and the paced ratio.
 # No timing is asserted.
 #   bash scripts/demo-frame-times.sh [--load N] [--threads N] [--key K] [FRAMES]
-# --load N: N busy processes (`yes >/dev/null`) compete for the CPUs while it
-# runs (started and stopped by the script); --threads N: the demo's
-# --threads (default: its own, the CPUs of the affinity mask); --key K: that
-# number key's scene only.
+# --load N: N busy processes (`yes demo-frame-times >/dev/null`, started and
+# stopped by the script) compete for the CPUs while it runs; --threads N: the
+# demo's --threads (default: its own, the CPUs of the affinity mask); --key K:
+# that number key's scene only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 demo=./build/demos/particle-demo
@@ -42,7 +42,7 @@ stop_busy() {
 trap 'stop_busy; rm -f "$log"' EXIT
 trap 'exit 130' INT TERM
 for ((c = 0; c < load; ++c)); do
-  yes >/dev/null &
+  yes demo-frame-times >/dev/null &
   busy+=($!)
 done
 run() {

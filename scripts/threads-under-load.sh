@@ -4,7 +4,8 @@
 # xpbd at 1/60 s with its hanging lines (the demo's key 0), each stepped by
 # `particle-lab run --csv` with --threads 1, --threads 2 and the default
 # (the CPUs of the affinity mask), while 0, 1 and 2 busy processes that the
-# script starts and stops itself (`yes >/dev/null`) compete for the CPUs.
+# script starts and stops itself (`yes threads-under-load >/dev/null`)
+# compete for the CPUs.
 # A run's time is the median of its rows' step_us; each case prints the
 # medians over `rounds` runs (the three thread settings in turn, their
 # order rotated each round) and the --threads 2 and default times over the
@@ -51,8 +52,8 @@ run() {
     { echo "threads-under-load: particle-lab run $* failed: $(head -c 300 "$work/run.err")" >&2; exit 1; }
   awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next } NR > 2 { print $col["step_us"] }' \
     "$work/run.csv" | median
-  awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next } NR > 2 { n++; more += $col["threads"] > 1 }
-           END { print more / n }' "$work/run.csv"
+  awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) if ($k == "threads") c = k; next } NR > 2 { n++; if (c) more += $c > 1 }
+           END { print c ? more / n : -1 }' "$work/run.csv"  # -1: a CSV without the threads column
 }
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
@@ -62,7 +63,7 @@ printf '%-22s %4s %10s %20s %20s %8s %s\n' case busy "1 thread" "--threads 2" "d
 settings=("--threads 1" "--threads 2" "")
 for competitors in 0 1 2; do
   for ((c = 0; c < competitors; ++c)); do
-    yes >/dev/null &
+    yes threads-under-load >/dev/null &  # named, so that a test can tell they are gone
     busy+=($!)
   done
   sleep 1  # the busy processes get going
@@ -85,8 +86,9 @@ for competitors in 0 1 2; do
     default=$(median <"$work/times-2")
     awk -v name="$name" -v busy="$competitors" -v one="$one" -v two="$two" -v def="$default" \
       -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" \
-      'BEGIN { printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %7.0f%% %s\n",
-               name, busy, one, two, two / one, def, def / one, 100 * more, load }'
+      'BEGIN { used = more < 0 ? "-" : sprintf("%.0f%%", 100 * more)
+               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %s\n",
+                      name, busy, one, two, two / one, def, def / one, used, load }'
   done
   stop_busy
 done

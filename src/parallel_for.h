@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "particles/threads.h"
 #include "team_barrier.h"
 
 // The engine's parallel loops: body(i) for every i in [0, n), or
@@ -38,6 +39,7 @@ struct Team {
 // there and not in libgomp's join, which spins.
 template <class Body>
 void parallelTeam(int threads, const Body& body) {
+  countParallelRegion();
   TeamBarrier barrier;
 #pragma omp parallel num_threads(threads)
   {

@@ -266,9 +266,10 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   solver_.settings.validate();
   tearing_.settings.validate();
   threadUse_.settings.validate();
-  const int threads = threadUse_.begin(threadCount());
+  const int threads = threadUse_.begin(threadCount(), structureStamp_);
   if (threadUse_.releasesThreads()) releaseIdleThreads();
   const ThreadCountScope scope(threads);
+  const long long regions = parallelRegions();
   for (Force* force : clocked_) force->setTime(time_);
   const ContactScene scene = contactScene();
   const bool collideAfter = scene.colliding() && !integrator.collidesInSubsteps();
@@ -285,8 +286,9 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   tearing_.tear(*this);
   // Advance the clock.
   time_ += dt;
-  threadUse_.end();
-  stats.threads = threads;
+  const bool parallel = parallelRegions() > regions;
+  threadUse_.end(parallel);
+  stats.threads = parallel ? threads : 1;
   lastStepStats_ = stats;
   return stats;
 }

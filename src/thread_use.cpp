@@ -23,7 +23,11 @@ double steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// The second of two empty regions: the first starts the threads (after a
+// release they are created again), the second is what a step's hand-offs
+// then cost.
 double emptyRegionSeconds(int threads) {
+  parallelTeam(threads, [](const Team&) {});
   const double start = steadySeconds();
   parallelTeam(threads, [](const Team&) {});
   return steadySeconds() - start;
@@ -57,7 +61,11 @@ void ThreadUseSettings::validate() const {
 ThreadUse::ThreadUse() : clock(steadySeconds), handoff(emptyRegionSeconds) {}
 
 // The clock is read once a step at each end: a decision uses the time the last step ended.
-int ThreadUse::begin(int most) {
+int ThreadUse::begin(int most, std::uint64_t structure) {
+  if (structure != structure_) {
+    structure_ = structure;
+    nothingToShare_ = false;
+  }
   if (most != most_) {  // a new setting: start over on one thread, probing once the history is in
     most_ = most;
     present_ = 1;
@@ -73,7 +81,7 @@ int ThreadUse::begin(int most) {
   if (most > 1 && !settings.adaptive) {
     threads = most;
   } else if (most > 1) {
-    if (!probing_ && static_cast<int>(presentTimes_.size()) >= settings.history && probeDue()) {
+    if (!probing_ && !nothingToShare_ && static_cast<int>(presentTimes_.size()) >= settings.history && probeDue()) {
       probing_ = true;
       if (present_ == 1) {
         const double trip = handoff(most);
@@ -100,11 +108,18 @@ bool ThreadUse::probeDue() const {
   return otherMedian_ < 0.0 || median(presentTimes_) > otherMedian_;
 }
 
-void ThreadUse::end() {
+void ThreadUse::end(bool parallel) {
   previous_ = threads_;
   if (most_ <= 1 || !settings.adaptive) return;
   now_ = clock();
   const double seconds = now_ - started_;
+  if (threads_ > 1 && !parallel) {  // nothing to share: one thread, no more probes for this structure
+    nothingToShare_ = true;
+    probing_ = false;
+    probeTimes_.clear();
+    present_ = 1;
+    return;
+  }
   if (probing_) {
     probeTimes_.push_back(seconds);
     const bool hopeless = seconds > settings.abandon * median(presentTimes_);

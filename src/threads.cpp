@@ -15,6 +15,7 @@ namespace {
 std::atomic<int> gThreads{1};
 // The count of the innermost ThreadCountScope open on this thread, 0 for none.
 thread_local int tScoped = 0;
+thread_local long long tRegions = 0;
 }  // namespace
 
 void setThreadCount(int count) {
@@ -30,6 +31,9 @@ ThreadCountScope::ThreadCountScope(int count) : previous_(tScoped) {
 }
 
 ThreadCountScope::~ThreadCountScope() { tScoped = previous_; }
+
+long long parallelRegions() { return tRegions; }
+void countParallelRegion() { ++tRegions; }
 
 void releaseIdleThreads() {
   if (omp_in_parallel()) return;

@@ -6,6 +6,7 @@
 // depends on the machine's speed or load.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -125,6 +126,28 @@ TEST(ThreadUse, AHopelessProbeEndsAfterOneStep) {
   EXPECT_EQ(counts[use.settings.history], 2);
   EXPECT_EQ(counts[use.settings.history + 1], 1);
   EXPECT_EQ(counts[use.settings.history + 2], 1);
+}
+
+// A step on two threads that entered no parallel region (a system too small
+// for any): back on one thread, with no further probe (nor hand-off) until
+// the structure changes.
+TEST(ThreadUse, AStepWithNothingToShareEndsTheProbesUntilTheStructureChanges) {
+  SimulatedMachine machine;
+  ThreadUse use = simulated(machine);
+  std::vector<int> counts;
+  auto step = [&](std::uint64_t structure, bool parallel) {
+    const int threads = use.begin(2, structure);
+    machine.now += machine.stepTime(1);
+    use.end(parallel && threads > 1);
+    counts.push_back(threads);
+  };
+  for (int k = 0; k < 500; ++k) step(7, false);
+  EXPECT_EQ(stepsOn(counts, 2), 1) << "the first probe's step, then none";
+  EXPECT_EQ(machine.handoffs, 1);
+  counts.clear();
+  for (int k = 0; k < 20; ++k) step(8, true);  // a new structure with work to share
+  EXPECT_GE(stepsOn(counts, 2), 1) << "probed again";
+  EXPECT_EQ(machine.handoffs, 2);
 }
 
 // Not adaptive: every step on the most threads. One thread at most: one, and no probe.

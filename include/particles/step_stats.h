@@ -29,7 +29,8 @@ struct StepStats {
   int contactIterations = 0;     // sweeps of the coupled contact–constraint solve, summed
   double contactResidual = 0.0;  // largest velocity change (m/s) in the last sweep of any coupled solve
   int directFallbacks = 0;       // constraint solves asked of CG and solved directly (SolverSettings::maxCgWork)
-  int threads = 1;  // threads the step's parallel loops used (ParticleSystem::step's choice, particles/thread_use.h)
+  int threads = 1;  // threads the step's parallel loops ran on (ParticleSystem::step's choice,
+                    // particles/thread_use.h; 1 when the step entered no parallel region)
   StepFailure failure = StepFailure::None;  // the first failure, if any
 
   // Sums the counts, keeps the largest residual, the most threads and the

@@ -15,13 +15,17 @@
 //   probes that lost cost (at most `probeShare` of the time spent stepping,
 //   between `quickestRetry` and `longestRetry`), so the threads come back
 //   within seconds of the machine getting quiet. It starts with one hand-off:
-//   an empty parallel region on the threads. If that alone takes `handoff`
-//   times a one-thread step, a step of many hand-offs cannot be faster, and
-//   the probe ends there (on a machine far busier than its cores a probe
-//   step could take a hundred one-thread steps). A probe step slower than
-//   `abandon` times the present median ends its probe too.
+//   an empty parallel region on the threads (after one that starts them). If
+//   that alone takes `handoff` times a one-thread step, a step of many
+//   hand-offs cannot be faster, and the probe ends there (on a machine far
+//   busier than its cores a probe step took 140 one-thread steps). A probe
+//   step slower than `abandon` times the present median ends its probe too.
+// A step on more threads that entered no parallel region (a system below
+// every parallel loop's threshold) ends the probing until the system's
+// structure changes: its threads have nothing to share.
 // The results are the same bits on any count (particles/threads.h), so the
 // choice changes the time only.
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -47,17 +51,20 @@ class ThreadUse {
   // Wall time in seconds; a steady clock unless a test gives its own.
   std::function<double()> clock;
   // The wall time of one hand-off on `threads` threads: an empty parallel
-  // region (the threads start, meet at its end's barrier and part), unless a test gives its own.
+  // region (the threads start, meet at its end's barrier and part) after one
+  // that starts them, unless a test gives its own.
   std::function<double(int threads)> handoff;
 
   ThreadUse();
-  // The threads for the next step (1 ≤ threads ≤ most), and the start of its timing.
-  int begin(int most);
+  // The threads for the next step (1 ≤ threads ≤ most) of a system whose
+  // structure stamp is `structure`, and the start of its timing.
+  int begin(int most, std::uint64_t structure = 0);
   // Whether the step begin() chose follows one on more threads (or a
   // hand-off): the caller releases the idle threads (releaseIdleThreads) before stepping.
   bool releasesThreads() const { return release_; }
-  // The end of the step begin() chose: its wall time is recorded.
-  void end();
+  // The end of the step begin() chose, which entered a parallel region or
+  // not: its wall time is recorded.
+  void end(bool parallel = true);
 
  private:
   bool probeDue() const;
@@ -79,6 +86,8 @@ class ThreadUse {
   double nextProbe_ = 0.0;     // clock time from which one thread may probe more
   double retry_ = 0.0;         // the wait after the last probe of more threads that lost
   int lostInARow_ = 0;         // probes of more threads lost since more threads last won
+  std::uint64_t structure_ = 0;
+  bool nothingToShare_ = false;  // a step on more threads entered no region: no probes
 };
 
 }  // namespace particles

@@ -30,6 +30,12 @@ class ThreadCountScope {
   int previous_;
 };
 
+// The parallel regions entered from this thread so far (parallel_for.h's
+// parallelTeam counts each): a step that entered none had no work its
+// threads could share.
+long long parallelRegions();
+void countParallelRegion();
+
 // Ends the OpenMP threads that this thread's parallel regions started and
 // that now wait for its next region. libgomp's idle threads spin for 300000
 // pauses before they sleep (3 ms on bare metal, 0.1 s on a VM that traps
