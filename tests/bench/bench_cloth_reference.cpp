@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "cloth_grid.h"
+#include "plain_rk4.h"
 #include "repetition_reporter.h"
 #include "particles/integrators/rk4.h"
 #include "particles/threads.h"
@@ -39,13 +40,15 @@ constexpr int kSizes[] = {64, 128, 256};
 constexpr double kSpacing = 0.05;  // m
 
 // The reference: the same physics written as simply as possible.
+using bench::PlainRk4;
 struct PlainCloth {
   int n = 0;
   std::vector<int> a, b;
   std::vector<double> rest, ks, kd;
   std::vector<double> mass, w;
   double gravity = 0.0, drag = 0.0;
-  std::vector<double> x, v, x0, v0, xs, vs, dx, dv, acc, f;
+  std::vector<double> acc, f;
+  PlainRk4 state;  // x, v and the RK4 stages
 
   explicit PlainCloth(const particles::ParticleSystem& s) {
     n = s.size();
@@ -61,9 +64,10 @@ struct PlainCloth {
     drag = bench::kClothDrag;
     mass.assign(s.masses().data(), s.masses().data() + n);
     w.assign(s.inverseMasses().data(), s.inverseMasses().data() + n);
-    x.assign(s.positions().data(), s.positions().data() + 2 * n);
-    v.assign(s.velocities().data(), s.velocities().data() + 2 * n);
-    for (auto* vec : {&x0, &v0, &xs, &vs, &dx, &dv, &acc, &f}) vec->assign(2 * n, 0.0);
+    state.x.assign(s.positions().data(), s.positions().data() + 2 * n);
+    state.v.assign(s.velocities().data(), s.velocities().data() + 2 * n);
+    state.resize(n);
+    for (auto* vec : {&acc, &f}) vec->assign(2 * n, 0.0);
   }
 
   void accel(const std::vector<double>& px, const std::vector<double>& pv) {
@@ -94,32 +98,7 @@ struct PlainCloth {
   }
 
   void step(double h) {
-    const int m = 2 * n;
-    x0 = x;
-    v0 = v;
-    accel(x0, v0);
-    for (int k = 0; k < m; ++k) {
-      dx[k] = v0[k];
-      dv[k] = acc[k];
-      xs[k] = x0[k] + (0.5 * h) * v0[k];
-      vs[k] = v0[k] + (0.5 * h) * acc[k];
-    }
-    for (double c : {0.5, 1.0}) {
-      accel(xs, vs);
-      for (int k = 0; k < m; ++k) {
-        dx[k] += 2.0 * vs[k];
-        dv[k] += 2.0 * acc[k];
-        xs[k] = x0[k] + (c * h) * vs[k];
-        vs[k] = v0[k] + (c * h) * acc[k];
-      }
-    }
-    accel(xs, vs);
-    for (int k = 0; k < m; ++k) {
-      dx[k] += vs[k];
-      dv[k] += acc[k];
-      x[k] = x0[k] + (h / 6.0) * dx[k];
-      v[k] = v0[k] + (h / 6.0) * dv[k];
-    }
+    state.step(h, [&](const std::vector<double>& px, const std::vector<double>& pv) { accel(px, pv); }, acc);
   }
 };
 
@@ -141,7 +120,8 @@ double checkDifference(int size) {
   }
   double worst = 0.0;
   for (int k = 0; k < 2 * s.size(); ++k)
-    worst = std::max({worst, std::abs(s.positions()[k] - plain.x[k]), std::abs(s.velocities()[k] - plain.v[k])});
+    worst = std::max({worst, std::abs(s.positions()[k] - plain.state.x[k]),
+                      std::abs(s.velocities()[k] - plain.state.v[k])});
   return worst;
 }
 
@@ -165,7 +145,7 @@ void engineStep(benchmark::State& state, int size, int threads) {
 void referenceStep(benchmark::State& state, int size) {
   PlainCloth plain(warmCloth(size));
   for (auto _ : state) plain.step(kDt);
-  benchmark::DoNotOptimize(plain.x.data());
+  benchmark::DoNotOptimize(plain.state.x.data());
   state.counters["particles"] = plain.n;
 }
 
