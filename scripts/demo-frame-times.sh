@@ -14,10 +14,10 @@
 # --load N: N busy processes (`yes demo-frame-times >/dev/null`, started and
 # stopped by the script) compete for the CPUs while it runs; --threads N: the
 # demo's --threads (default: its own, the CPUs of the affinity mask); --key K:
-# that number key's scene only.
+# that number key's scene only. PARTICLE_DEMO=path measures another build of the demo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-demo=./build/demos/particle-demo
+demo=${PARTICLE_DEMO:-./build/demos/particle-demo}
 load=0 threads=() only=
 while [ $# -gt 0 ]; do
   case $1 in

@@ -85,3 +85,8 @@ awk 'BEGIN {
 run --scene-file "$built/patch.json" --frames 120 --screenshot "$out/demo-built.png"
 rm -rf "$built"
 echo "wrote $out/demo-cloth.png $out/demo-hair.png $out/demo-compare.png $out/demo-torn-wind.png $out/demo-built.png"
+
+# The web page: the picture its screenshot test took in headless Chromium
+# (tests/web, ScreenshotParticlesWhereTheLogSays), when the web tests have run.
+web=build/tests/web/output/page.png
+if [ -f "$web" ]; then cp "$web" "$out/demo-web.png"; else echo "no $web: run the web tests (ctest -L web) for the page's picture" >&2; fi

@@ -1,5 +1,7 @@
 #pragma once
+#ifdef _OPENMP
 #include <omp.h>
+#endif
 
 #include <algorithm>
 #include <limits>
@@ -41,12 +43,18 @@ template <class Body>
 void parallelTeam(int threads, const Body& body) {
   countParallelRegion();
   TeamBarrier barrier;
+#ifdef _OPENMP
 #pragma omp parallel num_threads(threads)
   {
     const Team team{omp_get_thread_num(), omp_get_num_threads(), barrier};
     body(team);
     team.wait();
   }
+#else
+  // A build without OpenMP (the WebAssembly page): a team of one.
+  (void)threads;
+  body(Team{0, 1, barrier});
+#endif
 }
 
 template <class Body>

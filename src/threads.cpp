@@ -1,6 +1,8 @@
 #include "particles/threads.h"
 
+#ifdef _OPENMP
 #include <omp.h>
+#endif
 #include <sched.h>
 
 #include <atomic>
@@ -36,17 +38,21 @@ long long parallelRegions() { return tRegions; }
 void countParallelRegion() { ++tRegions; }
 
 void releaseIdleThreads() {
+#ifdef _OPENMP  // without OpenMP there are no other threads
   if (omp_in_parallel()) return;
   omp_pause_resource_all(omp_pause_soft);
+#endif
 }
 
 int affinityCpuCount() {
+#ifndef __EMSCRIPTEN__  // a browser has no affinity mask
   cpu_set_t set;
   CPU_ZERO(&set);
   if (sched_getaffinity(0, sizeof(set), &set) == 0) {
     const int n = CPU_COUNT(&set);
     if (n > 0) return n;
   }
+#endif
   const unsigned hw = std::thread::hardware_concurrency();
   return hw > 0 ? static_cast<int>(hw) : 1;
 }
