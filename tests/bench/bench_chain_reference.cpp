@@ -179,15 +179,7 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&reporter);
   for (int size : kSizes) {
     const std::string n = std::to_string(size);
-    const auto& e = reporter.cpu["engine/" + n];
-    const auto& r = reporter.cpu["reference/" + n];
-    if (e.empty() || r.empty()) continue;
-    std::vector<double> ratios;
-    for (std::size_t k = 0; k < std::min(e.size(), r.size()); ++k) ratios.push_back(e[k] / r[k]);
-    std::printf("ratio engine/reference %d particles: median %.3f (repetitions %.3f-%.3f), engine %.2f us, "
-                "reference %.2f us\n",
-                size, bench::median(e) / bench::median(r), *std::min_element(ratios.begin(), ratios.end()),
-                *std::max_element(ratios.begin(), ratios.end()), bench::median(e), bench::median(r));
+    bench::printRatio(reporter, "engine/" + n, "reference/" + n, n + " particles");
   }
   benchmark::Shutdown();
   return 0;
