@@ -9,8 +9,10 @@
 # A run's time is the median of its rows' step_us; each case prints the
 # medians over `rounds` runs (the three thread settings in turn, their
 # order rotated each round) and the --threads 2 and default times over the
-# one-thread time measured in the same conditions. The last column is the
-# share of steps that ran on more than one thread (the CSV's threads).
+# one-thread time measured in the same conditions, then the share of
+# --threads 2's steps that ran on more than one thread (the CSV's threads)
+# and the range over the rounds of each round's --threads 2 and default time
+# over its one-thread time (the spread of the ratios).
 #   bash scripts/threads-under-load.sh [build-dir] [rounds] [step-scale]
 # (defaults: build, 5, 1: about a second per run; a step-scale of 0.01 is a
 # quick check of the script itself.) No number here is asserted anywhere.
@@ -59,7 +61,8 @@ run() {
 median() { sort -g | awk '{ v[NR] = $1 } END { print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 echo "threads under load: $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)); medians over $rounds runs of each run's median step_us"
-printf '%-22s %4s %10s %20s %20s %8s %s\n' case busy "1 thread" "--threads 2" "default" ">1 used" "load average"
+printf '%-22s %4s %10s %20s %20s %8s %11s %11s %s\n' case busy "1 thread" "--threads 2" "default" ">1 used" \
+  "2/1 range" "def/1 range" "load average"
 settings=("--threads 1" "--threads 2" "")
 for competitors in 0 1 2; do
   for ((c = 0; c < competitors; ++c)); do
@@ -84,11 +87,17 @@ for competitors in 0 1 2; do
     one=$(median <"$work/times-0")
     two=$(median <"$work/times-1")
     default=$(median <"$work/times-2")
+    # Line r of each times file is round r's run: the ratios of one round, then their ranges.
+    spread=$(paste "$work/times-0" "$work/times-1" "$work/times-2" |
+      awk '{ a = $2 / $1; b = $3 / $1
+             if (NR == 1 || a < alo) alo = a; if (NR == 1 || a > ahi) ahi = a
+             if (NR == 1 || b < blo) blo = b; if (NR == 1 || b > bhi) bhi = b }
+           END { printf "%.2f-%.2f %.2f-%.2f", alo, ahi, blo, bhi }')
     awk -v name="$name" -v busy="$competitors" -v one="$one" -v two="$two" -v def="$default" \
-      -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" \
-      'BEGIN { used = more < 0 ? "-" : sprintf("%.0f%%", 100 * more)
-               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %s\n",
-                      name, busy, one, two, two / one, def, def / one, used, load }'
+      -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" -v spread="$spread" \
+      'BEGIN { used = more < 0 ? "-" : sprintf("%.0f%%", 100 * more); split(spread, range, " ")
+               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %11s %11s %s\n",
+                      name, busy, one, two, two / one, def, def / one, used, range[1], range[2], load }'
   done
   stop_busy
 done
