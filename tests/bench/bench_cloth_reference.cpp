@@ -113,16 +113,7 @@ particles::ParticleSystem warmCloth(int size) {
 double checkDifference(int size) {
   particles::ParticleSystem s = warmCloth(size);
   PlainCloth plain(s);
-  particles::Rk4Integrator rk4;
-  for (int k = 0; k < kCheckSteps; ++k) {
-    s.step(rk4, kDt);
-    plain.step(kDt);
-  }
-  double worst = 0.0;
-  for (int k = 0; k < 2 * s.size(); ++k)
-    worst = std::max({worst, std::abs(s.positions()[k] - plain.state.x[k]),
-                      std::abs(s.velocities()[k] - plain.state.v[k])});
-  return worst;
+  return bench::largestDifferenceAfter(kCheckSteps, kDt, s, plain);
 }
 
 void engineStep(benchmark::State& state, int size, int threads) {

@@ -3,7 +3,12 @@
 // flat arrays, plain loops, the classical four stages
 //   k1 = f(x0, v0), k2 = f(x0 + h/2 v1, …), k3 = f(x0 + h/2 v2, …), k4 = f(x0 + h v3, …),
 //   x = x0 + h/6 (v0 + 2 v1 + 2 v2 + v3),  v = v0 + h/6 (a0 + 2 a1 + 2 a2 + a3).
+#include <algorithm>
+#include <cmath>
 #include <vector>
+
+#include "particles/integrators/rk4.h"
+#include "particles/particle_system.h"
 
 namespace bench {
 
@@ -46,5 +51,22 @@ struct PlainRk4 {
     }
   }
 };
+
+// The engine (Rk4Integrator on s) and a plain reference (plain.step(dt),
+// its PlainRk4 in plain.state) stepped `steps` times from the same state: the
+// largest |engine − reference| of any coordinate then.
+template <class Plain>
+double largestDifferenceAfter(int steps, double dt, particles::ParticleSystem& s, Plain& plain) {
+  particles::Rk4Integrator rk4;
+  for (int k = 0; k < steps; ++k) {
+    s.step(rk4, dt);
+    plain.step(dt);
+  }
+  double worst = 0.0;
+  for (int k = 0; k < 2 * s.size(); ++k)
+    worst = std::max({worst, std::abs(s.positions()[k] - plain.state.x[k]),
+                      std::abs(s.velocities()[k] - plain.state.v[k])});
+  return worst;
+}
 
 }  // namespace bench
