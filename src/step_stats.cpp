@@ -27,6 +27,7 @@ StepStats& StepStats::operator+=(const StepStats& other) {
   contactIterations += other.contactIterations;
   contactResidual = std::max(contactResidual, other.contactResidual);
   directFallbacks += other.directFallbacks;
+  threads = std::max(threads, other.threads);
   if (failure == StepFailure::None) failure = other.failure;
   return *this;
 }

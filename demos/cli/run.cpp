@@ -11,6 +11,7 @@
 #include "lab/lab.h"
 #include "options/option_checks.h"
 #include "options/scene_source.h"
+#include "options/thread_option.h"
 #include "output/output_file.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
@@ -94,7 +95,9 @@ int run(const RunOptions& o) {
   // stops at the next step boundary with the files closed on complete rows.
   lab::installInterruptHandler();
   // Check every input before the first output.
-  particles::setThreadCount(o.threads);
+  std::string threadsNote;
+  particles::setThreadCount(options::threadsWithinAffinity(o.threads, threadsNote));
+  if (!threadsNote.empty()) std::cerr << "particle-lab: note: " << threadsNote << '\n';
   scenes::Scene scene = o.source.load();
   const std::unique_ptr<particles::Integrator> integrator = chosenIntegrator(o, scene);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;  // both checked > 0 as read
@@ -188,11 +191,12 @@ void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& option
 void addOutputOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options) {
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
-                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
+                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us,threads "
                   "(cg_iterations: summed over every solve of the step; cg_residual: the largest relative "
                   "residual of them; solves: linear solves; force_evaluations: evaluations of every force; "
                   "internal_steps: accepted steps of an adaptive scheme, 1 otherwise; step_us: wall time of "
-                  "the step's simulation, output excluded)")
+                  "the step's simulation, output excluded; threads: the threads the step ran on, at most "
+                  "--threads)")
       ->check(options::outputPath());
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)")
@@ -200,11 +204,7 @@ void addOutputOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options)
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
       ->capture_default_str()
       ->check(options::decimalInteger(1, kMaxSteps));
-  sub->add_option("--threads", options->threads,
-                  "threads of the engine's parallel loops (the same results on any count; 1 starts no thread; "
-                  "default: the CPUs of the affinity mask), a decimal integer in [1, 1024]")
-      ->capture_default_str()
-      ->check(options::decimalInteger(1, 1024));
+  options::addThreadsOption(*sub, options->threads);
   sub->add_option("--diagnostics-every", options->diagnosticsEvery,
                   "measure the diagnostics (energies, constraint error), check divergence and write the --csv "
                   "row every K steps (and at step 0); a divergence is then found up to K-1 steps late; a "

@@ -10,6 +10,7 @@
 
 #include "decimal_number.h"
 #include "options/option_checks.h"
+#include "options/thread_option.h"
 #include "options/usage.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
@@ -122,11 +123,7 @@ void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
                  "simulated time is dropped (slow motion), and a frame takes at least one step")
       ->capture_default_str()
       ->check(options::numberInRange(0.0, 1e6));
-  cli.add_option("--threads", o.threads,
-                 "threads of the engine's parallel loops (the same results on any count; 1 starts no thread; "
-                 "default: the CPUs of the affinity mask), a decimal integer in [1, 1024]")
-      ->capture_default_str()
-      ->check(options::decimalInteger(1, 1024));
+  options::addThreadsOption(cli, o.threads);
 }
 
 // How the window starts: panel, pause, pacing, size.

@@ -333,6 +333,9 @@ TEST(DemoKeys, KeyZeroRunsTheStiffClothWithXpbdAt60HzWithinItsStrainBound) {
       EXPECT_NE(top.find("solves each column with its rail"), std::string::npos) << top;
     }
     EXPECT_EQ(top.find("onto the nail"), std::string::npos) << top;
+    // The HUD's threads: the last step's and the most (--threads 1).
+    ASSERT_NE(log.overlay("hud"), nullptr);
+    EXPECT_NE(log.overlay("hud")->text.find("threads 1/1"), std::string::npos) << log.overlay("hud")->text;
     EXPECT_LE(worstGridStrain(pane, 64), 0.003);
     EXPECT_GT(worstGridStrain(pane, 64), 1e-4);  // loaded: the bound is not met by standing still
   }
