@@ -1,8 +1,10 @@
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
 #include "join_names.h"
+#include "particles/check.h"
 #include "scene.h"
 #include "scenes/cloth.h"
 #include "scenes/hair.h"
@@ -13,6 +15,7 @@
 #include "scenes/taut_chain.h"
 #include "scenes/test_chain.h"
 #include "scenes/wire.h"
+#include "starting_overlap.h"
 
 namespace scenes {
 
@@ -65,13 +68,36 @@ const std::vector<SceneInfo>& sceneTable() {
   return table;
 }
 
+namespace {
+
+// Parameters that start a particle inside a collider (starting_overlap.h) are
+// refused as the scene-file reader refuses such a file, so that a built-in
+// scene never starts gaining energy from a push out of a wall and every
+// export reads back.
+void refuseStartingOverlap(const Scene& scene, const std::map<std::string, std::string>& overrides) {
+  const std::optional<StartingOverlap> overlap = firstStartingOverlap(*scene.system);
+  if (!overlap) return;
+  std::string given;
+  for (const auto& [key, value] : overrides) given += (given.empty() ? "" : " ") + key + "=" + value;
+  throw std::invalid_argument(
+      "particle " + std::to_string(overlap->particle) + " starts inside collider " + std::to_string(overlap->collider) +
+      " (a " + particles::colliderName(scene.system->colliders()[overlap->collider].shape) + ") by " +
+      particles::formatValue(overlap->depth) + " with " + (given.empty() ? "the preset's parameters" : given) +
+      ": a contact cannot push it out without adding energy; choose parameters that start every particle "
+      "clear of the colliders");
+}
+
+}  // namespace
+
 Scene buildScene(const std::string& name, const std::map<std::string, std::string>& overrides,
                  const std::string& preset) {
   presetIndex(preset);  // an unknown preset is reported before an unknown scene
   for (const SceneInfo& info : sceneTable()) {
     if (name != info.name) continue;
     try {
-      return info.build(SceneParams(info.params, overrides, preset));
+      Scene scene = info.build(SceneParams(info.params, overrides, preset));
+      refuseStartingOverlap(scene, overrides);
+      return scene;
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("scene '" + name + "': " + e.what());
     }

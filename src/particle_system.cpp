@@ -287,6 +287,11 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   evaluations_ = StepStats{};
   solver_.settings.validate();
   tearing_.settings.validate();
+  threadUse_.settings.validate();
+  const int threads = threadUse_.begin(threadCount(), structureStamp_);
+  if (threadUse_.releasesThreads()) releaseIdleThreads();
+  const ThreadCountScope scope(threads);
+  const long long regions = parallelRegions();
   for (Force* force : clocked_) force->setTime(time_);
   const ContactScene scene = contactScene();
   const bool awake = !islands_->allAsleep();
@@ -312,6 +317,9 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   tearing_.tear(*this);
   // Advance the clock.
   time_ += dt;
+  const bool parallel = parallelRegions() > regions;
+  threadUse_.end(parallel);
+  stats.threads = parallel ? threads : 1;
   lastStepStats_ = stats;
   return stats;
 }

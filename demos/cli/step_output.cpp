@@ -52,7 +52,7 @@ void writeDiagnostics(output::CsvWriter& csv, const Diagnostics& d, double stepM
   const particles::StepStats& stats = d.stats;
   csv << d.step << d.time << d.kinetic << d.potential << d.kinetic + d.potential << d.constraintError
       << stats.cgIterations << stats.maxResidual << stats.solves << stats.forceEvaluations << stats.internalSteps
-      << stepMicros;
+      << stepMicros << stats.threads;
   csv.endRow();
 }
 

@@ -42,10 +42,12 @@ double sceneLength(const scenes::Scene& scene);
 // The columns after max_constraint_error come from the step's StepStats:
 // cg_iterations summed over every solve of the step, cg_residual the largest
 // relative residual of any of them, solves, force_evaluations and
-// internal_steps (accepted steps of an adaptive scheme; 1 otherwise).
+// internal_steps (accepted steps of an adaptive scheme; 1 otherwise); then
+// the step's wall time and the threads it ran on (StepStats::threads).
 inline const std::vector<std::string> kDiagnosticsColumns = {
-    "step",         "t",      "kinetic",           "potential",      "total_energy", "max_constraint_error",
-    "cg_iterations", "cg_residual", "solves", "force_evaluations", "internal_steps", "step_us"};
+    "step",          "t",           "kinetic", "potential",         "total_energy",   "max_constraint_error",
+    "cg_iterations", "cg_residual", "solves",  "force_evaluations", "internal_steps", "step_us",
+    "threads"};
 // The measured columns of one row, evaluated once per step (the energies
 // and the constraint error each cost a pass over the forces or constraints).
 struct Diagnostics {

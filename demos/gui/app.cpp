@@ -16,6 +16,7 @@
 
 #include "backends/imgui_impl_glut.h"
 #include "backends/imgui_impl_opengl3.h"
+#include "imgui_internal.h"  // ImGui::ErrorCheckEndFrameRecover
 #include "screenshot.h"
 #include "state_log.h"
 
@@ -289,12 +290,22 @@ void App::draw() {
   ImGui_ImplGLUT_NewFrame();  // also ImGui::NewFrame() in 1.86
   overlays_.clear();
   widgets_.clear();
-  drawTopBar();
-  drawBottomBar();
-  if (panes_.size() > 1) drawPaneHeaders();
-  drawOutOfViewIndicators();
-  if (showHelp_) drawHelp();
-  if (showPanel_) drawPanel();
+  // Between NewFrame and Render nothing may leave the frame open: an error
+  // thrown by a panel closes the windows it left open and ends the frame
+  // before it reaches the top bar (an open frame aborts the next NewFrame,
+  // ImGui's "Forgot to call Render()").
+  try {
+    drawTopBar();
+    drawBottomBar();
+    if (panes_.size() > 1) drawPaneHeaders();
+    drawOutOfViewIndicators();
+    if (showHelp_) drawHelp();
+    if (showPanel_) drawPanel();
+  } catch (...) {
+    ImGui::ErrorCheckEndFrameRecover(nullptr);
+    ImGui::EndFrame();
+    throw;
+  }
   closePopups_ = false;
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -310,22 +321,30 @@ static std::string numberedImage(const std::string& dir, const char* stem, long 
   return (std::filesystem::path(dir.empty() ? "." : dir) / name).string();
 }
 
+// A write that failed while the demo runs (a frame of --record, a k
+// screenshot): one line on stderr as it happens, as particle-lab reports a
+// failed output, the top bar too, and the exit code at the end says so.
+void App::reportFailedWrite(const std::string& message) {
+  reportBadUsage(message);
+  setError(message);
+  outputFailed_ = true;
+}
+
 void App::writeFrameImages() {
   if (recording_) {
     const std::string error = writeScreenshot(numberedImage(options_.record, "frame", frame_), windowWidth_,
-                                              windowHeight_);
+                                              windowHeight_, "--record");
     if (!error.empty()) {
-      setError("recording stopped: " + error);
-      outputFailed_ = true;
+      reportFailedWrite("recording stopped: " + error);
       recording_ = false;
     }
   }
   if (screenshotRequested_) {
     screenshotRequested_ = false;
     const std::string path = numberedImage(options_.record, "screenshot", frame_);
-    const std::string error = writeScreenshot(path, windowWidth_, windowHeight_);
+    const std::string error = writeScreenshot(path, windowWidth_, windowHeight_, "the k key's screenshot");
     if (error.empty()) setStatus("screenshot: " + path);
-    else setError(error);
+    else reportFailedWrite(error);
   }
 }
 
@@ -335,7 +354,7 @@ void App::finishFrame() {
   writeFrameImages();
   const bool last = quit_ || (options_.frames && frame_ >= *options_.frames);
   if (last && !options_.screenshot.empty()) {
-    const std::string error = writeScreenshot(options_.screenshot, windowWidth_, windowHeight_);
+    const std::string error = writeScreenshot(options_.screenshot, windowWidth_, windowHeight_, "--screenshot");
     if (!error.empty()) {
       reportBadUsage(error);
       outputFailed_ = true;
@@ -406,12 +425,10 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
     fresh.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
     fresh.back()->setIntegratorSettings(settings);
   }
-  panes_ = std::move(fresh);
+  replacePanes(std::move(fresh));
   scene_ = choice;
   takeWindTearFromScene();
   camera_.reset(viewMin, viewMax);
-  tool_ = MouseTool::None;
-  panning_ = false;
   paused_ = options_.startPaused && frame_ == 0;
   sceneHint_ = hintFor(choice);
   exact_ = exactMotion(choice, *buildChoice(choice).system);
@@ -477,14 +494,22 @@ void App::resetScene() {
     fresh.push_back(std::make_unique<Simulation>(buildChoice(scene_), pane->integratorIndex(), pane->dt()));
     fresh.back()->setIntegratorSettings(pane->integratorSettings());
   }
-  panes_ = std::move(fresh);
+  replacePanes(std::move(fresh));
   applyWindTear();  // the wind and tearing the user set outlast a reset
   sceneView();
-  tool_ = MouseTool::None;
-  panning_ = false;
   paused_ = false;
   disturbedAt_.reset();
   setStatus("reset");
+}
+
+// The mouse tool names a particle and a pane of the panes it was pressed on:
+// panes of another scene (a scene key, N or z in build mode) drop it with
+// them, or a drag after the change would place a particle past the end.
+void App::replacePanes(std::vector<std::unique_ptr<Simulation>> panes) {
+  panes_ = std::move(panes);
+  tool_ = MouseTool::None;
+  toolParticle_ = toolPane_ = -1;
+  panning_ = false;
 }
 
 void App::setPaneCount(int count) {

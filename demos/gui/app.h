@@ -142,6 +142,7 @@ class App {
   void guarded(const std::function<void()>& action);
 
   // --- actions ------------------------------------------------------------
+  void replacePanes(std::vector<std::unique_ptr<Simulation>> panes);  // and drops the mouse tool
   void loadScene(const SceneChoice& choice, bool keepIntegrators);
   void resetScene();
   void setPaneCount(int count);
@@ -181,6 +182,7 @@ class App {
   void requestScreenshot() { screenshotRequested_ = true; }
   // The frame just drawn to --record's directory, and the screenshot the k key asked for.
   void writeFrameImages();
+  void reportFailedWrite(const std::string& message);
 
   // Every key besides the scene keys: what the help overlay lists and what
   // keyboard() dispatches, from one table.

@@ -84,7 +84,11 @@ std::optional<std::vector<BuildPoint>> BuildMode::release(const BuildPoint& poin
 }
 
 std::optional<std::vector<BuildPoint>> BuildMode::finishClicks() {
-  if (tool().gesture != Gesture::Clicks || pending_.empty()) return std::nullopt;
+  // Enter closes a gesture of any number of clicks (a polygon's corners); one
+  // of a fixed number (an angle spring's three) is done only with all of them.
+  const BuildTool& t = tool();
+  if (t.gesture != Gesture::Clicks || pending_.empty() || static_cast<int>(pending_.size()) < t.points)
+    return std::nullopt;
   std::vector<BuildPoint> points = std::move(pending_);
   pending_.clear();
   return points;

@@ -13,6 +13,7 @@
 
 #include "app.h"
 #include "output/format_number.h"
+#include "particles/threads.h"
 
 namespace demo {
 
@@ -277,7 +278,8 @@ void App::drawBottomBar() {
                      ? format("   {}, residual {:.1e}", plural(step.solves, "solve"), step.maxResidual)
                      : format("   {}, CG {} iterations, residual {:.1e}", plural(step.solves, "solve"),
                               step.cgIterations, step.maxResidual);
-    numbers += format("   max |C| {:.2e}   energy {: .5e}", s.maxConstraintError(), sim.sceneEnergy());
+    numbers += format("   max |C| {:.2e}   energy {: .5e}   threads {}/{}", s.maxConstraintError(), sim.sceneEnergy(),
+                      step.threads, particles::threadCount());
     if (sim.mouseSpring()) numbers += format("   (mouse spring {: .3e} apart)", sim.mouseSpringEnergy());
     lines.push_back({{numbers, text}});
   }

@@ -220,8 +220,11 @@ particles::MouseSpringGains Simulation::grabGains(int particle, const particles:
 void Simulation::grab(int particle, const Eigen::Vector2d& target, const particles::MouseJointSettings& joint) {
   const particles::MouseSpringGains gains = grabGains(particle, joint);
   if (!spring_ || spring_->particle() != particle) grabTrail_.clear();
+  // A copy first: retuning passes the held spring's own target, which
+  // release() frees (a new dt or integrator while a particle was held read it after).
+  const Eigen::Vector2d at = target;
   release();
-  auto spring = std::make_unique<particles::MouseSpringForce>(particle, target, gains.stiffness, gains.damping);
+  auto spring = std::make_unique<particles::MouseSpringForce>(particle, at, gains.stiffness, gains.damping);
   spring_ = spring.get();
   joint_ = joint;
   system().addForce(std::move(spring));

@@ -15,6 +15,7 @@
 #include "particles/integrator.h"
 #include "particles/step_stats.h"
 #include "particles/tearing.h"
+#include "particles/thread_use.h"
 #include "particles/forces/force_batch.h"
 
 namespace particles {
@@ -168,8 +169,9 @@ class ParticleSystem {
   // (stats.internalSteps unchanged); resets the tally.
   void addEvaluationStats(StepStats& stats);
 
-  // One step, as named phases: begin (check the settings, keep the start
-  // state, tell time-dependent forces the clock) → integrate by dt → collide
+  // One step, as named phases: begin (check the settings, choose the
+  // threads, keep the start state, tell time-dependent forces the clock) →
+  // integrate by dt → collide
   // (the contact pass, src/collision/contact_pass.h, continuous from the start
   // state; skipped without colliders or collidable discs, and left to the
   // integrator when it collides inside its substeps) → sleep (islands at rest
@@ -177,8 +179,13 @@ class ParticleSystem {
   // asleep the step integrates and collides nothing) → tear (tearing.h;
   // skipped when off) → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
+  // The step runs on threadUse()'s choice of threads, at most threadCount()
+  // (particles/thread_use.h), reported as StepStats::threads.
   StepStats step(Integrator& integrator, double dt);
   const StepStats& lastStepStats() const { return lastStepStats_; }
+  // How many threads step() uses, with its settings.
+  ThreadUse& threadUse() { return threadUse_; }
+  const ThreadUse& threadUse() const { return threadUse_; }
 
   // Colliders or at least two collidable discs: step() has a collision phase.
   bool colliding() const;
@@ -223,6 +230,7 @@ class ParticleSystem {
   std::unique_ptr<Islands> islands_;
   void wake();
   Tearing tearing_;
+  ThreadUse threadUse_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
   std::uint64_t structureStamp_ = nextStructureStamp();

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "parallel_for.h"
+#include "particles/cancel.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
@@ -135,13 +136,18 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
     const std::lock_guard<std::mutex> lock(merging);
     paths.merge(part);
   };
-  for (int k = 0; k < settings_.substeps; ++k) {
+  // Up to 100,000 substeps of 10,000 passes each: the cancel flag is watched
+  // before every substep and every pass (particles/cancel.h); a step cut
+  // short leaves the state mid-substep, for the caller to discard.
+  for (int k = 0; k < settings_.substeps && !cancelRequested(); ++k) {
     beginSubstep(system);
     if (!fused) predict(system, h);
     paths = PathBounds{};
-    for (int pass = 0; pass < settings_.iterations; ++pass)
+    int pass = 0;
+    for (; pass < settings_.iterations && !cancelRequested(); ++pass)
       project(system, pass, fused && pass == 0 ? predictRange : ParticleRange(),
               pass + 1 == settings_.iterations ? velocityRange : ParticleRange());
+    if (pass < settings_.iterations) break;
     collide(system, h, paths);
   }
   lastStep_ = h;
