@@ -1061,3 +1061,25 @@ TEST(ColliderContacts, AChordGrazingABoxCornerItLeavesIsNoImpactLoop) {
     EXPECT_GT(s.position(0).x(), 0.6375);
   }
 }
+
+// 30,000 discs on one point are 4.5e8 pairs: the broad phase stops at its
+// cap (64 a disc) and the step fails with the contact cap, instead of
+// taking gigabytes and hours.
+TEST(ContactCaps, DiscsPiledOnOnePointFailTheStepAtThePairCap) {
+  ParticleSystem s;
+  for (int k = 0; k < 30000; ++k) {
+    s.addParticle(Vector2d(1e-9 * (k % 7), 0.0), 1.0);
+    s.setCollidable(k, 0.01);
+  }
+  auto integrator = makeIntegrator("symplectic-euler");
+  s.step(*integrator, 0.01);
+  EXPECT_EQ(s.lastStepStats().failure, StepFailure::ContactCapReached);
+  // Twenty discs apart from each other are far within it.
+  ParticleSystem apart;
+  for (int k = 0; k < 20; ++k) {
+    apart.addParticle(Vector2d(0.05 * k, 0.0), 1.0);
+    apart.setCollidable(k, 0.01);
+  }
+  apart.step(*integrator, 0.01);
+  EXPECT_EQ(apart.lastStepStats().failure, StepFailure::None);
+}

@@ -12,7 +12,8 @@ enum class StepFailure {
   StepBelowFloor,  // an adaptive scheme needed an internal step below its floor
   WorkCapReached,  // an adaptive scheme ran out of its work budget for one call
   SolveFailed,     // a linear solve gave non-finite multipliers or residual
-  ContactCapReached,  // a particle needed more impacts in one step than ContactSettings::maxImpacts
+  ContactCapReached,  // a particle needed more impacts in one step than ContactSettings::maxImpacts,
+                      // or the discs more pairs than a step takes on (64 a disc, at least 2^20)
 };
 
 // One-word name of a failure ("none", "step-below-floor", "work-cap", "solve-failed", "contact-cap").

@@ -10,6 +10,7 @@
 #include "set_flags.h"
 #include "boundary_guard.h"
 #include "plane_geometry.h"
+#include "particles/cancel.h"
 
 namespace particles {
 
@@ -177,7 +178,9 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const std::vector
                        Eigen::VectorXd& lastFree, int& capped) {
   const contact::ColliderBoxes boxes(colliders);
   int pushed = 0;
+  CancelPoll cancel(64);
   for (const int i : particles) {
+    if (cancel.poll()) break;
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];
     Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
@@ -330,7 +333,7 @@ int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<
   // An end held back for one edge may leave another edge at it crossing:
   // passes until none is held.
   int held = 0;
-  for (int pass = 0; pass < kHoldPasses; ++pass) {
+  for (int pass = 0; pass < kHoldPasses && !cancelRequested(); ++pass) {
     int heldNow = 0;
     for (const int k : candidates) {
       const CollisionEdge& edge = edges[k];

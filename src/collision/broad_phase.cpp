@@ -147,11 +147,11 @@ void EdgeIncidence::takeMarked(std::vector<int>& out) {
   for (int e : out) marked_[e] = 0;
 }
 
-void DiscGrid::findPairs(const std::vector<int>& discs, const Eigen::VectorXd& x, double cell,
-                         std::vector<std::pair<int, int>>& pairs) {
+bool DiscGrid::findPairs(const std::vector<int>& discs, const Eigen::VectorXd& x, double cell,
+                         std::vector<std::pair<int, int>>& pairs, std::size_t maxPairs) {
   pairs.clear();
   const int count = static_cast<int>(discs.size());
-  if (count < 2 || !(cell > 0.0) || !std::isfinite(cell)) return;
+  if (count < 2 || !(cell > 0.0) || !std::isfinite(cell)) return true;
   int buckets = 1;
   while (buckets < 2 * count) buckets <<= 1;
   auto toCell = [&](double coordinate) {
@@ -184,8 +184,10 @@ void DiscGrid::findPairs(const std::vector<int>& discs, const Eigen::VectorXd& x
         for (int s = bucketStart_[bucket]; s < bucketStart_[bucket + 1]; ++s) {
           const int b = order_[s];
           if (b > a && cells_[b] == c) pairs.emplace_back(a, b);  // each pair once; skip hash collisions
+          if (pairs.size() > maxPairs) return false;
         }
       }
+  return true;
 }
 
 double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) {

@@ -2,7 +2,9 @@
 // The broad phase of the contact pass: the particles and collision edges whose
 // paths over the step come near a collider, and the pairs of discs that may
 // meet each other.
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -55,9 +57,13 @@ class EdgeIncidence {
 class DiscGrid {
  public:
   // pairs receives (a, b), a < b, indices into `discs`, each pair once,
-  // ascending in a and then in the order of the grid.
-  void findPairs(const std::vector<int>& discs, const Eigen::VectorXd& x, double cell,
-                 std::vector<std::pair<int, int>>& pairs);
+  // ascending in a and then in the order of the grid. Returns false, with
+  // the pairs found so far, when there are more than maxPairs (discs piled on
+  // one point, or a cell grown by an exploding disc's travel): the work and
+  // memory of a step stay linear in the discs.
+  bool findPairs(const std::vector<int>& discs, const Eigen::VectorXd& x, double cell,
+                 std::vector<std::pair<int, int>>& pairs,
+                 std::size_t maxPairs = std::numeric_limits<std::size_t>::max());
 
  private:
   std::vector<Eigen::Vector2i> cells_;

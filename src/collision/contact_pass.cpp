@@ -63,6 +63,11 @@ bool pathsMayReachColliders(const std::vector<Collider>& colliders, const PathBo
 
 // Solves after the first that a step may make for contacts the solve ran into.
 constexpr int kSolveRounds = 3;
+// The most pairs of discs a step takes on: 64 a disc (a disc among equal
+// discs touches six; the grid's cells, grown by the step's travel, hold more
+// candidates), and never fewer than a million (mixed radii).
+constexpr std::size_t kPairsPerDisc = 64;
+constexpr std::size_t kPairsAtLeast = 1 << 20;
 
 double largestRadius(const Eigen::VectorXd& radius) { return radius.size() > 0 ? radius.maxCoeff() : 0.0; }
 }  // namespace
@@ -97,6 +102,10 @@ int ContactPass::collide(const ContactScene& scene, const StepStart& start, cons
   }
   // 1. Broad phase.
   broadPhase(scene, start, x);
+  if (pairsCapped_) {  // more pairs of discs than a step resolves: failed, not run for hours
+    stats_.failure = StepFailure::ContactCapReached;
+    return 0;
+  }
   // 2. Impacts: what moves alone bounces at its exact times.
   refs_.reset(start);
   sortMovers(scene, x, v);
@@ -140,6 +149,7 @@ void ContactPass::broadPhase(const ContactScene& scene, const StepStart& start, 
   const bool walls = !scene.colliders.empty(), edges = walls && !scene.edges.empty();
   nearList_.clear();
   nearEdges_.clear();
+  pairsCapped_ = false;
   if (walls) {
     double margin = largestRadius(scene.radius) + settings_.slop;
     if (edges) margin = std::max(margin, edgeReach(scene.edges, start.x, x));
@@ -155,7 +165,8 @@ void ContactPass::broadPhase(const ContactScene& scene, const StepStart& start, 
       maxRadius = std::max(maxRadius, scene.radius[i]);
       maxTravel = std::max(maxTravel, (x.segment<2>(2 * i) - start.x.segment<2>(2 * i)).norm());
     }
-    grid_.findPairs(scene.discs, start.x, 2.0 * (maxRadius + 2.0 * maxTravel), discPairs_);
+    const std::size_t cap = std::max<std::size_t>(kPairsPerDisc * scene.discs.size(), kPairsAtLeast);
+    pairsCapped_ = !grid_.findPairs(scene.discs, start.x, 2.0 * (maxRadius + 2.0 * maxTravel), discPairs_, cap);
   }
   if (edges) {
     edgeIncidence_.update(scene.edges, static_cast<int>(scene.mass.size()), scene.structure);

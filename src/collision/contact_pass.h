@@ -95,6 +95,7 @@ class ContactPass {
   EdgeIncidence edgeIncidence_;
   DiscGrid grid_;
   std::vector<std::pair<int, int>> discPairs_;  // indices into the scene's discs
+  bool pairsCapped_ = false;                    // the broad phase found more pairs than a step takes on
   // Impacts: the particles that move alone.
   enum class Alone : std::uint8_t { Free, Anchored, Held };  // no constraint; only to pinned particles; else
   std::uint64_t moversStructure_ = 0;

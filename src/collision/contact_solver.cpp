@@ -363,7 +363,7 @@ ContactSolveStats ContactSolver::solve(std::vector<Contact>& contacts, const Con
   for (const int p : island_) x.segment<2>(2 * p) = in.refs.x.segment<2>(2 * p) + in.refs.h[p] * v.segment<2>(2 * p);
   // 3. Project: the constraints' drift, the overlap left.
   for (int i = 0; i < islands; ++i) {
-    const solve::Relaxed done = solve::projectPositions(R, S.contactRows[i], S.blocks[i], settings, x, v);
+    const solve::Relaxed done = solve::projectPositions(R, S.contactRows[i], S.blocks[i], settings, x);
     stats.positionPasses = std::max(stats.positionPasses, done.passes);
   }
   // 4. Relax the velocities at the final positions.

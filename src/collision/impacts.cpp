@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "contact_track.h"
+#include "particles/cancel.h"
 
 namespace particles {
 
@@ -244,7 +245,9 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
   const double dt = start.dt;
   const contact::ColliderBoxes boxes(colliders);
   ContactCount counted;
+  CancelPoll cancel(64);
   for (const int i : points) {
+    if (cancel.poll()) break;
     if (inverseMass[i] == 0.0) continue;
     const double r = radius[i];
     if (!boxes.near(colliders, start.x.segment<2>(2 * i), x.segment<2>(2 * i), r + settings.slop)) continue;
@@ -323,7 +326,8 @@ ContactCount Impacts::resolveDiscs(const std::vector<Collider>& colliders, const
   for (int p = 0; p < static_cast<int>(pairs.size()); ++p) predictPair(p);
 
   ContactCount counted;
-  while (!S.queue.empty()) {
+  CancelPoll cancel(64);
+  while (!S.queue.empty() && !cancel.poll()) {
     std::pop_heap(S.queue.begin(), S.queue.end(), later);
     const Scratch::Event e = S.queue.back();
     S.queue.pop_back();

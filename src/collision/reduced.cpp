@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "solver_rows.h"
+#include "particles/cancel.h"
 
 namespace particles::solve {
 
@@ -56,7 +57,7 @@ Relaxed relaxReduced(RowSystem& R, const std::vector<int>& contactRows, DirectBl
   if (G.cols() > 0) S.noalias() -= G * block.solveColumns(G.transpose());
   Eigen::VectorXd jv(m), change = Eigen::VectorXd::Zero(m);
   for (int a = 0; a < m; ++a) jv[a] = R.velocityOf(R.rows[contactRows[a]], v);
-  while (relaxed.passes < settings.coupledIterations) {
+  while (relaxed.passes < settings.coupledIterations && !cancelRequested()) {
     ++relaxed.passes;
     double largest = 0.0;
     for (const RowKind kind : {RowKind::Friction, RowKind::Normal})

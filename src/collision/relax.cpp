@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "solver_rows.h"
+#include "particles/cancel.h"
 
 namespace particles::solve {
 
@@ -30,7 +31,7 @@ Relaxed relaxVelocities(RowSystem& R, const std::vector<int>& contactRows, Direc
                         const ContactSettings& settings, Eigen::VectorXd& v) {
   Relaxed relaxed;
   const bool constraints = block.factorVelocities(R);
-  while (relaxed.passes < settings.coupledIterations) {
+  while (relaxed.passes < settings.coupledIterations && !cancelRequested()) {
     ++relaxed.passes;
     double largest = constraints ? block.solveVelocities(R, v) : 0.0;
     for (const RowKind kind : {RowKind::Friction, RowKind::Normal})
@@ -43,10 +44,10 @@ Relaxed relaxVelocities(RowSystem& R, const std::vector<int>& contactRows, Direc
 }
 
 Relaxed projectPositions(RowSystem& R, const std::vector<int>& contactRows, DirectBlock& block,
-                         const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v) {
+                         const ContactSettings& settings, Eigen::VectorXd& x) {
   Relaxed projected;
   for (const int r : contactRows) R.rows[r].mu = 0.0;
-  while (projected.passes < settings.positionIterations) {
+  while (projected.passes < settings.positionIterations && !cancelRequested()) {
     ++projected.passes;
     double worst = block.empty() ? 0.0 : block.projectPositions(R, x);
     for (const int r : contactRows) {

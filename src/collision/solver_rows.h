@@ -118,6 +118,6 @@ Relaxed relaxReduced(RowSystem& R, const std::vector<int>& contactRows, DirectBl
 // Gauss–Seidel pushes of the normals out of overlap, until every error is
 // within the slop. Returns the passes made and the last pass's largest error.
 Relaxed projectPositions(RowSystem& R, const std::vector<int>& contactRows, DirectBlock& block,
-                         const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v);
+                         const ContactSettings& settings, Eigen::VectorXd& x);
 
 }  // namespace particles::solve
