@@ -191,12 +191,12 @@ void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& option
 void addOutputOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options) {
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
-                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us,threads "
+                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us,threads,contacts,sleeping "
                   "(cg_iterations: summed over every solve of the step; cg_residual: the largest relative "
                   "residual of them; solves: linear solves; force_evaluations: evaluations of every force; "
                   "internal_steps: accepted steps of an adaptive scheme, 1 otherwise; step_us: wall time of "
                   "the step's simulation, output excluded; threads: the threads the step ran on, at most "
-                  "--threads)")
+                  "--threads; contacts: contacts the step resolved; sleeping: particles asleep at its end)")
       ->check(options::outputPath());
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)")

@@ -280,6 +280,7 @@ void App::drawBottomBar() {
                               step.cgIterations, step.maxResidual);
     numbers += format("   max |C| {:.2e}   energy {: .5e}   threads {}/{}", s.maxConstraintError(), sim.sceneEnergy(),
                       step.threads, particles::threadCount());
+    if (s.colliding()) numbers += format("   contacts {}   asleep {}", s.contactsLastStep(), step.sleeping);
     if (sim.mouseSpring()) numbers += format("   (mouse spring {: .3e} apart)", sim.mouseSpringEnergy());
     lines.push_back({{numbers, text}});
   }

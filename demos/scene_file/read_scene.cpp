@@ -210,7 +210,8 @@ void requireCount(const JsonNode& node, const char* what, long long limit) {
 }
 
 Scene readDocument(const JsonNode& root, const std::string& source) {
-  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution", "tearing",
+  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution",
+                  "particleFriction", "tearing",
                   "particles", "forces", "constraints", "walls", "colliders", "collisionEdges"});
   Scene scene;
   scene.name = root["name"].present() ? root["name"].text() : source;
@@ -223,6 +224,8 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   readSolver(root["solver"], s.solver().settings);
   if (root["particleRestitution"].present())
     s.contactSettings().particleRestitution = root["particleRestitution"].inRange(0.0, 1.0);
+  if (root["particleFriction"].present())
+    s.contactSettings().particleFriction = root["particleFriction"].nonNegative();
   readTearing(root["tearing"], s.tearing());
 
   const JsonNode particleList = root["particles"];

@@ -47,6 +47,7 @@ Json sceneToJson(const Scene& scene) {
                    {"method", particles::nameOf(solver.method)},
                    {"preconditioner", particles::nameOf(solver.preconditioner)}};
   doc["particleRestitution"] = s.contactSettings().particleRestitution;
+  doc["particleFriction"] = s.contactSettings().particleFriction;
   if (s.tearing().on()) doc["tearing"] = {{"strain", s.tearing().strain}};
   doc["particles"] = Json::array();
   for (int i = 0; i < s.size(); ++i) {

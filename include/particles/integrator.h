@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 
-#include "particles/drift_correction.h"
 #include "particles/integrators/dopri5_settings.h"
 #include "particles/integrators/implicit_euler_settings.h"
 #include "particles/integrators/xpbd_settings.h"
@@ -46,12 +45,6 @@ class Integrator {
   // ParticleSystem::collideOver after each; the step's collision pass over the
   // whole step (ParticleSystem::step) is then skipped.
   virtual bool collidesInSubsteps() const { return false; }
-
-  // The post-step contact phase resolves the particles that touch a collider
-  // together with the constraints that hold them (src/collision/coupled_contacts.h).
-  // How that coupled solve corrects the constraints' drift (src/collision/coupled_contacts.h):
-  // DriftCorrection::Shake for a scheme whose step ends with x = x0 + dt v.
-  virtual DriftCorrection driftCorrection() const { return DriftCorrection::AtEnd; }
 
   // The step over which this scheme applies a stiff force on one particle
   // (the mouse joint) explicitly, which bounds how stiff that force may be

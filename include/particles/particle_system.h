@@ -28,6 +28,7 @@ struct Snapshot {
 
 class ContactPass;  // the collision phase of a step (src/collision/contact_pass.h)
 struct ContactScene;
+class Islands;      // islands and sleep (src/collision/islands.h)
 
 class ParticleSystem {
  public:
@@ -173,7 +174,9 @@ class ParticleSystem {
   // integrate by dt → collide
   // (the contact pass, src/collision/contact_pass.h, continuous from the start
   // state; skipped without colliders or collidable discs, and left to the
-  // integrator when it collides inside its substeps) → tear (tearing.h;
+  // integrator when it collides inside its substeps) → sleep (islands at rest
+  // fall asleep and are held, src/collision/islands.h; with everything
+  // asleep the step integrates and collides nothing) → tear (tearing.h;
   // skipped when off) → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
   // The step runs on threadUse()'s choice of threads, at most threadCount()
@@ -205,6 +208,9 @@ class ParticleSystem {
   const SolveStats& lastSolve() const { return solver_.stats(); }
   bool finite() const;  // every position and velocity finite
   int contactsLastStep() const;
+  // Particles asleep (islands at rest, src/collision/islands.h); any edit of
+  // the system or its state wakes them all.
+  int sleeping() const;
 
  private:
   friend class Integrator;  // advances x_ and v_ in place (Integrator::positionsOf)
@@ -221,6 +227,8 @@ class ParticleSystem {
   std::vector<int> collidable_;
   ConstraintSolver solver_;
   std::unique_ptr<ContactPass> contacts_;
+  std::unique_ptr<Islands> islands_;
+  void wake();
   Tearing tearing_;
   ThreadUse threadUse_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used

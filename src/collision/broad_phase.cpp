@@ -1,5 +1,6 @@
-// Broad phase against colliders: which particles' paths over the step come
-// near any collider at all, and the collision edges at those particles.
+// The broad phase: which particles' paths over the step come near any
+// collider at all, the collision edges at those particles, and the pairs of
+// discs near each other.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -7,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "collider_broad_phase.h"
+#include "broad_phase.h"
 #include "parallel_for.h"
 #include "particles/threads.h"
 #include "set_flags.h"
@@ -144,6 +145,49 @@ void EdgeIncidence::takeMarked(std::vector<int>& out) {
   out.clear();
   contact::appendSetFlags(marked_, out);
   for (int e : out) marked_[e] = 0;
+}
+
+bool DiscGrid::findPairs(const std::vector<int>& discs, const Eigen::VectorXd& x, double cell,
+                         std::vector<std::pair<int, int>>& pairs, std::size_t maxPairs) {
+  pairs.clear();
+  const int count = static_cast<int>(discs.size());
+  if (count < 2 || !(cell > 0.0) || !std::isfinite(cell)) return true;
+  int buckets = 1;
+  while (buckets < 2 * count) buckets <<= 1;
+  auto toCell = [&](double coordinate) {
+    const double c = std::floor(coordinate / cell);
+    return static_cast<int>(std::isfinite(c) ? std::clamp(c, -1e9, 1e9) : 1e9);
+  };
+  auto bucketOf = [&](const Eigen::Vector2i& c) {
+    const unsigned long long h = static_cast<unsigned long long>(c.x()) * 73856093ULL ^
+                                 static_cast<unsigned long long>(c.y()) * 19349663ULL;
+    return static_cast<int>(h & static_cast<unsigned long long>(buckets - 1));
+  };
+  cells_.resize(count);
+  bucket_.resize(count);
+  bucketStart_.assign(buckets + 1, 0);
+  for (int a = 0; a < count; ++a) {
+    const int i = discs[a];
+    cells_[a] = Eigen::Vector2i(toCell(x[2 * i]), toCell(x[2 * i + 1]));
+    bucket_[a] = bucketOf(cells_[a]);
+    ++bucketStart_[bucket_[a] + 1];
+  }
+  for (int b = 0; b < buckets; ++b) bucketStart_[b + 1] += bucketStart_[b];
+  order_.resize(count);
+  fill_.assign(bucketStart_.begin(), bucketStart_.end() - 1);
+  for (int a = 0; a < count; ++a) order_[fill_[bucket_[a]]++] = a;
+  for (int a = 0; a < count; ++a)
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) {
+        const Eigen::Vector2i c = cells_[a] + Eigen::Vector2i(dx, dy);
+        const int bucket = bucketOf(c);
+        for (int s = bucketStart_[bucket]; s < bucketStart_[bucket + 1]; ++s) {
+          const int b = order_[s];
+          if (b > a && cells_[b] == c) pairs.emplace_back(a, b);  // each pair once; skip hash collisions
+          if (pairs.size() > maxPairs) return false;
+        }
+      }
+  return true;
 }
 
 double edgeReach(const std::vector<CollisionEdge>& edges, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) {

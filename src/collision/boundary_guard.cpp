@@ -1,18 +1,34 @@
-// Collision edges (segments between two particles) against collider corners.
+// The last guards of the contact pass (boundary_guard.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdlib>
 #include <optional>
 #include <vector>
 
 #include "contact_track.h"
 #include "set_flags.h"
-#include "edge_contacts.h"
+#include "boundary_guard.h"
 #include "plane_geometry.h"
+#include "particles/cancel.h"
 
 namespace particles {
 
 namespace {
+
+// The collider the straight path a → b enters first (grown by r), if any.
+std::optional<int> firstCollider(const std::vector<Collider>& colliders, const contact::ColliderBoxes& boxes,
+                                 const Eigen::Vector2d& a, const Eigen::Vector2d& b, double r, double slop) {
+  const Eigen::Vector2d lo = a.cwiseMin(b).array() - (r + slop), hi = a.cwiseMax(b).array() + (r + slop);
+  std::optional<int> first;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < static_cast<int>(colliders.size()); ++k) {
+    if ((lo.array() > boxes.hi[k].array()).any() || (hi.array() < boxes.lo[k].array()).any()) continue;
+    if (const std::optional<double> s = colliders[k].sweep(a, b, r, slop))
+      if (*s < best) best = *s, first = k;
+  }
+  return first;
+}
 
 // How far the edge (xi, xj) is past the fixed point q (a corner, or a point
 // of a capsule's core): its interior must stay at least the collider's radius
@@ -92,33 +108,6 @@ double deepestCorner(const Collider& c, const Eigen::Vector2d& si, const Eigen::
   return deepest;
 }
 
-// Pushes the edge clear of a corner with the weights of the edge point
-// facing it; its approach is removed and its sliding limited by Coulomb.
-int pushEdgeOffCorner(const Collider& c, const Eigen::Vector2d& corner, const StepStart& start,
-                      const Eigen::VectorXd& inverseMass, const CollisionEdge& edge, Eigen::VectorXd& x,
-                      Eigen::VectorXd& v) {
-  const int i = edge.a, j = edge.b;
-  const std::optional<EdgePenetration> hit =
-      edgePastPoint(c.radius, corner, false, start.x.segment<2>(2 * i), start.x.segment<2>(2 * j),
-                    x.segment<2>(2 * i), x.segment<2>(2 * j));
-  if (!hit) return 0;
-  // The edge point p = (1 − b) x_i + b x_j moves by depth along N with
-  // the least mass-weighted change: Δx_k = N depth w_k β_k / Σ w β².
-  const double wi = inverseMass[i], wj = inverseMass[j];
-  const double bi = 1.0 - hit->b, bj = hit->b, k = wi * bi * bi + wj * bj * bj;
-  const Eigen::Vector2d& N = hit->N;
-  x.segment<2>(2 * i) += (hit->depth * wi * bi / k) * N;
-  x.segment<2>(2 * j) += (hit->depth * wj * bj / k) * N;
-  const Eigen::Vector2d vp = bi * v.segment<2>(2 * i) + bj * v.segment<2>(2 * j);
-  const double vn = vp.dot(N);
-  if (vn < 0.0) {
-    const Eigen::Vector2d dvp = -vn * N + contact::coulomb(vp - vn * N, vn, c.friction);
-    v.segment<2>(2 * i) += (wi * bi / k) * dvp;
-    v.segment<2>(2 * j) += (wj * bj / k) * dvp;
-  }
-  return 1;
-}
-
 // An end of the edge that went round a cap of a capsule to the far side of
 // its core (while the other end stayed on the near side) cannot be pushed
 // straight back: that would take it through the capsule. It is taken back
@@ -168,41 +157,61 @@ int holdEdgeEndOffCapsule(const std::vector<Collider>& colliders, const Collider
 
 }  // namespace
 
-int resolveEdgeContacts(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
-                        const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
-                        Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
-                        const std::vector<int>* candidates) {
-  int contacts = 0;
-  // Broad phase: a collider is tested against an edge only when their boxes
-  // overlap (the edge's box spans its start and end, the collider's its
-  // corners). A half-plane has no corner: its particles keep edges out.
-  const contact::ColliderBoxes boxes(colliders);
-  const int count = static_cast<int>(colliders.size());
-  const double* X = x.data();
-  const double* S = start.x.data();
-  const int tested = candidates ? static_cast<int>(candidates->size()) : static_cast<int>(edges.size());
-  for (int t = 0; t < tested; ++t) {
-    const CollisionEdge& edge = edges[candidates ? (*candidates)[t] : t];
-    const int i = edge.a, j = edge.b;
-    const double wi = inverseMass[i], wj = inverseMass[j];
-    if (wi + wj == 0.0) continue;
-    const double loX = std::min(std::min(X[2 * i], X[2 * j]), std::min(S[2 * i], S[2 * j]));
-    const double hiX = std::max(std::max(X[2 * i], X[2 * j]), std::max(S[2 * i], S[2 * j]));
-    const double loY = std::min(std::min(X[2 * i + 1], X[2 * j + 1]), std::min(S[2 * i + 1], S[2 * j + 1]));
-    const double hiY = std::max(std::max(X[2 * i + 1], X[2 * j + 1]), std::max(S[2 * i + 1], S[2 * j + 1]));
-    for (int m = 0; m < count; ++m) {
-      if (colliders[m].shape == ColliderShape::HalfPlane) continue;
-      if (loX > boxes.hi[m].x() || hiX < boxes.lo[m].x() || loY > boxes.hi[m].y() || hiY < boxes.lo[m].y()) continue;
-      const Collider& c = colliders[m];
-      for (const Eigen::Vector2d& corner : c.points)
-        contacts += pushEdgeOffCorner(c, corner, start, inverseMass, edge, x, v);
-      // A capsule's core is a segment: the edge can cross it over one of its
-      // ends as well as at the core's corners.
+int holdEdgeEndsOffCapsules(const std::vector<Collider>& colliders, const std::vector<CollisionEdge>& edges,
+                            const StepStart& start, const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                            Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree,
+                            const std::vector<int>& candidates) {
+  int held = 0;
+  for (const int k : candidates) {
+    const CollisionEdge& edge = edges[k];
+    if (inverseMass[edge.a] + inverseMass[edge.b] == 0.0) continue;
+    for (const Collider& c : colliders)
       if (c.shape == ColliderShape::Capsule)
-        contacts += holdEdgeEndOffCapsule(colliders, c, start, inverseMass, radius, edge, x, v, lastFree);
-    }
+        held += holdEdgeEndOffCapsule(colliders, c, start, inverseMass, radius, edge, x, v, lastFree);
   }
-  return contacts;
+  return held;
+}
+
+int pushOutOfColliders(const std::vector<Collider>& colliders, const std::vector<int>& particles,
+                       const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius,
+                       const ContactSettings& settings, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                       Eigen::VectorXd& lastFree, int& capped) {
+  const contact::ColliderBoxes boxes(colliders);
+  int pushed = 0;
+  CancelPoll cancel(64);
+  for (const int i : particles) {
+    if (cancel.poll()) break;
+    if (inverseMass[i] == 0.0) continue;
+    const double r = radius[i];
+    Eigen::Vector2d x1 = x.segment<2>(2 * i), v1 = v.segment<2>(2 * i);
+    Eigen::Vector2d from = lastFree.segment<2>(2 * i);
+    if (from == x1) continue;  // not moved since it was known to be outside
+    int pass = 0;
+    for (; pass < settings.maxImpacts; ++pass) {
+      const std::optional<int> hit = firstCollider(colliders, boxes, from, x1, r, settings.slop);
+      if (!hit) break;
+      const Collider& c = colliders[*hit];
+      // The face entered on the way from the last free position: back onto
+      // it along its normal, the approach removed, Coulomb friction applied.
+      Eigen::Vector2d normal;
+      const double s = *c.sweep(from, x1, r, settings.slop);
+      const Eigen::Vector2d p = contact::ontoSurface(c, from + s * (x1 - from), r, &normal);
+      if (r == 0.0) normal = c.entryNormal(p, x1 - from, settings.slop);  // a corner: the face the path went into
+      x1 += std::max(0.0, normal.dot(p - x1)) * normal;
+      const double vn = v1.dot(normal);
+      if (vn < 0.0) v1 += -vn * normal + contact::coulomb(v1 - vn * normal, vn, c.friction);
+      from = p;
+      ++pushed;
+    }
+    if (pass == settings.maxImpacts && firstCollider(colliders, boxes, from, x1, r, settings.slop)) {
+      x1 = from;  // out of passes: back to the last point known outside
+      ++capped;
+    }
+    x.segment<2>(2 * i) = x1;
+    v.segment<2>(2 * i) = v1;
+    lastFree.segment<2>(2 * i) = x1;
+  }
+  return pushed;
 }
 
 namespace {
@@ -269,8 +278,8 @@ bool hasCore(const Collider& c) { return c.shape == ColliderShape::Capsule || c.
 // neither end is inside a collider, and their approach to the core is
 // removed. A disc's centre and the ends of a capsule's core are kept off
 // the held edge's line by half their distance from the edge at the start (at
-// most half the radius): an edge left with such a point on its line would
-// start the next step on no side of it.
+// most half the radius, at least a thousandth of it): an edge left with such
+// a point on its line would start the next step on no side of it.
 int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, const StepStart& start,
                     const Eigen::VectorXd& inverseMass, const Eigen::VectorXd& radius, const CollisionEdge& edge,
                     Eigen::VectorXd& x, Eigen::VectorXd& v, Eigen::VectorXd& lastFree) {
@@ -284,7 +293,10 @@ int holdEdgeOffCore(const std::vector<Collider>& colliders, const Collider& c, c
   double keep = c.radius;
   for (const Eigen::Vector2d& point : c.points)
     keep = std::min(keep, (point - nearestOnSegment(point, from[0], from[1])).norm());
-  keep *= 0.5;
+  // Never less than a thousandth of the radius: halved step after step, the
+  // distance would shrink until a motion below rounding put the point on the
+  // other side.
+  keep = std::max(0.5 * keep, 1e-3 * c.radius);
   const auto placed = [&](double s) {
     bool inside = false;
     for (int k = 0; k < 2; ++k) {
@@ -321,7 +333,7 @@ int holdEdgesOffCores(const std::vector<Collider>& colliders, const std::vector<
   // An end held back for one edge may leave another edge at it crossing:
   // passes until none is held.
   int held = 0;
-  for (int pass = 0; pass < kHoldPasses; ++pass) {
+  for (int pass = 0; pass < kHoldPasses && !cancelRequested(); ++pass) {
     int heldNow = 0;
     for (const int k : candidates) {
       const CollisionEdge& edge = edges[k];

@@ -1,8 +1,12 @@
 #pragma once
-// Broad phase against colliders: the particles and collision edges whose
-// paths over the step come near a collider.
+// The broad phase of the contact pass: the particles and collision edges whose
+// paths over the step come near a collider, and the pairs of discs that may
+// meet each other.
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,6 +45,29 @@ class EdgeIncidence {
   std::vector<int> first_;     // particle p's edges: ids_[first_[p] .. first_[p + 1])
   std::vector<int> ids_;
   std::vector<char> marked_;   // per edge
+};
+
+// Pairs of discs near enough to meet this step: a uniform grid of cells of
+// the given size over the discs' positions (hashed into 2·count buckets,
+// discs sorted by bucket: linear time), each disc against the discs of its
+// own and the eight neighbouring cells. A cell at least twice the largest
+// radius plus twice the largest travel finds every pair that touches in the
+// step. Cell coordinates are clamped, so a far-flung (or exploded) disc
+// cannot overflow the integer conversion.
+class DiscGrid {
+ public:
+  // pairs receives (a, b), a < b, indices into `discs`, each pair once,
+  // ascending in a and then in the order of the grid. Returns false, with
+  // the pairs found so far, when there are more than maxPairs (discs piled on
+  // one point, or a cell grown by an exploding disc's travel): the work and
+  // memory of a step stay linear in the discs.
+  bool findPairs(const std::vector<int>& discs, const Eigen::VectorXd& x, double cell,
+                 std::vector<std::pair<int, int>>& pairs,
+                 std::size_t maxPairs = std::numeric_limits<std::size_t>::max());
+
+ private:
+  std::vector<Eigen::Vector2i> cells_;
+  std::vector<int> bucket_, order_, bucketStart_, fill_;
 };
 
 // The largest side of an edge's box over the step (its two ends at x0 and
