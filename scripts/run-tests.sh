@@ -20,6 +20,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   long='Sweep\.|^HairScene\.(APulled|Ringlets)|^CoupledContacts\.Pinned|^Grab\.Follows|^SceneDefaults\.EveryScene'
   long+='|^Rattle\.ChainEnergy|^ImplicitEuler\.ChainEnergyNever|^Advise\.APickIsMovedBelow'
   long+='|^ClosedBox\.ParticlesSlidingOnTheFloor|^ForceBatchThreads\.ThreadedTrajectories'
+  long+='|^ClothScene\.AFoldedClothOpens|^PressureForce\.ARingSettles|^GalleryScenes\.'
   ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -E "$long" --output-on-failure -j"$jobs"
 else
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
