@@ -151,7 +151,7 @@ void addRunOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
       ->check(options::integratorTolerance());
   cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
   cli.add_option("--record", o.record,
-                 "write every frame as DIR/frame-000001.png, frame-000002.png, ... (created if missing; the o "
+                 "write every frame as DIR/frame-000001.png, frame-000002.png, ... (created if missing; the k "
                  "key's screenshots go there too); a video: ffmpeg -framerate 60 -i DIR/frame-%06d.png -pix_fmt "
                  "yuv420p out.mp4");
   cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
