@@ -9,10 +9,10 @@
 # Prints per scene: median, 10th and 90th percentile frame (ms, after a
 # 10-frame warm-up, flat out), the median stepping part, the scene's and the
 # text and panel's drawing on the last timed frame, and the paced ratio.
-# No timing is asserted.
+# No timing is asserted. PARTICLE_DEMO=path measures another build of the demo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-demo=./build/demos/particle-demo
+demo=${PARTICLE_DEMO:-./build/demos/particle-demo}
 frames=${1:-300}
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT

@@ -92,3 +92,8 @@ run --scene-file "$built/patch.json" --frames 120 --screenshot "$out/demo-built.
 rm -rf "$built"
 echo "wrote $out/demo-cloth.png $out/demo-hair.png $out/demo-compare.png $out/demo-torn-wind.png $out/demo-built.png" \
      "and the gallery's $out/demo-{hourglass,newtons-cradle,capstan,rope-bridge,soft-body}.png"
+
+# The web page: the picture its screenshot test took in headless Chromium
+# (tests/web, ScreenshotParticlesWhereTheLogSays), when the web tests have run.
+web=build/tests/web/output/page.png
+if [ -f "$web" ]; then cp "$web" "$out/demo-web.png"; else echo "no $web: run the web tests (ctest -L web) for the page's picture" >&2; fi

@@ -23,7 +23,11 @@ if [ "${1:-}" = "--sanitize" ]; then
   long+='|^ClothScene\.AFoldedClothOpens|^PressureForce\.ARingSettles|^GalleryScenes\.'
   ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -E "$long" --output-on-failure -j"$jobs"
 else
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+  # The demo's web page and what its tests need (tests/web, label "web").
+  bash scripts/build-web.sh
+  bash scripts/install-web-test-deps.sh
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPARTICLES_WEB_PAGE="$PWD/build-web" \
+        -DPARTICLES_WEB_NODE_MODULES="$PWD/build/web-tests/node_modules"
   cmake --build build -j"$jobs"
   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --test-dir build --output-on-failure -j"$jobs"
 fi

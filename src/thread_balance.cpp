@@ -1,9 +1,12 @@
 #include "particles/thread_balance.h"
 
-#include <omp.h>
-
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace particles {
 
@@ -15,9 +18,18 @@ constexpr double kFollow = 0.2;
 constexpr double kLeastShare = 0.25;
 }  // namespace
 
+#ifdef _OPENMP
 int ThreadBalance::Pass::teamMember() { return omp_get_thread_num(); }
 int ThreadBalance::Pass::teamSize() { return omp_get_num_threads(); }
 double ThreadBalance::Pass::wallClock() { return omp_get_wtime(); }
+#else
+// A build without OpenMP (the WebAssembly page) runs every pass on one thread.
+int ThreadBalance::Pass::teamMember() { return 0; }
+int ThreadBalance::Pass::teamSize() { return 1; }
+double ThreadBalance::Pass::wallClock() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+#endif
 
 std::vector<double> ThreadBalance::cuts(int threads) {
   if (static_cast<int>(share_.size()) != threads) share_.assign(threads, 1.0 / threads);

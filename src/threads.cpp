@@ -22,12 +22,14 @@ void setThreadCount(int count) {
 int threadCount() { return gThreads.load(std::memory_order_relaxed); }
 
 int affinityCpuCount() {
+#ifndef __EMSCRIPTEN__  // a browser has no affinity mask
   cpu_set_t set;
   CPU_ZERO(&set);
   if (sched_getaffinity(0, sizeof(set), &set) == 0) {
     const int n = CPU_COUNT(&set);
     if (n > 0) return n;
   }
+#endif
   const unsigned hw = std::thread::hardware_concurrency();
   return hw > 0 ? static_cast<int>(hw) : 1;
 }

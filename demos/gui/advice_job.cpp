@@ -19,6 +19,16 @@ const char* adviceStateName(AdviceState state) {
   return "?";
 }
 
+const char* AdviceJob::unavailable() {
+#ifdef __EMSCRIPTEN__
+  return "Advice is not offered in the browser: its survey runs the scene hundreds of times (seconds to minutes) "
+         "on a worker thread, and the page has one thread, which must keep drawing. particle-lab advise runs it "
+         "on the desktop.";
+#else
+  return nullptr;
+#endif
+}
+
 AdviceJob::~AdviceJob() { stop(); }
 
 void AdviceJob::stop() {
@@ -27,6 +37,7 @@ void AdviceJob::stop() {
 }
 
 void AdviceJob::start(const SceneChoice& scene, const AdviceRequest& request) {
+  if (const char* why = unavailable()) throw std::invalid_argument(why);
   if (!(std::isfinite(request.error) && request.error > 0.0))
     throw std::invalid_argument("advice: error must be > 0, got " + lab::general(request.error));
   if (!(std::isfinite(request.horizon) && request.horizon > 0.0))

@@ -34,9 +34,14 @@ class AdviceJob {
   AdviceJob& operator=(const AdviceJob&) = delete;
   ~AdviceJob();  // cancels a running survey and joins its thread
 
+  // Why the survey is not offered here, or null where it is. The page has
+  // one thread, which must keep drawing; the survey runs a scene hundreds of
+  // times (seconds to minutes) and cannot be cut into frames.
+  static const char* unavailable();
+
   // Starts the survey of a fresh build of `scene` (a running one is cancelled
   // and joined first). Throws std::invalid_argument for a bad request (E or
-  // T not finite and > 0), before any thread starts.
+  // T not finite and > 0) or where it is unavailable(), before any thread starts.
   void start(const SceneChoice& scene, const AdviceRequest& request);
   void cancel();  // asks the worker to stop; poll() sees it end
   // Joins a worker that finished; call once a frame. Returns true the frame

@@ -70,6 +70,10 @@ void App::drawAdvicePanel() {
   const bool open = ImGui::CollapsingHeader("Advice: cheapest integrator within an error");
   recordWidget("advice");
   if (!open) return;
+  if (const char* why = AdviceJob::unavailable()) {
+    ImGui::TextWrapped("%s", why);
+    return;
+  }
   drawAdviceRequest();
   const bool running = advice_.running();
   drawAdviceButtons(running);

@@ -15,7 +15,7 @@
 #include <type_traits>
 
 #include "backends/imgui_impl_glut.h"
-#include "backends/imgui_impl_opengl2.h"
+#include "backends/imgui_impl_opengl3.h"
 #include "screenshot.h"
 #include "state_log.h"
 
@@ -137,7 +137,7 @@ App::App(DemoOptions options)
 
 App::~App() {
   if (!imguiReady_) return;
-  ImGui_ImplOpenGL2_Shutdown();
+  ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGLUT_Shutdown();
   ImGui::DestroyContext();
 }
@@ -158,7 +158,7 @@ void App::initGraphics() {
   style.WindowRounding = 4.0f;
   style.FrameRounding = 3.0f;
   ImGui_ImplGLUT_Init();
-  ImGui_ImplOpenGL2_Init();
+  ImGui_ImplOpenGL3_Init(glslVersion);
   ImGui_ImplGLUT_ReshapeFunc(windowWidth_, windowHeight_);
   imguiReady_ = true;
 }
@@ -286,7 +286,7 @@ void App::draw() {
   glViewport(0, 0, windowWidth_, windowHeight_);
 
   if (!imguiReady_) return;
-  ImGui_ImplOpenGL2_NewFrame();
+  ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGLUT_NewFrame();  // also ImGui::NewFrame() in 1.86
   overlays_.clear();
   widgets_.clear();
@@ -298,7 +298,7 @@ void App::draw() {
   if (showPanel_) drawPanel();
   closePopups_ = false;
   ImGui::Render();
-  ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!timed) return;
   glFinish();
   overlayDrawMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sceneDone).count();

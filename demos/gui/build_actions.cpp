@@ -11,6 +11,9 @@
 #include "app.h"
 #include "output/output_file.h"
 #include "scene_file/scene_file.h"
+#ifdef __EMSCRIPTEN__
+#include "page.h"
+#endif
 
 namespace demo {
 
@@ -266,6 +269,9 @@ void App::saveBuild() {
   output::OutputFile file(build_.file, "scene");  // throws, naming the file, when it cannot be written
   file.stream() << text;
   file.close();
+#ifdef __EMSCRIPTEN__
+  web::offerDownload(build_.file, "application/json");  // the page's files live in memory
+#endif
   setStatus("saved " + build_.file + " (particle-lab run --scene-file " + build_.file + ")");
 }
 

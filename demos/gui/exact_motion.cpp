@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "particles/constants.h"
+#include "scenes/elliptic.h"
 #include "scenes/oscillator.h"
 #include "scenes/param_fields.h"
 #include "scenes/pendulum.h"
@@ -11,7 +12,7 @@
 namespace demo {
 
 double jacobiSn(double u, double k) {
-  const double K = std::comp_ellint_1(k);
+  const double K = scenes::ellipticK(k);
   // sn has period 4K, is odd about 2K and symmetric about K.
   u = std::fmod(u, 4.0 * K);
   if (u < 0.0) u += 4.0 * K;
@@ -25,7 +26,7 @@ double jacobiSn(double u, double k) {
   double lo = 0.0, hi = 0.5 * particles::kPi;
   for (int i = 0; i < 64 && hi - lo > 1e-16; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (std::ellint_1(k, mid) < u ? lo : hi) = mid;
+    (scenes::ellipticF(k, mid) < u ? lo : hi) = mid;
   }
   return sign * std::sin(0.5 * (lo + hi));
 }
@@ -61,7 +62,7 @@ ExactMotion pendulum(const SceneChoice& choice) {
   return [p](double t) {
     const double theta0 = p.angle * particles::kPi / 180.0, k = std::sin(0.5 * std::abs(theta0));
     const double omega0 = std::sqrt(p.gravity / p.length);
-    const double s = k * jacobiSn(std::comp_ellint_1(k) - omega0 * t, k);
+    const double s = k * jacobiSn(scenes::ellipticK(k) - omega0 * t, k);
     // θ swings through zero to −θ₀: its sign is sn's, mirrored for a release at a negative angle.
     const double theta = (theta0 < 0.0 ? -1.0 : 1.0) * 2.0 * std::asin(std::clamp(s, -1.0, 1.0));
     GhostFrame g;

@@ -24,7 +24,7 @@ using ExactMotion = std::function<GhostFrame(double t)>;
 // never shows a different problem than the one simulated).
 ExactMotion exactMotion(const SceneChoice& choice, const particles::ParticleSystem& initial);
 
-// Jacobi's sn(u, k) for 0 ≤ k < 1, by inverting u = F(φ, k) (std::ellint_1) for
+// Jacobi's sn(u, k) for 0 ≤ k < 1, by inverting u = F(φ, k) (scenes::ellipticF, scenes/elliptic.h) for
 // the amplitude φ = am(u, k) on [0, π/2] and the quarter-period symmetries.
 double jacobiSn(double u, double k);
 

@@ -1,5 +1,7 @@
 // particle-demo: options, the GLUT window, and callbacks that forward to the
-// one App (reached through the window's user data, not a global).
+// one App (reached through the window's user data, not a global). The same
+// file runs the page (Emscripten's GLUT, web/GL/freeglut.h): there the
+// browser owns the main loop, and the page hears when the demo ends (web/page.h).
 #include <GL/freeglut.h>
 #include <imgui.h>
 
@@ -10,6 +12,9 @@
 #include "app.h"
 #include "backends/imgui_impl_glut.h"
 #include "particles/threads.h"
+#ifdef __EMSCRIPTEN__
+#include "page.h"
+#endif
 
 namespace {
 
@@ -41,7 +46,20 @@ void onKeyboardUp(unsigned char key, int x, int y) {
 void onSpecial(int key, int x, int y) { ImGui_ImplGLUT_SpecialFunc(key, x, y); }
 void onSpecialUp(int key, int x, int y) { ImGui_ImplGLUT_SpecialUpFunc(key, x, y); }
 void onMouse(int button, int state, int x, int y) {
-  // freeglut reports the wheel as buttons 3 and 4 when no wheel callback takes it.
+  // freeglut reports the wheel as buttons 3 and 4 when no wheel callback
+  // takes it (Emscripten's GLUT always does): a press is a turn.
+  if (button == 3 || button == 4) {
+#ifdef __EMSCRIPTEN__
+    // Emscripten 3.1.6's GLUT reads the browser's legacy mousewheel event
+    // (wheelDelta > 0 away from the user) as if it were a wheel event's
+    // deltaY, whose sign is the other way: its button 4 is the wheel turned up.
+    const int up = 4;
+#else
+    const int up = 3;
+#endif
+    if (state == GLUT_DOWN) guarded([&] { app().inputWheel(button == up ? 1 : -1, x, y); });
+    return;
+  }
   const bool shift = shiftHeld();
   guarded([&] { app().inputMouse(button, state, x, y, shift); });
 }
@@ -49,11 +67,30 @@ void onMotion(int x, int y) { guarded([&] { app().inputMotion(x, y); }); }
 void onPassiveMotion(int x, int y) { guarded([&] { app().inputPassiveMotion(x, y); }); }
 void onWheel(int, int direction, int x, int y) { guarded([&] { app().inputWheel(direction, x, y); }); }
 void onReshape(int width, int height) { guarded([&] { app().reshape(width, height); }); }
-void onDisplay() { guarded([&] { app().display(); }); }
+
+// After the main loop: the state log (--log-state) and the exit code.
+int finish(demo::App& application) {
+  const bool written = application.writeStateLog() && !application.outputsFailed();
+  return written ? 0 : demo::exitOutputFailed;
+}
+
+void onDisplay() {
+  guarded([&] { app().display(); });
+#ifdef __EMSCRIPTEN__
+  web::frameDrawn();
+  // The browser's loop never returns to main: the demo ends here, once.
+  static bool ended = false;
+  if (app().quitRequested() && !ended) {
+    ended = true;
+    web::finished(finish(app()));
+  }
+#endif
+}
 
 // The frame clock. Interactive: about 60 frames per second. Scripted runs
 // (--frames, --script): as fast as possible.
 void onTimer(int) {
+  if (app().quitRequested()) return;
   app().requestFrame();
   glutPostRedisplay();
   // The next tick of a 60 Hz grid since glutInit, so frames average 60 per
@@ -66,6 +103,7 @@ void onTimer(int) {
   glutTimerFunc(static_cast<unsigned>(tickTime(k) - now), onTimer, 0);
 }
 void onIdle() {
+  if (app().quitRequested()) return;
   app().requestFrame();
   glutPostRedisplay();
 }
@@ -88,10 +126,16 @@ int main(int argc, char** argv) {
 
   glutInit(&argc, argv);
   glutInitDisplayMode(GLUT_RGBA | GLUT_DOUBLE);
+  // The scene's shaders and ImGui's OpenGL3 backend (painter.h).
+  glutInitContextVersion(3, 3);
+  glutInitContextProfile(GLUT_CORE_PROFILE);
   glutInitWindowSize(options.windowWidth, options.windowHeight);
   glutSetOption(GLUT_ACTION_ON_WINDOW_CLOSE, GLUT_ACTION_GLUTMAINLOOP_RETURNS);
   glutCreateWindow("particle-lab demo");
   glutSetWindowData(application.get());
+#ifdef __EMSCRIPTEN__
+  web::attach(*application);
+#endif
   glutIgnoreKeyRepeat(1);  // a held space is one press (space + drag pans)
   application->initGraphics();
 
@@ -108,7 +152,14 @@ int main(int argc, char** argv) {
   if (!options.paced()) glutIdleFunc(onIdle);
   else glutTimerFunc(16, onTimer, 0);
 
+#ifdef __EMSCRIPTEN__
+  // The browser runs the loop: glutMainLoop leaves main without returning,
+  // and the App lives on with the page.
+  application.release();
   glutMainLoop();
-  const bool written = application->writeStateLog() && !application->outputsFailed();
-  return written ? 0 : demo::exitOutputFailed;
+  return 0;
+#else
+  glutMainLoop();
+  return finish(*application);
+#endif
 }

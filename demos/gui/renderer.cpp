@@ -1,7 +1,5 @@
 #include "renderer.h"
 
-#include <GL/gl.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -59,19 +57,14 @@ int pointDiameter(const particles::Phase& phase, double pixelsPerUnit) {
   return pixels(std::min(0.45 * spacing, byScale), minParticlePixels, 12);
 }
 
-void Renderer::clearWindow(int width, int height, Rgb colour) {
-  glViewport(0, 0, width, height);
-  glDisable(GL_SCISSOR_TEST);
-  glClearColor(colour.r / 255.f, colour.g / 255.f, colour.b / 255.f, 1.f);
-  glClear(GL_COLOR_BUFFER_BIT);
-}
+void Renderer::clearWindow(int width, int height, Rgb colour) { painter_.clearWindow(width, height, colour); }
 
 void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                         const DrawOptions& options, const GhostFrame* ghost) {
   collectPane(simulation, view, options, ghost);
-  const bool smooth = beginPane(view, windowHeight);
-  drawBatches(smooth);
-  endPane();
+  painter_.beginPane(view, windowHeight, &palette::background);
+  drawBatches(smoothPane());
+  painter_.endPane();
 }
 
 void Renderer::collectPane(const Simulation& simulation, const ViewTransform& view, const DrawOptions& options,
@@ -108,70 +101,22 @@ void Renderer::collectPane(const Simulation& simulation, const ViewTransform& vi
   if (ghost && options.ghost) collectGhost(*ghost, view, pointDiameter(phase, view.pixelsPerUnit));
 }
 
-bool Renderer::beginPane(const ViewTransform& view, int windowHeight) const {
-  // GL's window origin is bottom-left, the pane's top-left.
-  const PixelRect& p = view.pane;
-  glViewport(p.x, windowHeight - p.y - p.height, p.width, p.height);
-  glScissor(p.x, windowHeight - p.y - p.height, p.width, p.height);
-  glEnable(GL_SCISSOR_TEST);
-  const Rgb bg = palette::background;
-  glClearColor(bg.r / 255.f, bg.g / 255.f, bg.b / 255.f, 1.f);
-  glClear(GL_COLOR_BUFFER_BIT);
+// Antialiasing costs a software rasteriser (llvmpipe, Xvfb; SwiftShader in a
+// browser) a pixel more of every line; large scenes draw crisp instead so
+// that they stay interactive there.
+bool Renderer::smoothPane() const { return springs_.xy.size() + arrows_.xy.size() < 2 * smoothLineLimit; }
 
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(view.worldMin.x(), view.worldMax.x(), view.worldMin.y(), view.worldMax.y(), -1, 1);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
-
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  // Antialiasing costs a software rasteriser (llvmpipe, Xvfb) far more than
-  // a GPU; large scenes draw crisp instead so that they stay interactive there.
-  const bool smooth = springs_.xy.size() + arrows_.xy.size() < 2 * smoothLineLimit;
-  if (smooth) glEnable(GL_LINE_SMOOTH); else glDisable(GL_LINE_SMOOTH);
-  if (smooth) glEnable(GL_POINT_SMOOTH); else glDisable(GL_POINT_SMOOTH);
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_COLOR_ARRAY);
-  return smooth;
-}
-
-void Renderer::drawBatches(bool smooth) const {
-  draw(faces_, GL_TRIANGLES);
-  draw(walls_, GL_TRIANGLES);
-  glLineWidth(1.5f);
-  draw(wallOutlines_, GL_LINES);
-  for (const auto& [diameter, batch] : discsBySize_) {
-    glPointSize(static_cast<float>(diameter));
-    draw(batch, GL_POINTS);
-  }
-  glLineWidth(1.5f);
-  draw(ghostLines_, GL_LINES);
-  glPointSize(static_cast<float>(ghostDiameter_));
-  draw(ghostPoints_, GL_POINTS);
-  glLineWidth(smooth ? 1.4f : 1.0f);
-  draw(springs_, GL_LINES);
-  glLineWidth(2.0f);
-  draw(constraints_, GL_LINES);
-  glLineWidth(1.6f);
-  draw(arrows_, GL_LINES);
-  for (const auto& [diameter, batch] : pointsBySize_) {
-    glPointSize(static_cast<float>(diameter));
-    draw(batch, GL_POINTS);
-  }
-}
-
-void Renderer::endPane() {
-  glDisableClientState(GL_COLOR_ARRAY);
-  glDisableClientState(GL_VERTEX_ARRAY);
-  glDisable(GL_SCISSOR_TEST);
-}
-
-void Renderer::draw(const Batch& batch, unsigned mode) {
-  if (batch.xy.empty()) return;
-  glVertexPointer(2, GL_FLOAT, 0, batch.xy.data());
-  glColorPointer(4, GL_UNSIGNED_BYTE, 0, batch.rgba.data());
-  glDrawArrays(mode, 0, static_cast<GLsizei>(batch.xy.size() / 2));
+void Renderer::drawBatches(bool smooth) {
+  painter_.triangles(faces_);
+  painter_.triangles(walls_);
+  painter_.lines(wallOutlines_, 1.5, smooth);
+  for (const auto& [diameter, batch] : discsBySize_) painter_.points(batch, diameter, smooth);
+  painter_.lines(ghostLines_, 1.5, smooth);
+  painter_.points(ghostPoints_, ghostDiameter_, smooth);
+  painter_.lines(springs_, smooth ? 1.4 : 1.0, smooth);
+  painter_.lines(constraints_, 2.0, smooth);
+  painter_.lines(arrows_, 1.6, smooth);
+  for (const auto& [diameter, batch] : pointsBySize_) painter_.points(batch, diameter, smooth);
 }
 
 // The outline of a collider grown by its radius, counter-clockwise: the

@@ -1,11 +1,12 @@
 #pragma once
-// Draws a simulation into a pane with OpenGL vertex arrays: a handful of draw
-// calls per pane (walls, lines by width, points by size), whatever the
-// number of particles.
+// Draws a simulation into a pane: a handful of draw calls per pane (walls,
+// lines by width, points by size), whatever the number of particles, through
+// the shader backend of painter.h.
 #include <map>
 #include <vector>
 
 #include "exact_motion.h"
+#include "painter.h"
 #include "palette.h"
 #include "particles/constraint_solver.h"
 #include "simulation.h"
@@ -65,30 +66,18 @@ class Renderer {
   };
   const PaneDrawing& drawing() const { return drawing_; }
 
- private:
-  // Vertices of one primitive kind: 2 floats and 4 bytes of colour each.
-  struct Batch {
-    std::vector<float> xy;
-    std::vector<unsigned char> rgba;
-    void clear() { xy.clear(); rgba.clear(); }
-    void add(const Eigen::Vector2d& p, Rgb c, unsigned char alpha = 255) {
-      xy.push_back(static_cast<float>(p.x()));
-      xy.push_back(static_cast<float>(p.y()));
-      rgba.insert(rgba.end(), {c.r, c.g, c.b, alpha});
-    }
-    void line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Rgb c, unsigned char alpha = 255) {
-      add(a, c, alpha);
-      add(b, c, alpha);
-    }
-  };
+  // The backend, for marks drawn over a pane (build mode's).
+  Painter& painter() { return painter_; }
 
-  // drawPane's phases: collect the batches, set up the pane's GL state (true:
-  // antialiased), draw the batches back to front, restore the state.
+ private:
+  using Batch = ShapeBatch;
+
+  // drawPane's phases: collect the batches, then draw them back to front
+  // into the cleared pane (smooth: antialiased).
   void collectPane(const Simulation& simulation, const ViewTransform& view, const DrawOptions& options,
                    const GhostFrame* ghost);
-  bool beginPane(const ViewTransform& view, int windowHeight) const;
-  void drawBatches(bool smooth) const;
-  static void endPane();
+  bool smoothPane() const;
+  void drawBatches(bool smooth);
   void collectWalls(const particles::ParticleSystem& system, const ViewTransform& view);  // colliders
   void collectFaces(const Simulation& simulation, const ViewTransform& view);
   // surface: the springs are drawn faintly over the shaded faces.
@@ -109,7 +98,7 @@ class Renderer {
   void addSpring(Batch& batch, const Eigen::Vector2d& a, const Eigen::Vector2d& b, Rgb colour, unsigned char alpha,
                  bool coil, double pixelsPerUnit);
   void addCircle(Batch& batch, const Eigen::Vector2d& centre, double radius, Rgb colour);
-  static void draw(const Batch& batch, unsigned mode);
+  Painter painter_;
   Batch walls_, wallOutlines_, faces_, springs_, constraints_, arrows_, ghostLines_;
   std::map<int, Batch> pointsBySize_;  // diameter in pixels → particles
   std::map<int, Batch> discsBySize_;   // collision discs of collidable particles, translucent

@@ -71,8 +71,8 @@ bool slider(const char* label, double& value, float lo, float hi, const char* fo
 }  // namespace
 
 // The section's header says what is on, so that it reads right even closed:
-// "Wind and tearing: wind 5 m/s, tearing beyond 50%". Open by default on a
-// scene the wind reaches or that tears.
+// "Wind and tearing: wind 5 m/s, tearing beyond 50%". Open by default when
+// the scene starts with either on.
 void App::drawWindTearSection() {
   const Simulation& first = *panes_.front();
   std::string on;
@@ -81,7 +81,7 @@ void App::drawWindTearSection() {
     on += (on.empty() ? "" : ", ") + std::string("tearing beyond ") +
           output::formatGeneral(100.0 * windTear_.tearStrain, 3) + "%";
   const std::string header = "Wind and tearing: " + (on.empty() ? std::string("off") : on) + "###wind-and-tearing";
-  const bool open = ImGui::CollapsingHeader(header.c_str(), first.takesWind() || windTear_.tearOn
+  const bool open = ImGui::CollapsingHeader(header.c_str(), windTear_.windOn || windTear_.tearOn
                                                                 ? ImGuiTreeNodeFlags_DefaultOpen
                                                                 : ImGuiTreeNodeFlags_None);
   recordWidget("wind-and-tearing");

@@ -5,6 +5,7 @@
 
 #include "particles/check.h"
 #include "particles/constraints/circular_wire.h"
+#include "scenes/elliptic.h"
 #include "scenes/param_fields.h"
 #include "scenes/world.h"
 
@@ -45,7 +46,7 @@ Scene buildPendulum(const PendulumParams& p) {
 }
 
 double pendulumPeriod(const PendulumParams& p) {
-  return 4.0 * std::sqrt(p.length / p.gravity) * std::comp_ellint_1(std::sin(0.5 * radians(p.angle)));
+  return 4.0 * std::sqrt(p.length / p.gravity) * ellipticK(std::sin(0.5 * radians(p.angle)));
 }
 
 }  // namespace scenes

@@ -28,7 +28,7 @@ struct PendulumParams {
 Scene buildPendulum(const PendulumParams& p);
 
 // Large-angle period T = 4 √(L/g) K(sin(θ₀/2)), K the complete elliptic
-// integral of the first kind with modulus k (std::comp_ellint_1).
+// integral of the first kind with modulus k (ellipticK, scenes/elliptic.h).
 double pendulumPeriod(const PendulumParams& p);
 
 }  // namespace scenes
