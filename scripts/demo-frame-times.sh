@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Frame times and real-time ratio of particle-demo under Xvfb, from its state
 # log's frame-times, real-time and timing records: every number key's scene
-# (1-9, 0) and a 64 x 64 cloth with 8-way springs, each for FRAMES frames
+# (1-9, 0), a 64 x 64 cloth with 8-way springs and the gallery's five scenes
+# (the panel's list), each for FRAMES frames
 # (default 300) with the control panel shown, paced at 60 Hz (--realtime) as a
 # user sees it. Real time is a ratio of at least 0.95 (simulated over wall
 # seconds, all frames after the first); a paced frame cannot be shorter than
@@ -49,7 +50,8 @@ run() {
   if [ -n "${DISPLAY:-}" ]; then "$demo" "$@"; else xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$demo" "$@"; fi
 }
 scenes=("--key 1" "--key 2" "--key 3" "--key 4" "--key 5" "--key 6" "--key 7" "--key 8" "--key 9" "--key 0"
-        "--scene cloth --param width=64 --param height=64 --param links=8")
+        "--scene cloth --param width=64 --param height=64 --param links=8"
+        "--scene hourglass" "--scene newtons-cradle" "--scene capstan" "--scene rope-bridge" "--scene soft-body")
 [ -n "$only" ] && scenes=("--key $only")
 echo "scene,median ms,p10 ms,p90 ms,median stepping ms,scene draw ms,text and panel ms,paced real-time ratio  ($(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load $(cut -d' ' -f1 /proc/loadavg); $load busy processes; ${threads[*]:-default threads})"
 for scene in "${scenes[@]}"; do

@@ -23,6 +23,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   long='Sweep\.|^HairScene\.(APulled|Ringlets)|^CoupledContacts\.Pinned|^Grab\.Follows|^SceneDefaults\.EveryScene'
   long+='|^Rattle\.ChainEnergy|^ImplicitEuler\.ChainEnergyNever|^Advise\.APickIsMovedBelow'
   long+='|^ContactCases\.(Capstan|Frictionless|Strand|SymmetricRibbon|DiscChains)|^ClosedBox\.ParticlesSlidingOnTheFloor|^ForceBatchThreads\.ThreadedTrajectories'
+  long+='|^ClothScene\.AFoldedClothOpens|^PressureForce\.ARingSettles|^GalleryScenes\.'
   ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize -L unit -LE "$next" -E "$long" --output-on-failure -j"$jobs"
 else
   # The demo's web page and what its tests need (tests/web, label "web").

@@ -160,8 +160,21 @@ void ParticleSystem::setSpringEnabled(const Force* spring, bool enabled) {
 }
 
 int ParticleSystem::breakLinks(const std::vector<std::array<int, 2>>& links) {
-  const LinkSet broken(links);
-  if (broken.empty()) return 0;
+  if (links.empty()) return 0;
+  // The links that break with these (a torn face's diagonals), and with
+  // those, until no force adds one more.
+  std::vector<std::array<int, 2>> all = links;
+  for (std::size_t known = 0; known != all.size();) {
+    known = all.size();
+    const LinkSet so(all);
+    std::vector<std::array<int, 2>> more;
+    for (const auto& force : forces_) force->linksBreakingWith(so, more);
+    const LinkSet added(more);  // sorted and each once: a link two faces share counts once
+    for (std::size_t k = 0; k < added.links().size(); ++k)
+      if ((k == 0 || added.links()[k] != added.links()[k - 1]) && !so.contains(added.links()[k][0], added.links()[k][1]))
+        all.push_back(added.links()[k]);
+  }
+  const LinkSet broken(all);
   int changed = 0;
   for (const auto& force : forces_) changed += force->dropLinks(broken);
   edges_.erase(std::remove_if(edges_.begin(), edges_.end(),

@@ -128,6 +128,7 @@ App::App(DemoOptions options)
       panes_[k]->setIntegrator(integratorIndexByName(options_.compare[k].integrator));
       panes_[k]->setDt(options_.compare[k].dt.value_or(dt));
     }
+    setStatus(compareLine());  // what the panes run now, not the presets they started from
   }
   sceneHint_ = hintFor(scene_);
   exact_ = exactMotion(scene_, *buildChoice(scene_).system);  // a fresh build: the state at t = 0
@@ -332,7 +333,7 @@ void App::reportFailedWrite(const std::string& message) {
 
 void App::writeFrameImages() {
   if (recording_) {
-    const std::string error = writeScreenshot(numberedImage(options_.record, "frame", frame_), windowWidth_,
+    const std::string error = writeScreenshot(numberedImage(recordDirectory(), "frame", frame_), windowWidth_,
                                               windowHeight_, "--record");
     if (!error.empty()) {
       reportFailedWrite("recording stopped: " + error);
@@ -533,21 +534,31 @@ void App::setPaneCount(int count) {
   panes_.front()->release();
   for (auto& pane : added) panes_.push_back(std::move(pane));
   tool_ = MouseTool::None;
-  if (count > 1) {
-    std::string names;
-    for (const auto& pane : panes_) {
-      char entry[96];
-      std::snprintf(entry, sizeof entry, "%s%s dt %g", names.empty() ? "" : ", ", pane->integratorName(), pane->dt());
-      names += entry;
-    }
-    setStatus("compare: " + names);
+  if (count > 1) setStatus(compareLine());
+}
+
+// The panes as they run, in pane order: "compare: 1 euler dt 0.005, 2 ...".
+std::string App::compareLine() const {
+  std::string names;
+  for (std::size_t k = 0; k < panes_.size(); ++k) {
+    char entry[96];
+    std::snprintf(entry, sizeof entry, "%s%zu %s dt %g", k ? ", " : "", k + 1, panes_[k]->integratorName(), panes_[k]->dt());
+    names += entry;
   }
+  return "compare: " + names;
+}
+
+// "integrator: rk4 (order 4): loses a little energy, ...": the scheme's
+// order, stability and cost in one line.
+std::string App::integratorLine(int index) {
+  const particles::IntegratorInfo& info = particles::integratorTable().at(static_cast<std::size_t>(index));
+  return std::string("integrator: ") + info.name + " (order " + std::to_string(info.order) + "): " + info.behaviour;
 }
 
 void App::cycleIntegrators() {
   const int tableSize = static_cast<int>(particles::integratorTable().size());
   for (auto& pane : panes_) pane->setIntegrator((pane->integratorIndex() + 1) % tableSize);
-  setStatus(std::string("integrator: ") + panes_.front()->integratorName());
+  setStatus(integratorLine(panes_.front()->integratorIndex()));
 }
 
 void App::scaleDt(double factor) {

@@ -7,6 +7,7 @@
 
 #include "particles/check.h"
 #include "particles/constants.h"
+#include "particles/forces/polygon_area.h"
 
 namespace demo {
 
@@ -40,13 +41,7 @@ Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
 }
 
 double faceArea(const particles::Phase& s, const std::array<int, 4>& f) {
-  // The shoelace formula over the quad's corners, counter-clockwise positive.
-  double twice = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector2d a = s.position(f[k]), b = s.position(f[(k + 1) % 4]);
-    twice += a.x() * b.y() - b.x() * a.y();
-  }
-  return 0.5 * twice;
+  return particles::ringArea(s.x, f.data(), f.size());
 }
 
 void Simulation::setIntegrator(int index) {

@@ -16,6 +16,7 @@
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/solver_names.h"
+#include "particles/forces/face_area.h"
 #include "scene_file/codecs.h"
 #include "scene_file/json_parse.h"
 #include "scene_limits.h"
@@ -209,10 +210,25 @@ void requireCount(const JsonNode& node, const char* what, long long limit) {
     node.reject(std::to_string(count) + " " + what + " exceed the limit of " + std::to_string(limit));
 }
 
+// The surface a file's face-area forces describe: their faces of four
+// corners are the scene's faces (which the demo shades), their sides the
+// wind's edges when no wind names its own, and collision edges on them make
+// the face edges collide (Scene::edgeContacts), as the built-in cloth's.
+void takeSurface(Scene& scene) {
+  const particles::ParticleSystem& s = *scene.system;
+  for (const auto& force : s.forceObjects())
+    if (const auto* area = dynamic_cast<const particles::FaceAreaForce*>(force.get()))
+      for (const particles::AreaFace& face : area->faces())
+        if (face.ring.size() == 4) scene.faces.push_back({face.ring[0], face.ring[1], face.ring[2], face.ring[3]});
+  if (scene.faces.empty()) return;
+  scene.windEdges = faceEdges(scene);
+  scene.edgeContacts = !s.collisionEdges().empty();
+}
+
 Scene readDocument(const JsonNode& root, const std::string& source) {
-  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution",
-                  "particleFriction", "tearing",
-                  "particles", "forces", "constraints", "walls", "colliders", "collisionEdges"});
+  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "time", "view", "solver", "particleRestitution",
+                  "particleFriction", "tearing", "particles", "forces", "constraints", "walls", "colliders",
+                  "collisionEdges"});
   Scene scene;
   scene.name = root["name"].present() ? root["name"].text() : source;
   readIntegrator(root["integrator"], scene);
@@ -271,6 +287,9 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
     }
   readCollisionEdges(root["collisionEdges"], s);
   refuseParticlesInsideColliders(root, s);
+  // A saved state's clock; the forces that follow it (gusts) take it up.
+  if (root["time"].present()) s.restore({s.positions(), s.velocities(), root["time"].nonNegative()});
+  takeSurface(scene);
   return scene;
 }
 

@@ -70,6 +70,10 @@ class Integrator {
 struct IntegratorInfo {
   const char* name;     // command-line name
   const char* summary;  // one line for `list` and the help overlay
+  // How it behaves, in one phrase for a user who switches to it: stability
+  // (omega the fastest frequency, zeta its damping ratio: ASCII, as the
+  // demo's font draws it) and cost.
+  const char* behaviour;
   int order;            // global order of accuracy on smooth problems
   std::unique_ptr<Integrator> (*make)();
   bool usesTolerance = false;  // reads IntegratorSettings::dopri5 (tolerance, step floor, work cap)

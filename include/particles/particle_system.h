@@ -70,9 +70,10 @@ class ParticleSystem {
   // Breaks the links between the given particle pairs (either order): every
   // force drops what hangs on them (Force::dropLinks: the springs on them
   // tear, angle springs with them as an arm go, the wind stops pushing on
-  // them) and the collision edges on them are removed. Returns how many
-  // forces changed; changes the structure stamp. The tear phase of step()
-  // calls it (tearing.h).
+  // them) and the collision edges on them are removed; the links that break
+  // with them (Force::linksBreakingWith: a torn face's diagonals) break too.
+  // Returns how many forces changed; changes the structure stamp. The tear
+  // phase of step() calls it (tearing.h).
   int breakLinks(const std::vector<std::array<int, 2>>& links);
   // Every link broken so far, (min, max), in the order they broke.
   const std::vector<std::array<int, 2>>& brokenLinks() const { return brokenLinks_; }
