@@ -11,7 +11,7 @@
 // Suite ContactCases holds what the engine gets right and must keep (label
 // unit); suite ContactCasesOpen what it does not get right yet (labels unit
 // and contacts-open, which scripts/run-tests.sh leaves out): an edge on a
-// 4 mm post under explicit Euler, a pile of 60 discs coming to rest within
+// 4 mm post under explicit Euler, a pile of 200 discs coming to rest within
 // its horizon. Horizons are the script's unless a test says otherwise.
 #include <algorithm>
 #include <cmath>
@@ -314,11 +314,9 @@ TEST(ContactCasesOpen, DiscPileComesToRest) {
   // over the last second the overlap stays ≤ 1% of a radius, the kinetic
   // energy at the end is ≤ 1e-4 of the initial, and the energy never rises
   // above its start (explicit Euler: above its own gain in free fall,
-  // ½ Σm g² dt t, FORMAT.md). Until the reader knows particleFriction it
-  // refuses the file. 3 s, not the script's 6 s: the pile has landed by 0.7 s
-  // (xpbd's, today's one that rests, is still by 1.5 s). xpbd is left out here
-  // for its cost alone (today 80 CPU-s for the 6 s, 20 times rk4's); the
-  // script judges it.
+  // ½ Σm g² dt t, FORMAT.md). 3 s, not the script's 6 s: the pile has
+  // landed by 0.7 s. xpbd is left out here for its cost alone (80 CPU-s for
+  // the 6 s, 20 times rk4's); the script judges it.
   constexpr double horizon = 3.0;
   for (const std::string& integrator : integratorsBut({"xpbd"})) {
     double kinetic0 = 0.0, energy0 = 0.0, mass = 0.0, overlap = 0.0, rise = -1e300, kinetic = 0.0;

@@ -187,7 +187,7 @@ int pushOutOfColliders(const std::vector<Collider>& colliders, const std::vector
     Eigen::Vector2d from = lastFree.segment<2>(2 * i);
     if (from == x1) continue;  // not moved since it was known to be outside
     int pass = 0;
-    for (; pass < settings.maxImpacts; ++pass) {
+    for (; pass < settings.maxImpacts && !cancel.poll(); ++pass) {
       const std::optional<int> hit = firstCollider(colliders, boxes, from, x1, r, settings.slop);
       if (!hit) break;
       const Collider& c = colliders[*hit];

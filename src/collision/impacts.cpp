@@ -245,6 +245,8 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
   const double dt = start.dt;
   const contact::ColliderBoxes boxes(colliders);
   ContactCount counted;
+  // A particle's impacts may be thousands (ContactSettings::maxImpacts):
+  // the flag is read every 64 of them.
   CancelPoll cancel(64);
   for (const int i : points) {
     if (cancel.poll()) break;
@@ -252,7 +254,7 @@ ContactCount Impacts::resolvePoints(const std::vector<Collider>& colliders, cons
     const double r = radius[i];
     if (!boxes.near(colliders, start.x.segment<2>(2 * i), x.segment<2>(2 * i), r + settings.slop)) continue;
     contact::Track track = trackOf(start, i, x, v, anchored);
-    while (track.impacts < settings.maxImpacts) {
+    while (track.impacts < settings.maxImpacts && !cancel.poll()) {
       const std::optional<contact::ColliderImpact> impact =
           contact::nextColliderImpact(colliders, boxes, track, r, settings.slop, dt);
       if (!impact) break;

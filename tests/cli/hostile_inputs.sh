@@ -4,7 +4,8 @@
 # whole under their own name. Generators: numbers that are not decimal or not within a double
 # in every option and parameter that takes one; --help and results on a full disk; built-in
 # parameters that start a particle inside a collider; colliders the contact arithmetic cannot
-# hold; signals inside one long step and inside the load of a slow scene file.
+# hold; signals inside one long step, inside a contact pass and inside the load of a slow scene
+# file; discs piled beyond the contact pair cap.
 # Usage: hostile_inputs.sh PROGRAM DATA WORK
 PROGRAM=$1 DATA=$2 WORK=$3
 source "$(dirname "$0")/common.sh"
@@ -207,7 +208,7 @@ fi
 # export (the cloth swung 30 degrees left started inside its wall: its first step added 45% to
 # its energy, and its export was a file the reader refused).
 for swing in -60 -30 -20 60; do
-  expect "cloth-swing-$swing-run" 2 "^particle-lab: scene 'cloth': particle [0-9]+ starts inside collider [01] \(a box\) by [0-9.e-]+ with (damping=0 drag=0 )?swing=$swing: a contact cannot push it out" -- \
+  expect "cloth-swing-$swing-run" 2 "^particle-lab: scene 'cloth': particle [0-9]+ starts inside collider [0-9]+ \(a box\) by [0-9.e-]+ with (damping=0 drag=0 )?swing=$swing: a contact cannot push it out" -- \
     run --scene cloth --param swing=$swing --param drag=0 --param damping=0 --steps 500 --csv "$WORK/swing.csv"
   expect "cloth-swing-$swing-export" 2 "^particle-lab: scene 'cloth': particle [0-9]+ starts inside collider" -- \
     export --scene cloth --param swing=$swing -o "$WORK/swing.json"
@@ -300,5 +301,48 @@ if kill -0 "$pid" 2>/dev/null; then
 else
   code=0; wait "$pid" || code=$?
   fail "slow-load-sigint: the load ended within 3 s (exit $code): the file no longer tests a slow load"
+fi
+
+# 100,000 discs on one point are 5e9 pairs (40 GB of pair list): the broad phase stops at its cap
+# (64 pairs a disc) and the step fails with the contact cap, one line, within the 60 s of expect.
+python3 - "$WORK/coincident.json" <<'PY'
+import json, sys
+disc = {"position": [0, 0], "mass": 1, "radius": 0.01}
+json.dump({"particles": [disc] * 100000}, open(sys.argv[1], "w"), separators=(",", ":"))
+PY
+expect coincident-discs 3 'the step failed: contact-cap' -- run --scene-file "$WORK/coincident.json" --steps 1
+
+# A signal inside the contact pass: 100 particles at 1e7 m/s in a closed box with e = 1 strike its
+# walls up to the impact cap in every step (seconds a step); SIGINT stops the step within seconds.
+python3 - "$WORK/fast-box.json" <<'PY'
+import json, math, random, sys
+random.seed(2)
+particles = []
+for k in range(100):
+    a = random.uniform(0, 2 * math.pi)
+    particles.append({"position": [random.uniform(-0.9, 0.9), random.uniform(-0.9, 0.9)], "mass": 1,
+                      "velocity": [1e7 * math.cos(a), 1e7 * math.sin(a)]})
+walls = [{"type": "box", "min": [-1.1, -1.1], "max": [1.1, -1], "restitution": 1},
+         {"type": "box", "min": [-1.1, 1], "max": [1.1, 1.1], "restitution": 1},
+         {"type": "box", "min": [-1.1, -1], "max": [-1, 1], "restitution": 1},
+         {"type": "box", "min": [1, -1], "max": [1.1, 1], "restitution": 1}]
+json.dump({"dt": 0.01, "particles": particles, "colliders": walls}, open(sys.argv[1], "w"))
+PY
+"$PROGRAM" run --scene-file "$WORK/fast-box.json" --steps 100000 --csv "$WORK/fast-box.csv" >/dev/null \
+  2>"$WORK/fast-box.err" &
+pid=$!
+sleep 2
+if kill -0 "$pid" 2>/dev/null; then
+  kill -INT "$pid"
+  code=0
+  wait_for "$pid" 10 || code=$?
+  if [ "$code" = 130 ] && grep -q '^particle-lab: interrupted after step ' "$WORK/fast-box.err"; then
+    pass fast-box-sigint
+  else
+    fail "fast-box-sigint: exit $code (124: still running 10 s after SIGINT): $(head -c 300 "$WORK/fast-box.err")"
+  fi
+else
+  code=0; wait "$pid" || code=$?
+  fail "fast-box-sigint: the run ended within 2 s (exit $code): the box no longer tests a long contact pass"
 fi
 finish
