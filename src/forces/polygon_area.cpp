@@ -15,13 +15,14 @@ Eigen::Vector2d turned(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }  //
 
 double ringArea(const Eigen::VectorXd& x, const int* ring, std::size_t n) {
   double twice = 0.0;
-  for (std::size_t k = 0; k < n; ++k) twice += cross(corner(x, ring[k]), corner(x, ring[(k + 1) % n]));
+  // The terms in ring order, the last one closing the ring (no division per corner).
+  for (std::size_t k = 0; k < n; ++k) twice += cross(corner(x, ring[k]), corner(x, ring[k + 1 == n ? 0 : k + 1]));
   return 0.5 * twice;
 }
 
 Eigen::Vector2d ringAreaGradientAt(const Eigen::VectorXd& x, const std::vector<int>& ring, std::size_t k) {
   const std::size_t n = ring.size();
-  return 0.5 * turned(corner(x, ring[(k + n - 1) % n]) - corner(x, ring[(k + 1) % n]));
+  return 0.5 * turned(corner(x, ring[k == 0 ? n - 1 : k - 1]) - corner(x, ring[k + 1 == n ? 0 : k + 1]));
 }
 
 double ringAreaGradient(const Eigen::VectorXd& x, const std::vector<int>& ring,
