@@ -2,8 +2,8 @@
 // The rows of the contact solve (contact_solver.h) and what its stages do
 // with a row: evaluate it where the particles are, move them along W Jᵀ, read
 // J v. The constraints of an island are solved as one block (DirectBlock);
-// the contact rows are relaxed one by one (relax.cpp), or with the
-// constraints by an active set (active_set.cpp).
+// the contact rows are relaxed one by one (relax.cpp), or on the Schur
+// complement of the island's constraints (reduced.cpp).
 #include <array>
 #include <cstdint>
 #include <vector>
