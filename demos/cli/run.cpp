@@ -89,23 +89,35 @@ void printSummary(const scenes::Scene& scene, const particles::Integrator& integ
   std::cout << '\n';
 }
 
+// The thread count asked for, lowered to the CPUs this process may run on
+// (with a note on stderr).
+void useThreads(int asked) {
+  std::string note;
+  particles::setThreadCount(options::threadsWithinAffinity(asked, note));
+  if (!note.empty()) std::cerr << "particle-lab: note: " << note << '\n';
+}
+
+// The divergence bound's scale (sceneLength), refused when it overflows.
+double boundedSceneLength(const RunOptions& o, const scenes::Scene& scene) {
+  const double length = sceneLength(scene);
+  if (!std::isfinite(length))
+    throw std::invalid_argument(o.source.describe() +
+                                ": its particles and view span more than a double holds (their extent overflows); "
+                                "bring them nearer the origin");
+  return length;
+}
+
 int run(const RunOptions& o) {
   // From here SIGINT, SIGTERM and SIGHUP only set a flag: reading a large
   // scene file stops (particles::Cancelled, exit 130), and the loop below
   // stops at the next step boundary with the files closed on complete rows.
   lab::installInterruptHandler();
   // Check every input before the first output.
-  std::string threadsNote;
-  particles::setThreadCount(options::threadsWithinAffinity(o.threads, threadsNote));
-  if (!threadsNote.empty()) std::cerr << "particle-lab: note: " << threadsNote << '\n';
+  useThreads(o.threads);
   scenes::Scene scene = o.source.load();
   const std::unique_ptr<particles::Integrator> integrator = chosenIntegrator(o, scene);
   const double dt = o.dtOption->count() ? o.dt : scene.dt;  // both checked > 0 as read
-  const double length = sceneLength(scene);  // the divergence bound's scale
-  if (!std::isfinite(length))
-    throw std::invalid_argument(o.source.describe() +
-                                ": its particles and view span more than a double holds (their extent overflows); "
-                                "bring them nearer the origin");
+  const double length = boundedSceneLength(o, scene);
   const Outputs out = openOutputs(o);
   output::CsvWriter* const csv = out.csv.get();
   output::CsvWriter* const trajectory = out.trajectory.get();

@@ -100,6 +100,8 @@ class App {
   void advance();
   void draw();
   void drawTopBar();
+  std::string sceneSummary() const;   // the title's summary of the first pane's scene
+  int particlesOutOfView() const;     // the first pane's particles outside its view
   void drawBottomBar();
   void drawPaneHeaders();
   void drawOutOfViewIndicators();

@@ -121,18 +121,35 @@ std::string App::ghostLabel() const {
   return "   ghost: the closed form from the start";
 }
 
+// The title's summary: the first pane's scene's caption, else its table
+// summary, else "scene file".
+std::string App::sceneSummary() const {
+  const Simulation& first = *panes_.front();
+  if (!first.scene().caption.empty()) return first.scene().caption;
+  for (const scenes::SceneInfo& i : scenes::sceneTable())
+    if (scene_.name == i.name) return i.summary;
+  return "scene file";
+}
+
+// The first pane's particles outside its view (not counting non-finite ones).
+int App::particlesOutOfView() const {
+  const Simulation& first = *panes_.front();
+  const ViewTransform view = paneViews()[0];
+  int outside = 0;
+  for (int i = 0; i < first.system().size(); ++i) {
+    const Eigen::Vector2d x = first.system().position(i);
+    if (!x.allFinite()) continue;
+    outside += x.x() < view.worldMin.x() || x.x() > view.worldMax.x() || x.y() < view.worldMin.y() ||
+               x.y() > view.worldMax.y();
+  }
+  return outside;
+}
+
 void App::drawTopBar() {
   const LayoutMetrics m;
   const Layout l = layout();
   const Simulation& first = *panes_.front();
-  std::string summary = "scene file";
-  if (const scenes::SceneInfo* info = [&]() -> const scenes::SceneInfo* {
-        for (const scenes::SceneInfo& i : scenes::sceneTable())
-          if (scene_.name == i.name) return &i;
-        return nullptr;
-      }())
-    summary = info->summary;
-  if (!first.scene().caption.empty()) summary = first.scene().caption;
+  const std::string summary = sceneSummary();
   // The title line: the scene, its time, then its summary, which is what a
   // narrow window shortens.
   Line title{{scene_.label, titleColour}};
@@ -147,14 +164,7 @@ void App::drawTopBar() {
   // particles out of view, then the first-run hint. A long message takes the title's line too.
   std::string message;
   ImU32 messageColour = colour(palette::hudText);
-  int outOfView = 0;
-  const std::vector<ViewTransform> views = paneViews();
-  for (int i = 0; i < first.system().size(); ++i) {
-    const Eigen::Vector2d x = first.system().position(i);
-    if (!x.allFinite()) continue;
-    outOfView += x.x() < views[0].worldMin.x() || x.x() > views[0].worldMax.x() || x.y() < views[0].worldMin.y() ||
-                 x.y() > views[0].worldMax.y();
-  }
+  const int outOfView = particlesOutOfView();
   // In compare mode the first pane that stopped says why in full here (its header says it briefly).
   std::string state = panes_.size() == 1 ? paneStateLine(first) : "";
   for (std::size_t k = 0; k < panes_.size() && panes_.size() > 1 && state.empty(); ++k)
@@ -368,6 +378,40 @@ HelpLayout layoutHelp(const std::vector<HelpRow>& rows, int columns, float width
   }
   return l;
 }
+// Draws the laid-out rows below the title line from `origin` (the box's
+// corner inside its padding), appending each row to `text`; returns the
+// rightmost x drawn.
+float drawHelpRows(ImDrawList* draw, const std::vector<HelpRow>& rows, const HelpLayout& layout, ImVec2 origin,
+                   float lineHeight, std::string& text) {
+  const float columnStep = layout.columnWidth + HelpLayout::gap;
+  std::vector<int> usedLines(static_cast<std::size_t>(layout.columns), 1);
+  float right = origin.x;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const int c = layout.column[r];
+    if (c < 0) continue;
+    const float x = origin.x + static_cast<float>(c) * columnStep;
+    float y = origin.y + static_cast<float>(usedLines[c]) * lineHeight;
+    usedLines[c] += layout.lines(r);
+    draw->AddText(ImVec2(x, y), titleColour, rows[r].keys.c_str());
+    right = std::max(right, x + textWidth(rows[r].keys));
+    if (rows[r].heading) {
+      text += rows[r].keys + ":\n";
+      continue;
+    }
+    if (layout.keysAbove[r]) y += lineHeight;
+    for (const Line& line : layout.actions[r]) {
+      float lx = x + layout.keyWidth;
+      for (const Piece& piece : line) {
+        draw->AddText(ImVec2(lx, y), piece.colour, piece.text.c_str());
+        lx += textWidth(piece.text);
+      }
+      right = std::max(right, lx);
+      y += lineHeight;
+    }
+    text += rows[r].keys + ": " + rows[r].action + "\n";
+  }
+  return right;
+}
 }  // namespace
 
 // The help (key h): every scene key, key and mouse action, drawn over the
@@ -413,35 +457,8 @@ void App::drawHelp() {
   const std::string title = layout.fits ? "the keys (h closes this)" : "the keys (h closes this; the window is too small for all)";
   draw->AddText(ImVec2(x0 + padding, y0 + padding), dimColour, title.c_str());
   float right = padding + textWidth(title);
-  const float columnStep = layout.columnWidth + HelpLayout::gap;
-  std::vector<int> usedLines(static_cast<std::size_t>(layout.columns), 1);
-  const float lineHeight = static_cast<float>(m.lineHeight);
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const int c = layout.column[r];
-    if (c < 0) continue;
-    const float x = x0 + padding + static_cast<float>(c) * columnStep;
-    float y = y0 + padding + static_cast<float>(usedLines[c]) * lineHeight;
-    usedLines[c] += layout.lines(r);
-    if (rows[r].heading) {
-      draw->AddText(ImVec2(x, y), titleColour, rows[r].keys.c_str());
-      right = std::max(right, x + textWidth(rows[r].keys) - x0);
-      overlay.text += rows[r].keys + ":\n";
-      continue;
-    }
-    draw->AddText(ImVec2(x, y), titleColour, rows[r].keys.c_str());
-    right = std::max(right, x + textWidth(rows[r].keys) - x0);
-    if (layout.keysAbove[r]) y += lineHeight;
-    for (const Line& line : layout.actions[r]) {
-      float lx = x + layout.keyWidth;
-      for (const Piece& piece : line) {
-        draw->AddText(ImVec2(lx, y), piece.colour, piece.text.c_str());
-        lx += textWidth(piece.text);
-      }
-      right = std::max(right, lx - x0);
-      y += lineHeight;
-    }
-    overlay.text += rows[r].keys + ": " + rows[r].action + "\n";
-  }
+  right = std::max(right, drawHelpRows(draw, rows, layout, ImVec2(x0 + padding, y0 + padding),
+                                       static_cast<float>(m.lineHeight), overlay.text) - x0);
   overlay.textWidth = static_cast<int>(std::ceil(right + padding));
   overlay.textHeight = static_cast<int>(std::ceil(static_cast<float>((layout.tallest + 1) * m.lineHeight) + 2.0f * padding));
   overlay.shortened = !layout.fits;
