@@ -75,6 +75,9 @@ scene() { printf '{"particles": [{"position": [0, 1], "mass": 1}], %s}' "$2" >"$
 scene substeps0 '"integratorSettings": {"substeps": 0}'
 expect scene-substeps-0 2 '^particle-lab: .*substeps0.json: \$\.integratorSettings\.substeps: expected an integer in \[1, 100000\], got 0$' -- \
   run --scene-file "$WORK/substeps0.json" --steps 1
+scene particle-friction '"particleFriction": -1'
+expect scene-particle-friction 2 '^particle-lab: .*particle-friction.json: \$\.particleFriction: expected a number >= 0, got -1$' -- \
+  run --scene-file "$WORK/particle-friction.json" --steps 1
 scene tolerance '"integratorSettings": {"tolerance": 9.9e-14}'
 expect scene-tolerance 2 '^particle-lab: .*tolerance.json: \$\.integratorSettings\.tolerance: integrator tolerance must be >= 1e-13 .*, got 9\.9e-14$' -- \
   run --scene-file "$WORK/tolerance.json" --steps 1
