@@ -38,6 +38,28 @@ void add(const NarrowInput& in, Contact c, const Eigen::VectorXd& x, const Eigen
   out.push_back(c);
 }
 
+// Particle i's contact with collider k, with the collider's friction,
+// restitution and key; its point and normal are the caller's.
+Contact colliderContact(const Collider& collider, int i, int k) {
+  Contact c;
+  c.kind = ContactKind::Collider;
+  c.particle[0] = i;
+  c.friction = collider.friction;
+  c.restitution = collider.restitution;
+  c.key = colliderContactKey(i, k);
+  return c;
+}
+
+// The contact where the path a → b (of radius r) enters the collider at s:
+// the point on its surface and, for a point particle at a corner, the face
+// headed into.
+void enterAt(const Collider& collider, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double s, double r,
+             double slop, Contact& c) {
+  c.point = contact::ontoSurface(collider, a + s * (b - a), r, &c.normal);
+  if (r == 0.0) c.normal = collider.entryNormal(c.point, b - a, slop);
+  c.swept = true;
+}
+
 }  // namespace
 
 void colliderContacts(const NarrowInput& in, const std::vector<int>& particles, const Eigen::VectorXd& x,
@@ -52,13 +74,9 @@ void colliderContacts(const NarrowInput& in, const std::vector<int>& particles, 
     if (!boxes.near(colliders, a, b, r + slop)) continue;
     for (int k = 0; k < static_cast<int>(colliders.size()); ++k) {
       const Collider& collider = colliders[k];
-      Contact c;
-      c.kind = ContactKind::Collider;
-      c.particle[0] = i;
+      Contact c = colliderContact(collider, i, k);
       if (const std::optional<double> s = collider.sweep(a, b, r, slop)) {
-        c.point = contact::ontoSurface(collider, a + *s * (b - a), r, &c.normal);
-        if (r == 0.0) c.normal = collider.entryNormal(c.point, b - a, slop);  // a corner: the face headed into
-        c.swept = true;
+        enterAt(collider, a, b, *s, r, slop, c);
       } else if (collider.distance(b).distance - r <= slop + (in.last.persists(colliderContactKey(i, k)) ? (b - a).norm() : 0.0)) {
         // Touching at the end (or, for a contact of the last step, near
         // enough to touch within another such step: its row holds nothing
@@ -74,9 +92,6 @@ void colliderContacts(const NarrowInput& in, const std::vector<int>& particles, 
       } else {
         continue;
       }
-      c.friction = collider.friction;
-      c.restitution = collider.restitution;
-      c.key = colliderContactKey(i, k);
       add(in, c, x, v, out);
     }
   }
@@ -185,15 +200,8 @@ int missedContacts(const NarrowInput& in, const std::vector<int>& particles, con
       if (known(colliderContactKey(i, k))) continue;
       const std::optional<double> s = colliders[k].sweep(a, b, r, slop);
       if (!s) continue;
-      Contact c;
-      c.kind = ContactKind::Collider;
-      c.particle[0] = i;
-      c.point = contact::ontoSurface(colliders[k], a + *s * (b - a), r, &c.normal);
-      if (r == 0.0) c.normal = colliders[k].entryNormal(c.point, b - a, slop);
-      c.swept = true;
-      c.friction = colliders[k].friction;
-      c.restitution = colliders[k].restitution;
-      c.key = colliderContactKey(i, k);
+      Contact c = colliderContact(colliders[k], i, k);
+      enterAt(colliders[k], a, b, *s, r, slop, c);
       add(in, c, x, before, found);
     }
   }
