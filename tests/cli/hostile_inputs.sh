@@ -262,6 +262,26 @@ else
   fail "xpbd-long-step-sigint: no output file: $(head -c 300 "$WORK/xpbd-long.err")"
 fi
 
+# interrupted NAME SECONDS ERR PURPOSE CHECK: the program started in the background as $pid gets
+# SIGINT after SECONDS; passes when it exits 130 within 10 s and CHECK (shell code) holds. A
+# program that ended before the signal fails the case: it no longer tests what PURPOSE says.
+interrupted() {
+  local name=$1 after=$2 err=$3 purpose=$4 check=$5 code=0
+  sleep "$after"
+  if ! kill -0 "$pid" 2>/dev/null; then
+    wait "$pid" || code=$?
+    fail "$name: the run ended within $after s (exit $code): $purpose"
+    return
+  fi
+  kill -INT "$pid"
+  wait_for "$pid" 10 || code=$?
+  if [ "$code" = 130 ] && eval "$check"; then
+    pass "$name"
+  else
+    fail "$name: exit $code (124: still running 10 s after SIGINT): $(head -c 300 "$err")"
+  fi
+}
+
 # A signal while a slow scene file is read (30,000 particles beside 300 thin polygons of 1,000
 # vertices whose boxes all hold them: the check of particles starting inside colliders costs
 # minutes): exit 130 within seconds, nothing written.
@@ -289,22 +309,10 @@ json.dump({"particles": particles, "colliders": colliders}, open(sys.argv[1], "w
 PY
 "$PROGRAM" run --scene-file "$WORK/slivers.json" --steps 1 --csv "$WORK/slivers.csv" >/dev/null 2>"$WORK/slivers.err" &
 pid=$!
-sleep 3
-if kill -0 "$pid" 2>/dev/null; then
-  kill -INT "$pid"
-  code=0
-  wait_for "$pid" 10 || code=$?
-  if [ "$code" = 130 ] && [ "$(wc -l <"$WORK/slivers.err")" = 1 ] &&
-     grep -q '^particle-lab: interrupted while reading the scene: nothing was run or written$' "$WORK/slivers.err" &&
-     [ ! -e "$WORK/slivers.csv" ] && [ ! -e "$WORK/slivers.csv.partial" ]; then
-    pass slow-load-sigint
-  else
-    fail "slow-load-sigint: exit $code (124: still running 10 s after SIGINT): $(head -c 300 "$WORK/slivers.err")"
-  fi
-else
-  code=0; wait "$pid" || code=$?
-  fail "slow-load-sigint: the load ended within 3 s (exit $code): the file no longer tests a slow load"
-fi
+interrupted slow-load-sigint 3 "$WORK/slivers.err" "the file no longer tests a slow load" \
+  '[ "$(wc -l <"$WORK/slivers.err")" = 1 ] &&
+   grep -q "^particle-lab: interrupted while reading the scene: nothing was run or written$" "$WORK/slivers.err" &&
+   [ ! -e "$WORK/slivers.csv" ] && [ ! -e "$WORK/slivers.csv.partial" ]'
 
 # 30,000 discs on one point are 4.5e8 pairs (3.6 GB of pair list; the issue's 100,000 took 16.8 GB):
 # the broad phase stops at its cap (64 pairs a disc) and the step fails with the contact cap, one
@@ -335,18 +343,6 @@ PY
 "$PROGRAM" run --scene-file "$WORK/fast-box.json" --steps 100000 --csv "$WORK/fast-box.csv" >/dev/null \
   2>"$WORK/fast-box.err" &
 pid=$!
-sleep 2
-if kill -0 "$pid" 2>/dev/null; then
-  kill -INT "$pid"
-  code=0
-  wait_for "$pid" 10 || code=$?
-  if [ "$code" = 130 ] && grep -q '^particle-lab: interrupted after step ' "$WORK/fast-box.err"; then
-    pass fast-box-sigint
-  else
-    fail "fast-box-sigint: exit $code (124: still running 10 s after SIGINT): $(head -c 300 "$WORK/fast-box.err")"
-  fi
-else
-  code=0; wait "$pid" || code=$?
-  fail "fast-box-sigint: the run ended within 2 s (exit $code): the box no longer tests a long contact pass"
-fi
+interrupted fast-box-sigint 2 "$WORK/fast-box.err" "the box no longer tests a long contact pass" \
+  'grep -q "^particle-lab: interrupted after step " "$WORK/fast-box.err"'
 finish
