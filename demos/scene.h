@@ -84,6 +84,9 @@ struct Scene {
   // The edges wind pushes on when it blows (a cloth's face sides, a
   // strand's links), whether or not it blows now; empty: no wind reaches it.
   std::vector<std::array<int, 2>> windEdges;
+  // One line the builder computes from the parameters, shown in place of the
+  // table's summary (the capstan's mass ratio against e^(mu theta)); empty: the summary.
+  std::string caption;
 };
 
 // The distinct sides of a scene's faces as particle index pairs (i < j), in
@@ -96,6 +99,9 @@ struct SceneInfo {
   const char* hint;     // one line shown when the scene opens: "try this: ..."
   std::vector<ParamSpec> params;
   Scene (*build)(const SceneParams&);
+  // A gallery scene: things meeting each other (discs, walls, ropes over
+  // pulleys), listed after the number keys' scenes in the demo's panel.
+  bool gallery = false;
 };
 
 // Every built-in scene, in the order of the demo's number keys.

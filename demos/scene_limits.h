@@ -12,6 +12,12 @@ namespace scenes {
 struct SceneLimits {
   static constexpr std::size_t fileBytes = 64u << 20;     // a scene file, bytes (64 MiB)
   static constexpr int nestingDepth = 64;                 // JSON arrays and objects inside each other
+  // Values of a scene file's JSON document (every number, string, boolean,
+  // null, array and object counts one): the document takes at most about
+  // 100 bytes of memory a value (json_parse.h), and the largest built-in
+  // scene's export (a 316×316 8-way cloth with wind and edge contacts) holds
+  // 5.2 million.
+  static constexpr long long jsonValues = 8000000;
   static constexpr long long particles = 100000;          // particles in one scene
   static constexpr long long forces = 1000000;            // force objects in one scene
   static constexpr long long constraints = 100000;        // constraints in one scene

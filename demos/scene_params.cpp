@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "decimal_number.h"
 #include "join_names.h"
 #include "scene.h"
 #include "scene_limits.h"
@@ -59,9 +60,13 @@ const std::string& SceneParams::raw(const std::string& name) const {
 
 double SceneParams::number(const std::string& name) const {
   const std::string& text = raw(name);
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value))
+  double value = 0.0;
+  try {
+    value = readDecimalNumber(text);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("parameter '" + name + "': " + e.what());
+  }
+  if (!std::isfinite(value))
     throw std::invalid_argument("parameter '" + name + "' must be a finite number, got '" + text +
                                 "' (valid parameters: " + validNames_ + ")");
   return value;

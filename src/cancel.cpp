@@ -2,15 +2,10 @@
 
 namespace particles {
 
-namespace {
-std::atomic<const std::atomic<bool>*> gFlag{nullptr};
-}  // namespace
+namespace detail {
+std::atomic<const std::atomic<bool>*> cancelFlag{nullptr};
+}  // namespace detail
 
-void setCancelFlag(const std::atomic<bool>* flag) { gFlag.store(flag); }
-
-bool cancelRequested() {
-  const std::atomic<bool>* flag = gFlag.load(std::memory_order_relaxed);
-  return flag != nullptr && flag->load(std::memory_order_relaxed);
-}
+void setCancelFlag(const std::atomic<bool>* flag) { detail::cancelFlag.store(flag); }
 
 }  // namespace particles

@@ -49,7 +49,52 @@ struct ConstraintSolver::Workspace {
   bool incompleteCholeskyUsable = false;
   Eigen::VectorXd stored, storedSolution, product;
   bool cgPastWorkBound = false;  // CG passed maxCgWork on this structure: solve directly
+
+  // A chain: every constraint shares particles only with the one before and
+  // the one after it in the list, so J W Jᵀ is tridiagonal in the list's
+  // own order and the direct solve is linear/tridiagonal.h's O(m) LDLᵀ, with
+  // no ordering, sparse pattern or sparse factor. Off-diagonal k, (k, k + 1),
+  // is Σ w_p J_e1·J_e2 over the pairs chainPairStart[k] .. chainPairStart[k+1]−1.
+  bool chainKnown = false, chain = false;
+  std::vector<int> chainPairStart, chainPairFirst, chainPairSecond;
+  std::vector<double> chainDiagonal, chainUpper;
+  linear::Tridiagonal tridiagonal;
 };
+
+namespace {
+
+// Every pair of entries e1, e2 of two constraints k < l on one particle: the
+// pairs that make the off-diagonal entries (J W Jᵀ)_kl.
+struct EntryPair {
+  int k, l, e1, e2;
+};
+std::vector<EntryPair> entryPairs(const linear::ConstraintRows& rows) {
+  const int m = rows.size();
+  std::vector<int> constraintOf(rows.entries());
+  for (int k = 0; k < m; ++k)
+    for (int e = rows.rowStart[k]; e < rows.rowStart[k + 1]; ++e) constraintOf[e] = k;
+  int particles = 0;
+  for (int p : rows.entryParticle) particles = std::max(particles, p + 1);
+  std::vector<std::vector<int>> byParticle(particles);
+  for (int e = 0; e < rows.entries(); ++e) byParticle[rows.entryParticle[e]].push_back(e);
+  std::vector<EntryPair> pairs;
+  for (const auto& list : byParticle)
+    for (int e1 : list)
+      for (int e2 : list)
+        if (constraintOf[e1] < constraintOf[e2]) pairs.push_back({constraintOf[e1], constraintOf[e2], e1, e2});
+  return pairs;
+}
+
+// Σ w_p J_e1·J_e2 over pairs [begin, end) (e1, e2 on one particle p).
+double pairSum(const linear::ConstraintRows& rows, const Eigen::VectorXd& inverseMass, const std::vector<int>& first,
+               const std::vector<int>& second, int begin, int end) {
+  double sum = 0.0;
+  for (int i = begin; i < end; ++i)
+    sum += inverseMass[rows.entryParticle[first[i]]] * rows.J[first[i]].dot(rows.J[second[i]]);
+  return sum;
+}
+
+}  // namespace
 
 ConstraintSolver::ConstraintSolver() : work_(std::make_unique<Workspace>()) {}
 ConstraintSolver::~ConstraintSolver() = default;
@@ -71,7 +116,7 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   stats_.constraints = m;
   if (m == 0) return;
   Workspace& w = *work_;
-  if (w.rows.gather(s, constraints)) w.patternValid = w.cgPastWorkBound = false;
+  if (w.rows.gather(s, constraints)) w.patternValid = w.cgPastWorkBound = w.chainKnown = false;
   w.inverseMass = &s.inverseMass;
   const linear::ConstraintRows& rows = w.rows;
   b_.resize(m);
@@ -175,24 +220,9 @@ void ConstraintSolver::assemble(double dead) {
   const linear::ConstraintRows& rows = w.rows;
   const int m = rows.size();
   if (!w.patternValid) {  // gather() reports when the rows name other particles
-    std::vector<int> constraintOf(rows.entries());
-    for (int k = 0; k < m; ++k)
-      for (int e = rows.rowStart[k]; e < rows.rowStart[k + 1]; ++e) constraintOf[e] = k;
-    int particles = 0;
-    for (int p : rows.entryParticle) particles = std::max(particles, p + 1);
-    std::vector<std::vector<int>> byParticle(particles);
-    for (int e = 0; e < rows.entries(); ++e) byParticle[rows.entryParticle[e]].push_back(e);
-    // Every pair of entries of two constraints on one particle meets in slot (k, l).
-    struct Pair { int k, l, e1, e2; };
-    std::vector<Pair> pairs;
+    const std::vector<EntryPair> pairs = entryPairs(rows);
     w.pattern.reset(m);
-    for (const auto& list : byParticle)
-      for (int e1 : list)
-        for (int e2 : list)
-          if (constraintOf[e1] < constraintOf[e2]) {  // diagonals come from diagonal
-            pairs.push_back({constraintOf[e1], constraintOf[e2], e1, e2});
-            w.pattern.add(constraintOf[e1], constraintOf[e2]);
-          }
+    for (const EntryPair& pair : pairs) w.pattern.add(pair.k, pair.l);  // diagonals come from diagonal
     w.pattern.finish(linear::SymmetricPattern::Ordering::Amd);
     std::vector<int> slotOf(pairs.size());
     for (std::size_t i = 0; i < pairs.size(); ++i) slotOf[i] = w.pattern.slot(pairs[i].k, pairs[i].l);
@@ -213,16 +243,9 @@ void ConstraintSolver::assemble(double dead) {
     w.patternValid = true;
     w.ldlt.forgetAnalysis();
   }
-  const Eigen::VectorXd& inverseMass = *w.inverseMass;
   double* value = w.pattern.values();
-  for (int s = 0; s < w.pattern.nonZeros(); ++s) {
-    double sum = 0.0;
-    for (int i = w.pairStart[s]; i < w.pairStart[s + 1]; ++i) {
-      const int e1 = w.pairFirst[i], e2 = w.pairSecond[i];
-      sum += inverseMass[rows.entryParticle[e1]] * rows.J[e1].dot(rows.J[e2]);  // e1, e2 on one particle
-    }
-    value[s] = sum;
-  }
+  for (int s = 0; s < w.pattern.nonZeros(); ++s)
+    value[s] = pairSum(rows, *w.inverseMass, w.pairFirst, w.pairSecond, w.pairStart[s], w.pairStart[s + 1]);
   // The diagonal Σ w_p |J_k,p|² is `diagonal`, formed with b. A dead row has
   // zero off-diagonals too (each of its entries has w = 0 or J = 0); a unit
   // diagonal with b = 0 gives it λ = 0.
@@ -247,16 +270,29 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
   const int m = static_cast<int>(b_.size());
   for (int k = 0; k < m; ++k)
     if (w.diagonal[k] <= dead) b_[k] = 0.0;
-  assemble(dead);
+  if (!w.chainKnown) findChain();
   const double diagMax = w.diagonal.maxCoeff();
-  const linear::SparseMatrix& stored = w.pattern.matrix();
-  bool factorised = w.ldlt.factorize(stored);
-  ++stats_.factorizations;
-  if (!factorised || !(w.ldlt.smallestPivot() > kRankLossPivot * diagMax)) {
-    factorised = w.ldlt.factorize(stored, kRankLossShift * diagMax);
+  // LDLᵀ of J W Jᵀ + shift·I: the chain's tridiagonal one, or the sparse one of the assembled matrix.
+  auto factorize = [&](double shift) {
     ++stats_.factorizations;
+    return w.chain ? w.tridiagonal.factorize(w.chainDiagonal, w.chainUpper, shift)
+                   : w.ldlt.factorize(w.pattern.matrix(), shift);
+  };
+  auto smallestPivot = [&] { return w.chain ? w.tridiagonal.smallestPivot() : w.ldlt.smallestPivot(); };
+  if (w.chain) assembleChain(dead);
+  else assemble(dead);
+  bool factorised = factorize(0.0);
+  if (!factorised || !(smallestPivot() > kRankLossPivot * diagMax)) {
+    factorised = factorize(kRankLossShift * diagMax);
     stats_.regularized = true;
     if (!factorised) return false;
+  }
+  if (w.chain) {
+    w.tridiagonal.solve(b_, lambda_);
+    linear::Tridiagonal::multiply(w.chainDiagonal, w.chainUpper, lambda_, w.product);
+    const double bNorm = b_.norm();
+    relativeResidual = bNorm == 0.0 ? 0.0 : (b_ - w.product).norm() / bNorm;
+    return true;
   }
   w.pattern.toStored(b_, w.stored);
   w.ldlt.solve(w.stored, w.storedSolution);
@@ -270,6 +306,42 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
     relativeResidual = (w.stored - w.product).norm() / bNorm;
   }
   return true;
+}
+
+// Whether the rows form a chain (Workspace::chain), and the chain's pairs of
+// entries per off-diagonal, once per constraint structure.
+void ConstraintSolver::findChain() {
+  Workspace& w = *work_;
+  const int m = w.rows.size();
+  const std::vector<EntryPair> pairs = entryPairs(w.rows);
+  w.chainKnown = true;
+  w.chain = std::all_of(pairs.begin(), pairs.end(), [](const EntryPair& p) { return p.l == p.k + 1; });
+  if (!w.chain) return;
+  w.chainPairStart.assign(static_cast<std::size_t>(std::max(m, 1)), 0);
+  w.chainPairFirst.resize(pairs.size());
+  w.chainPairSecond.resize(pairs.size());
+  for (const EntryPair& p : pairs) ++w.chainPairStart[static_cast<std::size_t>(p.k + 1)];
+  for (std::size_t k = 1; k < w.chainPairStart.size(); ++k) w.chainPairStart[k] += w.chainPairStart[k - 1];
+  std::vector<int> fill(w.chainPairStart.begin(), w.chainPairStart.end());
+  for (const EntryPair& p : pairs) {  // in the order entryPairs gives them, as assemble() sums them
+    const int at = fill[static_cast<std::size_t>(p.k)]++;
+    w.chainPairFirst[static_cast<std::size_t>(at)] = p.e1;
+    w.chainPairSecond[static_cast<std::size_t>(at)] = p.e2;
+  }
+}
+
+// The chain's J W Jᵀ as its diagonal and its upper band; a dead row (diagonal
+// at most `dead`) gets a unit diagonal and, with b = 0, λ = 0, as in assemble().
+void ConstraintSolver::assembleChain(double dead) {
+  Workspace& w = *work_;
+  const int m = w.rows.size();
+  w.chainDiagonal.resize(static_cast<std::size_t>(m));
+  w.chainUpper.resize(static_cast<std::size_t>(std::max(m - 1, 0)));
+  for (int k = 0; k < m; ++k) w.chainDiagonal[static_cast<std::size_t>(k)] = w.diagonal[k] <= dead ? 1.0 : w.diagonal[k];
+  for (int k = 0; k + 1 < m; ++k)
+    w.chainUpper[static_cast<std::size_t>(k)] = pairSum(w.rows, *w.inverseMass, w.chainPairFirst, w.chainPairSecond,
+                                                        w.chainPairStart[static_cast<std::size_t>(k)],
+                                                        w.chainPairStart[static_cast<std::size_t>(k + 1)]);
 }
 
 Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, int particleCount) {

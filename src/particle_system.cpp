@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "collision/contact_pass.h"
+#include "collision/islands.h"
 #include "parallel_for.h"
 #include "particles/check.h"
 #include "particles/forces/angular_spring.h"
@@ -13,7 +14,8 @@
 
 namespace particles {
 
-ParticleSystem::ParticleSystem() : contacts_(std::make_unique<ContactPass>()) {}
+ParticleSystem::ParticleSystem()
+    : contacts_(std::make_unique<ContactPass>()), islands_(std::make_unique<Islands>()) {}
 ParticleSystem::~ParticleSystem() = default;
 ParticleSystem::ParticleSystem(ParticleSystem&&) noexcept = default;
 ParticleSystem& ParticleSystem::operator=(ParticleSystem&&) noexcept = default;
@@ -22,8 +24,12 @@ ContactSettings& ParticleSystem::contactSettings() { return contacts_->settings(
 const ContactSettings& ParticleSystem::contactSettings() const { return contacts_->settings(); }
 bool ParticleSystem::colliding() const { return contactScene().colliding(); }
 int ParticleSystem::contactsLastStep() const { return contacts_->contactsThisStep(); }
+int ParticleSystem::sleeping() const { return islands_->sleeping(); }
+void ParticleSystem::wake() { islands_->wakeAll(); }
+// The contact pass sees a sleeping particle as pinned (islands.h).
 ContactScene ParticleSystem::contactScene() const {
-  return {colliders_, edges_, collidable_, constraints_, mass_, inverseMass_, radius_, structureStamp_};
+  return {colliders_, edges_, collidable_, constraints_, mass_, islands_->inverseMasses(inverseMass_), radius_,
+          structureStamp_};
 }
 
 std::uint64_t ParticleSystem::nextStructureStamp() {
@@ -50,6 +56,7 @@ int ParticleSystem::addParticles(const std::vector<Eigen::Vector2d>& positions,
     requirePositive("particle mass", masses[k]);
   }
   structureStamp_ = nextStructureStamp();
+  wake();
   const int first = size(), n = first + static_cast<int>(positions.size());
   x_.conservativeResize(2 * n);
   v_.conservativeResize(2 * n);
@@ -74,12 +81,14 @@ void ParticleSystem::setMass(int i, double mass) {
   mass_[i] = mass;
   if (inverseMass_[i] != 0.0) inverseMass_[i] = 1.0 / mass;
   structureStamp_ = nextStructureStamp();
+  wake();
 }
 
 void ParticleSystem::setPinned(int i, bool pin) {
   requireIndex("setPinned", i, size());
   inverseMass_[i] = pin ? 0.0 : 1.0 / mass_[i];
   structureStamp_ = nextStructureStamp();
+  wake();
   if (pin) v_.segment<2>(2 * i).setZero();
 }
 
@@ -88,6 +97,7 @@ void ParticleSystem::setCollidable(int i, double radius) {
   requirePositive("particle radius", radius);
   if (radius_[i] == 0.0) collidable_.push_back(i);
   radius_[i] = radius;
+  wake();
 }
 
 Force& ParticleSystem::addForce(std::unique_ptr<Force> force) {
@@ -98,6 +108,7 @@ Force& ParticleSystem::addForce(std::unique_ptr<Force> force) {
   }
   forces_.push_back(std::move(force));
   structureStamp_ = nextStructureStamp();
+  wake();
   return *forces_.back();
 }
 
@@ -105,6 +116,7 @@ Constraint& ParticleSystem::addConstraint(std::unique_ptr<Constraint> constraint
   for (int i : constraint->particles()) requireIndex(constraint->type(), i, size());
   constraints_.push_back(std::move(constraint));
   structureStamp_ = nextStructureStamp();
+  wake();
   solver_.resetWarmStart();
   return *constraints_.back();
 }
@@ -112,6 +124,7 @@ Constraint& ParticleSystem::addConstraint(std::unique_ptr<Constraint> constraint
 void ParticleSystem::addCollider(const Collider& collider) {
   collider.validate();
   colliders_.push_back(collider);
+  wake();
 }
 
 void ParticleSystem::addCollisionEdge(int a, int b) {
@@ -120,6 +133,7 @@ void ParticleSystem::addCollisionEdge(int a, int b) {
   if (a == b) throw std::invalid_argument("collision edge joins particle " + std::to_string(a) + " to itself");
   edges_.push_back({a, b});
   structureStamp_ = nextStructureStamp();
+  wake();
 }
 
 void ParticleSystem::removeForce(const Force* force) {
@@ -128,6 +142,7 @@ void ParticleSystem::removeForce(const Force* force) {
                                [&](const std::unique_ptr<Force>& f) { return f.get() == force; }),
                 forces_.end());
   structureStamp_ = nextStructureStamp();
+  wake();
 }
 
 void ParticleSystem::setSpringEnabled(const Force* spring, bool enabled) {
@@ -141,11 +156,25 @@ void ParticleSystem::setSpringEnabled(const Force* spring, bool enabled) {
   if (*flag == enabled) return;
   *flag = enabled;
   structureStamp_ = nextStructureStamp();
+  wake();
 }
 
 int ParticleSystem::breakLinks(const std::vector<std::array<int, 2>>& links) {
-  const LinkSet broken(links);
-  if (broken.empty()) return 0;
+  if (links.empty()) return 0;
+  // The links that break with these (a torn face's diagonals), and with
+  // those, until no force adds one more.
+  std::vector<std::array<int, 2>> all = links;
+  for (std::size_t known = 0; known != all.size();) {
+    known = all.size();
+    const LinkSet so(all);
+    std::vector<std::array<int, 2>> more;
+    for (const auto& force : forces_) force->linksBreakingWith(so, more);
+    const LinkSet added(more);  // sorted and each once: a link two faces share counts once
+    for (std::size_t k = 0; k < added.links().size(); ++k)
+      if ((k == 0 || added.links()[k] != added.links()[k - 1]) && !so.contains(added.links()[k][0], added.links()[k][1]))
+        all.push_back(added.links()[k]);
+  }
+  const LinkSet broken(all);
   int changed = 0;
   for (const auto& force : forces_) changed += force->dropLinks(broken);
   edges_.erase(std::remove_if(edges_.begin(), edges_.end(),
@@ -153,6 +182,7 @@ int ParticleSystem::breakLinks(const std::vector<std::array<int, 2>>& links) {
                edges_.end());
   brokenLinks_.insert(brokenLinks_.end(), broken.links().begin(), broken.links().end());
   structureStamp_ = nextStructureStamp();
+  wake();
   return changed;
 }
 
@@ -162,6 +192,7 @@ void ParticleSystem::restore(const Snapshot& s) {
   x_ = s.x;
   v_ = s.v;
   time_ = s.time;
+  wake();
   for (Force* force : clocked_) force->setTime(time_);
   solver_.resetWarmStart();
   contacts_->resetWarmStart();
@@ -178,21 +209,25 @@ void requireStateSize(const char* what, const Eigen::VectorXd& given, const Eige
 void ParticleSystem::setPositions(const Eigen::VectorXd& x) {
   requireStateSize("setPositions", x, x_);
   x_ = x;
+  wake();
 }
 
 void ParticleSystem::setVelocities(const Eigen::VectorXd& v) {
   requireStateSize("setVelocities", v, v_);
   v_ = v;
+  wake();
 }
 
 void ParticleSystem::setPosition(int i, const Eigen::Vector2d& p) {
   requireIndex("setPosition", i, size());
   x_.segment<2>(2 * i) = p;
+  wake();
 }
 
 void ParticleSystem::setVelocity(int i, const Eigen::Vector2d& v) {
   requireIndex("setVelocity", i, size());
   v_.segment<2>(2 * i) = v;
+  wake();
 }
 
 void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
@@ -265,29 +300,47 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   evaluations_ = StepStats{};
   solver_.settings.validate();
   tearing_.settings.validate();
+  threadUse_.settings.validate();
+  const int threads = threadUse_.begin(threadCount(), structureStamp_);
+  if (threadUse_.releasesThreads()) releaseIdleThreads();
+  const ThreadCountScope scope(threads);
+  const long long regions = parallelRegions();
   for (Force* force : clocked_) force->setTime(time_);
   const ContactScene scene = contactScene();
-  const bool collideAfter = scene.colliding() && !integrator.collidesInSubsteps();
+  const bool awake = !islands_->allAsleep();
+  const bool collideAfter = awake && scene.colliding() && !integrator.collidesInSubsteps();
   contacts_->beginStep(scene, x_, v_, collideAfter);
-  // Integrate.
-  StepStats stats = integrator.step(*this, dt);
-  addEvaluationStats(stats);  // evaluations the integrator left in the tally
-  // Collide.
-  if (collideAfter)
-    contacts_->collideStep(scene, dt, {true, integrator.driftCorrection()}, x_, v_);
-  stats += contacts_->stepStats();
+  StepStats stats{};  // with everything asleep: one step in which nothing moved
+  if (awake) {
+    // Integrate (sleeping particles are held where they fell asleep).
+    stats = integrator.step(*this, dt);
+    addEvaluationStats(stats);  // evaluations the integrator left in the tally
+    islands_->hold(x_, v_);
+    // Collide.
+    if (collideAfter) contacts_->collideStep(scene, dt, ContactCoupling{true}, x_, v_);
+    stats += contacts_->stepStats();
+    // Sleep: islands at rest fall asleep; what an awake particle touched wakes.
+    if (scene.colliding())
+      islands_->update({forces_, constraints_, contacts_->lastContacts(), inverseMass_, structureStamp_},
+                       contactSettings(), x_, v_, dt);
+  }
+  stats.sleeping = islands_->sleeping();
   // Tear: springs stretched past the limit break, decided once from the
   // step's end state, so every stage of the next step sees the same springs.
   tearing_.tear(*this);
   // Advance the clock.
   time_ += dt;
+  const bool parallel = parallelRegions() > regions;
+  threadUse_.end(parallel);
+  stats.threads = parallel ? threads : 1;
   lastStepStats_ = stats;
   return stats;
 }
 
 int ParticleSystem::collideOver(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double dt,
                                 const PathBounds* paths) {
-  return contacts_->collide(contactScene(), StepStart{x0, v0, dt, paths}, ContactCoupling{}, x_, v_);
+  islands_->hold(x_, v_);
+  return contacts_->collide(contactScene(), StepStart{x0, v0, dt, paths}, ContactCoupling{true}, x_, v_);
 }
 
 double ParticleSystem::kineticEnergy() const {

@@ -27,6 +27,8 @@ StepStats& StepStats::operator+=(const StepStats& other) {
   contactIterations += other.contactIterations;
   contactResidual = std::max(contactResidual, other.contactResidual);
   directFallbacks += other.directFallbacks;
+  sleeping = std::max(sleeping, other.sleeping);
+  threads = std::max(threads, other.threads);
   if (failure == StepFailure::None) failure = other.failure;
   return *this;
 }

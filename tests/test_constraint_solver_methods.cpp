@@ -135,6 +135,62 @@ TEST(ConstraintSolverMethods, IncompleteCholeskyIsExactOnAChain) {
   EXPECT_LT(s.lastSolve().residual, 1e-8);
 }
 
+// A chain of rods in the list's order (J W Jᵀ tridiagonal: the direct solve's
+// O(m) path), bent, with random masses and velocities and its first rod's
+// both ends pinned (a dead row): the direct solve's λ is the dense solve's,
+// along a trajectory. The same chain with one rod more, from its middle to
+// its end, is no chain: the sparse path, the same answer.
+TEST(ConstraintSolverMethods, AChainsDirectSolveMatchesTheDenseSolve) {
+  for (const bool closed : {false, true}) {
+    SCOPED_TRACE(closed ? "one rod more: not a chain" : "a chain");
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    ParticleSystem s;
+    const int n = 40;
+    for (int i = 0; i < n; ++i)
+      s.addParticle(Vector2d(0.1 * i, 0.03 * u(rng)), 1.0 + 0.5 * (u(rng) + 1.0), Vector2d(u(rng), u(rng)));
+    s.setPinned(0, true);
+    s.setPinned(1, true);
+    for (int i = 0; i + 1 < n; ++i) s.addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1));
+    if (closed) s.addConstraint(std::make_unique<RodConstraint>(n / 2, n - 1, 1.9));
+    s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+    s.solver().settings.method = SolveMethod::Direct;
+    Eigen::VectorXd a;
+    for (int step = 0; step < 3; ++step) {
+      s.setPositions(s.positions() + 0.002 * s.velocities());
+      s.acceleration(s.positions(), s.velocities(), a);
+      const Eigen::VectorXd expected = denseLambda(s);
+      EXPECT_EQ(s.solver().lambda()[0], 0.0);
+      EXPECT_LT((s.solver().lambda() - expected).norm(), 1e-9 * expected.norm()) << "step " << step;
+      EXPECT_LT(s.lastSolve().residual, 1e-12);
+      EXPECT_FALSE(s.lastSolve().regularized);
+    }
+  }
+}
+
+// A straight chain pinned at both ends, fully extended: its rods pull only
+// along the line, and there are more of them than free coordinates along it,
+// so J W Jᵀ (tridiagonal) loses rank. The chain's direct solve notices the
+// lost pivot and damps the solve as the sparse one does: |λ| ≤ |b|/μ.
+TEST(ConstraintSolverMethods, ATautChainsDirectSolveIsDamped) {
+  ParticleSystem s;
+  const int n = 8;
+  for (int i = 0; i < n; ++i) s.addParticle(Vector2d(0.1 * i, 0.0), 1.0, Vector2d(0.0, i % 2 ? 0.3 : -0.2));
+  s.setPinned(0, true);
+  s.setPinned(n - 1, true);
+  for (int i = 0; i + 1 < n; ++i) s.addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1));
+  s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+  s.solver().settings.method = SolveMethod::Direct;
+  Eigen::VectorXd a;
+  s.acceleration(s.positions(), s.velocities(), a);
+  EXPECT_TRUE(a.allFinite());
+  EXPECT_TRUE(s.lastSolve().regularized);
+  EXPECT_EQ(s.lastSolve().factorizations, 2);
+  const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
+  const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
+  EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
+}
+
 TEST(ConstraintSolverMethods, PinnedOnlyRowsGetZeroLambdaInEveryMethod) {
   for (const Method& method : kMethods) {
     ParticleSystem s;

@@ -488,6 +488,7 @@ TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
       system = std::move(built.system);
       dt = built.dt;
     }
+    system->threadUse().settings.adaptive = false;  // every step on `threads` threads, however fast
     particles::IntegratorSettings settings;
     settings.xpbd.lines = integratorName == "xpbd-lines";
     auto integrator = particles::makeIntegrator(settings.xpbd.lines ? "xpbd" : integratorName, settings);

@@ -63,6 +63,43 @@ TEST(CellJson, StructsKeepTheirFields) {
   EXPECT_EQ(back.highest, HUGE_VAL);
 }
 
+// A recorded value of the wrong JSON type or shape is refused with its place
+// in the result and what was found there, in the program's words (never
+// nlohmann's "[json.exception...]"), and never read as a nearby value: a
+// pair of three values, an integer written 1.5 or past its type, an object
+// with a field too many.
+TEST(CellJson, ValuesOfTheWrongShapeAreRefusedWithTheirPlace) {
+  const auto refusal = [](const char* text, auto value) -> std::string {
+    try {
+      decode(Json::parse(text), value);
+    } catch (const CellShapeError& e) {
+      return e.what();
+    }
+    return "read back";
+  };
+  using Samples = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(refusal("[[0,1],[1,2,3]]", Samples{}), "$[1]: expected an array of 2 values, got [1,2,3]");
+  EXPECT_EQ(refusal("[[0,1],[1]]", Samples{}), "$[1]: expected an array of 2 values, got [1]");
+  EXPECT_EQ(refusal("{\"a\":[0,1]}", Samples{}), "$: expected an array, got {\"a\":[0,1]}");
+  EXPECT_EQ(refusal("[[0,\"many\"]]", Samples{}), "$[0][1]: expected a number (or \"nan\", \"inf\", \"-inf\"), got \"many\"");
+  EXPECT_EQ(refusal("1.5", int{}), "$: expected an integer in [-2147483648, 2147483647], got 1.5");
+  EXPECT_EQ(refusal("3000000000", int{}), "$: expected an integer in [-2147483648, 2147483647], got 3000000000");
+  EXPECT_EQ(refusal("\"no\"", bool{}), "$: expected true or false, got \"no\"");
+  EXPECT_EQ(refusal("7", std::string{}), "$: expected a string, got 7");
+
+  Boundary b;
+  b.safeDt = 0.0625, b.firstFailureDt = 0.125, b.survivalAbove = {0.1, 0.2};
+  const Json good = encode(b);
+  Json missing = good, extra = good, inner = good;
+  missing.erase("lowest");
+  extra["note"] = "added";
+  inner["survival_above"][1] = Json::array({1, 2});
+  EXPECT_EQ(refusal(missing.dump().c_str(), Boundary{}), "$: no field 'lowest'");
+  EXPECT_EQ(refusal(extra.dump().c_str(), Boundary{}).substr(0, 33), "$: expected an object of 6 fields");
+  EXPECT_EQ(refusal(inner.dump().c_str(), Boundary{}), "$.survival_above[1]: expected a number, got [1,2]");
+  EXPECT_EQ(refusal(good.dump().c_str(), Boundary{}), "read back");
+}
+
 TEST(Shards, PartitionTheCellsAndReplayThem) {
   const int shards = 3;
   const std::size_t count = 20;

@@ -341,6 +341,14 @@ TEST(BuildMode, APolygonClosesOnItsFirstCornerOrWithEnter) {
   EXPECT_FALSE(click(0, 0));
   EXPECT_FALSE(click(1, 0));
   EXPECT_EQ(click(1, 1)->size(), 3u);  // three clicks make an angle spring
+  // Enter does not end an angle spring before its third click (it handed the
+  // tool one point, which it read as three).
+  EXPECT_FALSE(click(0, 0));
+  EXPECT_FALSE(mode.finishClicks());
+  EXPECT_FALSE(click(1, 0));
+  EXPECT_FALSE(mode.finishClicks());
+  EXPECT_EQ(mode.pending().size(), 2u);
+  EXPECT_EQ(click(1, 1)->size(), 3u);
 }
 
 TEST(BuildMode, ReleaseWithoutAPressDoesNothing) {

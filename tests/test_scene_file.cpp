@@ -94,10 +94,14 @@ TEST(SceneFile, ParametersSurviveExport) {
   const scenes::Scene loaded = scenes::readScene(scenes::writeScene(cloth), "cloth");
   EXPECT_EQ(loaded.system->size(), 20);
   // Rows of 4 horizontal springs ×4, columns of 3 vertical ×5, 2 diagonals
-  // in each of the 4·3 cells, gravity and air drag.
-  EXPECT_EQ(loaded.system->forceObjects().size(), 16u + 15u + 24u + 1u + 1u);
+  // in each of the 4·3 cells, the faces' area floor, gravity and air drag.
+  EXPECT_EQ(loaded.system->forceObjects().size(), 16u + 15u + 24u + 1u + 1u + 1u);
   EXPECT_EQ(loaded.system->constraints().size(), 5u);
-  EXPECT_EQ(loaded.system->colliders().size(), 2u);
+  EXPECT_EQ(loaded.system->colliders().size(), 4u);  // the wall, the nail, the rail's end stops
+  // The area floor's faces are the scene's surface again: shaded, blown on, torn.
+  EXPECT_EQ(loaded.faces, cloth.faces);
+  EXPECT_EQ(loaded.windEdges, cloth.windEdges);
+  EXPECT_TRUE(loaded.edgeContacts);
 }
 
 TEST(SceneFile, EveryShippedExampleLoadsAndSteps) {

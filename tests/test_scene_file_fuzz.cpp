@@ -11,14 +11,20 @@
 // Further generators aim at the reader's limits (demos/scene_limits.h):
 // nesting thousands of levels deep, objects with up to 100,000 keys and
 // duplicate keys, sizes beyond the limits in files and in the built-in scenes'
-// parameters, and paths that are not regular files (devices, FIFOs,
-// directories, oversize files).
+// parameters, paths that are not regular files (devices, FIFOs, directories,
+// oversize files), documents of millions of tiny values, colliders at every
+// scale a double holds, particles starting inside colliders (the broad
+// phase against every pair) and random parameters of every built-in scene
+// (each starts clear of its colliders or is refused, and its export reads back).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <cmath>
+#include <optional>
+#include <set>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -26,10 +32,13 @@
 #include <random>
 #include <sstream>
 
+#include "particles/constants.h"
 #include "particles/integrator.h"
 #include "scene.h"
 #include "scene_file/scene_file.h"
 #include "scene_limits.h"
+#include "starting_overlap.h"
+#include "test_support.h"
 
 namespace {
 
@@ -37,16 +46,23 @@ using scenes::Json;
 
 enum class Outcome { Rejected, SteppedFinite, CaughtNonFinite };
 
-Outcome loadAndStep(const std::string& text) {
-  scenes::Scene scene;
+// The scene of a text, or none when the reader rejects it; a rejection's
+// message is checked to be one line naming the source and a JSON path.
+std::optional<scenes::Scene> readMutant(const std::string& text) {
   try {
-    scene = scenes::readScene(text, "mutant");
+    return scenes::readScene(text, "mutant");
   } catch (const scenes::SceneFileError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     EXPECT_EQ(message.rfind("mutant: $", 0), 0u) << message;
-    return Outcome::Rejected;
+    return std::nullopt;
   }
+}
+
+Outcome loadAndStep(const std::string& text) {
+  std::optional<scenes::Scene> read = readMutant(text);
+  if (!read) return Outcome::Rejected;
+  scenes::Scene& scene = *read;
   auto integrator = particles::makeIntegrator(scene.integrator);
   for (int k = 0; k < 10; ++k) {
     scene.system->step(*integrator, scene.dt);
@@ -128,14 +144,9 @@ class Mutator {
   std::mt19937 rng_;
 };
 
-// Under ASan+UBSan (CI's second run) each case costs about ten times as much:
-// the fuzz tests take the first third of their cases there (1,000 mutants,
-// every nesting depth twice); the Release run takes them all.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kCaseDivisor = 3;
-#else
-constexpr int kCaseDivisor = 1;
-#endif
+// The sanitizer build takes the first third of the cases (1,000 mutants, every
+// nesting depth twice); the Release run takes them all.
+constexpr int kCaseDivisor = test_support::kSanitizerBuild ? 3 : 1;
 
 TEST(SceneFileFuzz, EveryMutantIsRejectedOrStepsOrIsCaughtNonFinite) {
   const std::vector<std::string> bases = baseFiles();
@@ -321,6 +332,230 @@ TEST(SceneFileFuzz, OnlyRegularFilesWithinTheSizeLimitAreRead) {
     }
   }
   std::filesystem::remove_all(dir);
+}
+
+// Documents of millions of tiny values ("[[],[],...]" is three bytes of
+// text and some 70 bytes of document a value; a 64 MiB file of them peaked at
+// 1.6 GB before it was refused): refused at SceneLimits::jsonValues, while
+// they are parsed, with the path of the first value past it.
+TEST(SceneFileFuzz, DocumentsOfTinyValuesAreRefusedAtTheValueLimit) {
+  const long long limit = scenes::SceneLimits::jsonValues;
+  struct Shape {
+    const char* element;  // one element of the long array
+    int values;           // values it holds
+  };
+  const Shape shapes[] = {{"[]", 1}, {"[0,0]", 3}};
+  const int count = kCaseDivisor == 1 ? static_cast<int>(std::size(shapes)) : 1;
+  for (int k = 0; k < count; ++k) {
+    const Shape& shape = shapes[k];
+    const long long elements = limit / shape.values + 1;  // with the array itself, past the limit
+    const std::string element = std::string(",") + shape.element;
+    std::string text = "{\"particles\": [], \"forces\": [";
+    text.reserve(text.size() + static_cast<std::size_t>(elements) * element.size() + 8);
+    text += shape.element;
+    for (long long e = 1; e < elements; ++e) text += element;
+    text += "]}";
+    const std::string message = rejection(text);
+    EXPECT_NE(message.find("expected at most " + std::to_string(limit) + " JSON values in a scene file"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("mutant: $.forces["), std::string::npos) << message;
+  }
+}
+
+// A collider of every kind at every scale a double holds: its position 10^a
+// from the origin, its size 10^b, a and b drawn from [-330, 308] (half of
+// them from [-90, 90], about the limits). One whose
+// numbers the contact arithmetic cannot hold is refused with one line; every
+// other one stops a particle thrown at it from just outside (a floor with
+// corners at 1e200 let it fall through; a box of side 5e-324 made it NaN).
+TEST(SceneFileFuzz, CollidersAtEveryScaleAreRefusedOrStopAParticle) {
+  std::mt19937 rng(20261215);
+  const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  // Half the exponents over every double, half about the limits of 1e±75.
+  const auto power = [&] {
+    return std::pow(10.0, std::floor(uniform(0.0, 1.0) < 0.5 ? uniform(-330.0, 309.0) : uniform(-90.0, 90.0)));
+  };
+  int refused = 0, held = 0;
+  for (int k = 0; k < 600 / kCaseDivisor; ++k) {
+    const double place = power(), size = power() * uniform(0.5, 2.0);
+    const Eigen::Vector2d c = place * Eigen::Vector2d(uniform(-1.0, 1.0), uniform(-1.0, 1.0));
+    const auto point = [](const Eigen::Vector2d& p) { return Json::array({p.x(), p.y()}); };
+    Json collider;
+    Eigen::Vector2d inward(0.0, -1.0), top = c;  // the particle comes from above the collider's top
+    switch (k % 5) {
+      case 0: {
+        const Eigen::Vector2d half(size, size * uniform(0.2, 1.0));
+        collider = {{"type", "box"}, {"min", point(c - half)}, {"max", point(c + half)}};
+        top = c + Eigen::Vector2d(0.0, half.y());
+        break;
+      }
+      case 1: {
+        const int n = 3 + k % 6;
+        Json vertices = Json::array();
+        for (int v = 0; v < n; ++v) {
+          const double angle = 0.5 * particles::kPi + 2.0 * particles::kPi * v / n;  // vertex 0 on top
+          vertices.push_back(point(c + size * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
+        }
+        collider = {{"type", "polygon"}, {"vertices", vertices}};
+        top = c + Eigen::Vector2d(0.0, size);
+        break;
+      }
+      case 2:
+        collider = {{"type", "capsule"}, {"from", point(c - Eigen::Vector2d(size, 0.0))},
+                    {"to", point(c + Eigen::Vector2d(size, 0.0))}, {"radius", 0.3 * size}};
+        top = c + Eigen::Vector2d(0.0, 0.3 * size);
+        break;
+      case 3:
+        collider = {{"type", "disc"}, {"centre", point(c)}, {"radius", size}};
+        top = c + Eigen::Vector2d(0.0, size);
+        break;
+      default: {
+        const double angle = uniform(0.0, 2.0 * particles::kPi);
+        const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
+        collider = {{"type", "halfPlane"}, {"point", point(c)}, {"normal", point(n)}};
+        inward = -n;
+        top = c;
+      }
+    }
+    const double dt = 0.01, gap = size;
+    const Eigen::Vector2d start = top - gap * inward, velocity = 3.0 * gap / dt * inward;
+    const Json document = {{"dt", dt},
+                           {"particles", Json::array({{{"position", point(start)}, {"mass", 1}, {"velocity", point(velocity)}}})},
+                           {"colliders", Json::array({collider})}};
+    const std::string text = document.dump();
+    std::optional<scenes::Scene> read = readMutant(text);
+    if (!read) {
+      ++refused;
+      continue;
+    }
+    scenes::Scene& scene = *read;
+    // Accepted: the particle, thrown at the collider from a gap of its size,
+    // stays outside it to rounding at every step.
+    const particles::Collider& shape = scene.system->colliders().at(0);
+    const auto integrator = particles::makeIntegrator(scene.integrator);
+    for (int step = 0; step < 5 && !HasFailure(); ++step) {
+      scene.system->step(*integrator, scene.dt);
+      const Eigen::Vector2d p = scene.system->position(0);
+      ASSERT_TRUE(p.allFinite()) << text;
+      EXPECT_GE(shape.distance(p).distance, -scenes::startingOverlapTolerance(p)) << "step " << step << ": " << text;
+    }
+    if (HasFailure()) return;
+    ++held;
+  }
+  std::printf("[ fuzz     ] colliders at every scale: %d refused, %d stopped the particle\n", refused, held);
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(held, 0);
+}
+
+// Particles (points and discs) scattered over and around colliders of every
+// kind: the check's broad phase finds the same first overlap as a test of
+// every particle against every collider with the same definition.
+TEST(SceneFileFuzz, TheStartingOverlapBroadPhaseFindsWhatEveryPairFinds) {
+  std::mt19937 rng(20261216);
+  const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  int found = 0;
+  for (int k = 0; k < 300 / kCaseDivisor; ++k) {
+    particles::ParticleSystem system;
+    const double spread = std::pow(10.0, uniform(-2.0, 3.0));
+    const int particles = 1 + static_cast<int>(uniform(0.0, 400.0));
+    for (int i = 0; i < particles; ++i) {
+      const Eigen::Vector2d x = spread * Eigen::Vector2d(uniform(-1.0, 1.0), uniform(-1.0, 1.0));
+      const int p = system.addParticle(k % 7 == 0 ? Eigen::Vector2d(x.x(), 0.0) : x, 1.0);  // some all on one line
+      if (uniform(0.0, 1.0) < 0.3) system.setCollidable(p, spread * uniform(1e-4, 0.05));
+    }
+    const int colliders = static_cast<int>(uniform(0.0, 6.0));
+    for (int c = 0; c < colliders; ++c) {
+      const Eigen::Vector2d centre = 1.5 * spread * Eigen::Vector2d(uniform(-1.0, 1.0), uniform(-1.0, 1.0));
+      const double size = spread * std::pow(10.0, uniform(-3.0, 0.0));
+      switch (static_cast<int>(uniform(0.0, 5.0))) {
+        case 0: system.addCollider(particles::Collider::box(centre, centre + Eigen::Vector2d(size, 0.5 * size))); break;
+        case 1: system.addCollider(particles::Collider::disc(centre, size)); break;
+        case 2: system.addCollider(particles::Collider::capsule(centre, centre + Eigen::Vector2d(size, size), 0.1 * size)); break;
+        case 3:
+          system.addCollider(particles::Collider::polygon(
+              {centre, centre + Eigen::Vector2d(size, 0.0), centre + Eigen::Vector2d(0.2 * size, size)}));
+          break;
+        default: system.addCollider(particles::Collider::halfPlane(centre * 1.5, Eigen::Vector2d(uniform(-1.0, 1.0), 1.0)));
+      }
+    }
+    std::optional<scenes::StartingOverlap> expected;
+    for (int i = 0; i < system.size() && !expected; ++i)
+      for (std::size_t c = 0; c < system.colliders().size() && !expected; ++c) {
+        const double depth = system.radii()[i] - system.colliders()[c].distance(system.position(i)).distance;
+        if (depth > scenes::startingOverlapTolerance(system.position(i))) expected = scenes::StartingOverlap{i, c, depth};
+      }
+    const std::optional<scenes::StartingOverlap> got = scenes::firstStartingOverlap(system);
+    ASSERT_EQ(got.has_value(), expected.has_value()) << "case " << k;
+    if (!got) continue;
+    EXPECT_EQ(got->particle, expected->particle) << "case " << k;
+    EXPECT_EQ(got->collider, expected->collider) << "case " << k;
+    EXPECT_EQ(got->depth, expected->depth) << "case " << k;
+    if (HasFailure()) return;
+    ++found;
+  }
+  EXPECT_GT(found, 20);
+}
+
+// Random parameters of every built-in scene (each number the default times
+// 10^±1, with its sign flipped now and then, the other preset's, or in
+// [-90, 90] for an angle; sizes small): the scene is refused with one line,
+// or it starts with every particle clear of its colliders and its export
+// reads back (cloth swing=-30 started inside its wall, gaining 45% of its
+// energy in the first step, and exported a file the reader refused).
+TEST(SceneFileFuzz, EveryBuiltInParameterSetStartsClearOrIsRefusedAndItsExportReadsBack) {
+  std::mt19937 rng(20261217);
+  const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const std::set<std::string> sizes = {"width", "height", "curls", "particles", "beads", "links", "cl"};
+  int built = 0, refused = 0;
+  for (int k = 0; k < 400 / kCaseDivisor; ++k) {
+    const scenes::SceneInfo& info = scenes::sceneTable()[k % scenes::sceneTable().size()];
+    std::map<std::string, std::string> overrides;
+    for (const scenes::ParamSpec& spec : info.params) {
+      if (uniform(0.0, 1.0) < 0.4) continue;
+      const std::string& value = spec.values.at(static_cast<std::size_t>(uniform(0.0, 1.0) < 0.5));
+      char* end = nullptr;
+      const double number = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0') {  // a word: the one preset's or the other's
+        overrides[spec.name] = value;
+      } else if (info.name == std::string("cloth") && spec.name == "links") {
+        overrides[spec.name] = uniform(0.0, 1.0) < 0.5 ? "4" : "8";
+      } else if (sizes.count(spec.name)) {
+        overrides[spec.name] = std::to_string(static_cast<int>(uniform(1.0, 24.0)));
+      } else if (spec.name.find("angle") != std::string::npos || spec.name == "swing") {
+        overrides[spec.name] = std::to_string(uniform(-90.0, 90.0));
+      } else if (spec.name == "edge-contacts" || spec.name == "wind-seed") {
+        overrides[spec.name] = value;  // a choice, a seed
+      } else {
+        const double sign = uniform(0.0, 1.0) < 0.1 ? -1.0 : 1.0;
+        char text[32];
+        std::snprintf(text, sizeof text, "%.6g", sign * number * std::pow(10.0, uniform(-1.0, 1.0)));
+        overrides[spec.name] = text;
+      }
+    }
+    std::string given = info.name;
+    for (const auto& [key, value] : overrides) given += " " + key + "=" + value;
+    scenes::Scene scene;
+    try {
+      scene = scenes::buildScene(info.name, overrides);
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      ++refused;
+      continue;
+    }
+    EXPECT_FALSE(scenes::firstStartingOverlap(*scene.system)) << given;
+    try {
+      const scenes::Scene back = scenes::readScene(scenes::writeScene(scene), "export");
+      EXPECT_EQ(back.system->size(), scene.system->size()) << given;
+    } catch (const scenes::SceneFileError& e) {
+      ADD_FAILURE() << given << ": the export does not read back: " << e.what();
+    }
+    if (HasFailure()) return;
+    ++built;
+  }
+  std::printf("[ fuzz     ] built-in parameters: %d built and read back, %d refused\n", built, refused);
+  EXPECT_GT(built, 150 / kCaseDivisor);
+  EXPECT_GT(refused, 0);
 }
 
 }  // namespace

@@ -15,6 +15,14 @@
 
 namespace test_support {
 
+// Under ASan+UBSan (CI's second run) each case of a fuzz test costs about ten
+// times as much: the fuzz tests take a share of their cases there.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitizerBuild = true;
+#else
+inline constexpr bool kSanitizerBuild = false;
+#endif
+
 // Records, at each of its evaluations, the CG iterations the solver reports
 // then: forces are applied at the start of each derivative evaluation, when
 // the solver still holds the statistics of the previous evaluation's solve.

@@ -165,9 +165,9 @@ void printMarginNote(const lab::SurveySettings& settings, const std::string& bud
 }
 
 int advise(const AdviseOptions& o) {
+  lab::installInterruptHandler();  // a signal while a large scene file is read stops it too
   o.source.load();  // bad scene input fails here, before any measurement
   const lab::SurveySettings settings = surveySettings(o);
-  lab::installInterruptHandler();
   const lab::Advice advice = lab::advise([&] { return o.source.load(); }, settings);
   if (lab::interrupted() || !advice.complete) return 130;
   const lab::Survey& survey = advice.survey;

@@ -21,7 +21,7 @@ enum ExitCode : int {
   kSuccess = 0,
   kBadInput = options::kBadUsageExit,  // a bad option value, a missing or malformed scene file
   kDiverged = 3,  // the state or its diagnostics became non-finite during a run
-  kWriteFailed = 4,  // an output file could not be written (disk full, I/O error)
+  kWriteFailed = options::kWriteFailedExit,  // an output file could not be written (disk full, I/O error)
   kCannotCertify = 5,  // advise: the scene's reference cannot certify any integrator within E over T
   kInterrupted = 130,  // SIGINT, SIGTERM or SIGHUP: stopped at a step boundary, outputs complete
 };

@@ -1,6 +1,8 @@
 // The laboratory's subcommands: stability, timing, accuracy, extremes, claims,
 // and render-report, which fills the report template from their output.
 #include <cstdio>
+#include <iostream>
+#include <streambuf>
 #include <memory>
 #include <optional>
 
@@ -87,6 +89,25 @@ int experiment(const CLI::App* command, ExperimentOptions& options, const Contex
     throw UsageError(e.what());
   }
 }
+
+// std::cout discards what is written to it while this lives (a merge's first
+// replay): the stream stays good, so the command's result is not taken for
+// a failed write of standard output.
+class SilencedStdout {
+ public:
+  SilencedStdout() : kept_(std::cout.rdbuf(&discard_)) {}
+  ~SilencedStdout() { std::cout.rdbuf(kept_); }
+  SilencedStdout(const SilencedStdout&) = delete;
+  SilencedStdout& operator=(const SilencedStdout&) = delete;
+
+ private:
+  struct Discard : std::streambuf {
+    int overflow(int c) override { return traits_type::not_eof(c); }
+    std::streamsize xsputn(const char*, std::streamsize n) override { return n; }
+  };
+  Discard discard_;
+  std::streambuf* kept_;
+};
 
 // An experiment is a subcommand taking --shard (addLabOptions).
 bool isExperiment(const CLI::App& app, const std::string& name) {
@@ -223,17 +244,30 @@ Command addMergeCommand(CLI::App& app) {
             if (!isExperiment(*command->get_parent(), set.experiment))
               throw UsageError("merge: the shards' manifest names '" + set.experiment +
                                "', which is not an experiment (made by a different run or version)");
-            // The experiment runs again with its own arguments, every cell
-            // read from the shards: tables and derived numbers from all cells.
-            Context replay;
-            replay.replay = std::make_shared<lab::Cells>(set.cells, set.shardNames);
             std::vector<std::string> arguments = set.arguments;
             arguments.insert(arguments.end(), {"--out", *out});
-            const int code = runCommandLine(arguments, replay);
-            const std::size_t enumerated = replay.replay->count();
-            if (code == 0 && enumerated != set.cellCount)
-              throw UsageError("merge: the shards hold " + std::to_string(set.cellCount) + " cells, the experiment has " +
-                               std::to_string(enumerated) + " (made by a different version?)");
+            // The experiment runs again with its own arguments, every cell
+            // read from the shards: tables and derived numbers from all cells.
+            // First with its outputs held back (and its standard output
+            // silenced), so that every cell reads back before any file is
+            // written; then again, writing.
+            const auto replay = [&](bool writeOutputs) {
+              Context context;
+              context.replay = std::make_shared<lab::Cells>(set.cells, set.shardNames, writeOutputs);
+              const int code = runCommandLine(arguments, context);
+              const std::size_t enumerated = context.replay->count();
+              if (code == 0 && enumerated != set.cellCount)
+                throw UsageError("merge: the shards hold " + std::to_string(set.cellCount) +
+                                 " cells, the experiment has " + std::to_string(enumerated) +
+                                 " (made by a different version?)");
+              return code;
+            };
+            int code = 0;
+            {
+              const SilencedStdout silenced;
+              code = replay(false);
+            }
+            if (code == 0) code = replay(true);
             if (code == 0)
               std::fprintf(stderr, "[%s] merged %zu cells from %zu shards into '%s'\n", set.experiment.c_str(),
                            set.cellCount, set.shardNames.size(), output::printable(*out).c_str());

@@ -19,7 +19,8 @@ int list() {
     std::cout << "  " << std::left << std::setw(kNameWidth - 2) << preset.name << preset.summary << '\n';
   std::cout << "scenes (particle-lab run --scene NAME [--preset NAME] --param key=value ...):\n";
   for (const scenes::SceneInfo& info : scenes::sceneTable()) {
-    std::cout << "  " << std::left << std::setw(12) << info.name << info.summary << '\n';
+    std::cout << "  " << std::left << std::setw(12) << info.name << (std::string(info.name).size() < 12 ? "" : " ")
+              << info.summary << '\n';
     std::cout << "      " << info.hint << '\n';
     std::cout << "      " << std::setw(kNameWidth) << "parameter";
     for (const scenes::PresetInfo& preset : presets) std::cout << std::setw(kValueWidth) << preset.name << ' ';

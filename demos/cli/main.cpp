@@ -11,6 +11,7 @@
 #include "cli/command.h"
 #include "options/usage.h"
 #include "output/output_file.h"
+#include "particles/cancel.h"
 #include "scene_file/json_node.h"
 
 namespace {
@@ -54,8 +55,10 @@ int runCommandLine(const std::vector<std::string>& given, const Context& context
   try {
     app.parse(reversed);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    return fail(e.what());
+    if (e.get_exit_code() != 0) return fail(e.what());
+    app.exit(e);  // --help, --version: their text is the result
+    if (const std::string error = options::flushStandardOutput(); !error.empty()) return fail(error, cli::kWriteFailed);
+    return cli::kSuccess;
   }
   for (const cli::Command& command : commands) {
     if (!command.app->parsed()) continue;
@@ -63,12 +66,7 @@ int runCommandLine(const std::vector<std::string>& given, const Context& context
       const int code = command.run(context);
       // The summary or table on stdout is the command's result: a failed write
       // of it (stdout on a full disk, /dev/full) is a failed output, exit 4.
-      errno = 0;
-      std::cout.flush();
-      if (!std::cout || std::fflush(stdout) != 0)
-        return fail(std::string("cannot write the standard output: ") +
-                        (errno ? std::strerror(errno) : "the write failed"),
-                    cli::kWriteFailed);
+      if (const std::string error = options::flushStandardOutput(); !error.empty()) return fail(error, cli::kWriteFailed);
       return code;
     } catch (const scenes::SceneFileError& e) {
       return fail(e.what());
@@ -78,6 +76,8 @@ int runCommandLine(const std::vector<std::string>& given, const Context& context
       return fail(e.what(), cli::kWriteFailed);
     } catch (const std::bad_alloc&) {
       return fail("out of memory (the scene or the run is too large for this machine)", cli::kBadInput);
+    } catch (const particles::Cancelled&) {  // a signal while a scene file was read
+      return fail("interrupted while reading the scene: nothing was run or written", cli::kInterrupted);
     }
   }
   return fail("no subcommand given");

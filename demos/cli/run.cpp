@@ -11,6 +11,7 @@
 #include "lab/lab.h"
 #include "options/option_checks.h"
 #include "options/scene_source.h"
+#include "options/thread_option.h"
 #include "output/output_file.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
@@ -88,20 +89,35 @@ void printSummary(const scenes::Scene& scene, const particles::Integrator& integ
   std::cout << '\n';
 }
 
-int run(const RunOptions& o) {
-  // Check every input before the first output.
-  particles::setThreadCount(o.threads);
-  scenes::Scene scene = o.source.load();
-  const std::unique_ptr<particles::Integrator> integrator = chosenIntegrator(o, scene);
-  const double dt = o.dtOption->count() ? o.dt : scene.dt;  // both checked > 0 as read
-  const double length = sceneLength(scene);  // the divergence bound's scale
+// The thread count asked for, lowered to the CPUs this process may run on
+// (with a note on stderr).
+void useThreads(int asked) {
+  std::string note;
+  particles::setThreadCount(options::threadsWithinAffinity(asked, note));
+  if (!note.empty()) std::cerr << "particle-lab: note: " << note << '\n';
+}
+
+// The divergence bound's scale (sceneLength), refused when it overflows.
+double boundedSceneLength(const RunOptions& o, const scenes::Scene& scene) {
+  const double length = sceneLength(scene);
   if (!std::isfinite(length))
     throw std::invalid_argument(o.source.describe() +
                                 ": its particles and view span more than a double holds (their extent overflows); "
                                 "bring them nearer the origin");
-  // From here SIGINT and SIGTERM only set a flag: the loop stops at the next
-  // step boundary and the files are closed with complete rows.
+  return length;
+}
+
+int run(const RunOptions& o) {
+  // From here SIGINT, SIGTERM and SIGHUP only set a flag: reading a large
+  // scene file stops (particles::Cancelled, exit 130), and the loop below
+  // stops at the next step boundary with the files closed on complete rows.
   lab::installInterruptHandler();
+  // Check every input before the first output.
+  useThreads(o.threads);
+  scenes::Scene scene = o.source.load();
+  const std::unique_ptr<particles::Integrator> integrator = chosenIntegrator(o, scene);
+  const double dt = o.dtOption->count() ? o.dt : scene.dt;  // both checked > 0 as read
+  const double length = boundedSceneLength(o, scene);
   const Outputs out = openOutputs(o);
   output::CsvWriter* const csv = out.csv.get();
   output::CsvWriter* const trajectory = out.trajectory.get();
@@ -187,11 +203,12 @@ void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& option
 void addOutputOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options) {
   sub->add_option("--csv", options->csvPath,
                   "write one row per step (row 0: the initial state): step,t,kinetic,potential,total_energy,"
-                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us "
+                  "max_constraint_error,cg_iterations,cg_residual,solves,force_evaluations,internal_steps,step_us,threads,contacts,sleeping "
                   "(cg_iterations: summed over every solve of the step; cg_residual: the largest relative "
                   "residual of them; solves: linear solves; force_evaluations: evaluations of every force; "
                   "internal_steps: accepted steps of an adaptive scheme, 1 otherwise; step_us: wall time of "
-                  "the step's simulation, output excluded)")
+                  "the step's simulation, output excluded; threads: the threads the step ran on, at most "
+                  "--threads; contacts: contacts the step resolved; sleeping: particles asleep at its end)")
       ->check(options::outputPath());
   sub->add_option("--trajectory", options->trajectoryPath,
                   "write step,t,particle,x,y,vx,vy for every particle every --every steps (and at step 0)")
@@ -199,11 +216,7 @@ void addOutputOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options)
   sub->add_option("--every", options->every, "trajectory interval in steps, a decimal integer >= 1")
       ->capture_default_str()
       ->check(options::decimalInteger(1, kMaxSteps));
-  sub->add_option("--threads", options->threads,
-                  "threads of the engine's parallel loops (the same results on any count; 1 starts no thread; "
-                  "default: the CPUs of the affinity mask), a decimal integer in [1, 1024]")
-      ->capture_default_str()
-      ->check(options::decimalInteger(1, 1024));
+  options::addThreadsOption(*sub, options->threads);
   sub->add_option("--diagnostics-every", options->diagnosticsEvery,
                   "measure the diagnostics (energies, constraint error), check divergence and write the --csv "
                   "row every K steps (and at step 0); a divergence is then found up to K-1 steps late; a "
@@ -232,7 +245,8 @@ Command addRunCommand(CLI::App& app) {
       "a relative residual above 10, or a diagnostic is not finite: the run stops,\n"
       "stderr names the step, time and reason, and the CSV holds every step before it (finite numbers\n"
       "only); 4 an output file or stdout could not be written (disk full); 130 SIGINT, SIGTERM or SIGHUP: the run stops at\n"
-      "a step boundary and the files hold complete rows. An output file is locked while it is written:\n"
+      "a step boundary (a long step is cut short and not written) and the files hold complete rows; while the scene\n"
+      "file is read, nothing is written. An output file is locked while it is written:\n"
       "a second run given the same path is refused (exit 2).");
   return {sub, [options](const Context&) { return run(*options); }};
 }

@@ -29,7 +29,7 @@ Diagnostics measureDiagnostics(long long step, const particles::ParticleSystem& 
   d.kinetic = s.kineticEnergy();
   d.potential = s.potentialEnergy();
   d.constraintError = s.maxConstraintError();
-  if (step > 0) d.stats = s.lastStepStats();
+  if (step > 0) d.stats = s.lastStepStats(), d.contacts = s.contactsLastStep();
   else d.stats.internalSteps = 0;  // no step taken yet
   return d;
 }
@@ -52,7 +52,7 @@ void writeDiagnostics(output::CsvWriter& csv, const Diagnostics& d, double stepM
   const particles::StepStats& stats = d.stats;
   csv << d.step << d.time << d.kinetic << d.potential << d.kinetic + d.potential << d.constraintError
       << stats.cgIterations << stats.maxResidual << stats.solves << stats.forceEvaluations << stats.internalSteps
-      << stepMicros;
+      << stepMicros << stats.threads << d.contacts << stats.sleeping;
   csv.endRow();
 }
 

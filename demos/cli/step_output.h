@@ -42,16 +42,20 @@ double sceneLength(const scenes::Scene& scene);
 // The columns after max_constraint_error come from the step's StepStats:
 // cg_iterations summed over every solve of the step, cg_residual the largest
 // relative residual of any of them, solves, force_evaluations and
-// internal_steps (accepted steps of an adaptive scheme; 1 otherwise).
+// internal_steps (accepted steps of an adaptive scheme; 1 otherwise); then
+// the step's wall time, the threads it ran on (StepStats::threads), the
+// contacts its contact pass resolved and the particles asleep at its end.
 inline const std::vector<std::string> kDiagnosticsColumns = {
-    "step",         "t",      "kinetic",           "potential",      "total_energy", "max_constraint_error",
-    "cg_iterations", "cg_residual", "solves", "force_evaluations", "internal_steps", "step_us"};
+    "step",          "t",           "kinetic", "potential",         "total_energy",   "max_constraint_error",
+    "cg_iterations", "cg_residual", "solves",  "force_evaluations", "internal_steps", "step_us",
+    "threads",       "contacts",    "sleeping"};
 // The measured columns of one row, evaluated once per step (the energies
 // and the constraint error each cost a pass over the forces or constraints).
 struct Diagnostics {
   long long step = 0;
   double time = 0.0, kinetic = 0.0, potential = 0.0, constraintError = 0.0;
   particles::StepStats stats;  // the step's statistics (zeros for row 0)
+  int contacts = 0;            // contacts the step's contact pass resolved
 };
 // The state after `step`, its statistics from s.lastStepStats().
 Diagnostics measureDiagnostics(long long step, const particles::ParticleSystem& s);

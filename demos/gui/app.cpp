@@ -16,6 +16,7 @@
 
 #include "backends/imgui_impl_glut.h"
 #include "backends/imgui_impl_opengl3.h"
+#include "imgui_internal.h"  // ImGui::ErrorCheckEndFrameRecover
 #include "screenshot.h"
 #include "state_log.h"
 
@@ -127,6 +128,7 @@ App::App(DemoOptions options)
       panes_[k]->setIntegrator(integratorIndexByName(options_.compare[k].integrator));
       panes_[k]->setDt(options_.compare[k].dt.value_or(dt));
     }
+    setStatus(compareLine());  // what the panes run now, not the presets they started from
   }
   sceneHint_ = hintFor(scene_);
   exact_ = exactMotion(scene_, *buildChoice(scene_).system);  // a fresh build: the state at t = 0
@@ -289,12 +291,22 @@ void App::draw() {
   ImGui_ImplGLUT_NewFrame();  // also ImGui::NewFrame() in 1.86
   overlays_.clear();
   widgets_.clear();
-  drawTopBar();
-  drawBottomBar();
-  if (panes_.size() > 1) drawPaneHeaders();
-  drawOutOfViewIndicators();
-  if (showHelp_) drawHelp();
-  if (showPanel_) drawPanel();
+  // Between NewFrame and Render nothing may leave the frame open: an error
+  // thrown by a panel closes the windows it left open and ends the frame
+  // before it reaches the top bar (an open frame aborts the next NewFrame,
+  // ImGui's "Forgot to call Render()").
+  try {
+    drawTopBar();
+    drawBottomBar();
+    if (panes_.size() > 1) drawPaneHeaders();
+    drawOutOfViewIndicators();
+    if (showHelp_) drawHelp();
+    if (showPanel_) drawPanel();
+  } catch (...) {
+    ImGui::ErrorCheckEndFrameRecover(nullptr);
+    ImGui::EndFrame();
+    throw;
+  }
   closePopups_ = false;
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -310,22 +322,30 @@ static std::string numberedImage(const std::string& dir, const char* stem, long 
   return (std::filesystem::path(dir.empty() ? "." : dir) / name).string();
 }
 
+// A write that failed while the demo runs (a frame of --record, a k
+// screenshot): one line on stderr as it happens, as particle-lab reports a
+// failed output, the top bar too, and the exit code at the end says so.
+void App::reportFailedWrite(const std::string& message) {
+  reportBadUsage(message);
+  setError(message);
+  outputFailed_ = true;
+}
+
 void App::writeFrameImages() {
   if (recording_) {
-    const std::string error = writeScreenshot(numberedImage(options_.record, "frame", frame_), windowWidth_,
-                                              windowHeight_);
+    const std::string error = writeScreenshot(numberedImage(recordDirectory(), "frame", frame_), windowWidth_,
+                                              windowHeight_, "--record");
     if (!error.empty()) {
-      setError("recording stopped: " + error);
-      outputFailed_ = true;
+      reportFailedWrite("recording stopped: " + error);
       recording_ = false;
     }
   }
   if (screenshotRequested_) {
     screenshotRequested_ = false;
     const std::string path = numberedImage(options_.record, "screenshot", frame_);
-    const std::string error = writeScreenshot(path, windowWidth_, windowHeight_);
+    const std::string error = writeScreenshot(path, windowWidth_, windowHeight_, "the k key's screenshot");
     if (error.empty()) setStatus("screenshot: " + path);
-    else setError(error);
+    else reportFailedWrite(error);
   }
 }
 
@@ -335,7 +355,7 @@ void App::finishFrame() {
   writeFrameImages();
   const bool last = quit_ || (options_.frames && frame_ >= *options_.frames);
   if (last && !options_.screenshot.empty()) {
-    const std::string error = writeScreenshot(options_.screenshot, windowWidth_, windowHeight_);
+    const std::string error = writeScreenshot(options_.screenshot, windowWidth_, windowHeight_, "--screenshot");
     if (!error.empty()) {
       reportBadUsage(error);
       outputFailed_ = true;
@@ -406,12 +426,10 @@ void App::loadScene(const SceneChoice& choice, bool keepIntegrators) {
     fresh.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
     fresh.back()->setIntegratorSettings(settings);
   }
-  panes_ = std::move(fresh);
+  replacePanes(std::move(fresh));
   scene_ = choice;
   takeWindTearFromScene();
   camera_.reset(viewMin, viewMax);
-  tool_ = MouseTool::None;
-  panning_ = false;
   paused_ = options_.startPaused && frame_ == 0;
   sceneHint_ = hintFor(choice);
   exact_ = exactMotion(choice, *buildChoice(choice).system);
@@ -477,14 +495,22 @@ void App::resetScene() {
     fresh.push_back(std::make_unique<Simulation>(buildChoice(scene_), pane->integratorIndex(), pane->dt()));
     fresh.back()->setIntegratorSettings(pane->integratorSettings());
   }
-  panes_ = std::move(fresh);
+  replacePanes(std::move(fresh));
   applyWindTear();  // the wind and tearing the user set outlast a reset
   sceneView();
-  tool_ = MouseTool::None;
-  panning_ = false;
   paused_ = false;
   disturbedAt_.reset();
   setStatus("reset");
+}
+
+// The mouse tool names a particle and a pane of the panes it was pressed on:
+// panes of another scene (a scene key, N or z in build mode) drop it with
+// them, or a drag after the change would place a particle past the end.
+void App::replacePanes(std::vector<std::unique_ptr<Simulation>> panes) {
+  panes_ = std::move(panes);
+  tool_ = MouseTool::None;
+  toolParticle_ = toolPane_ = -1;
+  panning_ = false;
 }
 
 void App::setPaneCount(int count) {
@@ -508,21 +534,31 @@ void App::setPaneCount(int count) {
   panes_.front()->release();
   for (auto& pane : added) panes_.push_back(std::move(pane));
   tool_ = MouseTool::None;
-  if (count > 1) {
-    std::string names;
-    for (const auto& pane : panes_) {
-      char entry[96];
-      std::snprintf(entry, sizeof entry, "%s%s dt %g", names.empty() ? "" : ", ", pane->integratorName(), pane->dt());
-      names += entry;
-    }
-    setStatus("compare: " + names);
+  if (count > 1) setStatus(compareLine());
+}
+
+// The panes as they run, in pane order: "compare: 1 euler dt 0.005, 2 ...".
+std::string App::compareLine() const {
+  std::string names;
+  for (std::size_t k = 0; k < panes_.size(); ++k) {
+    char entry[96];
+    std::snprintf(entry, sizeof entry, "%s%zu %s dt %g", k ? ", " : "", k + 1, panes_[k]->integratorName(), panes_[k]->dt());
+    names += entry;
   }
+  return "compare: " + names;
+}
+
+// "integrator: rk4 (order 4): loses a little energy, ...": the scheme's
+// order, stability and cost in one line.
+std::string App::integratorLine(int index) {
+  const particles::IntegratorInfo& info = particles::integratorTable().at(static_cast<std::size_t>(index));
+  return std::string("integrator: ") + info.name + " (order " + std::to_string(info.order) + "): " + info.behaviour;
 }
 
 void App::cycleIntegrators() {
   const int tableSize = static_cast<int>(particles::integratorTable().size());
   for (auto& pane : panes_) pane->setIntegrator((pane->integratorIndex() + 1) % tableSize);
-  setStatus(std::string("integrator: ") + panes_.front()->integratorName());
+  setStatus(integratorLine(panes_.front()->integratorIndex()));
 }
 
 void App::scaleDt(double factor) {

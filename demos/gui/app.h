@@ -2,6 +2,7 @@
 // The application object that every GLUT callback reaches: the panes being
 // simulated, the user's input, and one frame = input → step → draw → output.
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include "scene_keys.h"
 #include "script.h"
 #include "simulation.h"
+#include "text_layout.h"
 #include "view.h"
 
 namespace demo {
@@ -98,6 +100,8 @@ class App {
   void advance();
   void draw();
   void drawTopBar();
+  std::string sceneSummary() const;   // the title's summary of the first pane's scene
+  int particlesOutOfView() const;     // the first pane's particles outside its view
   void drawBottomBar();
   void drawPaneHeaders();
   void drawOutOfViewIndicators();
@@ -109,6 +113,7 @@ class App {
   void drawPresetCombo();
   void drawSceneParams();
   void drawRunButtons();
+  void drawStateFile();
   void drawIntegrationSection();
   void drawPaneIntegrator(std::size_t pane);
   void drawIntegratorSettings();
@@ -142,10 +147,14 @@ class App {
   void guarded(const std::function<void()>& action);
 
   // --- actions ------------------------------------------------------------
+  void replacePanes(std::vector<std::unique_ptr<Simulation>> panes);  // and drops the mouse tool
   void loadScene(const SceneChoice& choice, bool keepIntegrators);
+  void chooseScene(SceneChoice choice);
   void resetScene();
   void setPaneCount(int count);
   void cycleIntegrators();
+  std::string compareLine() const;
+  static std::string integratorLine(int index);
   void scaleDt(double factor);
   void rewind();
   void setStatus(const std::string& text);
@@ -156,7 +165,9 @@ class App {
   void pollAdvice();
   void applyAdvice();
   bool adviceIsForThisScene() const;
-  std::string paneStateLine(const Simulation& sim) const;
+  // Why a pane shows what it shows (overlay.cpp); brief: for the HUD and a
+  // compare pane's header, with the top bar saying a divergence in full.
+  std::string paneStateLine(const Simulation& sim, bool brief = false) const;
   // Wind and tearing (wind_panel.cpp): the controls taken from a new scene,
   // and pushed to every pane.
   void takeWindTearFromScene();
@@ -181,6 +192,13 @@ class App {
   void requestScreenshot() { screenshotRequested_ = true; }
   // The frame just drawn to --record's directory, and the screenshot the k key asked for.
   void writeFrameImages();
+  void reportFailedWrite(const std::string& message);
+  // The panel's state actions (state_actions.cpp): the state now to a scene
+  // file and back, and recording on and off.
+  void saveState();
+  void loadState();
+  void toggleRecording();
+  std::string recordDirectory() const;
 
   // Every key besides the scene keys: what the help overlay lists and what
   // keyboard() dispatches, from one table.
@@ -271,6 +289,7 @@ class App {
   double sceneDrawMs_ = 0.0, overlayDrawMs_ = 0.0;
   std::vector<Renderer::PaneDrawing> paneDrawings_;  // each pane's shaded faces in the last frame
   std::vector<Overlay> overlays_;  // the text and controls drawn in the last frame
+  std::map<std::string, WrappedText> barText_;  // each bar's text as laid out last (overlay.cpp)
   std::vector<Overlay> widgets_;   // the panel's buttons and combos, for scripted clicks
   // Wall time of every frame (input, stepping, drawing, swap) and its
   // stepping part, for the state log's frame-time summary.
@@ -279,7 +298,8 @@ class App {
   bool statusIsError_ = false;
   int statusFrames_ = 0;
   bool screenshotRequested_ = false;
-  bool recording_ = false;  // --record given and its frames still written
+  bool recording_ = false;  // frames written to recordDirectory(): --record, or the panel's Record
+  std::string stateFile_ = "state.json";  // the panel's Save state / Load state file
   ExactMotion exact_;              // the scene's closed form, drawn as a ghost; empty if none
   // When the mouse first moved or pinned a particle since the scene started:
   // the closed form is the undisturbed motion, so the ghost is hidden from then.

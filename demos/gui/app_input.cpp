@@ -127,9 +127,7 @@ void App::keyboard(unsigned char key) {
   if (build_.active() && buildKeyboard(key)) return;
   for (const SceneKey& k : sceneKeys())
     if (k.key == key) {
-      SceneChoice choice = k.choice;
-      choice.preset = scene_.preset;  // a new scene keeps the preset in use
-      loadScene(choice, panes_.size() > 1);
+      chooseScene(k.choice);
       return;
     }
   for (const KeyBinding& binding : keyBindings())
@@ -137,6 +135,13 @@ void App::keyboard(unsigned char key) {
       (this->*binding.action)();
       return;
     }
+}
+
+// A scene from the keys or the panel's list: it keeps the preset in use, and
+// compare mode keeps its panes' integrators.
+void App::chooseScene(SceneChoice choice) {
+  choice.preset = scene_.preset;
+  loadScene(choice, panes_.size() > 1);
 }
 
 void App::toggleLockstep() {

@@ -58,18 +58,19 @@ void App::toggleBuildMode() {
 }
 
 void App::enterBuildMode(bool currentState) {
-  if (panes_.size() > 1) setPaneCount(1);
   Simulation& pane = *panes_.front();
   pane.release();  // the mouse joint is the user's hand, not part of the scene
-  tool_ = MouseTool::None;
   Json document = currentState ? documentOf(pane.scene()) : documentOf(buildChoice(scene_));
   // What runs is what is built and saved: the pane's integrator, dt and settings.
   const particles::IntegratorSettings& settings = pane.integratorSettings();
   document["integrator"] = pane.integratorName();
   document["integratorSettings"] = scenes::integratorSettingsToJson(settings);
   document["dt"] = pane.dt();
-  build_.setActive(true);
+  // Build mode starts only once the reader has taken the document (a state
+  // dragged into a wall is refused with the reader's message, and the panes
+  // run on as they were); the built scene replaces every pane.
   startBuildFrom(std::move(document), "start from " + scene_.label + (currentState ? " as it is" : ""));
+  build_.setActive(true);
   setStatus("build mode: " + std::string(build_.tool().name) + " (" + build_.tool().help + "); e runs the scene");
 }
 
@@ -96,10 +97,10 @@ void App::showBuiltScene(scenes::Scene scene) {
   const int integrator = integratorIndexByName(scene.integrator);
   const double dt = scene.dt;
   const particles::IntegratorSettings settings = scene.integratorSettings;
-  auto pane = std::make_unique<Simulation>(std::move(scene), integrator, dt);
-  pane->setIntegratorSettings(settings);
-  panes_.clear();
-  panes_.push_back(std::move(pane));
+  std::vector<std::unique_ptr<Simulation>> panes;
+  panes.push_back(std::make_unique<Simulation>(std::move(scene), integrator, dt));
+  panes.front()->setIntegratorSettings(settings);
+  replacePanes(std::move(panes));
   scene_ = documentChoice(build_.history.current());
   exact_ = {};
   showBuildHint();
@@ -151,7 +152,9 @@ bool App::buildKeyboard(unsigned char key) {
 }
 
 bool App::buildMouse(int button, int state, int x, int y) {
-  if (panning_ || button == GLUT_MIDDLE_BUTTON || spaceHeld_) return false;  // the camera's
+  // The camera's: a middle drag, space + left drag. Every other press is
+  // build mode's, so that no tool of the running scene (a pin) acts on it.
+  if (panning_ || button == GLUT_MIDDLE_BUTTON || (spaceHeld_ && button == GLUT_LEFT_BUTTON)) return false;
   if (button == GLUT_RIGHT_BUTTON) {  // cancels a gesture, then the selection
     if (state == GLUT_DOWN && build_.gestureInProgress()) build_.cancelGesture();
     else if (state == GLUT_DOWN) build_.selection.reset();

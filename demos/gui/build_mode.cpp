@@ -1,10 +1,23 @@
 #include "build_mode.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "build_geometry.h"
 
 namespace demo {
+
+namespace {
+// The grid point nearest v, as the decimal a user reads: k·g rounded to 15
+// significant digits (6 × 0.05 is 0.30000000000000004 in binary; the point
+// is 0.3, and so its fields show and its file says).
+double onGrid(double v, double grid) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", std::round(v / grid) * grid);
+  return std::strtod(text, nullptr);
+}
+}  // namespace
 
 BuildMode::BuildMode() {
   for (const BuildTool& tool : buildTools()) fields_.push_back(tool.defaults());
@@ -51,7 +64,7 @@ BuildPoint BuildMode::pointAt(const Eigen::Vector2d& world, const particles::Par
       point.at = system.position(*particle);
       return point;
     }
-  point.at = grid > 0.0 ? Eigen::Vector2d((world / grid).array().round() * grid) : world;
+  point.at = grid > 0.0 ? Eigen::Vector2d(onGrid(world.x(), grid), onGrid(world.y(), grid)) : world;
   return point;
 }
 
@@ -84,7 +97,11 @@ std::optional<std::vector<BuildPoint>> BuildMode::release(const BuildPoint& poin
 }
 
 std::optional<std::vector<BuildPoint>> BuildMode::finishClicks() {
-  if (tool().gesture != Gesture::Clicks || pending_.empty()) return std::nullopt;
+  // Enter closes a gesture of any number of clicks (a polygon's corners); one
+  // of a fixed number (an angle spring's three) is done only with all of them.
+  const BuildTool& t = tool();
+  if (t.gesture != Gesture::Clicks || pending_.empty() || static_cast<int>(pending_.size()) < t.points)
+    return std::nullopt;
   std::vector<BuildPoint> points = std::move(pending_);
   pending_.clear();
   return points;

@@ -22,7 +22,9 @@ std::string describe(const ObjectRef& ref, const Json& object) {
   std::string text = ref.name();
   if (object.is_object() && object.contains("type")) text += "  " + object["type"].get<std::string>();
   const std::vector<int> named = particlesOf(ref, object);
-  for (std::size_t k = 0; k < named.size(); ++k) text += (k ? "-" : "  ") + std::to_string(named[k]);
+  constexpr std::size_t shown = 8;  // a cloth's faces name hundreds
+  for (std::size_t k = 0; k < named.size() && k < shown; ++k) text += (k ? "-" : "  ") + std::to_string(named[k]);
+  if (named.size() > shown) text += "-... (" + std::to_string(named.size()) + " particles)";
   if (ref.list == "particles" && object.value("pinned", false)) text += "  pinned";
   return text;
 }

@@ -19,7 +19,8 @@ int wrappedLines(int lines, int naturalWidth, int width) {
 
 Layout computeLayout(int windowWidth, int windowHeight, bool panelShown, int paneCount, const LayoutMetrics& m) {
   Layout layout;
-  const int panel = panelShown ? std::min(m.panelWidth, windowWidth / 2) : 0;
+  const int fraction = static_cast<int>(m.panelFraction * windowWidth);
+  const int panel = panelShown ? std::min({m.panelWidth, std::max(fraction, m.minPanelWidth), windowWidth / 2}) : 0;
   const int width = windowWidth - panel;
   layout.panel = {width, 0, panel, windowHeight};
   const bool compare = paneCount > 1;

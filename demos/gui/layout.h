@@ -24,7 +24,11 @@ struct LayoutMetrics {
   int paneHeaderLines = 3;   // compare mode: each pane's integrator, numbers, state
   int paneHeaderWidth = 560;  // and its natural width
   int gutter = 12;           // around each pane's world, for the edge indicators
-  int panelWidth = 340;      // the control panel, when shown (at most half the window)
+  // The control panel, when shown: panelWidth in a wide window, narrower in a
+  // small one (panelFraction of it, no less than minPanelWidth, at most half).
+  int panelWidth = 340;
+  double panelFraction = 0.3;
+  int minPanelWidth = 260;
 };
 
 struct Layout {

@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <new>
 #include <stdexcept>
+#include <string>
 
 #include "app.h"
 #include "backends/imgui_impl_glut.h"
+#include "options/thread_option.h"
 #include "particles/threads.h"
 #ifdef __EMSCRIPTEN__
 #include "page.h"
@@ -112,7 +114,9 @@ void onIdle() {
 
 int main(int argc, char** argv) {
   const demo::DemoOptions options = demo::parseOptions(argc, argv);
-  particles::setThreadCount(options.threads);
+  std::string threadsNote;
+  particles::setThreadCount(options::threadsWithinAffinity(options.threads, threadsNote));
+  if (!threadsNote.empty()) std::fprintf(stderr, "particle-demo: note: %s\n", threadsNote.c_str());
   std::unique_ptr<demo::App> application;
   try {
     application = std::make_unique<demo::App>(options);

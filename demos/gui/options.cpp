@@ -8,7 +8,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "decimal_number.h"
 #include "options/option_checks.h"
+#include "options/thread_option.h"
 #include "options/usage.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
@@ -121,11 +123,7 @@ void addSteppingOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
                  "simulated time is dropped (slow motion), and a frame takes at least one step")
       ->capture_default_str()
       ->check(options::numberInRange(0.0, 1e6));
-  cli.add_option("--threads", o.threads,
-                 "threads of the engine's parallel loops (the same results on any count; 1 starts no thread; "
-                 "default: the CPUs of the affinity mask), a decimal integer in [1, 1024]")
-      ->capture_default_str()
-      ->check(options::decimalInteger(1, 1024));
+  options::addThreadsOption(cli, o.threads);
 }
 
 // How the window starts: panel, pause, pacing, size.
@@ -151,7 +149,7 @@ void addRunOptions(CLI::App& cli, DemoOptions& o, CommandLine& c) {
       ->check(options::integratorTolerance());
   cli.add_option("--screenshot", o.screenshot, "write the last frame to this PNG file");
   cli.add_option("--record", o.record,
-                 "write every frame as DIR/frame-000001.png, frame-000002.png, ... (created if missing; the o "
+                 "write every frame as DIR/frame-000001.png, frame-000002.png, ... (created if missing; the k "
                  "key's screenshots go there too); a video: ffmpeg -framerate 60 -i DIR/frame-%06d.png -pix_fmt "
                  "yuv420p out.mp4");
   cli.add_option("--log-state", o.logState, "write the state at exit to this file (see demos/gui/SCRIPTING.md)");
@@ -161,7 +159,14 @@ void parseCommandLine(CLI::App& cli, int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) std::exit(cli.exit(e));  // --help, --version
+    if (e.get_exit_code() == 0) {  // --help, --version: their text is the result
+      cli.exit(e);
+      if (const std::string error = options::flushStandardOutput(); !error.empty()) {
+        reportBadUsage(error);
+        std::exit(exitOutputFailed);
+      }
+      std::exit(0);
+    }
     badUsage(e.what());
   }
 }
@@ -209,8 +214,12 @@ void parseGrabSetting(const std::string& entry, particles::MouseJointSettings& j
   const auto equals = entry.find('=');
   const std::string key = entry.substr(0, equals);
   double value = 0.0;
-  if (equals == std::string::npos || !CLI::detail::lexical_cast(entry.substr(equals + 1), value) ||
-      !std::isfinite(value))
+  try {
+    if (equals != std::string::npos) value = scenes::readDecimalNumber(entry.substr(equals + 1));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("--grab " + entry + ": " + e.what());
+  }
+  if (equals == std::string::npos || !std::isfinite(value))
     throw std::invalid_argument("--grab expects KEY=NUMBER (frequency, damping-ratio, stiffness-ratio), got '" +
                                 entry + "'");
   if (key == "frequency") joint.frequency = value;
@@ -228,8 +237,12 @@ ComparePane parseComparePane(const std::string& entry) {
   pane.integrator = particles::requireIntegrator(entry.substr(0, colon)).name;
   if (colon != std::string::npos) {
     double dt = 0.0;
-    if (!CLI::detail::lexical_cast(entry.substr(colon + 1), dt) || !(dt > 0.0) || !std::isfinite(dt))
-      throw std::invalid_argument("dt in '" + entry + "' must be a finite number > 0");
+    try {
+      dt = scenes::readDecimalNumber(entry.substr(colon + 1));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("dt in '" + entry + "': " + e.what());
+    }
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("dt in '" + entry + "' must be a finite number > 0");
     pane.dt = dt;
   }
   return pane;

@@ -48,14 +48,15 @@ struct DemoOptions {
   std::optional<long long> frames;              // --frames N: exit after N frames
   std::string screenshot;                       // --screenshot FILE.png: the last frame (PNG only)
   std::string record;                           // --record DIR: every frame as DIR/frame-NNNNNN.png;
-                                                // the o key's screenshots go there too
+                                                // the k key's screenshots go there too
   std::string logState;                         // --log-state FILE: the state at exit
 };
 
-// Exit codes: 0 success, 2 a bad command line (one line on stderr), 1 an
-// output (--screenshot, --log-state) that could not be written at the end.
+// Exit codes, as particle-lab's: 0 success, 2 a bad command line (one line on
+// stderr), 4 an output that could not be written (--screenshot, --log-state,
+// --record's frames, the k key's screenshots; one line on stderr each).
 constexpr int exitBadUsage = options::kBadUsageExit;
-constexpr int exitOutputFailed = 1;
+constexpr int exitOutputFailed = options::kWriteFailedExit;
 
 // Writes "particle-demo: <message>" as one line on stderr, as particle-lab does.
 inline void reportBadUsage(const std::string& message) { options::printErrorLine("particle-demo", message); }

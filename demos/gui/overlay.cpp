@@ -12,7 +12,10 @@
 #include <string>
 
 #include "app.h"
+#include "divergence_words.h"
 #include "output/format_number.h"
+#include "particles/threads.h"
+#include "text_layout.h"
 
 namespace demo {
 
@@ -29,10 +32,6 @@ constexpr MouseHelp mouseHelp[] = {
     {"middle drag, space+drag", "pan"},
 };
 
-constexpr ImGuiWindowFlags overlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                          ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-
 // The HUD's text ({fmt}: the same presentations as printf's).
 using fmt::format;
 
@@ -41,84 +40,19 @@ const ImU32 titleColour = IM_COL32(255, 217, 115, 255);
 const ImU32 dimColour = IM_COL32(150, 155, 165, 255);
 const ImU32 barColour = IM_COL32(14, 16, 20, 255);
 
-// A line of text in a bar: pieces of text in their colours, one after
-// another; a piece marked whole is never broken across lines.
-struct Piece {
-  std::string text;
-  ImU32 colour;
-  bool whole = false;
-};
-using Line = std::vector<Piece>;
-
-float textWidth(const std::string& text) { return ImGui::CalcTextSize(text.c_str()).x; }
-float lineWidth(const Line& line) {
-  float width = 0.0f;
-  for (const Piece& piece : line) width += textWidth(piece.text);
-  return width;
-}
-
-void append(Line& line, const std::string& text, ImU32 colour) {
-  if (!line.empty() && line.back().colour == colour) line.back().text += text;
-  else line.push_back({text, colour});
-}
-
-// A line broken at spaces into lines no wider than `width`, each piece
-// keeping its colour; a word wider than the whole width has a line to itself.
-std::vector<Line> wrapLine(const Line& line, float width) {
-  std::vector<Line> lines(1);
-  float x = 0.0f;
-  for (const Piece& piece : line) {
-    const std::string& t = piece.text;
-    std::size_t start = 0;
-    while (start < t.size()) {
-      const std::size_t word = t.find_first_not_of(' ', start);
-      if (word == std::string::npos) break;  // trailing spaces end a piece
-      std::size_t end = piece.whole ? t.size() : t.find(' ', word);
-      if (end == std::string::npos) end = t.size();
-      std::string token = t.substr(start, end - start);  // the spaces before the word, then the word
-      if (x > 0.0f && x + textWidth(token) > width) {
-        lines.emplace_back();
-        token = t.substr(word, end - word);
-        x = 0.0f;
-      }
-      append(lines.back(), token, piece.colour);
-      x += textWidth(token);
-      start = end;
-    }
-  }
-  return lines;
-}
-
-// The line with " ..." at its end, less as many words as it takes to fit `width`.
-Line shortened(Line line, float width) {
-  const std::string more = " ...";
-  while (!line.empty() && lineWidth(line) + textWidth(more) > width) {
-    std::string& last = line.back().text;
-    const std::size_t space = last.find_last_of(' ');
-    if (space == std::string::npos || last.find_first_not_of(' ') == std::string::npos) line.pop_back();
-    else last.erase(space);
-  }
-  append(line, more, line.empty() ? dimColour : line.back().colour);
-  return line;
-}
-
 // Fills the bar and writes its lines, wrapped to its width: the bar is the
 // overlay's rectangle, its text the overlay's text. Lines beyond what the
 // bar holds are left out, the last one kept ending in "...", and the overlay
 // says so.
-Overlay drawBar(const char* kind, const PixelRect& r, const std::vector<Line>& lines, int lineHeight, int padding) {
+// `text` keeps the bar's layout between frames (text_layout.h).
+Overlay drawBar(const char* kind, const PixelRect& r, const std::vector<Line>& lines, int lineHeight, int padding,
+                WrappedText& text) {
   constexpr float margin = 8.0f;
   const float width = r.width - 2.0f * margin;
-  std::vector<Line> wrapped;
-  for (const Line& line : lines)
-    for (Line& part : wrapLine(line, width)) wrapped.push_back(std::move(part));
   const std::size_t holds = static_cast<std::size_t>(std::max((r.height - 2 * padding) / lineHeight, 1));
+  const std::vector<Line>& wrapped = text.layout(lines, width, holds, dimColour);
   Overlay overlay{kind, r, ""};
-  if (wrapped.size() > holds) {
-    wrapped.resize(holds);
-    wrapped.back() = shortened(wrapped.back(), width);
-    overlay.shortened = true;
-  }
+  overlay.shortened = text.shortened();
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const ImVec2 a(r.x, r.y), b(r.x + r.width, r.y + r.height);
   draw->AddRectFilled(a, b, barColour);
@@ -145,10 +79,12 @@ using output::plural;
 
 // Why a pane shows what it shows, beyond its numbers: stopped, slow motion,
 // or a dt longer than a frame.
-std::string App::paneStateLine(const Simulation& sim) const {
+std::string App::paneStateLine(const Simulation& sim, bool brief) const {
   if (sim.divergedAt())
-    return format("diverged at t = {:.3f} s ({}): r resets, b rewinds", *sim.divergedAt(),
-                  sim.divergence().message());
+    return brief ? format("diverged at t = {:.3f} s ({}): r resets, b rewinds", *sim.divergedAt(),
+                          divergenceInWords(sim.divergence(), true))
+                 : format("diverged at t = {:.3f} s: {}. {}", *sim.divergedAt(), divergenceInWords(sim.divergence()),
+                          divergenceRemedy());
   if (sim.refusal()) return *sim.refusal() + ": press i for another integrator";
   // The frame's stepping budget (frame_budget.h), shared by the panes.
   const FrameStats& f = sim.lastFrame();
@@ -185,17 +121,35 @@ std::string App::ghostLabel() const {
   return "   ghost: the closed form from the start";
 }
 
+// The title's summary: the first pane's scene's caption, else its table
+// summary, else "scene file".
+std::string App::sceneSummary() const {
+  const Simulation& first = *panes_.front();
+  if (!first.scene().caption.empty()) return first.scene().caption;
+  for (const scenes::SceneInfo& i : scenes::sceneTable())
+    if (scene_.name == i.name) return i.summary;
+  return "scene file";
+}
+
+// The first pane's particles outside its view (not counting non-finite ones).
+int App::particlesOutOfView() const {
+  const Simulation& first = *panes_.front();
+  const ViewTransform view = paneViews()[0];
+  int outside = 0;
+  for (int i = 0; i < first.system().size(); ++i) {
+    const Eigen::Vector2d x = first.system().position(i);
+    if (!x.allFinite()) continue;
+    outside += x.x() < view.worldMin.x() || x.x() > view.worldMax.x() || x.y() < view.worldMin.y() ||
+               x.y() > view.worldMax.y();
+  }
+  return outside;
+}
+
 void App::drawTopBar() {
   const LayoutMetrics m;
   const Layout l = layout();
   const Simulation& first = *panes_.front();
-  std::string summary = "scene file";
-  if (const scenes::SceneInfo* info = [&]() -> const scenes::SceneInfo* {
-        for (const scenes::SceneInfo& i : scenes::sceneTable())
-          if (scene_.name == i.name) return &i;
-        return nullptr;
-      }())
-    summary = info->summary;
+  const std::string summary = sceneSummary();
   // The title line: the scene, its time, then its summary, which is what a
   // narrow window shortens.
   Line title{{scene_.label, titleColour}};
@@ -210,21 +164,17 @@ void App::drawTopBar() {
   // particles out of view, then the first-run hint. A long message takes the title's line too.
   std::string message;
   ImU32 messageColour = colour(palette::hudText);
-  int outOfView = 0;
-  const std::vector<ViewTransform> views = paneViews();
-  for (int i = 0; i < first.system().size(); ++i) {
-    const Eigen::Vector2d x = first.system().position(i);
-    if (!x.allFinite()) continue;
-    outOfView += x.x() < views[0].worldMin.x() || x.x() > views[0].worldMax.x() || x.y() < views[0].worldMin.y() ||
-                 x.y() > views[0].worldMax.y();
-  }
-  const std::string state = panes_.size() == 1 ? paneStateLine(first) : "";
+  const int outOfView = particlesOutOfView();
+  // In compare mode the first pane that stopped says why in full here (its header says it briefly).
+  std::string state = panes_.size() == 1 ? paneStateLine(first) : "";
+  for (std::size_t k = 0; k < panes_.size() && panes_.size() > 1 && state.empty(); ++k)
+    if (panes_[k]->stopped()) state = format("pane {} ({}): {}", k + 1, panes_[k]->integratorName(), paneStateLine(*panes_[k]));
   if (statusFrames_ > 0) {
     message = status_;
     if (statusIsError_) messageColour = colour(palette::divergenceText);
   } else if (!state.empty()) {
     message = state;
-    if (first.stopped()) messageColour = colour(palette::divergenceText);
+    if (first.stopped() || panes_.size() > 1) messageColour = colour(palette::divergenceText);
   } else if (frame_ < hintUntilFrame_ && !sceneHint_.empty()) {
     message = sceneHint_;  // the table's line, "try this: ..."
   } else if (outOfView > 0) {
@@ -233,15 +183,21 @@ void App::drawTopBar() {
   } else if (!grabbedOnce_) {
     message = "drag any particle with the left mouse button; h lists the keys";
   }
-  // A message too long for the lines below the title takes the title's line too.
+  // The scene's name and time always lead; a message too long for the lines
+  // below the title follows them on the title's line instead of the summary.
   const float width = l.topBar.width - 16.0f;
   const std::size_t holds = static_cast<std::size_t>((l.topBar.height - 2 * m.padding) / m.lineHeight);
   std::vector<Line> lines;
-  const std::vector<Line> titleLines = wrapLine(title, width);
-  if (message.empty() || wrapLine({{message, messageColour}}, width).size() < holds)
-    lines.push_back(titleLines.size() > 1 ? shortened(titleLines.front(), width) : titleLines.front());
-  if (!message.empty()) lines.push_back({{message, messageColour}});
-  overlays_.push_back(drawBar("top-bar", l.topBar, lines, m.lineHeight, m.padding));
+  if (message.empty() || wrapLine({{message, messageColour}}, width).size() < holds) {
+    const std::vector<Line> titleLines = wrapLine(title, width);
+    lines.push_back(titleLines.size() > 1 ? shortened(titleLines.front(), width, dimColour) : titleLines.front());
+    if (!message.empty()) lines.push_back({{message, messageColour}});
+  } else {
+    Line nameAndMessage(title.begin(), title.end() - 1);  // without the summary
+    nameAndMessage.push_back({"   " + message, messageColour});
+    lines.push_back(nameAndMessage);
+  }
+  overlays_.push_back(drawBar("top-bar", l.topBar, lines, m.lineHeight, m.padding, barText_["top-bar"]));
 }
 
 void App::drawBottomBar() {
@@ -253,7 +209,7 @@ void App::drawBottomBar() {
     const particles::ParticleSystem& s = sim.system();
     const FrameStats& f = sim.lastFrame();
     const ImU32 text = colour(palette::hudText);
-    const std::string state = paneStateLine(sim);
+    const std::string state = paneStateLine(sim, true);  // the top bar says it in full
     // Steps of dt per frame; xpbd's own substeps within each step apart.
     const auto& scheme = particles::integratorTable()[sim.integratorIndex()];
     const std::string within =
@@ -277,7 +233,9 @@ void App::drawBottomBar() {
                      ? format("   {}, residual {:.1e}", plural(step.solves, "solve"), step.maxResidual)
                      : format("   {}, CG {} iterations, residual {:.1e}", plural(step.solves, "solve"),
                               step.cgIterations, step.maxResidual);
-    numbers += format("   max |C| {:.2e}   energy {: .5e}", s.maxConstraintError(), sim.sceneEnergy());
+    numbers += format("   max |C| {:.2e}   energy {: .5e}   threads {}/{}", s.maxConstraintError(), sim.sceneEnergy(),
+                      step.threads, particles::threadCount());
+    if (s.colliding()) numbers += format("   contacts {}   asleep {}", s.contactsLastStep(), step.sleeping);
     if (sim.mouseSpring()) numbers += format("   (mouse spring {: .3e} apart)", sim.mouseSpringEnergy());
     lines.push_back({{numbers, text}});
   }
@@ -294,7 +252,7 @@ void App::drawBottomBar() {
     if (!s.constraints().empty()) legend.push_back({" --> J^T lambda", colour(palette::constraintForceArrow), true});
     lines.push_back(legend);
   }
-  overlays_.push_back(drawBar("hud", l.bottomBar, lines, m.lineHeight, m.padding));
+  overlays_.push_back(drawBar("hud", l.bottomBar, lines, m.lineHeight, m.padding, barText_["hud"]));
 }
 
 void App::drawPaneHeaders() {
@@ -310,8 +268,9 @@ void App::drawPaneHeaders() {
     lines.push_back({{format("E {: .5e}   max |C| {:.1e}   {:.2f} ms/frame", sim.sceneEnergy(), s.maxConstraintError(),
                              sim.lastFrame().simulationMs),
                       text}});
-    lines.push_back({{paneStateLine(sim), sim.stopped() ? colour(palette::divergenceText) : titleColour}});
-    overlays_.push_back(drawBar("pane-hud", l.headers[k], lines, m.lineHeight, m.padding));
+    lines.push_back({{paneStateLine(sim, true), sim.stopped() ? colour(palette::divergenceText) : titleColour}});
+    overlays_.push_back(
+        drawBar("pane-hud", l.headers[k], lines, m.lineHeight, m.padding, barText_["pane-hud " + std::to_string(k)]));
   }
 }
 
@@ -363,34 +322,147 @@ void App::drawOutOfViewIndicators() {
   }
 }
 
-void App::drawHelp() {
-  const Layout l = layout();
-  const PixelRect area{0, 0, l.topBar.width, windowHeight_};
-  ImGui::SetNextWindowPos(ImVec2(area.x + 0.5f * area.width, area.y + 0.5f * area.height), ImGuiCond_Always,
-                          ImVec2(0.5f, 0.5f));
-  ImGui::SetNextWindowBgAlpha(0.92f);
-  ImGui::Begin("Keys", nullptr, overlayFlags & ~ImGuiWindowFlags_NoTitleBar);
-  std::string listed;  // the overlay's text in the state log
-  if (ImGui::BeginTable("keys", 2)) {
-    auto row = [&](const char* keys, const char* action) {
-      listed += std::string(keys) + ": " + action + "\n";
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.45f, 1.0f), "%s", keys);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(action);
-    };
-    row("1, 2, ...", "load a scene (listed below)");
-    for (const KeyBinding& k : keyBindings())
-      if (k.label) row(k.label, k.help);
-    for (const MouseHelp& mh : mouseHelp) row(mh.buttons, mh.action);
-    ImGui::EndTable();
+namespace {
+// One row of the help: keys and what they do, or a heading.
+struct HelpRow {
+  std::string keys, action;
+  bool heading = false;
+};
+
+// The help's rows laid out in `columns` columns of equal width across
+// `width` pixels: each action wrapped beside its keys (below them, indented,
+// when the keys are wider than the key column), rows filling a column to
+// `heightLines` lines before the next begins. fits: every row placed.
+struct HelpLayout {
+  static constexpr float gap = 18.0f, keyGap = 10.0f;
+  int columns = 1;
+  float columnWidth = 0.0f, keyWidth = 0.0f;
+  std::vector<std::vector<Line>> actions;  // per row, the action's lines
+  std::vector<bool> keysAbove;             // per row: its keys on a line of their own
+  std::vector<int> column;                 // per row, its column (−1: left out)
+  int tallest = 0;                         // the fullest column's lines
+  bool fits = true;
+  int lines(std::size_t row) const { return static_cast<int>(actions[row].size()) + (keysAbove[row] ? 1 : 0); }
+};
+
+HelpLayout layoutHelp(const std::vector<HelpRow>& rows, int columns, float width, int heightLines) {
+  HelpLayout l;
+  l.columns = columns;
+  l.columnWidth = (width - HelpLayout::gap * static_cast<float>(columns - 1)) / static_cast<float>(columns);
+  // The key column is as wide as the widest keys that fit in a third of the column.
+  const float keyLimit = l.columnWidth / 3.0f;
+  for (const HelpRow& row : rows)
+    if (!row.heading && textWidth(row.keys) + HelpLayout::keyGap <= keyLimit)
+      l.keyWidth = std::max(l.keyWidth, textWidth(row.keys) + HelpLayout::keyGap);
+  int column = 0, used = 0;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const HelpRow& row = rows[r];
+    l.keysAbove.push_back(!row.heading && textWidth(row.keys) + HelpLayout::keyGap > l.keyWidth);
+    l.actions.push_back(row.heading ? std::vector<Line>{{{row.keys, titleColour}}}
+                                    : wrapLine({{row.action, colour(palette::hudText)}}, l.columnWidth - l.keyWidth));
+    const int lines = l.lines(r);
+    // A heading never ends a column: it starts the next one instead.
+    const int needed = row.heading && r + 1 < rows.size() ? lines + 1 : lines;
+    if (used + needed > heightLines && used > 0) {
+      ++column;
+      used = 0;
+    }
+    if (column >= columns || lines > heightLines) {
+      l.column.push_back(-1);
+      l.fits = false;
+      continue;
+    }
+    l.column.push_back(column);
+    used += lines;
+    l.tallest = std::max(l.tallest, used);
   }
-  ImGui::Separator();
-  for (const SceneKey& k : sceneKeys()) ImGui::Text("%c  %s", k.key, k.choice.label.c_str());
-  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-  overlays_.push_back({"help", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x) + 1, static_cast<int>(size.y) + 1}, listed});
-  ImGui::End();
+  return l;
+}
+// Draws the laid-out rows below the title line from `origin` (the box's
+// corner inside its padding), appending each row to `text`; returns the
+// rightmost x drawn.
+float drawHelpRows(ImDrawList* draw, const std::vector<HelpRow>& rows, const HelpLayout& layout, ImVec2 origin,
+                   float lineHeight, std::string& text) {
+  const float columnStep = layout.columnWidth + HelpLayout::gap;
+  std::vector<int> usedLines(static_cast<std::size_t>(layout.columns), 1);
+  float right = origin.x;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const int c = layout.column[r];
+    if (c < 0) continue;
+    const float x = origin.x + static_cast<float>(c) * columnStep;
+    float y = origin.y + static_cast<float>(usedLines[c]) * lineHeight;
+    usedLines[c] += layout.lines(r);
+    draw->AddText(ImVec2(x, y), titleColour, rows[r].keys.c_str());
+    right = std::max(right, x + textWidth(rows[r].keys));
+    if (rows[r].heading) {
+      text += rows[r].keys + ":\n";
+      continue;
+    }
+    if (layout.keysAbove[r]) y += lineHeight;
+    for (const Line& line : layout.actions[r]) {
+      float lx = x + layout.keyWidth;
+      for (const Piece& piece : line) {
+        draw->AddText(ImVec2(lx, y), piece.colour, piece.text.c_str());
+        lx += textWidth(piece.text);
+      }
+      right = std::max(right, lx);
+      y += lineHeight;
+    }
+    text += rows[r].keys + ": " + rows[r].action + "\n";
+  }
+  return right;
+}
+}  // namespace
+
+// The help (key h): every scene key, key and mouse action, drawn over the
+// window (the one text over the scene and the panel, on request) in as few
+// columns as hold every row; the overlay records what it drew and whether
+// every row found a place.
+void App::drawHelp() {
+  const LayoutMetrics m;
+  std::vector<HelpRow> rows;
+  rows.push_back({"scenes (the panel's list has the gallery too)", "", true});
+  for (const SceneKey& k : sceneKeys()) rows.push_back({std::string(1, static_cast<char>(k.key)), k.choice.label});
+  rows.push_back({"keys", "", true});
+  for (const KeyBinding& k : keyBindings())
+    if (k.label) rows.push_back({k.label, k.help});
+  rows.push_back({"mouse", "", true});
+  for (const MouseHelp& mh : mouseHelp) rows.push_back({mh.buttons, mh.action});
+
+  constexpr float margin = 6.0f, padding = 10.0f;
+  const float width = static_cast<float>(windowWidth_) - 2.0f * (margin + padding);
+  // The lines below the title line.
+  const int heightLines = std::max(1, static_cast<int>((static_cast<float>(windowHeight_) - 2.0f * (margin + padding)) /
+                                                       static_cast<float>(m.lineHeight)) - 1);
+  HelpLayout layout = layoutHelp(rows, 1, width, heightLines);
+  for (int columns = 2; !layout.fits && columns <= 4; ++columns) layout = layoutHelp(rows, columns, width, heightLines);
+
+  // One column is as wide as its longest line; more fill the width.
+  float usedWidth = width;
+  if (layout.columns == 1) {
+    usedWidth = 0.0f;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (const Line& line : layout.actions[r])
+        usedWidth = std::max(usedWidth, (rows[r].heading ? 0.0f : layout.keyWidth) + lineWidth(line));
+  }
+  const float boxWidth = usedWidth + 2.0f * padding;
+  const float boxHeight = static_cast<float>((layout.tallest + 1) * m.lineHeight) + 2.0f * padding;
+  const float x0 = std::floor(std::max(margin, 0.5f * (static_cast<float>(windowWidth_) - boxWidth)));
+  const float y0 = std::floor(std::max(margin, 0.5f * (static_cast<float>(windowHeight_) - boxHeight)));
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  draw->AddRectFilled(ImVec2(x0, y0), ImVec2(x0 + boxWidth, y0 + boxHeight), IM_COL32(14, 16, 20, 242), 4.0f);
+  draw->AddRect(ImVec2(x0, y0), ImVec2(x0 + boxWidth, y0 + boxHeight), colour(palette::paneBorder), 4.0f);
+  Overlay overlay{"help", {static_cast<int>(x0), static_cast<int>(y0), static_cast<int>(std::ceil(boxWidth)),
+                           static_cast<int>(std::ceil(boxHeight))}, ""};
+  const std::string title = layout.fits ? "the keys (h closes this)" : "the keys (h closes this; the window is too small for all)";
+  draw->AddText(ImVec2(x0 + padding, y0 + padding), dimColour, title.c_str());
+  float right = padding + textWidth(title);
+  right = std::max(right, drawHelpRows(draw, rows, layout, ImVec2(x0 + padding, y0 + padding),
+                                       static_cast<float>(m.lineHeight), overlay.text) - x0);
+  overlay.textWidth = static_cast<int>(std::ceil(right + padding));
+  overlay.textHeight = static_cast<int>(std::ceil(static_cast<float>((layout.tallest + 1) * m.lineHeight) + 2.0f * padding));
+  overlay.shortened = !layout.fits;
+  overlays_.push_back(overlay);
 }
 
 }  // namespace demo

@@ -72,6 +72,8 @@ constexpr ForceColour forceArrowColours[] = {
     {"drag", {160, 160, 160}},
     {"mouse-spring", {120, 235, 140}},
     {"wind", {120, 255, 230}},
+    {"face-area", {255, 120, 150}},
+    {"pressure", {255, 210, 90}},
     {"constraint", palette::constraintForceArrow},
 };
 
@@ -81,6 +83,7 @@ constexpr ForceColour sketchColours[] = {
     {"spring", palette::spring},
     {"angular-spring", {196, 128, 255}},
     {"mouse-spring", palette::mouseSpring},
+    {"pressure", {255, 210, 90}},  // a gas ring's outline
     {"rod", palette::constraint},
     {"circular-wire", {176, 214, 92}},
     {"line", {196, 200, 214}},

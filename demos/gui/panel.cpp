@@ -10,6 +10,7 @@
 #include "panel_rows.h"
 #include "particles/constraint_solver.h"
 #include "particles/threads.h"
+#include "scenes/wind_and_tearing.h"
 
 namespace demo {
 
@@ -87,13 +88,15 @@ void App::drawPanel() {
   ImGui::PushItemWidth(-110.0f);
 
   drawSceneSection();
-  drawBuildSection();
   ImGui::BeginDisabled(build_.active());  // in build mode the scene's own fields set these
+  drawWindTearSection();  // wind_panel.cpp: what blows and tears now, beside the scene it acts on
+  ImGui::EndDisabled();
+  drawBuildSection();
+  ImGui::BeginDisabled(build_.active());
   drawIntegrationSection();
   drawAdvicePanel();  // the cheapest integrator and dt within an error over a horizon
   drawPlotsSection();
   drawSolverSection();
-  drawWindTearSection();  // wind_panel.cpp
   ImGui::EndDisabled();
   drawDisplaySection();
 
@@ -112,18 +115,29 @@ void App::drawSceneSection() {
   drawRunButtons();
 }
 
+// Every scene: the number keys' with their key, then the gallery's, each
+// with its summary as a tooltip.
 void App::drawSceneCombo() {
+  const std::vector<SceneChoice> choices = sceneChoices();
   const std::vector<SceneKey> keys = sceneKeys();
-  const bool sceneListOpen = ImGui::BeginCombo("scene", scene_.label.c_str());
+  const bool sceneListOpen = ImGui::BeginCombo("scene", scene_.label.c_str(), ImGuiComboFlags_HeightLargest);
   recordWidget("scene");
   if (!sceneListOpen) return;
   if (closePopups_) ImGui::CloseCurrentPopup();
   const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   widgets_.push_back({"scene-list", {static_cast<int>(at.x), static_cast<int>(at.y), static_cast<int>(size.x), static_cast<int>(size.y)}, ""});
-  for (const SceneKey& k : keys)
-    if (ImGui::Selectable((std::string(1, static_cast<char>(k.key)) + "  " + k.choice.label).c_str(),
-                          k.choice.label == scene_.label))
-      guarded([&] { keyboard(k.key); });
+  for (std::size_t k = 0; k < choices.size(); ++k) {
+    const SceneChoice& choice = choices[k];
+    if (k == keys.size()) {
+      ImGui::Separator();
+      ImGui::TextDisabled("gallery: things meeting each other");
+    }
+    const std::string key = k < keys.size() ? std::string(1, static_cast<char>(keys[k].key)) : " ";
+    if (ImGui::Selectable((key + "  " + choice.label).c_str(), choice.label == scene_.label))
+      guarded([&] { chooseScene(choice); });
+    if (const scenes::SceneInfo* info = findScene(choice.name); info && ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s\n%s", info->summary, info->hint);
+  }
   ImGui::EndCombo();
 }
 
@@ -146,11 +160,23 @@ void App::drawPresetCombo() {
   ImGui::EndCombo();
 }
 
+// The parameters the Wind and tearing section sets on the running scene
+// (scenes::WindTearParams): listed there, with their live values, not here.
+static bool setLive(const std::string& name) {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all;
+    scenes::WindTearParams().visitWindTear([&](const char* n, auto&, const char*) { all.push_back(n); });
+    return all;
+  }();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 // Parameters: changing one rebuilds the scene (grid size, chain length, ...).
 void App::drawSceneParams() {
   const scenes::SceneInfo* info = findScene(scene_.name);
   if (!info) return;
   for (const scenes::ParamSpec& spec : info->params) {
+    if (setLive(spec.name)) continue;
     auto it = scene_.params.find(spec.name);
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%s", it != scene_.params.end() ? it->second.c_str() : spec.value(scene_.preset).c_str());
@@ -182,6 +208,29 @@ void App::drawRunButtons() {
   sameLineIfFits(buttonWidth("Rewind (b)"));
   if (ImGui::Button("Rewind (b)")) rewind();
   recordWidget("rewind");
+  drawStateFile();
+}
+
+// The state now to a scene file and back: the file field, Save and Load.
+void App::drawStateFile() {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer, "%s", stateFile_.c_str());
+  if (ImGui::InputText("state file", buffer, sizeof buffer)) stateFile_ = buffer;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Save state writes the scene as it is now (particles, clock, torn springs,\n"
+                                                "wind, integrator and dt) as a scene file; Load state runs one");
+  if (ImGui::Button("Save state")) guarded([&] { saveState(); });
+  recordWidget("save-state");
+  sameLineIfFits(buttonWidth("Load state"));
+  if (ImGui::Button("Load state")) guarded([&] { loadState(); });
+  recordWidget("load-state");
+  const char* record = recording_ ? "Stop recording" : "Record frames";
+  sameLineIfFits(buttonWidth(record));
+  if (ImGui::Button(record)) guarded([&] { toggleRecording(); });
+  recordWidget("record");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("every frame as %s/frame-NNNNNN.png (as --record); a video:\nffmpeg -framerate 60 -i "
+                      "%s/frame-%%06d.png -pix_fmt yuv420p out.mp4",
+                      recordDirectory().c_str(), recordDirectory().c_str());
 }
 
 // --- time stepping ------------------------------------------------------------
@@ -200,9 +249,12 @@ void App::drawPaneIntegrator(std::size_t k) {
   if (ImGui::BeginCombo(label.c_str(), panes_[k]->integratorName())) {
     if (closePopups_) ImGui::CloseCurrentPopup();
     for (std::size_t t = 0; t < table.size(); ++t) {
-      if (ImGui::Selectable(table[t].name, static_cast<int>(t) == panes_[k]->integratorIndex()))
+      if (ImGui::Selectable(table[t].name, static_cast<int>(t) == panes_[k]->integratorIndex())) {
         panes_[k]->setIntegrator(static_cast<int>(t));
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (order %d)", table[t].summary, table[t].order);
+        setStatus(integratorLine(static_cast<int>(t)));
+      }
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s (order %d)\n%s", table[t].summary, table[t].order, table[t].behaviour);
     }
     ImGui::EndCombo();
   }
@@ -336,7 +388,14 @@ void App::drawDisplaySection() {
   ImGui::Checkbox("constraints (c)", &drawOptions_.constraints);
   sameLineIfFits(checkboxWidth("help (h)"));
   ImGui::Checkbox("help (h)", &showHelp_);
-  ImGui::Checkbox("closed-form ghost (g)", &drawOptions_.ghost);
+  // Only the scenes with a closed form have a ghost: elsewhere the box is off and greyed.
+  ImGui::BeginDisabled(!exact_);
+  bool ghost = exact_ && drawOptions_.ghost;
+  if (ImGui::Checkbox("closed-form ghost (g)", &ghost) && exact_) drawOptions_.ghost = ghost;
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(exact_ ? "the exact motion from the start, beside the simulation"
+                             : "this scene has no closed form to show (the oscillator and the pendulum have)");
+  ImGui::EndDisabled();
   sameLineIfFits(buttonWidth("frame all (a)"));
   if (ImGui::Button("frame all (a)")) frameAll();
   sameLineIfFits(buttonWidth("scene view (A)"));

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "particles/forces/angular_spring.h"
+#include "particles/forces/polygon_area.h"
 #include "scene_file/codecs.h"
 #include "scene_file/json_parse.h"
 #include "scene_file/scene_file.h"
@@ -19,30 +20,80 @@ using scenes::toJson;
 
 Eigen::Vector2d vec2(const Json& value) { return {value.at(0).get<double>(), value.at(1).get<double>()}; }
 
+// Lists of elements inside one object, each element naming particles of
+// its own (a face-area force's faces, a wind's edges): deleting a particle
+// drops the elements that name it, not the whole object.
+struct ElementList {
+  const char* key;
+  const char* indices;  // the element's field of indices, or null: the element is the array of indices
+};
+constexpr ElementList elementLists[] = {{"faces", "particles"}, {"edges", nullptr}};
+
+Json* elementIndices(const ElementList& list, Json& element) {
+  if (!list.indices) return &element;
+  return element.is_object() && element.contains(list.indices) ? &element[list.indices] : nullptr;
+}
+
 // The fields of an object holding particle indices (see particlesOf).
 std::vector<Json*> indexFields(const std::string& list, Json& object) {
   if (list == "collisionEdges") return {&object};
   std::vector<Json*> fields;
+  if (!object.is_object()) return fields;
   for (const char* key : {"particle", "particles"})
-    if (object.is_object() && object.contains(key)) fields.push_back(&object[key]);
+    if (object.contains(key)) fields.push_back(&object[key]);
+  for (const ElementList& elements : elementLists)
+    if (object.contains(elements.key) && object[elements.key].is_array())
+      for (Json& element : object[elements.key])
+        if (Json* indices = elementIndices(elements, element)) fields.push_back(indices);
   return fields;
 }
 
-// What an object's rest geometry becomes when the particles it names move:
+bool namesParticle(const Json& indices, int particle) {
+  if (indices.is_number_integer()) return indices.get<int>() == particle;
+  return indices.is_array() && std::find(indices.begin(), indices.end(), Json(particle)) != indices.end();
+}
+
+// Drops the elements of the object's element lists that name `particle`.
+void dropElementsNaming(Json& object, int particle) {
+  if (!object.is_object()) return;
+  for (const ElementList& elements : elementLists) {
+    if (!object.contains(elements.key) || !object[elements.key].is_array()) continue;
+    Json kept = Json::array();
+    for (Json& element : object[elements.key]) {
+      const Json* indices = elementIndices(elements, element);
+      if (!indices || !namesParticle(*indices, particle)) kept.push_back(std::move(element));
+    }
+    object[elements.key] = std::move(kept);
+  }
+}
+
+// What an object's rest geometry becomes when a particle it names moves:
 // one entry per type that has one (the format's field names).
 struct RestFit {
   const char* type;
-  void (*fit)(Json& object, const Json& document);
+  void (*fit)(Json& object, const Json& document, int moved);
 };
 double armLength(const Json& object, const Json& document) {
   const Json& p = object.at("particles");
   return (particlePosition(document, p.at(0).get<int>()) - particlePosition(document, p.at(1).get<int>())).norm();
 }
+// The signed area of the ring of particles named by `ring` (an array of indices).
+double ringAreaOf(const Json& ring, const Json& document) {
+  std::vector<int> indices;
+  for (const Json& index : ring) indices.push_back(index.get<int>());
+  Eigen::VectorXd x(2 * ring.size());
+  std::vector<int> local(indices.size());
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    x.segment<2>(2 * k) = particlePosition(document, indices[k]);
+    local[k] = static_cast<int>(k);
+  }
+  return particles::ringArea(x, local);
+}
 const RestFit restFits[] = {
-    {"spring", [](Json& o, const Json& d) { o["restLength"] = armLength(o, d); }},
-    {"rod", [](Json& o, const Json& d) { o["length"] = armLength(o, d); }},
+    {"spring", [](Json& o, const Json& d, int) { o["restLength"] = armLength(o, d); }},
+    {"rod", [](Json& o, const Json& d, int) { o["length"] = armLength(o, d); }},
     {"angular-spring",
-     [](Json& o, const Json& d) {
+     [](Json& o, const Json& d, int) {
        const Json& p = o.at("particles");
        const Eigen::Vector2d zero = Eigen::Vector2d::Zero();
        o["restAngle"] = particles::angularSpringKernel(particlePosition(d, p.at(0).get<int>()),
@@ -51,10 +102,19 @@ const RestFit restFits[] = {
                             .angle;
      }},
     {"circular-wire",
-     [](Json& o, const Json& d) {
+     [](Json& o, const Json& d, int) {
        o["radius"] = (particlePosition(d, o.at("particle").get<int>()) - vec2(o.at("centre"))).norm();
      }},
-    {"line", [](Json& o, const Json& d) { o["point"] = toJson(particlePosition(d, o.at("particle").get<int>())); }},
+    {"line", [](Json& o, const Json& d, int) { o["point"] = toJson(particlePosition(d, o.at("particle").get<int>())); }},
+    {"pressure", [](Json& o, const Json& d, int) { o["restArea"] = ringAreaOf(o.at("particles"), d); }},
+    {"face-area",
+     [](Json& o, const Json& d, int moved) {
+       for (Json& face : o.at("faces")) {
+         const Json& ring = face.at("particles");
+         if (std::find(ring.begin(), ring.end(), Json(moved)) != ring.end())
+           face["restArea"] = ringAreaOf(ring, d);
+       }
+     }},
 };
 
 // The fields of each collider kind that are points (moved by translateCollider).
@@ -153,6 +213,7 @@ void deleteObject(Json& document, const ObjectRef& ref) {
     if (!document.contains(listName)) continue;
     Json kept = Json::array();
     for (Json& object : document[listName]) {
+      dropElementsNaming(object, removed);
       const std::vector<int> named = particlesOf({listName, 0}, object);
       if (std::find(named.begin(), named.end(), removed) != named.end()) continue;
       for (Json* field : indexFields(listName, object)) {
@@ -176,7 +237,7 @@ void moveParticle(Json& document, int particle, const Eigen::Vector2d& position)
       if (std::find(named.begin(), named.end(), particle) == named.end()) continue;
       const std::string type = object.value("type", "");
       for (const RestFit& entry : restFits)
-        if (type == entry.type) entry.fit(object, document);
+        if (type == entry.type) entry.fit(object, document, particle);
     }
   }
 }

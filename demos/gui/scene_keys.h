@@ -1,7 +1,8 @@
 #pragma once
-// Which scene each number key loads: every built-in scene, with the cloth
-// twice (4-way and 8-way springs), in the order of the scene table, then the
-// scenes paired with an integrator (the stiff 64×64 cloth with xpbd at 60 Hz).
+// Which scene each number key loads: every built-in scene but the gallery,
+// with the cloth twice (4-way and 8-way springs), in the order of the scene
+// table, then the scenes paired with an integrator (the stiff 64×64 cloth
+// with xpbd at 60 Hz); the gallery follows in the panel's list.
 #include <map>
 #include <memory>
 #include <string>
@@ -34,7 +35,13 @@ struct SceneKey {
   SceneChoice choice;
 };
 
-// Keys '1'…'9', '0' in order; scenes beyond ten are reachable from the panel.
+// Every scene the demo offers, in the order of its list in the panel: the
+// scene table's (the cloth twice) without its gallery, the paired ones, then
+// the gallery (scenes::SceneInfo::gallery).
+std::vector<SceneChoice> sceneChoices();
+
+// Keys '1'…'9', '0' for the first ten of sceneChoices(); the gallery and any
+// scene beyond ten are reached from the panel's list (or --scene NAME).
 std::vector<SceneKey> sceneKeys();
 
 }  // namespace demo

@@ -11,14 +11,14 @@
 
 namespace demo {
 
-std::string writeScreenshot(const std::string& path, int width, int height) {
+std::string writeScreenshot(const std::string& path, int width, int height, const char* what) {
   std::vector<unsigned char> pixels(static_cast<std::size_t>(width) * height * 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadBuffer(GL_BACK);
   glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
 
   try {
-    output::OutputFile file(path, "--screenshot");
+    output::OutputFile file(path, what);
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(png_jmpbuf(png))) {

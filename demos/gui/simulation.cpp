@@ -7,6 +7,7 @@
 
 #include "particles/check.h"
 #include "particles/constants.h"
+#include "particles/forces/polygon_area.h"
 
 namespace demo {
 
@@ -40,13 +41,7 @@ Simulation::Simulation(scenes::Scene scene, int integratorIndex, double dt)
 }
 
 double faceArea(const particles::Phase& s, const std::array<int, 4>& f) {
-  // The shoelace formula over the quad's corners, counter-clockwise positive.
-  double twice = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector2d a = s.position(f[k]), b = s.position(f[(k + 1) % 4]);
-    twice += a.x() * b.y() - b.x() * a.y();
-  }
-  return 0.5 * twice;
+  return particles::ringArea(s.x, f.data(), f.size());
 }
 
 void Simulation::setIntegrator(int index) {
@@ -220,8 +215,11 @@ particles::MouseSpringGains Simulation::grabGains(int particle, const particles:
 void Simulation::grab(int particle, const Eigen::Vector2d& target, const particles::MouseJointSettings& joint) {
   const particles::MouseSpringGains gains = grabGains(particle, joint);
   if (!spring_ || spring_->particle() != particle) grabTrail_.clear();
+  // A copy first: retuning passes the held spring's own target, which
+  // release() frees (a new dt or integrator while a particle was held read it after).
+  const Eigen::Vector2d at = target;
   release();
-  auto spring = std::make_unique<particles::MouseSpringForce>(particle, target, gains.stiffness, gains.damping);
+  auto spring = std::make_unique<particles::MouseSpringForce>(particle, at, gains.stiffness, gains.damping);
   spring_ = spring.get();
   joint_ = joint;
   system().addForce(std::move(spring));

@@ -25,9 +25,11 @@
 //   tearing,<pane>,<tear strain (0: off)>,<links broken>
 //   overlay,<kind>,<pixel x>,<pixel y>,<pixel width>,<pixel height>,<text>
 //     (text and panels drawn in the last frame: top-bar, hud (the bottom bar),
-//     pane-hud, indicator, help, panel; text's line breaks written as " | ")
+//     pane-hud, indicator, help, panel; text's line breaks written as " | ";
+//     bars and the help are followed by their text-fit record)
 //   widget,<name>,<pixel x>,<pixel y>,<pixel width>,<pixel height>
 //     (the panel's controls, for scripted clicks: scene, reset, pause, step, rewind,
+//     save-state, load-state, record, wind-and-tearing (its section's header),
 //     advice (its section's header), advise-error, advise-horizon, advise, advise-cancel, advise-apply)
 //   advice,<state>,<progress 0..1>,<integrator>,<dt>,<tolerance>,<frames drawn while it ran>,<applied>
 //     (the panel's advice: idle, running, done, cancelled or failed; the

@@ -70,8 +70,22 @@ bool slider(const char* label, double& value, float lo, float hi, const char* fo
 }
 }  // namespace
 
+// The section's header says what is on, so that it reads right even closed:
+// "Wind and tearing: wind 5 m/s, tearing beyond 50%". Open by default when
+// the scene starts with either on.
 void App::drawWindTearSection() {
-  if (!ImGui::CollapsingHeader("Wind and tearing")) return;
+  const Simulation& first = *panes_.front();
+  std::string on;
+  if (windTear_.windOn && first.takesWind()) on = "wind " + output::formatGeneral(windTear_.wind.speed, 3) + " m/s";
+  if (windTear_.tearOn)
+    on += (on.empty() ? "" : ", ") + std::string("tearing beyond ") +
+          output::formatGeneral(100.0 * windTear_.tearStrain, 3) + "%";
+  const std::string header = "Wind and tearing: " + (on.empty() ? std::string("off") : on) + "###wind-and-tearing";
+  const bool open = ImGui::CollapsingHeader(header.c_str(), windTear_.windOn || windTear_.tearOn
+                                                                ? ImGuiTreeNodeFlags_DefaultOpen
+                                                                : ImGuiTreeNodeFlags_None);
+  recordWidget("wind-and-tearing");
+  if (!open) return;
   particles::WindSettings& w = windTear_.wind;
   const ImGuiSliderFlags logarithmic = ImGuiSliderFlags_Logarithmic;
   bool changed = ImGui::Checkbox("wind (w)", &windTear_.windOn);
@@ -90,8 +104,12 @@ void App::drawWindTearSection() {
   changed |= ImGui::Checkbox("tearing (t)", &windTear_.tearOn);
   changed |= slider("tear strain", windTear_.tearStrain, 0.02f, 2.0f, "%.3g",
                     "a spring stretched beyond this fraction of its rest length breaks", 1.0, logarithmic);
-  ImGui::TextDisabled("%s torn", output::plural(static_cast<long long>(panes_.front()->system().brokenLinks().size()),
-                                                "link").c_str());
+  // Live: the air this step (gusts included) and the links torn so far.
+  if (const particles::WindForce* wind = first.wind())
+    ImGui::Text("air now %.3g m/s at %.0f deg", wind->air().norm(), std::atan2(wind->air().y(), wind->air().x()) * kDegrees);
+  else
+    ImGui::TextDisabled(first.takesWind() ? "no wind blows (w)" : "this scene has no edges for the wind");
+  ImGui::Text("%s torn", output::plural(static_cast<long long>(first.system().brokenLinks().size()), "link").c_str());
   if (changed) guarded([&] { applyWindTear(); });
 }
 

@@ -187,6 +187,10 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
   return c;
 }
 
+double referenceBytes(double samples, std::size_t particles) {
+  return samples * (48.0 * static_cast<double>(particles) + 104.0);
+}
+
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
                         double tolerance, const ClosedForm& closedForm, const std::atomic<bool>* cancel,
                         bool stopAtContact) {
@@ -324,12 +328,15 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
     throw std::invalid_argument("horizon must be >= the sample interval " + general(interval) + ", got " +
                                 general(s.horizon));
   // The reference holds every sample of every particle: refuse a horizon whose
-  // trajectory could not be allocated (1e300 s would throw length_error).
-  const double samples = s.horizon / interval * static_cast<double>(std::max<std::size_t>(1, first.system->size()));
-  if (!(samples <= kMaxReferenceSamples))
-    throw std::invalid_argument("horizon " + general(s.horizon) + " s needs " + general(samples) +
-                                " reference samples (T / interval " + general(interval) +
-                                " s, times the particles), more than the limit of " + general(kMaxReferenceSamples));
+  // trajectory would not fit the limit (1e300 s would throw length_error).
+  const double samples = s.horizon / interval;
+  const double bytes = referenceBytes(samples, first.system->size());
+  if (!(bytes <= kMaxReferenceBytes))
+    throw std::invalid_argument("horizon " + general(s.horizon) + " s needs a reference of " + general(samples) +
+                                " samples (T / interval " + general(interval) + " s) of " +
+                                std::to_string(first.system->size()) + (first.system->size() == 1 ? " particle" : " particles") +
+                                ", about " + general(bytes / 1e9, 4) + " GB, more than the limit of " +
+                                general(kMaxReferenceBytes / 1e9) + " GB");
   Survey survey;
   survey.scene = first.name;
   survey.horizon = s.horizon;

@@ -25,11 +25,35 @@ void decode(const Json& j, double& value) {
     if (text == "nan") value = std::nan("");
     else if (text == "inf") value = HUGE_VAL;
     else if (text == "-inf") value = -HUGE_VAL;
-    else throw std::invalid_argument("not a number: '" + text + "'");
+    else detail::wrongShape(j, "a number (or \"nan\", \"inf\", \"-inf\")");
     return;
   }
+  if (!j.is_number()) detail::wrongShape(j, "a number");
   value = j.get<double>();
 }
+
+namespace detail {
+
+void wrongShape(const Json& j, const std::string& what) {
+  std::string text = j.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  throw CellShapeError("", "expected " + what + ", got " + text);
+}
+
+long long integerIn(const Json& j, long long lo, long long hi) {
+  const std::string range = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (j.is_number_unsigned()) {
+    const auto value = j.get<std::uint64_t>();
+    if (value > static_cast<std::uint64_t>(hi)) wrongShape(j, range);
+    return static_cast<long long>(value);
+  }
+  if (!j.is_number_integer()) wrongShape(j, range);
+  const auto value = j.get<std::int64_t>();
+  if (value < lo || value > hi) wrongShape(j, range);
+  return value;
+}
+
+}  // namespace detail
 
 std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash) {
   for (const unsigned char c : bytes) {
@@ -82,8 +106,8 @@ Cells::Cells(ShardSpec spec, const std::string& dir) : mode_(Mode::Shard), spec_
   cellsFile_ = std::make_unique<output::OutputFile>(dir_ + "/" + kCellsFile, "the shard's cells");
 }
 
-Cells::Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames)
-    : mode_(Mode::Replay), recorded_(std::move(recorded)), shardNames_(std::move(shardNames)) {}
+Cells::Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames, bool writeOutputs)
+    : mode_(Mode::Replay), writeOutputs_(writeOutputs), recorded_(std::move(recorded)), shardNames_(std::move(shardNames)) {}
 
 void Cells::refuseRecorded(std::size_t index, const std::string& why) const {
   if (mode_ != Mode::Replay)

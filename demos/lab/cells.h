@@ -15,6 +15,9 @@
 //   replay  (`particle-lab merge`): no cell is computed; every result is read
 //           from the shards, and the experiment writes exactly the files an
 //           unsharded run writes, tables and derived numbers from all cells.
+//           A merge replays twice: first with its outputs held back, so that
+//           every cell has been read back before anything is written (a cell
+//           that does not read back leaves --out as it was), then writing.
 #include <cstdint>
 #include <cstddef>
 #include <functional>
@@ -62,7 +65,9 @@ class Cells {
   Cells(ShardSpec spec, const std::string& dir);
   // Every result recorded (cell index → result), none computed; shardNames[k]
   // names the shard holding the cells with index % N == k, for errors.
-  explicit Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames = {});
+  // Without writeOutputs the replay only reads its cells back (writesOutputs() is false).
+  explicit Cells(std::map<std::size_t, Json> recorded, std::vector<std::string> shardNames = {},
+                 bool writeOutputs = true);
 
   Mode mode() const { return mode_; }
   // The shard this run computes (1/1 unless Mode::Shard).
@@ -74,8 +79,9 @@ class Cells {
   }
   // How many cells this shard has computed and recorded.
   long recorded() const { return owned_; }
-  // Whether the experiment writes its CSVs, tables and values (not in a shard).
-  bool writesOutputs() const { return mode_ != Mode::Shard; }
+  // Whether the experiment writes its CSVs, tables and values (not in a
+  // shard, nor in a merge's first replay).
+  bool writesOutputs() const { return mode_ != Mode::Shard && writeOutputs_; }
   // Takes the next `count` indices; returns the first.
   std::size_t reserve(std::size_t count);
   // Cells enumerated so far.
@@ -97,6 +103,7 @@ class Cells {
 
  private:
   Mode mode_ = Mode::Run;
+  bool writeOutputs_ = true;
   ShardSpec spec_;
   std::string dir_;
   std::size_t next_ = 0;
@@ -120,9 +127,7 @@ std::optional<Result> cellResult(Cells& cells, std::size_t index, const std::fun
   Result r{};
   try {
     decode(*j, r);
-  } catch (const Json::exception& e) {
-    cells.refuseRecorded(index, e.what());
-  } catch (const std::invalid_argument& e) {  // a string that is no number (decode of a double)
+  } catch (const CellShapeError& e) {
     cells.refuseRecorded(index, e.what());
   }
   return r;

@@ -211,8 +211,9 @@ void createOutputDirectory(const std::string& dir) {
 }
 
 void prepareOutput(const LabOptions& options, const std::string& valuePrefix) {
+  if (!options.cells->writesOutputs()) return;  // a shard made its directory for its cells
   createOutputDirectory(options.outDir);
-  if (options.cells->writesOutputs()) removeValues(options.outDir, valuePrefix);
+  removeValues(options.outDir, valuePrefix);
 }
 
 void writeTable(const LabOptions& options, const std::string& name, const std::string& title,

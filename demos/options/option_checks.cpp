@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 
+#include "decimal_number.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 
@@ -48,9 +49,8 @@ CLI::Validator integratorTolerance() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         particles::IntegratorSettings settings;
-        // Text that is no number is left to the conversion, which names it.
-        if (!CLI::detail::lexical_cast(text, settings.dopri5.tolerance)) return {};
         try {
+          settings.dopri5.tolerance = scenes::readDecimalNumber(text);
           settings.validate();
         } catch (const std::invalid_argument& e) {
           return e.what();
@@ -62,16 +62,15 @@ CLI::Validator integratorTolerance() {
 
 namespace {
 
-// A validator that converts the text to a double and runs `check` on it,
-// returning the message of the std::invalid_argument it throws.
+// A validator that reads the text as a decimal number (decimal_number.h) and
+// runs `check` on it, returning the message of the std::invalid_argument
+// either throws.
 template <class Check>
 CLI::Validator numberCheck(Check check, std::string description) {
   return CLI::Validator(
       [check](std::string& text) -> std::string {
-        double value = 0.0;
-        if (!CLI::detail::lexical_cast(text, value)) return {};
         try {
-          check(value);
+          check(scenes::readDecimalNumber(text));
         } catch (const std::invalid_argument& e) {
           return e.what();
         }

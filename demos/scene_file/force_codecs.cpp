@@ -1,8 +1,10 @@
 // Scene-file readers and writers of every force type (format: demos/scenes/FORMAT.md).
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/drag.h"
+#include "particles/forces/face_area.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/mouse_spring.h"
+#include "particles/forces/pressure.h"
 #include "particles/forces/spring.h"
 #include "particles/forces/wind.h"
 #include "scene_file/codecs.h"
@@ -120,6 +122,45 @@ Json writeWind(const Force& force) {
           {"drag", w.drag},   {"gust", w.gust},             {"gustPeriod", w.gustPeriod},
           {"seed", w.seed},   {"edges", std::move(edges)}};
 }
+
+constexpr std::size_t kMaxRing = 100000;  // corners of one ring (at most the particles of a scene)
+
+std::unique_ptr<Force> readFaceArea(const JsonNode& node, int n) {
+  node.allowOnly({"type", "faces", "stiffness", "floor"});
+  const JsonNode list = node["faces"];
+  if (!list.present()) list.expected("an array of faces {\"particles\": [...], \"restArea\": A0}");
+  if (list.arraySize() > static_cast<std::size_t>(SceneLimits::forces))
+    list.reject(std::to_string(list.arraySize()) + " faces exceed the limit of " + std::to_string(SceneLimits::forces));
+  std::vector<particles::AreaFace> faces;
+  for (std::size_t k = 0; k < list.arraySize(); ++k) {
+    const JsonNode face = list[k];
+    face.allowOnly({"particles", "restArea"});
+    faces.push_back({face["particles"].ring(n, kMaxRing), face["restArea"].positive()});
+  }
+  const double stiffness = node["stiffness"].nonNegative(), floor = node["floor"].inRange(0.0, 1.0);
+  return std::make_unique<particles::FaceAreaForce>(std::move(faces), stiffness, floor);
+}
+Json writeFaceArea(const Force& force) {
+  const auto& f = dynamic_cast<const particles::FaceAreaForce&>(force);
+  Json faces = Json::array();
+  for (const particles::AreaFace& face : f.faces()) faces.push_back({{"particles", face.ring}, {"restArea", face.restArea}});
+  return {{"type", f.type()}, {"stiffness", f.stiffness()}, {"floor", f.floor()}, {"faces", std::move(faces)}};
+}
+
+std::unique_ptr<Force> readPressure(const JsonNode& node, int n) {
+  node.allowOnly({"type", "particles", "restArea", "pressure", "torn"});
+  const std::vector<int> ring = node["particles"].ring(n, kMaxRing);
+  auto force = std::make_unique<particles::PressureForce>(ring, node["restArea"].positive(),
+                                                          node["pressure"].nonNegative());
+  readTorn(node, *force, ring[0], ring[1]);
+  return force;
+}
+Json writePressure(const Force& force) {
+  const auto& f = dynamic_cast<const particles::PressureForce&>(force);
+  Json out = {{"type", f.type()}, {"particles", f.ring()}, {"restArea", f.restArea()}, {"pressure", f.pressure()}};
+  if (!f.enabled()) out["torn"] = true;
+  return out;
+}
 }  // namespace
 
 const std::vector<ForceCodec>& forceCodecs() {
@@ -130,6 +171,8 @@ const std::vector<ForceCodec>& forceCodecs() {
       {"angular-spring", readAngularSpring, writeAngularSpring},
       {"mouse-spring", readMouseSpring, writeMouseSpring},
       {"wind", readWind, writeWind},
+      {"face-area", readFaceArea, writeFaceArea},
+      {"pressure", readPressure, writePressure},
   };
   return table;
 }

@@ -155,6 +155,14 @@ std::vector<int> JsonNode::particles(std::size_t count, int particleCount) const
   return indices;
 }
 
+std::vector<int> JsonNode::ring(int particleCount, std::size_t maxCount) const {
+  const std::string what = "an array of 3 to " + std::to_string(maxCount) + " particle indices (a closed ring)";
+  require(value_ && value_->is_array() && value_->size() >= 3 && value_->size() <= maxCount, what.c_str());
+  std::vector<int> indices;
+  for (std::size_t k = 0; k < value_->size(); ++k) indices.push_back((*this)[k].particle(particleCount));
+  return indices;
+}
+
 bool JsonNode::boolean() const { return require(value_ && value_->is_boolean(), "true or false").get<bool>(); }
 
 std::string JsonNode::text() const {

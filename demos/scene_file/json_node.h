@@ -51,6 +51,8 @@ class JsonNode {
   int integer(int lo, int hi) const;
   int particle(int particleCount) const;  // an index in [0, particleCount)
   std::vector<int> particles(std::size_t count, int particleCount) const;  // array of indices
+  // A closed ring: an array of at least 3 and at most maxCount indices.
+  std::vector<int> ring(int particleCount, std::size_t maxCount) const;
   bool boolean() const;
   std::string text() const;
   Eigen::Vector2d vec2() const;  // [x, y], finite

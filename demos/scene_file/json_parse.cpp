@@ -5,6 +5,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "particles/cancel.h"
 #include "scene_limits.h"
 
 namespace scenes {
@@ -14,7 +15,11 @@ namespace {
 // Builds the document from nlohmann's SAX events. Each open array or object
 // is a frame; a member is appended at the end of its object's vector after a
 // hash-set lookup of its key, so n keys cost O(n), not O(n²). Pointers to
-// open containers stay valid: only the innermost container grows.
+// open containers stay valid: only the innermost container grows. The values
+// are counted as they are placed, so that a file of tiny values ("[[],[],…]":
+// three bytes of text, some 70 bytes of document each) is refused at
+// SceneLimits::jsonValues before its document outgrows memory; and the
+// cancel flag is watched (particles/cancel.h).
 class DocumentBuilder : public nlohmann::json_sax<Json> {
  public:
   explicit DocumentBuilder(Json& root) : root_(root) {}
@@ -55,6 +60,14 @@ class DocumentBuilder : public nlohmann::json_sax<Json> {
 
   // Places v where the next value goes and returns it.
   Json* place(Json&& v) {
+    if (++values_ > SceneLimits::jsonValues) {
+      if (!frames_.empty() && frames_.back().container->is_array())
+        frames_.back().index = frames_.back().container->size();  // the path of v
+      throw SceneFileError(path() + ": expected at most " + std::to_string(SceneLimits::jsonValues) +
+                           " JSON values in a scene file (numbers, strings, booleans, nulls, arrays and objects), "
+                           "got more");
+    }
+    if (cancel_.poll()) throw particles::Cancelled();
     if (frames_.empty()) {
       root_ = std::move(v);
       return &root_;
@@ -99,6 +112,8 @@ class DocumentBuilder : public nlohmann::json_sax<Json> {
 
   Json& root_;
   std::vector<Frame> frames_;
+  long long values_ = 0;
+  particles::CancelPoll cancel_{4096};
 };
 
 }  // namespace

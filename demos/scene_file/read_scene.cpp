@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <cerrno>
 
@@ -11,12 +12,15 @@
 #include <unistd.h>
 
 #include "join_names.h"
+#include "particles/cancel.h"
 #include "particles/check.h"
 #include "particles/integrator.h"
 #include "particles/solver_names.h"
+#include "particles/forces/face_area.h"
 #include "scene_file/codecs.h"
 #include "scene_file/json_parse.h"
 #include "scene_limits.h"
+#include "starting_overlap.h"
 
 namespace scenes {
 
@@ -117,8 +121,49 @@ void readParticle(const JsonNode& node, particles::ParticleSystem& s) {
   if (node["radius"].present()) s.setCollidable(i, node["radius"].positive());
 }
 
+// A collider whose numbers the contact arithmetic cannot hold is refused: it
+// multiplies up to four lengths (the impact test's discriminant (m·d)² −
+// |d|² (|m|² − R²)) and divides by an edge's length, so every coordinate and
+// radius is at most kColliderReach in magnitude (a product of four stays
+// finite) and every side, edge, segment and radius at least 1/kColliderReach
+// long (a product of four stays a normal number, and an edge's normal e/|e|
+// is defined), and longer than the rounding of its coordinates (1e-12 of
+// their magnitude, as the contact code's round-off). A floor with corners at
+// ±1e200 let particles fall through it; a box of side 5e-324 gave NaN.
+constexpr double kColliderReach = 1e75;
+
+void refuseUnrepresentable(const JsonNode& node, const particles::Collider& c) {
+  const std::string kind = particles::colliderName(c.shape);
+  double largest = c.radius;
+  for (const Eigen::Vector2d& p : c.points) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  if (largest > kColliderReach)
+    node.reject(kind + ": a coordinate or radius of " + particles::formatValue(largest) + " is beyond " +
+                particles::formatValue(kColliderReach) + ", which the contact arithmetic cannot hold (it multiplies up "
+                "to four lengths); bring the collider nearer the origin");
+  // A length of exactly 0 (a capsule's ends or a polygon's vertices that
+  // coincide) is left to the collider's own check, which names it so.
+  const auto requireLength = [&](double length, const std::string& what) {
+    const double rounding = 1e-12 * (1.0 + largest);
+    if (length == 0.0) return;
+    if (!(length >= 1.0 / kColliderReach))
+      node.reject(kind + ": " + what + " of " + particles::formatValue(length) + " is shorter than " +
+                  particles::formatValue(1.0 / kColliderReach) + ", which the contact arithmetic cannot hold");
+    if (!(length > rounding))
+      node.reject(kind + ": " + what + " of " + particles::formatValue(length) +
+                  " is within the rounding of its coordinates (" + particles::formatValue(rounding) +
+                  " at this distance from the origin)");
+  };
+  if (c.radius > 0.0 || c.shape == particles::ColliderShape::Disc) requireLength(c.radius, "a radius");
+  const std::size_t n = c.points.size();
+  // hypot: |b − a| without the underflow of squaring a side of 5e-324.
+  const auto length = [](const Eigen::Vector2d& e) { return std::hypot(e.x(), e.y()); };
+  if (n == 2) requireLength(length(c.points[1] - c.points[0]), "a segment");
+  if (n >= 3)
+    for (std::size_t k = 0; k < n; ++k) requireLength(length(c.points[(k + 1) % n] - c.points[k]), "a side");
+}
+
 // A collider by its "type"; "walls" holds boxes without one (the older spelling).
-particles::Collider readCollider(const JsonNode& node, bool box) {
+particles::Collider readColliderOfType(const JsonNode& node, bool box) {
   if (box)
     for (const ColliderCodec& codec : colliderCodecs())
       if (codec.shape == particles::ColliderShape::Box) return codec.read(node);
@@ -129,30 +174,33 @@ particles::Collider readCollider(const JsonNode& node, bool box) {
   type.expected("a collider type (" + joinNames(particles::colliderKinds()) + ")");
 }
 
+particles::Collider readCollider(const JsonNode& node, bool box) {
+  const particles::Collider collider = readColliderOfType(node, box);
+  refuseUnrepresentable(node, collider);
+  return collider;
+}
+
 void readCollisionEdges(const JsonNode& list, particles::ParticleSystem& s) {
   for (std::size_t k = 0; k < list.arraySize(); ++k) {
+    particles::throwIfCancelled();
     const JsonNode node = list[k];
     const std::vector<int> p = node.particles(2, s.size());
     guarded(node, [&] { s.addCollisionEdge(p[0], p[1]); });
   }
 }
 
-// A particle that starts inside a collider (deeper than rounding) has no
-// shortest way out that adds no energy (at a disc's centre, none at all): the
-// file is refused at the particle's path, naming the collider.
+// A particle that starts inside a collider (starting_overlap.h) is refused
+// at the particle's path, naming the collider by its list and index.
 void refuseParticlesInsideColliders(const JsonNode& root, const particles::ParticleSystem& s) {
+  const std::optional<StartingOverlap> overlap = firstStartingOverlap(s, true);
+  if (!overlap) return;
   std::vector<std::pair<const char*, std::size_t>> paths;  // each collider's list and index, in order
   for (const char* list : {"walls", "colliders"})
     for (std::size_t k = 0; k < root[list].arraySize(); ++k) paths.emplace_back(list, k);
-  for (int i = 0; i < s.size(); ++i)
-    for (std::size_t c = 0; c < s.colliders().size() && c < paths.size(); ++c) {
-      const Eigen::Vector2d x = s.position(i);
-      const double depth = -(s.colliders()[c].distance(x).distance - s.radii()[i]);
-      if (depth > 1e-6 * std::max(1.0, x.norm()))
-        root["particles"][static_cast<std::size_t>(i)].reject(
-            "the particle starts inside " + std::string(paths[c].first) + "[" + std::to_string(paths[c].second) +
-            "] (by " + particles::formatValue(depth) + "): a contact cannot push it out without adding energy");
-    }
+  const auto& [list, index] = paths.at(overlap->collider);
+  root["particles"][static_cast<std::size_t>(overlap->particle)].reject(
+      "the particle starts inside " + std::string(list) + "[" + std::to_string(index) + "] (by " +
+      particles::formatValue(overlap->depth) + "): a contact cannot push it out without adding energy");
 }
 
 // An array of at most limit elements (absent: none).
@@ -162,9 +210,25 @@ void requireCount(const JsonNode& node, const char* what, long long limit) {
     node.reject(std::to_string(count) + " " + what + " exceed the limit of " + std::to_string(limit));
 }
 
+// The surface a file's face-area forces describe: their faces of four
+// corners are the scene's faces (which the demo shades), their sides the
+// wind's edges when no wind names its own, and collision edges on them make
+// the face edges collide (Scene::edgeContacts), as the built-in cloth's.
+void takeSurface(Scene& scene) {
+  const particles::ParticleSystem& s = *scene.system;
+  for (const auto& force : s.forceObjects())
+    if (const auto* area = dynamic_cast<const particles::FaceAreaForce*>(force.get()))
+      for (const particles::AreaFace& face : area->faces())
+        if (face.ring.size() == 4) scene.faces.push_back({face.ring[0], face.ring[1], face.ring[2], face.ring[3]});
+  if (scene.faces.empty()) return;
+  scene.windEdges = faceEdges(scene);
+  scene.edgeContacts = !s.collisionEdges().empty();
+}
+
 Scene readDocument(const JsonNode& root, const std::string& source) {
-  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "view", "solver", "particleRestitution", "tearing",
-                  "particles", "forces", "constraints", "walls", "colliders", "collisionEdges"});
+  root.allowOnly({"name", "integrator", "integratorSettings", "dt", "time", "view", "solver", "particleRestitution",
+                  "particleFriction", "tearing", "particles", "forces", "constraints", "walls", "colliders",
+                  "collisionEdges"});
   Scene scene;
   scene.name = root["name"].present() ? root["name"].text() : source;
   readIntegrator(root["integrator"], scene);
@@ -176,6 +240,8 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   readSolver(root["solver"], s.solver().settings);
   if (root["particleRestitution"].present())
     s.contactSettings().particleRestitution = root["particleRestitution"].inRange(0.0, 1.0);
+  if (root["particleFriction"].present())
+    s.contactSettings().particleFriction = root["particleFriction"].nonNegative();
   readTearing(root["tearing"], s.tearing());
 
   const JsonNode particleList = root["particles"];
@@ -186,18 +252,23 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   requireCount(root["walls"], "walls", SceneLimits::walls);
   requireCount(root["colliders"], "colliders", SceneLimits::walls);
   requireCount(root["collisionEdges"], "collisionEdges", SceneLimits::forces);
+  // Each list is read element by element with the cancel flag watched
+  // (particles/cancel.h): a signal stops the load of a large file.
   for (std::size_t k = 0; k < particleList.arraySize(); ++k) {
+    particles::throwIfCancelled();
     const JsonNode node = particleList[k];
     guarded(node, [&] { readParticle(node, s); });
   }
   const int n = s.size();
   for (std::size_t k = 0, count = root["forces"].arraySize(); k < count; ++k) {
+    particles::throwIfCancelled();
     const JsonNode node = root["forces"][k];
     const ForceCodec& codec = codecFor(node, forceCodecs(), "force");
     guarded(node, [&] { s.addForce(codec.read(node, n)); });
   }
   std::vector<long long> constraintsOn(n, 0);  // constraints per particle
   for (std::size_t k = 0, count = root["constraints"].arraySize(); k < count; ++k) {
+    particles::throwIfCancelled();
     const JsonNode node = root["constraints"][k];
     const ConstraintCodec& codec = codecFor(node, constraintCodecs(), "constraint");
     std::unique_ptr<particles::Constraint> constraint = guarded(node, [&] { return codec.read(node, n); });
@@ -209,12 +280,16 @@ Scene readDocument(const JsonNode& root, const std::string& source) {
   }
   for (const char* list : {"walls", "colliders"})
     for (std::size_t k = 0, count = root[list].arraySize(); k < count; ++k) {
+      particles::throwIfCancelled();
       const JsonNode node = root[list][k];
       const particles::Collider collider = readCollider(node, list == std::string("walls"));
       guarded(node, [&] { s.addCollider(collider); });
     }
   readCollisionEdges(root["collisionEdges"], s);
   refuseParticlesInsideColliders(root, s);
+  // A saved state's clock; the forces that follow it (gusts) take it up.
+  if (root["time"].present()) s.restore({s.positions(), s.velocities(), root["time"].nonNegative()});
+  takeSurface(scene);
   return scene;
 }
 

@@ -37,6 +37,7 @@ Json sceneToJson(const Scene& scene) {
   doc["integrator"] = scene.integrator;
   doc["integratorSettings"] = integratorSettingsToJson(scene.integratorSettings);
   doc["dt"] = scene.dt;
+  if (s.time() != 0.0) doc["time"] = s.time();  // a state saved on the run
   doc["view"] = {{"min", toJson(scene.viewMin)}, {"max", toJson(scene.viewMax)}};
   doc["solver"] = {{"tolerance", solver.tolerance},
                    {"maxIterations", solver.maxIterations},
@@ -47,6 +48,7 @@ Json sceneToJson(const Scene& scene) {
                    {"method", particles::nameOf(solver.method)},
                    {"preconditioner", particles::nameOf(solver.preconditioner)}};
   doc["particleRestitution"] = s.contactSettings().particleRestitution;
+  doc["particleFriction"] = s.contactSettings().particleFriction;
   if (s.tearing().on()) doc["tearing"] = {{"strain", s.tearing().strain}};
   doc["particles"] = Json::array();
   for (int i = 0; i < s.size(); ++i) {

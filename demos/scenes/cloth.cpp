@@ -7,6 +7,7 @@
 #include "particles/check.h"
 #include "particles/constraints/line.h"
 #include "particles/forces/drag.h"
+#include "particles/forces/face_area.h"
 #include "particles/forces/spring.h"
 #include "scene_limits.h"
 #include "scenes/param_fields.h"
@@ -29,6 +30,8 @@ void ClothParams::validate() const {
   particles::requireNonNegative("drag", drag);
   if (edgeContacts != 0 && edgeContacts != 1)
     throw std::invalid_argument("edge-contacts must be 0 or 1, got " + std::to_string(edgeContacts));
+  particles::requireNonNegative("area-stiffness", areaStiffness);
+  particles::requireInRange("area-floor", areaFloor, 0.0, 1.0);
   validateWindTear();
 }
 
@@ -45,6 +48,7 @@ ClothParams ClothParams::seed() {
   p.swing = 0.0;
   p.drag = 0.0;
   p.edgeContacts = 0;
+  p.areaStiffness = 0.0;
   p.dt = 0.01;
   return p;
 }
@@ -103,12 +107,24 @@ Scene buildCloth(const ClothParams& p) {
         link(id(row, col + 1), id(row + 1, col), diagonal);
       }
     }
+  // The faces' area floor (cloth.h): every cell, its rest area rest².
+  if (p.areaStiffness > 0.0) {
+    std::vector<particles::AreaFace> areaFaces;
+    for (const std::array<int, 4>& face : scene.faces)
+      areaFaces.push_back({std::vector<int>(face.begin(), face.end()), p.rest * p.rest});
+    s.addForce(std::make_unique<particles::FaceAreaForce>(std::move(areaFaces), p.areaStiffness, p.areaFloor));
+  }
   addGravity(s, p.gravity);
   if (p.drag > 0.0) s.addForce(std::make_unique<particles::DragForce>(p.drag));
 
-  // The curtain rail: the top row slides on the horizontal line through it.
+  // The curtain rail: the top row slides on the horizontal line through it,
+  // between two end stops 0.8 L beyond the cloth's ends at rest, which the
+  // wind pushes the curtain against instead of off the rail.
   for (int col = 0; col < p.width; ++col)
     s.addConstraint(std::make_unique<particles::LineConstraint>(id(0, col), topLeft, 0.0));
+  const double stop = 0.04 * L;
+  for (const double end : {topLeft.x() - 0.8 * L - stop, -topLeft.x() + 0.8 * L})
+    s.addCollider(particles::Collider::box(Eigen::Vector2d(end, topLeft.y() - stop), Eigen::Vector2d(end + stop, topLeft.y() + stop)));
 
   // A big wall left of the cloth, from just below the rail to below the hem
   // of the cloth hanging stretched under its weight (about twice its rest
@@ -124,8 +140,11 @@ Scene buildCloth(const ClothParams& p) {
   scene.windEdges = faceEdges(scene);
   p.addWindAndTearing(s, scene.windEdges);
 
-  scene.viewMin = Eigen::Vector2d::Constant(-half);
-  scene.viewMax = Eigen::Vector2d::Constant(half);
+  // The wall, the rail between its end stops and the cloth hanging from it,
+  // stretched to twice its rest height at most (the seed's soft cloth).
+  const double margin = 0.15 * L;
+  scene.viewMin = Eigen::Vector2d(topLeft.x() - 0.9 * L - margin, topLeft.y() - std::max(2.6 * L, 2.0 * clothHeight) - margin);
+  scene.viewMax = Eigen::Vector2d(-topLeft.x() + 0.85 * L + margin, topLeft.y() + margin);
   return scene;
 }
 
@@ -139,6 +158,7 @@ ClothParams stiffClothParams(int size) {
   p.swing = 0.0;  // released hanging straight, no air drag, no edge contacts
   p.drag = 0.0;
   p.edgeContacts = 0;
+  p.areaStiffness = 0.0;
   p.validate();
   return p;
 }

@@ -27,6 +27,19 @@ namespace scenes {
 // of a 0.45 m curtain takes about 1.1 s; air drag k_d/m = 0.4/s lets it
 // settle within seconds.
 //
+// Folds: a grid of springs rests as well turned over as the right way round,
+// so a cloth pulled over itself could stay folded, its folded faces
+// inverted. A face-area floor (particles/forces/face_area.h) pushes any face
+// back once its area drops below area-floor (half) of its rest area, with
+// area-stiffness k = 2 k_s: a face turned over entirely is pushed back at
+// each corner with k (1 + s) r/√2 ≈ 21 N, as much as a spring stretched by two
+// rest lengths. The default 8-way cloth folded in half (36 of its 81 faces
+// turned over) opens within half a second at k ≥ 150 N/m and stays folded at
+// 100 N/m (tests/test_scenes.cpp holds it to both ends), so k = 400 N/m
+// leaves a margin of 2.7 to 4. A
+// face above the floor feels nothing, so the hanging and swinging cloth, its
+// rest strain and its stable dt are as without it.
+//
 // Wind and tearing (wind_and_tearing.h) are off by default: the wind pushes
 // on the face sides (the structural springs), and the springs tear beyond
 // tear-strain.
@@ -41,6 +54,8 @@ struct ClothParams : WindTearParams {
   double swing = 20.0;             // degrees
   double drag = 0.002;             // N·s/m
   int edgeContacts = 1;
+  double areaStiffness = 400.0;    // k of the face-area floor, N/m (0: none)
+  double areaFloor = 0.5;          // s: the fraction of a face's rest area below which it is pushed
   double dt = 0.002;               // the step the scene runs with, s
 
   template <class Visit>
@@ -56,6 +71,8 @@ struct ClothParams : WindTearParams {
     field("swing", swing, "release angle of the cloth's columns from hanging straight, degrees (+: hem to the right; 8-way: hangs straight, released with the push that swings a pinned column to it)");
     field("drag", drag, "air drag k_d on every particle, N s/m (0: none)");
     field("edge-contacts", edgeContacts, "1: the cloth's edges, not only its particles, meet the wall and nail; 0: particles only");
+    field("area-stiffness", areaStiffness, "k of the faces' area floor, N/m: a face below area-floor of its rest area (folded over, crushed) is pushed back (0: none)");
+    field("area-floor", areaFloor, "the fraction of a face's rest area below which the area floor pushes, in [0, 1]");
     visitWindTear(field);
   }
   void validate() const;
@@ -65,8 +82,8 @@ struct ClothParams : WindTearParams {
 Scene buildCloth(const ClothParams& p);
 
 // The stiff cloth of the small-steps comparison (an n×n 8-way cloth with
-// k_s = 4e5, k_d = 0.5 under g = 9.8, hanging straight without drag or edge
-// contacts; mass and spacing as the defaults):
+// k_s = 4e5, k_d = 0.5 under g = 9.8, hanging straight without drag, edge
+// contacts or area floor; mass and spacing as the defaults):
 // k_s h²/m = 5.6e2 at h = 1/60, so RK4 needs dt < 1/1000 on it, while xpbd
 // steps it at 60 Hz. The demo runs it at n = 64, the benchmark at n = 128.
 ClothParams stiffClothParams(int size);

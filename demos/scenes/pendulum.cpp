@@ -39,6 +39,9 @@ Scene buildPendulum(const PendulumParams& p) {
   const int bead = s.addParticle(centre + p.length * Eigen::Vector2d(std::sin(theta0), -std::cos(theta0)), p.mass);
   s.addConstraint(std::make_unique<particles::CircularWireConstraint>(bead, centre, p.length));
   addGravity(s, p.gravity);
+  // The whole wire: the bead can be dragged anywhere on it.
+  scene.viewMin = Eigen::Vector2d::Constant(-1.15 * p.length);
+  scene.viewMax = Eigen::Vector2d::Constant(1.15 * p.length);
   return scene;
 }
 

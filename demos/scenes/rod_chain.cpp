@@ -36,9 +36,9 @@ Scene buildRodChain(const RodChainParams& p) {
 
   // The chain can swing to any side of the wire.
   const double reach = p.radius + p.links * p.length;
-  const double half = std::max(1.0, 1.1 * reach + centre.y());
-  scene.viewMin = Eigen::Vector2d::Constant(-half);
-  scene.viewMax = Eigen::Vector2d::Constant(half);
+  // The wire and every place the chain can swing to from it.
+  scene.viewMin = centre - Eigen::Vector2d(1.05 * reach, 1.05 * reach);
+  scene.viewMax = centre + Eigen::Vector2d(1.05 * reach, p.radius + 0.15 * reach);
   return scene;
 }
 

@@ -37,9 +37,10 @@ Scene buildTautChain(const TautChainParams& p) {
   s.addConstraint(std::make_unique<particles::CircularWireConstraint>(first, leftCentre, p.radius));
   s.addConstraint(std::make_unique<particles::CircularWireConstraint>(last, rightCentre, p.radius));
 
-  const double half = std::max(1.0, 0.6 * (end - start).norm());
-  scene.viewMin = Eigen::Vector2d::Constant(-half);
-  scene.viewMax = Eigen::Vector2d::Constant(half);
+  // Both wires and the chain hanging between them, as deep as it can sag.
+  const double span = (end - start).norm();
+  scene.viewMin = Eigen::Vector2d(-0.6 * span, -0.55 * span);
+  scene.viewMax = Eigen::Vector2d(0.6 * span, p.radius + 0.1 * span);
   return scene;
 }
 

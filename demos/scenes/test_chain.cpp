@@ -47,10 +47,10 @@ Scene buildTestChain(const TestChainParams& p) {
   s.setMass(pin + links, p.tipMassRatio * p.mass);
   addGravity(s, p.gravity);
 
-  // The pin at the centre; the chain swings through the lower half.
-  const double half = std::max(1.0, 1.1 * span);
-  scene.viewMin = Eigen::Vector2d::Constant(-half);
-  scene.viewMax = Eigen::Vector2d::Constant(half);
+  // The pin at the centre; the chain swings through the lower half, so the
+  // view is that half and a little above the pin.
+  scene.viewMin = Eigen::Vector2d(-1.05 * span, -1.05 * span);
+  scene.viewMax = Eigen::Vector2d(1.05 * span, 0.15 * span);
   return scene;
 }
 

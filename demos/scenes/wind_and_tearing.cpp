@@ -11,7 +11,9 @@ namespace scenes {
 
 void WindTearParams::validateWindTear() const {
   particles::requireNonNegative("wind", wind);
-  particles::requireFinite("wind-angle", windAngle);
+  // A turn either way is every direction; beyond it, degrees × π overflows
+  // before the division by 180 (1e308 read as a direction of inf).
+  particles::requireInRange("wind-angle", windAngle, -360.0, 360.0);
   particles::requireNonNegative("wind-drag", windDrag);
   particles::requireInRange("gust", gust, 0.0, 1.0);
   particles::requirePositive("gust-period", gustPeriod);

@@ -29,7 +29,7 @@ struct WindTearParams {
   template <class Visit>
   void visitWindTear(Visit&& field) {
     field("wind", wind, "mean wind speed across the edges, m/s (0: no wind)");
-    field("wind-angle", windAngle, "the way the wind blows, degrees counter-clockwise from +x (0: to the right)");
+    field("wind-angle", windAngle, "the way the wind blows, degrees counter-clockwise from +x, in [-360, 360] (0: to the right)");
     field("wind-drag", windDrag, "drag c of an edge across the wind: c |edge| u_n^2, N per m per (m/s)^2");
     field("gust", gust, "gust amplitude A in [0, 1]: the speed swings between (1 - A) and (1 + A) times the mean");
     field("gust-period", gustPeriod, "the slowest gust's period, s (gusts repeat exactly for one seed)");

@@ -56,9 +56,10 @@ Scene buildWire(const WireParams& p) {
     }
   addGravity(s, p.gravity);
 
-  const double half = std::max(1.0, 0.5 * (p.beads - 1) * pitch + 2.0 * p.radius);
-  scene.viewMin = Eigen::Vector2d::Constant(-half);
-  scene.viewMax = Eigen::Vector2d::Constant(half);
+  // The row of wires, a little margin round them.
+  const Eigen::Vector2d half(0.5 * (p.beads - 1) * pitch + 1.3 * p.radius, 1.3 * p.radius);
+  scene.viewMin = -half;
+  scene.viewMax = half;
   return scene;
 }
 

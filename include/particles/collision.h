@@ -1,24 +1,25 @@
 #pragma once
-// Contacts, resolved after each whole step (never inside integrator stages):
-// continuous against colliders, disc against disc, and collision edges
-// (segments between particles, e.g. a cloth's springs) against colliders.
+// Contacts, resolved after each whole step (never inside integrator stages;
+// after each substep under xpbd) by one pipeline for every kind of contact:
+// particles (points and discs) against colliders, discs against discs, and
+// collision edges (segments between particles, e.g. a cloth's springs)
+// against the corners of colliders. Its stages (src/collision/contact_pass.h):
+// a broad phase, bounces at their exact times (impacts), a narrow phase per
+// kind, and one solver for every contact together with the constraints that
+// hold the particles it touches, friction inside it; then islands at rest
+// may sleep (src/collision/islands.h).
 //
 // Every contact sees the motion of a particle over the step as the path of
-// constant acceleration through the step's two ends, finds the time τ the
-// contact begins on that path, and applies a velocity change there; a
-// velocity change Δv at τ moves the step's end by Δv·(dt − τ), so no position
-// is corrected by hand and an elastic bounce in uniform gravity is exact. A
-// contact that would close again within the step is resting: it holds the
-// particle on the surface for the rest of the step with the normal impulse
-// that cancels its approach (weight × dt for a particle at rest).
-//
-// The contact pass itself (its phases, broad phase and solves) is internal:
-// src/collision/contact_pass.h.
+// constant acceleration through the step's two ends (the impacts stage finds
+// the time τ a bounce begins on that path and applies a velocity change
+// there: a velocity change Δv at τ moves the step's end by Δv·(dt − τ), so an
+// elastic bounce in uniform gravity is exact). A contact that does not bounce
+// rests: the solver holds it on the surface, and within its friction cone
+// where it began the step.
 
 namespace particles {
 
 struct ContactSettings {
-  int iterations = 100;   // Gauss–Seidel passes over resting contacts (stacks), after the first; ≥ 1
   // Work cap: impacts (and resting push-outs) one particle may take in one
   // step. Every impact in the step is resolved — a particle in a 1° wedge
   // meets its faces up to 180 times on one pass into the corner — and a
@@ -27,13 +28,19 @@ struct ContactSettings {
   // collider) rather than losing the motion silently; ≥ 1.
   int maxImpacts = 100000;
   double slop = 1e-9;     // world units: a gap this small counts as touching
-  // The coupled solve of contacts and constraints (src/collision/coupled_contacts.h):
-  int coupledIterations = 200;        // projected Gauss–Seidel sweeps over the shared rows, ≥ 1
+  // The contact solve (src/collision/contact_solver.h):
+  int coupledIterations = 200;        // projected Gauss–Seidel sweeps over the velocities, ≥ 1
   double coupledTolerance = 1e-10;    // m/s: stop when no row changes its velocity by more
-  int positionIterations = 50;        // drift-correction passes over the same rows, ≥ 1
+  int positionIterations = 50;        // nonlinear Gauss–Seidel passes over the positions, ≥ 1
   double restitutionThreshold = 0.05; // m/s: a bounce slower than this rests instead
   // Disc against disc (collidable particles, ParticleSystem::setCollidable):
   double particleRestitution = 0.5;   // e in [0, 1]
+  double particleFriction = 0.0;      // Coulomb μ ≥ 0 between discs
+  // Islands and sleep (src/collision/islands.h): an island whose particles
+  // all move slower than sleepSpeed for sleepTime sleeps until something
+  // touches it; sleepTime 0 turns sleep off.
+  double sleepSpeed = 0.01;           // m/s, ≥ 0
+  double sleepTime = 0.5;             // s, ≥ 0
 
   void validate() const;  // throws naming the bad field
 };

@@ -8,7 +8,9 @@
 //   assembled J W Jᵀ (exact for a chain, whose J W Jᵀ is tridiagonal);
 // - a sparse direct solve: SimplicialLDLT of the assembled J W Jᵀ, its
 //   sparsity pattern analysed once per constraint structure and only
-//   refactorised numerically each solve.
+//   refactorised numerically each solve; for a chain (each constraint sharing
+//   particles only with the ones before and after it in the list, as a rod
+//   chain's rods), whose J W Jᵀ is tridiagonal, the O(m) tridiagonal LDLᵀ.
 // Rows whose diagonal is zero (every particle in them pinned) get λ = 0 in all three.
 // When J W Jᵀ loses rank the direct solve is damped, (J W Jᵀ + μ I) λ = b with
 // μ = 1e-6·max diag, a bounded approximation of the least-squares λ (see
@@ -112,6 +114,10 @@ class ConstraintSolver {
   // changed structure; dead rows get a unit diagonal.
   void assemble(double dead);
   bool directSolve(double dead, double& relativeResidual);  // false: fall back to CG
+  // A chain of constraints (each sharing particles only with its neighbours
+  // in the list): J W Jᵀ is tridiagonal and solved in O(m).
+  void findChain();
+  void assembleChain(double dead);
 };
 
 }  // namespace particles

@@ -76,6 +76,10 @@ class Force {
   // breakLinks): a spring on it is torn, an angle spring with it as an arm
   // goes with it, the wind no longer pushes on it. True when something changed.
   virtual bool dropLinks(const LinkSet& /*broken*/) { return false; }
+  // Links that break with `broken` (ParticleSystem::breakLinks asks before
+  // anything drops): a face with a torn side tears out, and every link
+  // across it (a cloth cell's diagonals) goes with it. Appended to more.
+  virtual void linksBreakingWith(const LinkSet& /*broken*/, std::vector<std::array<int, 2>>& /*more*/) const {}
 
   // Lines and circles that show this force (springs as lines); none by default.
   virtual void sketch(const Phase&, Sketch&) const {}

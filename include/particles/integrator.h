@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 
-#include "particles/drift_correction.h"
 #include "particles/integrators/dopri5_settings.h"
 #include "particles/integrators/implicit_euler_settings.h"
 #include "particles/integrators/xpbd_settings.h"
@@ -47,12 +46,6 @@ class Integrator {
   // whole step (ParticleSystem::step) is then skipped.
   virtual bool collidesInSubsteps() const { return false; }
 
-  // The post-step contact phase resolves the particles that touch a collider
-  // together with the constraints that hold them (src/collision/coupled_contacts.h).
-  // How that coupled solve corrects the constraints' drift (src/collision/coupled_contacts.h):
-  // DriftCorrection::Shake for a scheme whose step ends with x = x0 + dt v.
-  virtual DriftCorrection driftCorrection() const { return DriftCorrection::AtEnd; }
-
   // The step over which this scheme applies a stiff force on one particle
   // (the mouse joint) explicitly, which bounds how stiff that force may be
   // (grab.h): dt for the explicit schemes; 0 for a scheme that takes it
@@ -77,6 +70,10 @@ class Integrator {
 struct IntegratorInfo {
   const char* name;     // command-line name
   const char* summary;  // one line for `list` and the help overlay
+  // How it behaves, in one phrase for a user who switches to it: stability
+  // (omega the fastest frequency, zeta its damping ratio: ASCII, as the
+  // demo's font draws it) and cost.
+  const char* behaviour;
   int order;            // global order of accuracy on smooth problems
   std::unique_ptr<Integrator> (*make)();
   bool usesTolerance = false;  // reads IntegratorSettings::dopri5 (tolerance, step floor, work cap)

@@ -15,6 +15,7 @@
 #include "particles/integrator.h"
 #include "particles/step_stats.h"
 #include "particles/tearing.h"
+#include "particles/thread_use.h"
 #include "particles/forces/force_batch.h"
 
 namespace particles {
@@ -27,6 +28,7 @@ struct Snapshot {
 
 class ContactPass;  // the collision phase of a step (src/collision/contact_pass.h)
 struct ContactScene;
+class Islands;      // islands and sleep (src/collision/islands.h)
 
 class ParticleSystem {
  public:
@@ -68,9 +70,10 @@ class ParticleSystem {
   // Breaks the links between the given particle pairs (either order): every
   // force drops what hangs on them (Force::dropLinks: the springs on them
   // tear, angle springs with them as an arm go, the wind stops pushing on
-  // them) and the collision edges on them are removed. Returns how many
-  // forces changed; changes the structure stamp. The tear phase of step()
-  // calls it (tearing.h).
+  // them) and the collision edges on them are removed; the links that break
+  // with them (Force::linksBreakingWith: a torn face's diagonals) break too.
+  // Returns how many forces changed; changes the structure stamp. The tear
+  // phase of step() calls it (tearing.h).
   int breakLinks(const std::vector<std::array<int, 2>>& links);
   // Every link broken so far, (min, max), in the order they broke.
   const std::vector<std::array<int, 2>>& brokenLinks() const { return brokenLinks_; }
@@ -167,15 +170,23 @@ class ParticleSystem {
   // (stats.internalSteps unchanged); resets the tally.
   void addEvaluationStats(StepStats& stats);
 
-  // One step, as named phases: begin (check the settings, keep the start
-  // state, tell time-dependent forces the clock) → integrate by dt → collide
+  // One step, as named phases: begin (check the settings, choose the
+  // threads, keep the start state, tell time-dependent forces the clock) →
+  // integrate by dt → collide
   // (the contact pass, src/collision/contact_pass.h, continuous from the start
   // state; skipped without colliders or collidable discs, and left to the
-  // integrator when it collides inside its substeps) → tear (tearing.h;
+  // integrator when it collides inside its substeps) → sleep (islands at rest
+  // fall asleep and are held, src/collision/islands.h; with everything
+  // asleep the step integrates and collides nothing) → tear (tearing.h;
   // skipped when off) → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
+  // The step runs on threadUse()'s choice of threads, at most threadCount()
+  // (particles/thread_use.h), reported as StepStats::threads.
   StepStats step(Integrator& integrator, double dt);
   const StepStats& lastStepStats() const { return lastStepStats_; }
+  // How many threads step() uses, with its settings.
+  ThreadUse& threadUse() { return threadUse_; }
+  const ThreadUse& threadUse() const { return threadUse_; }
 
   // Colliders or at least two collidable discs: step() has a collision phase.
   bool colliding() const;
@@ -198,6 +209,9 @@ class ParticleSystem {
   const SolveStats& lastSolve() const { return solver_.stats(); }
   bool finite() const;  // every position and velocity finite
   int contactsLastStep() const;
+  // Particles asleep (islands at rest, src/collision/islands.h); any edit of
+  // the system or its state wakes them all.
+  int sleeping() const;
 
  private:
   friend class Integrator;  // advances x_ and v_ in place (Integrator::positionsOf)
@@ -214,7 +228,10 @@ class ParticleSystem {
   std::vector<int> collidable_;
   ConstraintSolver solver_;
   std::unique_ptr<ContactPass> contacts_;
+  std::unique_ptr<Islands> islands_;
+  void wake();
   Tearing tearing_;
+  ThreadUse threadUse_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
   std::uint64_t structureStamp_ = nextStructureStamp();

@@ -12,7 +12,8 @@ enum class StepFailure {
   StepBelowFloor,  // an adaptive scheme needed an internal step below its floor
   WorkCapReached,  // an adaptive scheme ran out of its work budget for one call
   SolveFailed,     // a linear solve gave non-finite multipliers or residual
-  ContactCapReached,  // a particle needed more impacts in one step than ContactSettings::maxImpacts
+  ContactCapReached,  // a particle needed more impacts in one step than ContactSettings::maxImpacts,
+                      // or the discs more pairs than a step takes on (64 a disc, at least 2^20)
 };
 
 // One-word name of a failure ("none", "step-below-floor", "work-cap", "solve-failed", "contact-cap").
@@ -29,10 +30,14 @@ struct StepStats {
   int contactIterations = 0;     // sweeps of the coupled contact–constraint solve, summed
   double contactResidual = 0.0;  // largest velocity change (m/s) in the last sweep of any coupled solve
   int directFallbacks = 0;       // constraint solves asked of CG and solved directly (SolverSettings::maxCgWork)
+  int sleeping = 0;              // particles asleep at the step's end (islands at rest: src/collision/islands.h)
+  int threads = 1;  // threads the step's parallel loops ran on (ParticleSystem::step's choice,
+                    // particles/thread_use.h; 1 when the step entered no parallel region)
   StepFailure failure = StepFailure::None;  // the first failure, if any
 
-  // Sums the counts, keeps the largest residual and the first failure: the
-  // statistics of two steps (or two parts of one) taken one after the other.
+  // Sums the counts, keeps the largest residual, the most sleeping, the most
+  // threads and the first failure: the statistics of two steps (or two parts
+  // of one) taken one after the other.
   StepStats& operator+=(const StepStats& other);
 };
 

@@ -8,7 +8,9 @@
 // on every intact spring at once from the same positions, and the links of
 // those over the limit break together (ParticleSystem::breakLinks: the
 // springs tear, angle springs with a torn arm go with them, the wind no
-// longer pushes on a torn side, collision edges on it are removed). So a
+// longer pushes on a torn side, collision edges on it are removed, and a
+// face of a face-area force with a torn side tears out with its diagonals,
+// so that a pulled cloth rips along a line of faces). So a
 // spring is never torn inside a step: every stage of an integrator (RK4's
 // four evaluations, xpbd's substeps, implicit Euler's Newton passes) sees the
 // same springs, the result does not depend on the order of the springs, and

@@ -1,6 +1,7 @@
 #pragma once
 // What every contact kind shares: the model of a particle's motion within a
 // step and the response at a contact on it.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -71,8 +72,10 @@ inline std::optional<double> enterCircle(const Eigen::Vector2d& a, const Eigen::
   const double disc = B * B - A * C;
   if (disc < 0.0) return std::nullopt;
   const double s = (-B - std::sqrt(disc)) / A;
-  if (s < 0.0 || s > 1.0) return std::nullopt;
-  return s;
+  // An entry at the very end of the path, within the round-off of s, enters
+  // (a disc that reaches another exactly at a step's end strikes it then).
+  if (s < 0.0 || s > 1.0 + 1e-12) return std::nullopt;
+  return std::min(s, 1.0);
 }
 
 }  // namespace particles::contact

@@ -1,8 +1,6 @@
 #pragma once
-// One particle's motion through the contact pass of a step, and its impacts
-// against colliders found and applied one at a time, so that a pass that
-// orders disc and collider impacts by time (particle_contacts.cpp) and the
-// pass over colliders alone (collider_contacts.cpp) share one definition.
+// One particle's motion through the impacts stage of a step (impacts.h), and
+// its impacts against colliders found and applied one at a time.
 #include <algorithm>
 #include <limits>
 #include <optional>
@@ -14,13 +12,19 @@ namespace particles::contact {
 
 // The particle's path since its last event (path.t0, at path.x0: the step's
 // start or its last impact) and the step's end it leads to.
+// mobility: the velocities the particle's constraints leave it, as the
+// projector P onto them (the identity for a particle in no constraint; for a
+// bead on a wire or a bob on a rod to a pin, the tangent of its circle): an
+// impulse along n changes its velocity along P n only, as the constraint's
+// own impulse takes the rest.
 struct Track {
   Path path;
   Eigen::Vector2d x1, v1;  // end of the step
   int impacts = 0;         // events so far in this step
+  Eigen::Matrix2d mobility = Eigen::Matrix2d::Identity();
 
   static Track of(const StepStart& start, int i, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
-    return {Path::of(start, i, x, v), x.segment<2>(2 * i), v.segment<2>(2 * i), 0};
+    return {Path::of(start, i, x, v), x.segment<2>(2 * i), v.segment<2>(2 * i), 0, Eigen::Matrix2d::Identity()};
   }
   Eigen::Vector2d from() const { return path.x0; }
   double t() const { return path.t0; }
@@ -67,17 +71,22 @@ struct ColliderImpact {
 };
 std::optional<ColliderImpact> nextColliderImpact(const std::vector<Collider>& colliders, const ColliderBoxes& boxes,
                                                  const Track& track, double r, double slop, double dt);
-// Applies it: a bounce (−e times the normal velocity, Coulomb friction) or a
-// resting contact for the rest of the step; the track then starts at τ.
-// Returns false when the impact changed nothing: met again at the time of
-// the last event, with the step's end moved by no more than `slop` and its
-// velocity by no more than would move it that far in the time left. That is
-// a resting contact (a particle sliding over the edge of a face, whose chord
-// lies on the face: the rest of the track lies on the surface and is
-// settled), or a corner the chord only grazes, on a face the particle is
-// leaving (no impulse: the next search would find the same event).
-bool applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r, double slop, double dt,
-                         Track& track);
+// What an impact did to a track.
+enum class ImpactOutcome {
+  Bounced,  // the velocity jumped at τ and the track starts there
+  Rests,    // the bounce would not clear the surface by the step's end: left for the solver
+  Nothing,  // met again at the time of the last event with no change (a grazed corner it leaves)
+};
+// Applies it when it is a bounce (−e times the normal velocity, Coulomb
+// friction along the surface, faster than ContactSettings::
+// restitutionThreshold); the track then starts at τ. An impact that
+// changes nothing — met again at the time of the last event, with the step's
+// end moved by no more than `slop` and its velocity by no more than would move
+// it that far in the time left (a corner the chord only grazes, on a face the
+// particle is leaving) — is reported as such, since the next search would
+// find the same event.
+ImpactOutcome applyColliderImpact(const Collider& collider, const ColliderImpact& impact, double r,
+                                  const ContactSettings& settings, double dt, Track& track);
 // Out of impacts (the work cap ContactSettings::maxImpacts): if the rest of
 // the track still enters a collider, its end is put back to its last event,
 // which is outside every collider, and true is returned (the step then fails

@@ -18,6 +18,17 @@ struct StepStart {
   const PathBounds* paths = nullptr;  // the paths' box (x here → the present), when the caller has it
 };
 
+// Where each particle's path over the rest of the step starts: the step's
+// start, or its last impact (at time dt − h). The narrow phase sweeps from
+// there, and the solve moves a particle it holds to x + h v (v its solved
+// velocity at the step's end).
+struct References {
+  Eigen::VectorXd x, v;  // 2n
+  Eigen::VectorXd h;     // n: time from the reference to the step's end
+
+  void reset(const StepStart& start);
+};
+
 // What one contact pass did: the contacts it resolved and the particles that
 // ran out of the work cap ContactSettings::maxImpacts (nonzero fails the step).
 struct ContactCount {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <utility>
 
+#include "parallel_for.h"
 #include "particles/threads.h"
 #include "stage_progress.h"
 #include "strided_runs.h"
@@ -185,40 +186,40 @@ void SpringBatch::evaluate(const std::vector<Phase>& phases, Eigen::VectorXd& f,
     const int from = part > 0 ? begin + reach_ : begin;
     return std::pair<int, int>{from, std::max(from, part + 1 < threads ? end - reach_ : end)};
   };
-#pragma omp parallel num_threads(threads)
-  for (int k = 0; k < stages; ++k) {
-    if (pipelined) {
-      if (k > 0)
-        measured.each([&](int part) {
-          if (part > 0) edges.waitFor(part - 1, k);
-          if (part + 1 < threads) edges.waitFor(part + 1, k);
+  parallelTeam(threads, [&](const Team& team) {
+    for (int k = 0; k < stages; ++k) {
+      if (pipelined) {
+        if (k > 0)
+          measured.each([&](int part) {
+            if (part > 0) edges.waitFor(part - 1, k);
+            if (part + 1 < threads) edges.waitFor(part + 1, k);
+          });
+        measured.run([&](int part) {
+          const auto [from, to] = interiorOf(part);
+          const double done = piece(k, bounds[part], from) + piece(k, to, bounds[part + 1]);
+          edges.publish(part, k + 1);
+          return done;
         });
-      measured.run([&](int part) {
-        const auto [from, to] = interiorOf(part);
-        const double done = piece(k, bounds[part], from) + piece(k, to, bounds[part + 1]);
-        edges.publish(part, k + 1);
-        return done;
-      });
-      measured.run([&](int part) {
-        const auto [from, to] = interiorOf(part);
-        return piece(k, from, to);
-      });
-      continue;
-    }
-    if (k > 0) {
-#pragma omp barrier
-    }
-    if (gathered) {  // the gathered springs' forces, shared out among the threads, then a barrier
-      const double* x = phases[k].x.data();
-      const double* v = phases[k].v.data();
-#pragma omp for schedule(static)
-      for (int g = gatherBegin_; g < springs; ++g) {
-        const int i = 2 * first_[g], j = 2 * second_[g];
-        springForces(1, x + i, x + j, v + i, v + j, &rest_[g], &stiffness_[g], &damping_[g], fs + 2 * g);
+        measured.run([&](int part) {
+          const auto [from, to] = interiorOf(part);
+          return piece(k, from, to);
+        });
+        continue;
       }
+      if (k > 0) team.wait();
+      if (gathered) {  // the gathered springs' forces, shared out among the threads, then a barrier
+        const double* x = phases[k].x.data();
+        const double* v = phases[k].v.data();
+        const int count = springs - gatherBegin_;
+        for (int g = gatherBegin_ + team.rangeBegin(count), end = gatherBegin_ + team.rangeEnd(count); g < end; ++g) {
+          const int i = 2 * first_[g], j = 2 * second_[g];
+          springForces(1, x + i, x + j, v + i, v + j, &rest_[g], &stiffness_[g], &damping_[g], fs + 2 * g);
+        }
+        team.wait();
+      }
+      measured.run([&](int part) { return piece(k, bounds[part], bounds[part + 1]); });
     }
-    measured.run([&](int part) { return piece(k, bounds[part], bounds[part + 1]); });
-  }
+  });
   balance_.update(measured);
 }
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "particles/cancel.h"
 #include "particles/particle_system.h"
 
 namespace particles {
@@ -180,7 +181,14 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
     long attempts = 0;
     // Internal steps of h_ until the internal solution reaches the output
     // time; none is cut short to land on it (within rounding it lands anyway).
+    // Up to maxStepsPerCall attempts of seven evaluations each: the cancel
+    // flag is watched before each (particles/cancel.h).
+    bool cancelled = false;
     while (lead_ < dt * (1.0 - 1e-12)) {
+      if (cancelRequested()) {
+        cancelled = true;
+        break;
+      }
       if (++attempts > settings_.maxStepsPerCall) {
         stats.failure = StepFailure::WorkCapReached;
         break;
@@ -211,8 +219,8 @@ StepStats Dopri5Integrator::step(ParticleSystem& system, double dt) {
         }
       }
     }
-    if (stats.failure != StepFailure::None || std::abs(lead_ - dt) <= 1e-12 * dt) {
-      // On the internal grid (or stopped short by a failure: the last accepted state).
+    if (cancelled || stats.failure != StepFailure::None || std::abs(lead_ - dt) <= 1e-12 * dt) {
+      // On the internal grid (or stopped short: the last accepted state).
       x = x0_;
       v = kx_[0];
       lead_ = 0.0;

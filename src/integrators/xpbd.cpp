@@ -7,7 +7,9 @@
 #include <string>
 
 #include "parallel_for.h"
+#include "particles/cancel.h"
 #include "particles/forces/angular_spring.h"
+#include "particles/forces/face_area.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
 #include "particles/particle_system.h"
@@ -79,9 +81,29 @@ void adoptMouseSpring(const Force& force, double, XpbdIntegrator::Forms& forms) 
   forms.attachments.push_back(mouse);
 }
 
+// A face-area force of positive stiffness: each face a one-sided compliant
+// area constraint (xpbd/area.h).
+void adoptFaceArea(const Force& force, double h, XpbdIntegrator::Forms& forms) {
+  const auto* area = dynamic_cast<const FaceAreaForce*>(&force);
+  if (area == nullptr || area->stiffness() == 0.0) {
+    if (area == nullptr) forms.applied.push_back(&force);
+    return;  // no stiffness: no force at all
+  }
+  for (const AreaFace& face : area->faces()) {
+    CompliantArea c;
+    c.ring = face.ring;
+    c.restArea = face.restArea;
+    c.floor = area->floor();
+    c.compliance = springCompliance(area->stiffness() * face.restArea, 0.0, h);
+    forms.areas.push_back(std::move(c));
+  }
+}
+
 // The forces with a position form: stiff springs become compliant
-// constraints. Every other force (fields, drag, the mouse spring, a user's own
-// force type) is applied in the prediction.
+// constraints, faces one-sided area constraints. Every other force (fields,
+// drag, wind, a gas's pressure, a user's own force type) is applied in the
+// prediction: a load there is balanced exactly by the constraints'
+// projections at rest, as gravity is by a hanging spring's.
 struct ForceForm {
   const char* type;
   void (*adopt)(const Force&, double h, XpbdIntegrator::Forms&);
@@ -91,6 +113,7 @@ const ForceForm kForceForms[] = {
     {"spring", adoptSpring},
     {"angular-spring", adoptAngularSpring},
     {"mouse-spring", adoptMouseSpring},
+    {"face-area", adoptFaceArea},
 };
 
 }  // namespace
@@ -135,13 +158,18 @@ StepStats XpbdIntegrator::step(ParticleSystem& system, double dt) {
     const std::lock_guard<std::mutex> lock(merging);
     paths.merge(part);
   };
-  for (int k = 0; k < settings_.substeps; ++k) {
+  // Up to 100,000 substeps of 10,000 passes each: the cancel flag is watched
+  // before every substep and every pass (particles/cancel.h); a step cut
+  // short leaves the state mid-substep, for the caller to discard.
+  for (int k = 0; k < settings_.substeps && !cancelRequested(); ++k) {
     beginSubstep(system);
     if (!fused) predict(system, h);
     paths = PathBounds{};
-    for (int pass = 0; pass < settings_.iterations; ++pass)
+    int pass = 0;
+    for (; pass < settings_.iterations && !cancelRequested(); ++pass)
       project(system, pass, fused && pass == 0 ? predictRange : ParticleRange(),
               pass + 1 == settings_.iterations ? velocityRange : ParticleRange());
+    if (pass < settings_.iterations) break;
     collide(system, h, paths);
   }
   lastStep_ = h;
@@ -169,6 +197,7 @@ void XpbdIntegrator::prepare(const ParticleSystem& system, double h) {
   applied_.update(forms_.applied, ++appliedStamp_);
   angleLambda_.resize(forms_.angles.size());
   attachmentLambda_.resize(forms_.attachments.size());
+  areaLambda_.resize(forms_.areas.size());
   preparedStamp_ = system.structureStamp();
   preparedStep_ = h;
 }
@@ -179,6 +208,7 @@ void XpbdIntegrator::beginSubstep(const ParticleSystem& system) {
   xn_.resize(2 * n);
   if (system.colliding()) vn_.resize(2 * n);
   std::fill(angleLambda_.begin(), angleLambda_.end(), 0.0);
+  std::fill(areaLambda_.begin(), areaLambda_.end(), 0.0);
   std::fill(attachmentLambda_.begin(), attachmentLambda_.end(), Eigen::Vector2d::Zero());
 }
 
@@ -232,12 +262,14 @@ void XpbdIntegrator::project(ParticleSystem& system, int pass, const ParticleRan
                              const ParticleRange& thenVelocities) {
   Eigen::VectorXd& x = positionsOf(system);
   const Eigen::VectorXd& w = system.inverseMasses();
-  const bool springsLast = forms_.angles.empty() && forms_.attachments.empty() && system.constraints().empty();
+  const bool springsLast = forms_.angles.empty() && forms_.areas.empty() && forms_.attachments.empty() &&
+                           system.constraints().empty();
   if (lines_.lines() > 0) lines_.project(xn_, x, velocitiesOf(system), system.masses(), w, pass);
   distances_.project(xn_.data(), x.data(), pass, settings_.iterations, predictFirst,
                      springsLast ? thenVelocities : ParticleRange());
   for (std::size_t k = 0; k < forms_.angles.size(); ++k)
     projectAngle(forms_.angles[k], w, xn_, x, angleLambda_[k]);
+  for (std::size_t k = 0; k < forms_.areas.size(); ++k) projectArea(forms_.areas[k], w, x, areaLambda_[k]);
   for (std::size_t k = 0; k < forms_.attachments.size(); ++k) {
     const MouseSpringForce& mouse = *forms_.attachments[k];
     const CompliantAttachment c{mouse.particle(), mouse.target(),

@@ -17,6 +17,8 @@
 //                       of such a stored, already permuted triangle: the
 //                       symbolic analysis once per pattern, the numeric
 //                       factorisation each step, an optional diagonal shift.
+// - tridiagonal.h       Tridiagonal: the O(m) LDLᵀ of a symmetric tridiagonal
+//                       matrix (a chain's J W Jᵀ), with ldlt.h's interface.
 // - conjugate_gradient.h conjugateGradient(): preconditioned CG over a
 //                       matrix-free operator and a preconditioner (any callables),
 //                       allocation-free with its scratch kept by the caller.
@@ -24,3 +26,4 @@
 #include "linear/constraint_rows.h"
 #include "linear/ldlt.h"
 #include "linear/symmetric_pattern.h"
+#include "linear/tridiagonal.h"

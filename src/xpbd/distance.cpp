@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include "parallel_for.h"
 #include "particles/threads.h"
 #include "strided_runs.h"
 #include "vector_kernels.h"
@@ -262,14 +263,11 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
     // before (thread_balance.h): the threads reach each barrier together.
     const std::vector<double> cuts = balance_.cuts(threads);
     ThreadBalance::Pass measured(threads);
-#pragma omp parallel num_threads(threads)
-    {
+    parallelTeam(threads, [&](const Team& team) {
       // A barrier between one colour and the next; none after the last: the region's end is one.
       bool started = false;
-      auto nextColour = [&started]() {
-        if (started) {
-#pragma omp barrier
-        }
+      auto nextColour = [&]() {
+        if (started) team.wait();
         started = true;
       };
       std::size_t begin = 0;
@@ -285,19 +283,17 @@ void DistanceBatch::project(const double* xn, double* x, int pass, int passes) {
       begin = runConstraints_;
       for (std::size_t end : colourEnd_) {
         nextColour();
-        const long blocks = static_cast<long>((end - begin + kBlock - 1) / kBlock);
-#pragma omp for schedule(static) nowait
-        for (long b = 0; b < blocks; ++b)
+        const int blocks = static_cast<int>((end - begin + kBlock - 1) / kBlock);
+        for (int b = team.rangeBegin(blocks), last = team.rangeEnd(blocks); b < last; ++b)
           (this->*run)(begin + static_cast<std::size_t>(b) * kBlock,
                        std::min(end, begin + static_cast<std::size_t>(b + 1) * kBlock), kBlock, xn, x);
         begin = end;
       }
       if (serialBegin_ < size()) {
         nextColour();
-#pragma omp single nowait
-        (this->*run)(serialBegin_, size(), 1, xn, x);
+        if (team.member == 0) (this->*run)(serialBegin_, size(), 1, xn, x);
       }
-    }
+    });
     balance_.update(measured);
     return;
   }

@@ -123,29 +123,29 @@ void DistanceBlocks::project(const double* xn, double* x, int pass, int passes, 
     for (int part = 0; part < threads; ++part) shares.push_back(blockShare(cuts[part], cuts[part + 1]));
     ThreadBalance::Pass measured(threads);
     const bool afterInRegion = after && rest_.size() == 0;
-#pragma omp parallel num_threads(threads)
-    {
+    parallelTeam(threads, [&](const Team& team) {
       measured.run([&](int part) {
         const auto [first, last] = shares[part];
         projectBlocks(first, last);
         return static_cast<double>(blockStart_[last] - blockStart_[first]);
       });
-#pragma omp barrier
-      const long even = static_cast<long>(evenCuts_.size()), odd = static_cast<long>(oddCuts_.size());
-#pragma omp for schedule(static)
-      for (long g = 0; g < even; ++g) evenCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
-#pragma omp for schedule(static) nowait
-      for (long g = 0; g < odd; ++g) oddCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
+      team.wait();
+      const int even = static_cast<int>(evenCuts_.size()), odd = static_cast<int>(oddCuts_.size());
+      for (int g = team.rangeBegin(even), end = team.rangeEnd(even); g < end; ++g)
+        evenCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
+      team.wait();
+      for (int g = team.rangeBegin(odd), end = team.rangeEnd(odd); g < end; ++g)
+        oddCuts_[g].batch.projectOnThisThread(xn, x, pass, passes);
       if (afterInRegion) {
         // Every constraint is in a block or a cut, all projected: each thread
         // takes the particles of the blocks it projected, still in its cache.
-#pragma omp barrier
+        team.wait();
         measured.each([&](int part) {
           const auto [first, last] = shares[part];
           if (first < last) after(blockBegin(first), blockBegin(last));
         });
       }
-    }
+    });
     balance_.update(measured);
     if (afterInRegion) return;
   } else {

@@ -10,8 +10,10 @@
 // Repetitions are interleaved (--benchmark_enable_random_interleaving) and
 // at the end the ratio engine / reference of the medians of the CPU time per
 // step is printed for each size, with the ratio's range over the repetitions.
-// engine-2threads/<n>: the engine on 2 threads (wall time); the speed-up
-// 1 -> 2 threads printed is the ratio of the wall-time medians.
+// engine-2threads/<n>: the engine on at most 2 threads (wall time; it runs a
+// step on one while two are not faster, and its `threads` counter gives the
+// mean count its steps ran on); the speed-up 1 -> 2 threads printed is the
+// ratio of the wall-time medians.
 //
 //   ./build/tests/bench_cloth_reference --benchmark_repetitions=7
 //     --benchmark_enable_random_interleaving=true (one command line)
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "cloth_grid.h"
+#include "plain_rk4.h"
 #include "repetition_reporter.h"
 #include "particles/integrators/rk4.h"
 #include "particles/threads.h"
@@ -37,13 +40,15 @@ constexpr int kSizes[] = {64, 128, 256};
 constexpr double kSpacing = 0.05;  // m
 
 // The reference: the same physics written as simply as possible.
+using bench::PlainRk4;
 struct PlainCloth {
   int n = 0;
   std::vector<int> a, b;
   std::vector<double> rest, ks, kd;
   std::vector<double> mass, w;
   double gravity = 0.0, drag = 0.0;
-  std::vector<double> x, v, x0, v0, xs, vs, dx, dv, acc, f;
+  std::vector<double> acc, f;
+  PlainRk4 state;  // x, v and the RK4 stages
 
   explicit PlainCloth(const particles::ParticleSystem& s) {
     n = s.size();
@@ -59,9 +64,10 @@ struct PlainCloth {
     drag = bench::kClothDrag;
     mass.assign(s.masses().data(), s.masses().data() + n);
     w.assign(s.inverseMasses().data(), s.inverseMasses().data() + n);
-    x.assign(s.positions().data(), s.positions().data() + 2 * n);
-    v.assign(s.velocities().data(), s.velocities().data() + 2 * n);
-    for (auto* vec : {&x0, &v0, &xs, &vs, &dx, &dv, &acc, &f}) vec->assign(2 * n, 0.0);
+    state.x.assign(s.positions().data(), s.positions().data() + 2 * n);
+    state.v.assign(s.velocities().data(), s.velocities().data() + 2 * n);
+    state.resize(n);
+    for (auto* vec : {&acc, &f}) vec->assign(2 * n, 0.0);
   }
 
   void accel(const std::vector<double>& px, const std::vector<double>& pv) {
@@ -92,32 +98,7 @@ struct PlainCloth {
   }
 
   void step(double h) {
-    const int m = 2 * n;
-    x0 = x;
-    v0 = v;
-    accel(x0, v0);
-    for (int k = 0; k < m; ++k) {
-      dx[k] = v0[k];
-      dv[k] = acc[k];
-      xs[k] = x0[k] + (0.5 * h) * v0[k];
-      vs[k] = v0[k] + (0.5 * h) * acc[k];
-    }
-    for (double c : {0.5, 1.0}) {
-      accel(xs, vs);
-      for (int k = 0; k < m; ++k) {
-        dx[k] += 2.0 * vs[k];
-        dv[k] += 2.0 * acc[k];
-        xs[k] = x0[k] + (c * h) * vs[k];
-        vs[k] = v0[k] + (c * h) * acc[k];
-      }
-    }
-    accel(xs, vs);
-    for (int k = 0; k < m; ++k) {
-      dx[k] += vs[k];
-      dv[k] += acc[k];
-      x[k] = x0[k] + (h / 6.0) * dx[k];
-      v[k] = v0[k] + (h / 6.0) * dv[k];
-    }
+    state.step(h, [&](const std::vector<double>& px, const std::vector<double>& pv) { accel(px, pv); }, acc);
   }
 };
 
@@ -132,15 +113,7 @@ particles::ParticleSystem warmCloth(int size) {
 double checkDifference(int size) {
   particles::ParticleSystem s = warmCloth(size);
   PlainCloth plain(s);
-  particles::Rk4Integrator rk4;
-  for (int k = 0; k < kCheckSteps; ++k) {
-    s.step(rk4, kDt);
-    plain.step(kDt);
-  }
-  double worst = 0.0;
-  for (int k = 0; k < 2 * s.size(); ++k)
-    worst = std::max({worst, std::abs(s.positions()[k] - plain.x[k]), std::abs(s.velocities()[k] - plain.v[k])});
-  return worst;
+  return bench::largestDifferenceAfter(kCheckSteps, kDt, s, plain);
 }
 
 void engineStep(benchmark::State& state, int size, int threads) {
@@ -148,16 +121,22 @@ void engineStep(benchmark::State& state, int size, int threads) {
   particles::ParticleSystem s = warmCloth(size);
   particles::setThreadCount(threads);
   particles::Rk4Integrator rk4;
-  for (auto _ : state) s.step(rk4, kDt);
+  long steps = 0, threadSteps = 0;
+  for (auto _ : state) {
+    threadSteps += s.step(rk4, kDt).threads;
+    ++steps;
+  }
   particles::setThreadCount(1);
   benchmark::DoNotOptimize(s.positions().data());
   state.counters["particles"] = s.size();
+  // The threads the steps ran on, on average (ParticleSystem::step chooses: particles/thread_use.h).
+  state.counters["threads"] = steps ? static_cast<double>(threadSteps) / steps : 0.0;
 }
 
 void referenceStep(benchmark::State& state, int size) {
   PlainCloth plain(warmCloth(size));
   for (auto _ : state) plain.step(kDt);
-  benchmark::DoNotOptimize(plain.x.data());
+  benchmark::DoNotOptimize(plain.state.x.data());
   state.counters["particles"] = plain.n;
 }
 
@@ -191,14 +170,7 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&reporter);
   for (int size : kSizes) {
     const std::string n = std::to_string(size);
-    const auto& e = reporter.cpu["engine/" + n];
-    const auto& r = reporter.cpu["reference/" + n];
-    if (e.empty() || r.empty()) continue;
-    std::vector<double> ratios;
-    for (std::size_t k = 0; k < std::min(e.size(), r.size()); ++k) ratios.push_back(e[k] / r[k]);
-    std::printf("ratio engine/reference %d^2: median %.3f (repetitions %.3f-%.3f), engine %.1f us, reference %.1f us\n",
-                size, bench::median(e) / bench::median(r), *std::min_element(ratios.begin(), ratios.end()),
-                *std::max_element(ratios.begin(), ratios.end()), bench::median(e), bench::median(r));
+    bench::printRatio(reporter, "engine/" + n, "reference/" + n, n + "^2");
     const auto& e1 = reporter.wall["engine/" + n];
     const auto& e2 = reporter.wall["engine-2threads/" + n + "/real_time"];
     if (!e1.empty() && !e2.empty())

@@ -18,6 +18,14 @@ expect speedup-no-build 2 \
   "$speedup" "$WORK/none"
 expect speedup-size 2 "^speedup-rounds: size must be 64, 128 or 256, got '100'$" -- "$speedup" "$build" 100
 expect speedup-rounds-zero 2 "^speedup-rounds: rounds must be a positive integer, got '0'$" -- "$speedup" "$build" 64 0
+load=$source_dir/scripts/threads-under-load.sh frames=$source_dir/scripts/demo-frame-times.sh
+expect load-no-build 2 "^threads-under-load: no $WORK/none/demos/particle-lab \(build the particle-lab target first\)$" -- \
+  "$load" "$WORK/none"
+expect load-rounds 2 "^threads-under-load: rounds must be a positive integer, got '0'$" -- "$load" "$build" 0
+expect load-scale 2 "^threads-under-load: step-scale must be a number > 0, got '-1'$" -- "$load" "$build" 1 -1
+expect frames-load 2 "^demo-frame-times: --load takes a count >= 0, got 'x'$" -- "$frames" --load x
+expect frames-threads 2 "^demo-frame-times: --threads takes a count >= 1, got '0'$" -- "$frames" --threads 0
+expect frames-option 2 "^demo-frame-times: unknown option '--fast' \(--load N, --threads N, --key K\)$" -- "$frames" --fast
 expect callgrind-no-build 2 \
   "^callgrind-step: no $WORK/none/tests/bench_step \(build the bench_step target first\)$" -- "$callgrind" "$WORK/none"
 
@@ -40,6 +48,13 @@ outputs ratio-one-run "$ratio" "$build" 1 -- \
 outputs speedup-one-round "$speedup" "$build" 64 1 -- \
   "^round 1: 1 thread [0-9.]+ us, 2 threads [0-9.]+ us \(wall-time medians of 5\), speed-up [0-9.]+$" \
   "^speed-up 1 -> 2 threads 64\^2 over 1 rounds: median [0-9.]+, range [0-9.]+-[0-9.]+$"
+# One round of every case and load at a hundredth of the steps: the script's table, and its
+# busy processes gone afterwards.
+outputs load-one-round "$load" "$build" 1 0.01 -- \
+  "^case +busy +1 thread +--threads 2 +default +>1 used +2/1 range +def/1 range +load average$" \
+  "^cloth 64\^2 rk4 +0 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ [0-9.]+$" \
+  "^stiff 64\^2 xpbd 1/60 +2 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ [0-9.]+$"
+if pgrep -f '^yes threads-under-load$' >/dev/null; then fail "load-one-round: its busy processes are still running"; fi
 if command -v valgrind >/dev/null; then
   outputs callgrind-counts "$callgrind" "$build" -- \
     "^chain80-dt10ms/dopri5: 1200 timed steps, [0-9]+ instructions per step$" "^dopri5 / rk4 = [0-9]+\.[0-9]{3}$"

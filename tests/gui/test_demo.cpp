@@ -213,12 +213,14 @@ TEST(DemoCommandLine, BadSceneOptionsGetParticleLabsMessages) {
 TEST(DemoCommandLine, BadCompareValuesAreNamedInOneLine) {
   const std::string dir = outputDirectory("BadCompare");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"rk4:x,euler", "--compare: dt in 'rk4:x' must be a finite number > 0"},
-      {"rk4:0.01s,euler", "--compare: dt in 'rk4:0.01s' must be a finite number > 0"},
+      {"rk4:x,euler", "--compare: dt in 'rk4:x': expected a decimal number, got 'x'"},
+      {"rk4:0.01s,euler", "--compare: dt in 'rk4:0.01s': expected a decimal number, got '0.01s'"},
+      {"rk4:0x1p-8,euler", "--compare: dt in 'rk4:0x1p-8': expected a decimal number, got '0x1p-8'"},
+      {"rk4:1e-3000,euler", "--compare: dt in 'rk4:1e-3000': '1e-3000' is too small for a double: it would read as 0"},
       {"rk4:-0.01,euler", "--compare: dt in 'rk4:-0.01' must be a finite number > 0"},
       {"rk4:inf,euler", "--compare: dt in 'rk4:inf' must be a finite number > 0"},
       {"rk4:nan,euler", "--compare: dt in 'rk4:nan' must be a finite number > 0"},
-      {"rk4:,euler", "--compare: dt in 'rk4:' must be a finite number > 0"},
+      {"rk4:,euler", "--compare: dt in 'rk4:': expected a decimal number, got ''"},
       {"euler,rk5", "--compare: unknown integrator 'rk5' (valid: euler, "},
       {":0.01,euler", "--compare: unknown integrator '' (valid: euler, "},
       {"euler", "--compare: "},
@@ -328,9 +330,12 @@ TEST(DemoKeys, KeyZeroRunsTheStiffClothWithXpbdAt60HzWithinItsStrainBound) {
     // Its own hint: what holds its springs, not the soft cloth's nail hint.
     const std::string top = std::regex_replace(log.overlay("top-bar")->text, std::regex(" \\| "), " ");
     if (top.find("stepping budget") == std::string::npos) {  // a step the machine held up shows no hint
-      EXPECT_NE(top.find("solves each column with its rail"), std::string::npos) << top;
+      EXPECT_NE(top.find("xpbd at 60 Hz holds every spring within 0.1 %"), std::string::npos) << top;
     }
     EXPECT_EQ(top.find("onto the nail"), std::string::npos) << top;
+    // The HUD's threads: the last step's and the most (--threads 1).
+    ASSERT_NE(log.overlay("hud"), nullptr);
+    EXPECT_NE(log.overlay("hud")->text.find("threads 1/1"), std::string::npos) << log.overlay("hud")->text;
     EXPECT_LE(worstGridStrain(pane, 64), 0.003);
     EXPECT_GT(worstGridStrain(pane, 64), 1e-4);  // loaded: the bound is not met by standing still
   }

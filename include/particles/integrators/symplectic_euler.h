@@ -13,8 +13,6 @@ class SymplecticEulerIntegrator : public Integrator {
  public:
   const char* name() const override { return "symplectic-euler"; }
   StepStats step(ParticleSystem& system, double dt) override;
-  // x ← x + h v ends the step: constraint drift is corrected as SHAKE does.
-  DriftCorrection driftCorrection() const override { return DriftCorrection::Shake; }
 
  private:
   Eigen::VectorXd a_;

@@ -9,6 +9,7 @@
 #include "particles/forces/force_batch.h"
 #include "particles/integrator.h"
 #include "particles/xpbd/angle.h"
+#include "particles/xpbd/area.h"
 #include "particles/xpbd/attachment.h"
 #include "particles/xpbd/distance_blocks.h"
 #include "particles/xpbd/hanging_lines.h"
@@ -28,7 +29,8 @@ class MouseSpringForce;
 //     XpbdSettings::lines first the lines hanging from held particles, each
 //     solved directly, xpbd/hanging_lines.h; then xpbd/distance.h, in
 //     colour order, block by block of particles, xpbd/distance_blocks.h), the
-//     angle springs as compliant angle constraints (xpbd/angle.h), the mouse
+//     angle springs as compliant angle constraints (xpbd/angle.h), the faces
+//     of a face-area force as one-sided area constraints (xpbd/area.h), the mouse
 //     joint as a compliant attachment to its target (xpbd/attachment.h), then
 //     the rods, wires and lines as hard constraints through their C and J kernels
 //     (xpbd/constraint_projection.h), the multipliers λ starting at 0;
@@ -37,7 +39,7 @@ class MouseSpringForce;
 //     along each particle's path from xⁿ), so that a contact's impulse enters
 //     the next substep's prediction and constraints.
 // The position error is first order in h. A force without a position form in
-// the table in xpbd.cpp (fields, drag, wind, a user's own force type) is
+// the table in xpbd.cpp (fields, drag, wind, pressure, a user's own force type) is
 // applied in the prediction, explicitly, once per substep. Torn springs and
 // angle springs have no form at all.
 class XpbdIntegrator : public Integrator {
@@ -56,6 +58,7 @@ class XpbdIntegrator : public Integrator {
   struct Forms {
     std::vector<CompliantDistance> distances;
     std::vector<CompliantAngle> angles;
+    std::vector<CompliantArea> areas;        // one per face of each face-area force
     // Mouse joints, read at each projection (the target moves between steps).
     std::vector<const MouseSpringForce*> attachments;
     std::vector<const Force*> applied;  // applied as forces in the prediction
@@ -80,6 +83,7 @@ class XpbdIntegrator : public Integrator {
   HangingLines lines_;               // with XpbdSettings::lines
   DistanceBlocks distances_;         // the springs on no line
   std::vector<double> angleLambda_;
+  std::vector<double> areaLambda_;
   std::vector<Eigen::Vector2d> attachmentLambda_;
   std::vector<Eigen::Vector2d> blocks_;
   ForceBatches applied_;             // forms_.applied as batches

@@ -1,0 +1,275 @@
+// How many threads a system's steps run on (particles/thread_use.h): more
+// threads while their steps are faster, one thread while a slow thread
+// makes them slower, more again once it is gone; with the same bits as one
+// thread throughout. The step times come from a simulated clock (a step on
+// two threads takes what a slow thread would make it take), so nothing here
+// depends on the machine's speed or load.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "bench/cloth_grid.h"
+#include "particles/integrators/rk4.h"
+#include "particles/particle_system.h"
+#include "particles/thread_use.h"
+#include "particles/threads.h"
+
+namespace {
+
+using particles::ThreadUse;
+
+// Step times, seconds: one thread 1 ms; two threads 0.55 ms, or 3 ms while
+// one of them is slowed (descheduled in favour of another program). A
+// hand-off between the threads (an empty region) takes 20 µs, or 2 ms while
+// one is slowed, unless the test makes it quick whatever the threads.
+struct SimulatedMachine {
+  bool slowThread = false;
+  bool quickHandoff = false;
+  double now = 100.0;
+  int handoffs = 0;
+  double stepTime(int threads) const { return threads == 1 ? 1e-3 : slowThread ? 3e-3 : 0.55e-3; }
+  double handoffTime() const { return slowThread && !quickHandoff ? 2e-3 : 2e-5; }
+};
+
+// Steps `count` times through use.begin()/end() on `machine`; the thread count of each step.
+std::vector<int> run(ThreadUse& use, SimulatedMachine& machine, int most, int count) {
+  std::vector<int> counts;
+  for (int k = 0; k < count; ++k) {
+    const int threads = use.begin(most);
+    machine.now += machine.stepTime(threads);
+    use.end();
+    counts.push_back(threads);
+  }
+  return counts;
+}
+
+int stepsOn(const std::vector<int>& counts, int threads, std::size_t from = 0) {
+  int n = 0;
+  for (std::size_t k = from; k < counts.size(); ++k) n += counts[k] == threads;
+  return n;
+}
+
+ThreadUse simulated(SimulatedMachine& machine) {
+  ThreadUse use;
+  use.clock = [&machine] { return machine.now; };
+  use.handoff = [&machine](int) {
+    ++machine.handoffs;
+    machine.now += machine.handoffTime();
+    return machine.handoffTime();
+  };
+  return use;
+}
+
+}  // namespace
+
+// Quiet: after `history` steps on one thread a probe finds two faster and
+// they stay. A slow thread: within a few steps back on one, which then
+// tries two rarely, each try ending at its first hand-off, at a total cost
+// within the probe share. Quiet again: two threads return within the
+// longest retry.
+TEST(ThreadUse, FallsBackWhileAThreadIsSlowAndReturnsWhenItIsNot) {
+  SimulatedMachine machine;
+  ThreadUse use = simulated(machine);
+  const particles::ThreadUseSettings s = use.settings;
+
+  const std::vector<int> quiet = run(use, machine, 2, 200);
+  for (int k = 0; k < s.history; ++k) EXPECT_EQ(quiet[k], 1) << "step " << k;
+  EXPECT_EQ(quiet[s.history], 2) << "the first probe";
+  EXPECT_EQ(stepsOn(quiet, 2, s.history), 200 - s.history) << "two threads kept while faster";
+
+  machine.slowThread = true;
+  const double slowStart = machine.now;
+  const int handoffsBefore = machine.handoffs;
+  const std::vector<int> slow = run(use, machine, 2, 20000);  // 20 s on one thread
+  int firstOnOne = 0;
+  while (slow[firstOnOne] == 2) ++firstOnOne;
+  EXPECT_LE(firstOnOne, s.history) << "the slowdown is noticed within the history";
+  EXPECT_EQ(stepsOn(slow, 2, firstOnOne), 0) << "no step on two threads: each try ends at its hand-off";
+  const int tries = machine.handoffs - handoffsBefore;
+  EXPECT_GT(tries, 3) << "one thread tries two now and then";
+  EXPECT_LE(tries * machine.handoffTime(), s.probeShare * (machine.now - slowStart)) << tries << " tries";
+
+  machine.slowThread = false;
+  const std::vector<int> after = run(use, machine, 2, 20000);
+  int back = 0;
+  while (back < static_cast<int>(after.size()) && after[back] == 1) ++back;
+  ASSERT_LT(back, static_cast<int>(after.size())) << "two threads came back";
+  EXPECT_LE(back * machine.stepTime(1), s.longestRetry + 0.1) << "within the longest retry";
+  EXPECT_EQ(stepsOn(after, 2, static_cast<std::size_t>(back)), static_cast<int>(after.size()) - back);
+}
+
+// A slow thread behind a quick hand-off: probes of two threads run their
+// steps and lose; the time they lose stays within the probe share.
+TEST(ThreadUse, ProbesThatLoseCostAtMostTheProbeShare) {
+  SimulatedMachine machine;
+  machine.slowThread = true;
+  machine.quickHandoff = true;
+  ThreadUse use = simulated(machine);
+  const double start = machine.now;
+  const std::vector<int> counts = run(use, machine, 2, 20000);
+  const int probes = stepsOn(counts, 2);
+  EXPECT_GT(probes, 3 * use.settings.probeSteps);
+  const double lost = probes * (machine.stepTime(2) - machine.stepTime(1));
+  EXPECT_LE(lost, use.settings.probeShare * (machine.now - start)) << probes << " probe steps";
+}
+
+// A probe step that takes `abandon` times the present median ends the probe at once.
+TEST(ThreadUse, AHopelessProbeEndsAfterOneStep) {
+  SimulatedMachine machine;
+  machine.slowThread = true;
+  machine.quickHandoff = true;
+  ThreadUse use = simulated(machine);
+  use.settings.abandon = 2.0;  // a 3 ms step against 1 ms
+  const std::vector<int> counts = run(use, machine, 2, use.settings.history + 3);
+  EXPECT_EQ(counts[use.settings.history], 2);
+  EXPECT_EQ(counts[use.settings.history + 1], 1);
+  EXPECT_EQ(counts[use.settings.history + 2], 1);
+}
+
+// A step on two threads that entered no parallel region (a system too small
+// for any): back on one thread, with no further probe (nor hand-off) until
+// the structure changes.
+TEST(ThreadUse, AStepWithNothingToShareEndsTheProbesUntilTheStructureChanges) {
+  SimulatedMachine machine;
+  ThreadUse use = simulated(machine);
+  std::vector<int> counts;
+  auto step = [&](std::uint64_t structure, bool parallel) {
+    const int threads = use.begin(2, structure);
+    machine.now += machine.stepTime(1);
+    use.end(parallel && threads > 1);
+    counts.push_back(threads);
+  };
+  for (int k = 0; k < 500; ++k) step(7, false);
+  EXPECT_EQ(stepsOn(counts, 2), 1) << "the first probe's step, then none";
+  EXPECT_EQ(machine.handoffs, 1);
+  counts.clear();
+  for (int k = 0; k < 20; ++k) step(8, true);  // a new structure with work to share
+  EXPECT_GE(stepsOn(counts, 2), 1) << "probed again";
+  EXPECT_EQ(machine.handoffs, 2);
+}
+
+// Not adaptive: every step on the most threads. One thread at most: one, and no probe.
+TEST(ThreadUse, FixedOrOneThreadIsNeverProbed) {
+  SimulatedMachine machine;
+  machine.slowThread = true;
+  ThreadUse fixed = simulated(machine);
+  fixed.settings.adaptive = false;
+  EXPECT_EQ(stepsOn(run(fixed, machine, 3, 50), 3), 50);
+  ThreadUse one = simulated(machine);
+  EXPECT_EQ(stepsOn(run(one, machine, 1, 50), 1), 50);
+}
+
+// A new most count starts over: on one thread, probing the new count.
+TEST(ThreadUse, ANewMostCountStartsOver) {
+  SimulatedMachine machine;
+  ThreadUse use = simulated(machine);
+  run(use, machine, 2, 50);
+  const std::vector<int> counts = run(use, machine, 4, 10);
+  EXPECT_EQ(counts.front(), 1);
+  EXPECT_EQ(counts[use.settings.history], 4);
+}
+
+// The step after one on more threads releases the idle threads, and so does
+// the step after a try that ended at its hand-off (which started them); no other.
+TEST(ThreadUse, AStepOnOneThreadAfterMoreOrAHandoffReleasesTheIdleOnes) {
+  for (const bool quickHandoff : {true, false}) {
+    SCOPED_TRACE(quickHandoff ? "probes run their steps" : "tries end at the hand-off");
+    SimulatedMachine machine;
+    machine.slowThread = true;
+    machine.quickHandoff = quickHandoff;
+    ThreadUse use = simulated(machine);
+    int releases = 0, expected = 0, previous = 1;
+    for (int k = 0; k < 5000; ++k) {
+      const int handoffs = machine.handoffs;
+      const int threads = use.begin(2);
+      const bool lostAtHandoff = machine.handoffs > handoffs && threads == 1;
+      releases += use.releasesThreads();
+      expected += (previous > 1 && threads == 1) || lostAtHandoff;
+      EXPECT_EQ(use.releasesThreads(), (previous > 1 && threads == 1) || lostAtHandoff) << "step " << k;
+      machine.now += machine.stepTime(threads);
+      use.end();
+      previous = threads;
+    }
+    EXPECT_GT(releases, 3);
+    EXPECT_EQ(releases, expected);
+  }
+}
+
+TEST(ThreadUse, SettingsOutOfRangeAreRefusedByName) {
+  auto message = [](const std::function<void(particles::ThreadUseSettings&)>& change) {
+    particles::ThreadUseSettings s;
+    change(s);
+    try {
+      s.validate();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message([](auto&) {}), "accepted");
+  EXPECT_EQ(message([](auto& s) { s.gain = 1.5; }), "thread use gain must be in (0, 1], got 1.5");
+  EXPECT_EQ(message([](auto& s) { s.history = 0; }), "thread use history must be >= 1, got 0");
+  EXPECT_EQ(message([](auto& s) { s.probeSteps = 0; }), "thread use probe steps must be >= 1, got 0");
+  EXPECT_EQ(message([](auto& s) { s.abandon = 1.0; }), "thread use abandon must be > 1, got 1");
+  EXPECT_EQ(message([](auto& s) { s.handoff = -1.0; }), "thread use handoff must be > 0, got -1");
+  EXPECT_EQ(message([](auto& s) { s.probeShare = 0.0; }), "thread use probe share must be in (0, 1], got 0");
+  EXPECT_EQ(message([](auto& s) { s.longestRetry = 0.01; }),
+            "thread use longest retry must be >= the quickest retry (0.05 s), got 0.01");
+}
+
+// Through ParticleSystem::step: a cloth large enough for the threaded paths
+// steps on two threads, falls back to one while a simulated slow thread
+// makes two slower, and returns to two; its states are the one-thread run's
+// bit for bit at every step, and each step reports the threads it ran on.
+TEST(ThreadUse, AStepsThreadsFollowASlowThreadWithTheOneThreadBits) {
+  const int steps = 160;
+  const double dt = 1e-3;
+  particles::Rk4Integrator rk4;
+  particles::setThreadCount(1);
+  particles::ParticleSystem alone = bench::clothGrid(48, 48, 0.05);
+  std::vector<Eigen::VectorXd> states;
+  for (int k = 0; k < steps; ++k) {
+    EXPECT_EQ(alone.step(rk4, dt).threads, 1);
+    Eigen::VectorXd state(2 * alone.positions().size());
+    state << alone.positions(), alone.velocities();
+    states.push_back(state);
+  }
+
+  particles::setThreadCount(2);
+  particles::ParticleSystem shared = bench::clothGrid(48, 48, 0.05);
+  SimulatedMachine machine;
+  // The step's clock, read at its start and its end: the end adds the time
+  // the step takes on the simulated machine on the threads it ran on.
+  bool atEnd = false;
+  shared.threadUse().clock = [&] {
+    if (atEnd) machine.now += machine.stepTime(particles::threadCount());
+    atEnd = !atEnd;
+    return machine.now;
+  };
+  shared.threadUse().handoff = [&](int) { return machine.handoffTime(); };
+  machine.quickHandoff = true;  // the probes run their steps (on two threads, for real)
+  // Probes of two threads every 20 one-thread steps, one step long while a thread is slow.
+  shared.threadUse().settings.quickestRetry = 0.02;
+  shared.threadUse().settings.longestRetry = 0.02;
+  shared.threadUse().settings.abandon = 2.5;
+  std::vector<int> used;
+  for (int k = 0; k < steps; ++k) {
+    machine.slowThread = k >= 40 && k < 100;
+    used.push_back(shared.step(rk4, dt).threads);
+    Eigen::VectorXd state(2 * shared.positions().size());
+    state << shared.positions(), shared.velocities();
+    for (Eigen::Index e = 0; e < state.size(); ++e)
+      ASSERT_EQ(state[e], states[static_cast<std::size_t>(k)][e]) << "step " << k << " entry " << e;
+  }
+  particles::setThreadCount(1);
+  auto range = [&](int from, int to, int threads) {
+    int n = 0;
+    for (int k = from; k < to; ++k) n += used[static_cast<std::size_t>(k)] == threads;
+    return n;
+  };
+  EXPECT_EQ(range(10, 40, 2), 30) << "quiet: two threads";
+  EXPECT_GE(range(50, 100, 1), 40) << "a slow thread: one thread but for probes";
+  EXPECT_GE(range(130, 160, 2), 30) << "quiet again: two threads";
+}
