@@ -187,10 +187,6 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
   return c;
 }
 
-double referenceBytes(double samples, std::size_t particles) {
-  return samples * (48.0 * static_cast<double>(particles) + 104.0);
-}
-
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
                         double tolerance, const ClosedForm& closedForm, const std::atomic<bool>* cancel,
                         bool stopAtContact) {
@@ -296,7 +292,7 @@ void contactReference(const std::function<scenes::Scene()>& build, const SurveyS
   settings.interval = interval;
   settings.threshold = s.targetError / 10.0;
   settings.maxSteps = s.referenceMaxSteps > 0 ? s.referenceMaxSteps : 16 * s.maxSteps;
-  settings.maxSamples = kMaxReferenceSamples;
+  settings.maxBytes = kMaxReferenceBytes;
   settings.failure = s.failure;
   settings.cancel = s.cancel;
   SelfConvergence converged = selfConvergedReference(build, s.horizon, settings);

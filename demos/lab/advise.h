@@ -25,15 +25,6 @@ namespace lab {
 // --tolerance).
 inline constexpr double kMinReferenceTolerance = 1e-13;
 
-// The reference holds T / interval samples, each of them the positions,
-// velocities and accelerations of every particle (three Eigen vectors of 2n
-// doubles, each with its handle and the allocator's header: 16 + 16n + 16
-// bytes) and the energy: 48 n + 104 bytes a sample. A survey whose reference
-// would take more than kMaxReferenceBytes is refused before it starts (a
-// limit on samples alone let a one-particle scene reach 3.9 GB: 160 bytes a
-// sample, of which 16 are the particle's position).
-inline constexpr double kMaxReferenceBytes = 1e9;
-double referenceBytes(double samples, std::size_t particles);
 
 struct SurveySettings {
   double horizon = 10.0;            // T, simulated seconds

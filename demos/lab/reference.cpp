@@ -13,6 +13,11 @@
 
 namespace lab {
 
+double referenceBytes(double samples, std::size_t particles) {
+  return samples * (48.0 * static_cast<double>(particles) + 104.0);
+}
+
+
 namespace {
 
 // The first-order form y = (x, v), ẏ = (v, a(x, v)) that odeint integrates.

@@ -58,14 +58,14 @@ double fastest(const Trajectory& run) {
 
 // The converged run as the reference: sampled every `stride` steps if no particle moves more
 // than the threshold between those samples, else run again with samples that close (halving
-// the interval; at most every step, and at most settings.maxSamples samples × particles).
+// the interval; at most every step, and at most settings.maxBytes of samples).
 void resample(const std::function<scenes::Scene()>& build, double horizon, const SelfConvergenceSettings& s,
               long stride, Trajectory& run, SelfConvergence& out) {
   const double speed = fastest(run);
-  const double particles = run.x.empty() ? 1.0 : std::max<double>(1.0, run.x[0].size() / 2);
+  const std::size_t particles = run.x.empty() ? 1 : std::max<std::size_t>(1, run.x[0].size() / 2);
   long fine = stride;
   while (fine > 1 && fine * out.dt * speed > s.threshold &&
-         horizon / (0.5 * fine * out.dt) * particles <= s.maxSamples)
+         referenceBytes(horizon / (0.5 * fine * out.dt), particles) <= s.maxBytes)
     fine = (fine + 1) / 2;
   if (fine < stride) {
     std::optional<Trajectory> again = steppedTrajectory(build, out.scheme, out.dt, fine, horizon, s.failure, s.cancel);
@@ -73,6 +73,22 @@ void resample(const std::function<scenes::Scene()>& build, double horizon, const
   }
   out.sampleInterval = run.interval;
   out.trajectory = std::move(run);
+}
+
+// Why halving further is hopeless, or "" while it is not: at the order the
+// last three differences show, they would reach the threshold only far below
+// the smallest step allowed (or they do not shrink at all).
+std::string hopelessWhy(const std::vector<Halving>& halvings, double threshold, double finest) {
+  const double order = recentOrder(halvings);
+  if (std::isnan(order)) return "";
+  const Halving& last = halvings.back();
+  // dt at which the differences would reach the threshold at that order.
+  const double needed = order > 0.1 ? last.dt * std::pow(threshold / last.difference, 1.0 / order) : 0.0;
+  if (needed >= finest / 16.0) return "";
+  return "at the order its last three differences show, " + output::formatFixed(order, 2) +
+         (order > 0.1 ? ", they would reach it only near dt " + output::formatGeneral(needed, 2)
+                      : ", they do not shrink") +
+         ", far below the smallest step allowed";
 }
 
 // Halves one scheme's step until two successive runs agree within the
@@ -110,15 +126,7 @@ SelfConvergence halveUntilAgreed(const std::function<scenes::Scene()>& build, do
       return out;
     }
     previous = std::move(run);
-    const double order = recentOrder(out.halvings);
-    if (std::isnan(order)) continue;
-    // dt at which the differences would reach the threshold at that order.
-    const double needed = order > 0.1 ? halving.dt * std::pow(s.threshold / halving.difference, 1.0 / order) : 0.0;
-    if (needed < finest / 16.0)
-      hopeless = "at the order its last three differences show, " + output::formatFixed(order, 2) +
-                 (order > 0.1 ? ", they would reach it only near dt " + output::formatGeneral(needed, 2)
-                              : ", they do not shrink") +
-                 ", far below the smallest step allowed";
+    hopeless = hopelessWhy(out.halvings, s.threshold, finest);
   }
   const Halving* last = out.halvings.empty() ? nullptr : &out.halvings.back();
   if (last && previous) {

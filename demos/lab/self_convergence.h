@@ -43,8 +43,8 @@ struct SelfConvergenceSettings {
   // The reference's samples are spread so that no particle moves more than
   // `threshold` between two of them (at a contact the interpolant between
   // samples is then off by at most about half that), unless the samples
-  // (times the particles) would exceed this.
-  double maxSamples = 2.5e7;
+  // would take more memory than this (referenceBytes).
+  double maxBytes = kMaxReferenceBytes;
   FailureCriterion failure;
   const std::atomic<bool>* cancel = nullptr;
 };
