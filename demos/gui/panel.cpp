@@ -149,7 +149,8 @@ void App::drawPresetCombo() {
       SceneChoice changed = scene_;
       changed.preset = preset.name;
       try {
-        loadScene(changed, true);
+        const bool keepIntegrators = true;
+        loadScene(changed, keepIntegrators);
         setStatus(std::string("preset: ") + preset.name);
       } catch (const std::exception& e) {
         setStatus(e.what());
@@ -184,7 +185,8 @@ void App::drawSceneParams() {
       SceneChoice changed = scene_;
       changed.params[spec.name] = buffer;
       try {
-        loadScene(changed, true);
+        const bool keepIntegrators = true;
+        loadScene(changed, keepIntegrators);
         setStatus("rebuilt with " + spec.name + " = " + buffer);
       } catch (const std::exception& e) {
         setStatus(e.what());
