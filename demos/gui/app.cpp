@@ -291,6 +291,7 @@ void App::draw() {
   ImGui_ImplGLUT_NewFrame();  // also ImGui::NewFrame() in 1.86
   overlays_.clear();
   widgets_.clear();
+  backdrops_.clear();
   // Between NewFrame and Render nothing may leave the frame open: an error
   // thrown by a panel closes the windows it left open and ends the frame
   // before it reaches the top bar (an open frame aborts the next NewFrame,
@@ -309,10 +310,15 @@ void App::draw() {
   }
   closePopups_ = false;
   ImGui::Render();
+  for (const Backdrop& b : backdrops_) renderer_.clearRect(b.rect, windowHeight_, b.colour);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!timed) return;
   glFinish();
   overlayDrawMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sceneDone).count();
+  if (frame_ > 0 && overlayDrawSamples_.size() < 100000) {
+    sceneDrawSamples_.push_back(sceneDrawMs_);
+    overlayDrawSamples_.push_back(overlayDrawMs_);
+  }
 }
 
 // A numbered PNG name in a directory: DIR/stem-000042.png.
@@ -392,6 +398,8 @@ bool App::writeStateLog() const {
   extras.advice.applied = adviceApplied_;
   extras.sceneDrawMs = sceneDrawMs_;
   extras.overlayDrawMs = overlayDrawMs_;
+  extras.sceneDrawSamples = sceneDrawSamples_;
+  extras.overlayDrawSamples = overlayDrawSamples_;
   extras.panelShown = showPanel_;
   extras.frameMs = frameMs_;
   extras.frameSimulationMs = frameSimulationMs_;
