@@ -257,10 +257,8 @@ void App::advance() {
   if (panes_.size() == 1 && panes_.front()->divergedAt()) paused_ = true;
 }
 
-void App::draw() {
-  const auto start = std::chrono::steady_clock::now();
-  renderer_.clearWindow(windowWidth_, windowHeight_, palette::paneBorder);
-  const std::vector<ViewTransform> views = paneViews();
+void App::drawPanes(const std::vector<ViewTransform>& views) {
+  paneDrawings_.resize(panes_.size());
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     GhostFrame ghost;
     // Running with a dt longer than a frame, the drawing is between steps
@@ -272,9 +270,15 @@ void App::draw() {
     const bool ghostShown = exact_ && !disturbedAt_;
     if (ghostShown) ghost = exact_(drawnTime);
     renderer_.drawPane(pane, views[k], windowHeight_, options, ghostShown ? &ghost : nullptr);
-    paneDrawings_.resize(panes_.size());
     paneDrawings_[k] = renderer_.drawing();
   }
+}
+
+void App::draw() {
+  const auto start = std::chrono::steady_clock::now();
+  renderer_.clearWindow(windowWidth_, windowHeight_, palette::paneBorder);
+  const std::vector<ViewTransform> views = paneViews();
+  drawPanes(views);
   if (build_.active()) drawBuildOverlay(views.front());
   // The drawing is timed on one frame in drawTimingPeriod, which waits for
   // the GL to finish so that the time includes its work, not just its

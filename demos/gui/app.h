@@ -108,6 +108,7 @@ class App {
   void playScript();
   void advance();
   void draw();
+  void drawPanes(const std::vector<ViewTransform>& views);  // each pane's scene, ghost and drawing record
   void drawTopBar();
   std::string sceneSummary() const;   // the title's summary of the first pane's scene
   int particlesOutOfView() const;     // the first pane's particles outside its view
