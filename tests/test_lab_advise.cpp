@@ -20,6 +20,17 @@
 
 using namespace lab;
 
+// A survey's horizon T and error budget E (the abort error too), and the
+// integrators it tries (all of them when none are named).
+static SurveySettings surveyAt(double horizon, double error, std::vector<std::string> integrators = {}) {
+  SurveySettings settings;
+  settings.horizon = horizon;
+  settings.targetError = settings.abortError = error;
+  if (!integrators.empty()) settings.integrators = std::move(integrators);
+  return settings;
+}
+
+
 namespace {
 
 // Max over the run's steps of the bob's distance from the closed form.
@@ -94,9 +105,7 @@ TEST(OdeintReference, SlowestPeriodIsThePendulumsPeriod) {
 
 TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
   const double error = 1e-4, horizon = 32.0;
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
+  SurveySettings settings = surveyAt(horizon, error);
   settings.maxSteps = 20000;
   settings.repeats = 3;
   const auto build = [] { return scenes::buildScene("oscillator"); };
@@ -128,10 +137,7 @@ TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
 // the pick is rerun from its options with the same energy error.
 TEST(Advise, EnergyAndDriftBudgetsAreMetByEveryPick) {
   const auto build = [] { return scenes::buildScene("pendulum"); };
-  SurveySettings settings;
-  settings.horizon = 20.0;
-  settings.targetError = settings.abortError = 1e-2;
-  settings.integrators = {"rk4", "verlet", "midpoint"};
+  SurveySettings settings = surveyAt(20.0, 1e-2, {"rk4", "verlet", "midpoint"});
   settings.repeats = 1;
   settings.certifyMembers = 0;
   const double energy = 1e-4, drift = 1e-5;
@@ -164,10 +170,7 @@ TEST(Advise, APrintedPickRerunFromItsOptionsReproducesItsError) {
   // would and rerun: the closed-form error of the rerun is within 10% of the
   // error the survey measured for the pick against its reference.
   const double error = 1e-4, horizon = 16.0;
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
-  settings.integrators = {"dopri5", "rk4", "verlet"};
+  SurveySettings settings = surveyAt(horizon, error, {"dopri5", "rk4", "verlet"});
   settings.maxSteps = 20000;
   settings.repeats = 1;
   const auto build = [] { return scenes::buildScene("oscillator"); };
@@ -198,10 +201,7 @@ TEST(Advise, PastTheChaoticHorizonSaysSoAndNamesTheHorizonItCanCertify) {
   // The rod chain's two references part by more than E/10 = 1e-3 within 10 s:
   // no integrator is scanned, and the horizon named as certifiable is
   // certified when asked for (the references agree within E/10 over it).
-  SurveySettings settings;
-  settings.horizon = 10.0;
-  settings.targetError = settings.abortError = 1e-2;
-  settings.integrators = {"rk4"};
+  SurveySettings settings = surveyAt(10.0, 1e-2, {"rk4"});
   settings.repeats = 1;
   const auto build = [] { return scenes::buildScene("rod-chain"); };
   const Survey survey = surveyScene(build, settings);
@@ -220,10 +220,7 @@ TEST(Advise, AReferenceThatMeetsAContactNamesItAndWithoutContactReferencesCertif
   // The hair's discs meet one another early (it has no walls); odeint models
   // no contact, so with contact references off advise names the contact (the
   // discs that touch, and when) and a shorter horizon.
-  SurveySettings settings;
-  settings.horizon = 0.2;
-  settings.targetError = settings.abortError = 1e-3;
-  settings.integrators = {"rk4"};
+  SurveySettings settings = surveyAt(0.2, 1e-3, {"rk4"});
   settings.repeats = 1;
   settings.contactReference = false;
   const Survey survey = surveyScene([] { return scenes::buildScene("hair"); }, settings);
@@ -287,10 +284,7 @@ void expectContactAdvice(const std::function<scenes::Scene()>& build, SurveySett
 }
 
 SurveySettings contactSettings(double horizon, double error) {
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
-  settings.integrators = {"symplectic-euler", "rk4", "verlet"};
+  SurveySettings settings = surveyAt(horizon, error, {"symplectic-euler", "rk4", "verlet"});
   settings.repeats = 1;
   settings.certifyMembers = 3;
   settings.maxSteps = 20000;
@@ -313,10 +307,7 @@ TEST(Advise, DiscsInAFunnelGetAPickAFinerRunConfirms) {
 }
 
 TEST(Advise, NothingWithinAnUnreachableBudget) {
-  SurveySettings settings;
-  settings.horizon = 10.0;
-  settings.targetError = settings.abortError = 1e-6;
-  settings.integrators = {"euler"};
+  SurveySettings settings = surveyAt(10.0, 1e-6, {"euler"});
   settings.maxSteps = 2000;
   settings.repeats = 1;
   const auto build = [] { return scenes::buildScene("oscillator"); };
@@ -338,9 +329,7 @@ TEST(Advise, RejectsBadSettingsNamingTheField) {
 }
 
 TEST(Advise, ACancelledSurveyIsIncompleteAndNamesNoPick) {
-  SurveySettings settings;
-  settings.horizon = 5.0;
-  settings.targetError = settings.abortError = 1e-2;
+  SurveySettings settings = surveyAt(5.0, 1e-2);
   settings.repeats = 1;
   settings.certifyMembers = 2;
   const auto build = [] { return scenes::buildScene("pendulum"); };
@@ -373,9 +362,7 @@ TEST(Advise, ACancelledSurveyIsIncompleteAndNamesNoPick) {
 TEST(Advise, SafeBoundaryIsTheLabsScanOverTheEnsemble) {
   // The 6-chain over 5 s: fixed-step schemes fail at the top of the grid.
   const auto build = [] { return buildLabScene("test-chain", {{"cl", "6"}}); };
-  SurveySettings settings;
-  settings.horizon = 5.0;
-  settings.targetError = settings.abortError = 1e-3;
+  SurveySettings settings = surveyAt(5.0, 1e-3);
   settings.maxSteps = 1000;
   settings.repeats = 1;
   settings.integrators = {"symplectic-euler", "midpoint", "rk4"};
@@ -408,9 +395,7 @@ TEST(Advise, SafeBoundaryIsTheLabsScanOverTheEnsemble) {
 TEST(Advise, APickIsMovedBelowTheFailuresInItsMarginAndHoldsBetweenItsGridPoints) {
   const double horizon = 50.0, error = 0.5;
   const auto build = [] { return buildLabScene("test-chain", {{"cl", "24"}}); };
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
+  SurveySettings settings = surveyAt(horizon, error);
   settings.repeats = 1;
   settings.integrators = {"rk4"};
   const Survey survey = surveyScene(build, settings);
@@ -440,10 +425,7 @@ TEST(Advise, APickIsMovedBelowTheFailuresInItsMarginAndHoldsBetweenItsGridPoints
 TEST(Advise, AFixedStepPicksMarginKeepsTheErrorWithinE) {
   const double error = 1e-3, horizon = 20.0;
   const auto build = [] { return scenes::buildScene("pendulum"); };
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
-  settings.integrators = {"midpoint", "rk4", "verlet"};
+  SurveySettings settings = surveyAt(horizon, error, {"midpoint", "rk4", "verlet"});
   settings.repeats = 1;
   settings.certifyMembers = 2;
   settings.certifyAll = true;
