@@ -51,6 +51,20 @@ struct Waited {
   }
 };
 
+// The measured waits with the smallest share of CPU time of up to three
+// tries: a machine shared with other programs can deschedule the thread
+// waited for (or a thread of the runtime's) for milliseconds at any moment,
+// which one try can catch; a spinning wait spends all of every try.
+template <class Measure>
+Waited leastBusyOf(const Measure& measure) {
+  Waited best = measure();
+  for (int attempt = 1; attempt < 3 && !(best.cpu < 0.25 * best.wall); ++attempt) {
+    const Waited again = measure();
+    if (again.cpu * best.wall < best.cpu * again.wall) best = again;
+  }
+  return best;
+}
+
 // The waits lasted about as long as the other thread was held back, and
 // the waiting thread used under a quarter of that in CPU time (a spinning
 // wait uses all of it on a quiet machine; a sleeping one its short spin).
@@ -126,20 +140,23 @@ TEST(ParallelTeam, AThreadWaitingForAStageOrAtTheBarrierSleeps) {
 // At the end of a region the master (the test's thread, thread 0) waits for
 // thread 1, held back: it sleeps where libgomp's join would spin.
 TEST(ParallelTeam, TheMasterWaitingAtTheRegionsEndSleeps) {
-  Waited atEnd;
-  for (int k = 0; k < kWaits; ++k) {
-    double wall = 0.0, cpu = 0.0;
-    particles::parallelTeam(2, [&](const particles::Team& t) {
-      if (t.member == 1) std::this_thread::sleep_for(kHeldBack);
-      if (t.member == 0) {
-        wall = wallSeconds();
-        cpu = threadCpuSeconds();
-      }
-    });
-    atEnd.wall += wallSeconds() - wall;
-    atEnd.cpu += threadCpuSeconds() - cpu;
-  }
-  expectSlept(atEnd, "region end");
+  expectSlept(leastBusyOf([] {
+                Waited atEnd;
+                for (int k = 0; k < kWaits; ++k) {
+                  double wall = 0.0, cpu = 0.0;
+                  particles::parallelTeam(2, [&](const particles::Team& t) {
+                    if (t.member == 1) std::this_thread::sleep_for(kHeldBack);
+                    if (t.member == 0) {
+                      wall = wallSeconds();
+                      cpu = threadCpuSeconds();
+                    }
+                  });
+                  atEnd.wall += wallSeconds() - wall;
+                  atEnd.cpu += threadCpuSeconds() - cpu;
+                }
+                return atEnd;
+              }),
+              "region end");
 }
 
 // Every thread's writes before a barrier are seen by every thread after it,
