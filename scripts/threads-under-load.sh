@@ -101,10 +101,8 @@ for competitors in 0 1 2; do
              if (NR == 1 || a < alo) alo = a; if (NR == 1 || a > ahi) ahi = a
              if (NR == 1 || b < blo) blo = b; if (NR == 1 || b > bhi) bhi = b }
            END { printf "%.2f-%.2f %.2f-%.2f", alo, ahi, blo, bhi }')
-    means=$(paste "$work/means-0" "$work/means-1" "$work/means-2" |
-      awk '{ print $2 / $1, $3 / $1 }' | { read -r -d '' all || true; echo "$all"; })
-    mean2=$(awk '{ print $1 }' <<<"$means" | median)
-    meandef=$(awk '{ print $2 }' <<<"$means" | median)
+    mean2=$(paste "$work/means-0" "$work/means-1" | awk '{ print $2 / $1 }' | median)
+    meandef=$(paste "$work/means-0" "$work/means-2" | awk '{ print $2 / $1 }' | median)
     awk -v name="$name" -v busy="$competitors" -v one="$one" -v two="$two" -v def="$default" \
       -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" -v spread="$spread" \
       -v mean2="$mean2" -v meandef="$meandef" \

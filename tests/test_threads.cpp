@@ -55,10 +55,15 @@ struct Waited {
 // tries: a machine shared with other programs can deschedule the thread
 // waited for (or a thread of the runtime's) for milliseconds at any moment,
 // which one try can catch; a spinning wait spends all of every try.
+// A sleeping wait uses under this share of its wall time in CPU time.
+constexpr double kSleepingShare = 0.25;
+
+bool sleptThrough(const Waited& w) { return w.cpu < kSleepingShare * w.wall; }
+
 template <class Measure>
 Waited leastBusyOf(const Measure& measure) {
   Waited best = measure();
-  for (int attempt = 1; attempt < 3 && !(best.cpu < 0.25 * best.wall); ++attempt) {
+  for (int attempt = 1; attempt < 3 && !sleptThrough(best); ++attempt) {
     const Waited again = measure();
     if (again.cpu * best.wall < best.cpu * again.wall) best = again;
   }
@@ -70,7 +75,7 @@ Waited leastBusyOf(const Measure& measure) {
 // wait uses all of it on a quiet machine; a sleeping one its short spin).
 void expectSlept(const Waited& w, const char* what) {
   EXPECT_GE(w.wall, 0.5 * kWaits * std::chrono::duration<double>(kHeldBack).count()) << what << ": it did wait";
-  EXPECT_LT(w.cpu, 0.25 * w.wall) << what << ": the waiting thread used " << w.cpu << " s of CPU in " << w.wall
+  EXPECT_LT(w.cpu, kSleepingShare * w.wall) << what << ": the waiting thread used " << w.cpu << " s of CPU in " << w.wall
                                   << " s of waiting";
 }
 
