@@ -33,6 +33,7 @@ std::string directFallbackMessage(int constraints, const SolverSettings& setting
 struct ConstraintSolver::Workspace {
   linear::ConstraintRows rows;
   Eigen::VectorXd diagonal;  // diag(J W Jᵀ), the Jacobi preconditioner
+  double diagonalMax = 0.0;  // its largest entry
   const Eigen::VectorXd* inverseMass = nullptr;
   linear::CgScratch cg;
   mutable Eigen::VectorXd scatter;  // W Jᵀ y inside applyOperator
@@ -118,22 +119,11 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   Workspace& w = *work_;
   if (w.rows.gather(s, constraints)) w.patternValid = w.cgPastWorkBound = w.chainKnown = false;
   w.inverseMass = &s.inverseMass;
-  const linear::ConstraintRows& rows = w.rows;
-  b_.resize(m);
-  w.diagonal.resize(m);
-  for (int k = 0; k < m; ++k) {
-    double jwq = 0.0;  // J W Q
-    for (int e = rows.rowStart[k]; e < rows.rowStart[k + 1]; ++e) {
-      const int p = rows.entryParticle[e];
-      jwq += s.inverseMass[p] * rows.J[e].dot(f.segment<2>(2 * p));
-    }
-    b_[k] = -rows.rowDotTimes(k, s.v) - jwq - settings.stiffness * rows.C[k] - settings.damping * rows.Cdot[k];
-    w.diagonal[k] = rows.diagonalOfJWJt(k, s.inverseMass);
-  }
+  w.diagonalMax = w.rows.rhsAndDiagonal(s.inverseMass, s.v, f, settings.stiffness, settings.damping, b_, w.diagonal);
 
   if (!settings.warmStart || lambda_.size() != m || !lambda_.allFinite()) lambda_.setZero(m);
   double residual = 0.0;
-  const double dead = 1e-14 * w.diagonal.maxCoeff();  // a diagonal this small is treated as zero
+  const double dead = 1e-14 * w.diagonalMax;  // a diagonal this small is treated as zero
   const bool direct = settings.method == SolveMethod::Direct || w.cgPastWorkBound;
   if (direct && directSolve(dead, residual)) {
     stats_.iterations = 0;
@@ -271,7 +261,7 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
   for (int k = 0; k < m; ++k)
     if (w.diagonal[k] <= dead) b_[k] = 0.0;
   if (!w.chainKnown) findChain();
-  const double diagMax = w.diagonal.maxCoeff();
+  const double diagMax = w.diagonalMax;
   // LDLᵀ of J W Jᵀ + shift·I: the chain's tridiagonal one, or the sparse one of the assembled matrix.
   auto factorize = [&](double shift) {
     ++stats_.factorizations;
@@ -337,11 +327,12 @@ void ConstraintSolver::assembleChain(double dead) {
   const int m = w.rows.size();
   w.chainDiagonal.resize(static_cast<std::size_t>(m));
   w.chainUpper.resize(static_cast<std::size_t>(std::max(m - 1, 0)));
-  for (int k = 0; k < m; ++k) w.chainDiagonal[static_cast<std::size_t>(k)] = w.diagonal[k] <= dead ? 1.0 : w.diagonal[k];
+  const double* diagonal = w.diagonal.data();
+  double *chainDiagonal = w.chainDiagonal.data(), *upper = w.chainUpper.data();
+  for (int k = 0; k < m; ++k) chainDiagonal[k] = diagonal[k] <= dead ? 1.0 : diagonal[k];
+  const int* pairStart = w.chainPairStart.data();
   for (int k = 0; k + 1 < m; ++k)
-    w.chainUpper[static_cast<std::size_t>(k)] = pairSum(w.rows, *w.inverseMass, w.chainPairFirst, w.chainPairSecond,
-                                                        w.chainPairStart[static_cast<std::size_t>(k)],
-                                                        w.chainPairStart[static_cast<std::size_t>(k + 1)]);
+    upper[k] = pairSum(w.rows, *w.inverseMass, w.chainPairFirst, w.chainPairSecond, pairStart[k], pairStart[k + 1]);
 }
 
 Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, int particleCount) {

@@ -8,42 +8,47 @@ namespace particles::linear {
 
 bool Tridiagonal::factorize(const std::vector<double>& diagonal, const std::vector<double>& upper, double shift) {
   const std::size_t m = diagonal.size();
-  pivot_.resize(m);
+  inversePivot_.resize(m);
   lower_.resize(m > 0 ? m - 1 : 0);
+  const double *t = diagonal.data(), *u = upper.data();
+  double *inverse = inversePivot_.data(), *l = lower_.data();
   bool usable = true;
+  double smallest = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < m; ++k) {
-    double d = diagonal[k] + shift;
-    if (k > 0) d -= lower_[k - 1] * upper[k - 1];
-    pivot_[k] = d;
+    double d = t[k] + shift;
+    if (k > 0) d -= l[k - 1] * u[k - 1];
     usable = usable && d != 0.0 && std::isfinite(d);
-    if (k + 1 < m) lower_[k] = upper[k] / d;
+    smallest = std::min(smallest, d);
+    inverse[k] = 1.0 / d;             // off the recursion's path
+    if (k + 1 < m) l[k] = u[k] / d;   // on it: d_{k+1} waits for l_k
   }
+  smallestPivot_ = smallest;
   return usable;
 }
 
-double Tridiagonal::smallestPivot() const {
-  return pivot_.empty() ? std::numeric_limits<double>::infinity() : *std::min_element(pivot_.begin(), pivot_.end());
-}
+double Tridiagonal::smallestPivot() const { return smallestPivot_; }
 
 void Tridiagonal::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  const Eigen::Index m = static_cast<Eigen::Index>(pivot_.size());
+  const Eigen::Index m = static_cast<Eigen::Index>(inversePivot_.size());
   x = b;
-  for (Eigen::Index k = 1; k < m; ++k) x[k] -= lower_[static_cast<std::size_t>(k - 1)] * x[k - 1];
-  for (Eigen::Index k = m - 1; k >= 0; --k) {
-    x[k] /= pivot_[static_cast<std::size_t>(k)];
-    if (k + 1 < m) x[k] -= lower_[static_cast<std::size_t>(k)] * x[k + 1];
-  }
+  double* y = x.data();
+  const double *inverse = inversePivot_.data(), *l = lower_.data();
+  for (Eigen::Index k = 1; k < m; ++k) y[k] -= l[k - 1] * y[k - 1];
+  if (m > 0) y[m - 1] *= inverse[m - 1];
+  for (Eigen::Index k = m - 2; k >= 0; --k) y[k] = y[k] * inverse[k] - l[k] * y[k + 1];
 }
 
 void Tridiagonal::multiply(const std::vector<double>& diagonal, const std::vector<double>& upper,
                            const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const Eigen::Index m = x.size();
   y.resize(m);
+  const double *t = diagonal.data(), *u = upper.data(), *in = x.data();
+  double* out = y.data();
   for (Eigen::Index k = 0; k < m; ++k) {
-    double sum = diagonal[static_cast<std::size_t>(k)] * x[k];
-    if (k > 0) sum += upper[static_cast<std::size_t>(k - 1)] * x[k - 1];
-    if (k + 1 < m) sum += upper[static_cast<std::size_t>(k)] * x[k + 1];
-    y[k] = sum;
+    double sum = t[k] * in[k];
+    if (k > 0) sum += u[k - 1] * in[k - 1];
+    if (k + 1 < m) sum += u[k] * in[k + 1];
+    out[k] = sum;
   }
 }
 

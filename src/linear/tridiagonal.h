@@ -3,7 +3,9 @@
 // T_{k,k+1} = T_{k+1,k} = upper[k]) plus a shift μ I, in O(m):
 //   d_0 = T_00 + μ,   l_k = T_{k,k+1} / d_k,   d_{k+1} = T_{k+1,k+1} + μ − l_k T_{k,k+1};
 // then T x = b by  y_k = b_k − l_{k−1} y_{k−1},  x_{m−1} = y_{m−1} / d_{m−1},
-// x_k = y_k / d_k − l_k x_{k+1}. The constraint solve of a chain of
+// x_k = y_k / d_k − l_k x_{k+1}. The factorisation keeps 1/d_k (one
+// division a row, which the pivot recursion waits for anyway), so the back
+// substitution, a recursion too, waits for a multiplication only. The constraint solve of a chain of
 // constraints uses it in place of the sparse LDLᵀ (ldlt.h), with which it
 // shares the interface: a failed factorisation (a zero or non-finite pivot)
 // and the smallest pivot, which tells when T has lost rank. (xpbd's hanging
@@ -27,7 +29,8 @@ class Tridiagonal {
                        Eigen::VectorXd& y);
 
  private:
-  std::vector<double> pivot_, lower_;  // d_k, l_k
+  std::vector<double> inversePivot_, lower_;  // 1/d_k, l_k
+  double smallestPivot_ = 0.0;
 };
 
 }  // namespace particles::linear
