@@ -7,6 +7,7 @@
 #include <Eigen/IterativeLinearSolvers>
 
 #include "constraint_solver_probe.h"
+#include "constraints/rod_chain.h"
 #include "linear/linear.h"
 #include "particles/cancel.h"
 #include "particles/check.h"
@@ -60,6 +61,10 @@ struct ConstraintSolver::Workspace {
   std::vector<int> chainPairStart, chainPairFirst, chainPairSecond;
   std::vector<double> chainDiagonal, chainUpper;
   linear::Tridiagonal tridiagonal;
+  // A chain whose every constraint is a rod: its rows, b and upper band come
+  // from RodChain's own pass (chainUpperFormed: this evaluation's did).
+  bool rodChainKnown = false, rodChainBuilt = false, chainUpperFormed = false;
+  RodChain rodChain;
 };
 
 namespace {
@@ -117,9 +122,8 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   stats_.constraints = m;
   if (m == 0) return;
   Workspace& w = *work_;
-  if (w.rows.gather(s, constraints)) w.patternValid = w.cgPastWorkBound = w.chainKnown = false;
   w.inverseMass = &s.inverseMass;
-  w.diagonalMax = w.rows.rhsAndDiagonal(s.inverseMass, s.v, f, settings.stiffness, settings.damping, b_, w.diagonal);
+  const bool rods = formSystem(s, constraints, f);
 
   if (!settings.warmStart || lambda_.size() != m || !lambda_.allFinite()) lambda_.setZero(m);
   double residual = 0.0;
@@ -151,7 +155,36 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
     stats_.failed = true;  // reported through StepStats; never hand NaN to the integrator
     lambda_.setZero();
   }
-  w.rows.addJtTimes(lambda_, f);
+  if (rods) w.rodChain.addJtTimes(w.rows, lambda_, f);
+  else w.rows.addJtTimes(lambda_, f);
+  if (w.chainKnown && w.chain && !w.rodChainKnown) {  // the next evaluations take the rods' own pass
+    w.rodChainKnown = true;
+    w.rodChainBuilt = w.rodChain.build(constraints);
+  }
+}
+
+// The rows, b and diag(J W Jᵀ) at s (with forces f): by the chain of rods'
+// own pass (constraints/rod_chain.h, which also forms the chain's upper band)
+// when the direct solve has found one, else by the generic gather. Returns
+// whether the rods' pass formed them.
+bool ConstraintSolver::formSystem(const Phase& s, const ConstraintList& constraints, const Eigen::VectorXd& f) {
+  Workspace& w = *work_;
+  const bool direct = settings.method == SolveMethod::Direct || w.cgPastWorkBound;
+  if (direct && w.rodChainBuilt) {
+    const double largest = w.rodChain.form(s, constraints, f, settings.stiffness, settings.damping,
+                                           {w.rows, b_, w.diagonal, w.chainUpper});
+    w.chainUpperFormed = largest >= 0.0;
+    if (w.chainUpperFormed) {
+      w.diagonalMax = largest;
+      return true;
+    }
+    w.rodChainKnown = w.rodChainBuilt = false;  // not the rods it was built from: gathered below, built again
+  }
+  w.chainUpperFormed = false;
+  if (w.rows.gather(s, constraints))
+    w.patternValid = w.cgPastWorkBound = w.chainKnown = w.rodChainKnown = w.rodChainBuilt = false;
+  w.diagonalMax = w.rows.rhsAndDiagonal(s.inverseMass, s.v, f, settings.stiffness, settings.damping, b_, w.diagonal);
+  return false;
 }
 
 // Conjugate gradient on A λ = b with A = J W Jᵀ symmetric positive
@@ -279,9 +312,7 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
   }
   if (w.chain) {
     w.tridiagonal.solve(b_, lambda_);
-    linear::Tridiagonal::multiply(w.chainDiagonal, w.chainUpper, lambda_, w.product);
-    const double bNorm = b_.norm();
-    relativeResidual = bNorm == 0.0 ? 0.0 : (b_ - w.product).norm() / bNorm;
+    relativeResidual = linear::Tridiagonal::relativeResidual(w.chainDiagonal, w.chainUpper, lambda_, b_);
     return true;
   }
   w.pattern.toStored(b_, w.stored);
@@ -320,7 +351,8 @@ void ConstraintSolver::findChain() {
   }
 }
 
-// The chain's J W Jᵀ as its diagonal and its upper band; a dead row (diagonal
+// The chain's J W Jᵀ as its diagonal and its upper band (the latter already
+// formed when the rods' pass ran, formSystem); a dead row (diagonal
 // at most `dead`) gets a unit diagonal and, with b = 0, λ = 0, as in assemble().
 void ConstraintSolver::assembleChain(double dead) {
   Workspace& w = *work_;
@@ -330,6 +362,7 @@ void ConstraintSolver::assembleChain(double dead) {
   const double* diagonal = w.diagonal.data();
   double *chainDiagonal = w.chainDiagonal.data(), *upper = w.chainUpper.data();
   for (int k = 0; k < m; ++k) chainDiagonal[k] = diagonal[k] <= dead ? 1.0 : diagonal[k];
+  if (w.chainUpperFormed) return;
   const int* pairStart = w.chainPairStart.data();
   for (int k = 0; k + 1 < m; ++k)
     upper[k] = pairSum(w.rows, *w.inverseMass, w.chainPairFirst, w.chainPairSecond, pairStart[k], pairStart[k + 1]);
@@ -341,5 +374,6 @@ Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, in
 Eigen::MatrixXd ConstraintSolverProbe::denseJdot(const ConstraintSolver& solver, int particleCount) {
   return solver.work_->rows.denseJdot(particleCount);
 }
+bool ConstraintSolverProbe::rodChainPass(const ConstraintSolver& solver) { return solver.work_->chainUpperFormed; }
 
 }  // namespace particles

@@ -66,7 +66,7 @@ double ConstraintRows::rhsAndDiagonal(const Eigen::VectorXd& w, const Eigen::Vec
       jwq += wp[p] * (jx * fp[2 * p] + jy * fp[2 * p + 1]);
       jwj += wp[p] * (jx * jx + jy * jy);
     }
-    bp[k] = -jdotv - jwq - stiffness * c[k] - damping * cdot[k];
+    bp[k] = constraintRhs(jdotv, jwq, c[k], cdot[k], stiffness, damping);
     dp[k] = jwj;
     largest = std::max(largest, jwj);
   }

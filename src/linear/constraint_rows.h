@@ -11,6 +11,12 @@
 
 namespace particles::linear {
 
+// Row k of the constraint solve's right-hand side from its products J̇_k q̇
+// and J_k W Q: b_k = −J̇_k q̇ − J_k W Q − k_s C_k − k_d Ċ_k.
+inline double constraintRhs(double jdotQdot, double jwq, double C, double Cdot, double stiffness, double damping) {
+  return -jdotQdot - jwq - stiffness * C - damping * Cdot;
+}
+
 struct ConstraintRows {
   std::vector<int> rowStart{0};
   std::vector<int> entryParticle;

@@ -38,18 +38,20 @@ void Tridiagonal::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   for (Eigen::Index k = m - 2; k >= 0; --k) y[k] = y[k] * inverse[k] - l[k] * y[k + 1];
 }
 
-void Tridiagonal::multiply(const std::vector<double>& diagonal, const std::vector<double>& upper,
-                           const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+double Tridiagonal::relativeResidual(const std::vector<double>& diagonal, const std::vector<double>& upper,
+                                     const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
   const Eigen::Index m = x.size();
-  y.resize(m);
-  const double *t = diagonal.data(), *u = upper.data(), *in = x.data();
-  double* out = y.data();
+  const double *t = diagonal.data(), *u = upper.data(), *in = x.data(), *rhs = b.data();
+  double residual = 0.0, norm = 0.0;  // |T x − b|², |b|²
   for (Eigen::Index k = 0; k < m; ++k) {
-    double sum = t[k] * in[k];
-    if (k > 0) sum += u[k - 1] * in[k - 1];
-    if (k + 1 < m) sum += u[k] * in[k + 1];
-    out[k] = sum;
+    double r = t[k] * in[k];
+    if (k > 0) r += u[k - 1] * in[k - 1];
+    if (k + 1 < m) r += u[k] * in[k + 1];
+    r -= rhs[k];
+    residual += r * r;
+    norm += rhs[k] * rhs[k];
   }
+  return norm == 0.0 ? 0.0 : std::sqrt(residual) / std::sqrt(norm);
 }
 
 }  // namespace particles::linear

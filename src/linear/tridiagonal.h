@@ -24,9 +24,9 @@ class Tridiagonal {
   double smallestPivot() const;
   // x = (L D Lᵀ)⁻¹ b (x may be b).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
-  // y = T x, without the shift.
-  static void multiply(const std::vector<double>& diagonal, const std::vector<double>& upper, const Eigen::VectorXd& x,
-                       Eigen::VectorXd& y);
+  // |T x − b| / |b| (0 when b = 0), T without the shift: one pass, no T x kept.
+  static double relativeResidual(const std::vector<double>& diagonal, const std::vector<double>& upper,
+                                 const Eigen::VectorXd& x, const Eigen::VectorXd& b);
 
  private:
   std::vector<double> inversePivot_, lower_;  // 1/d_k, l_k
