@@ -63,11 +63,15 @@ struct ConstraintSolver::Workspace {
   linear::Tridiagonal tridiagonal;
   // A chain whose every constraint is a rod: its rows, b and upper band come
   // from RodChain's own pass (chainUpperFormed: this evaluation's did).
-  bool rodChainKnown = false, rodChainBuilt = false, chainUpperFormed = false;
+  // chainFactorised: and factorised it (no dead row), for directSolve to use once.
+  bool rodChainKnown = false, rodChainBuilt = false, chainUpperFormed = false, chainFactorised = false;
   RodChain rodChain;
 };
 
 namespace {
+
+// A row whose diagonal is at most this times the largest is treated as zero (dead).
+constexpr double kDeadDiagonal = 1e-14;
 
 // Every pair of entries e1, e2 of two constraints k < l on one particle: the
 // pairs that make the off-diagonal entries (J W Jᵀ)_kl.
@@ -127,7 +131,7 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
 
   if (!settings.warmStart || lambda_.size() != m || !lambda_.allFinite()) lambda_.setZero(m);
   double residual = 0.0;
-  const double dead = 1e-14 * w.diagonalMax;  // a diagonal this small is treated as zero
+  const double dead = kDeadDiagonal * w.diagonalMax;
   const bool direct = settings.method == SolveMethod::Direct || w.cgPastWorkBound;
   if (direct && directSolve(dead, residual)) {
     stats_.iterations = 0;
@@ -171,16 +175,20 @@ bool ConstraintSolver::formSystem(const Phase& s, const ConstraintList& constrai
   Workspace& w = *work_;
   const bool direct = settings.method == SolveMethod::Direct || w.cgPastWorkBound;
   if (direct && w.rodChainBuilt) {
-    const double largest = w.rodChain.form(s, constraints, f, settings.stiffness, settings.damping,
-                                           {w.rows, b_, w.diagonal, w.chainUpper});
-    w.chainUpperFormed = largest >= 0.0;
-    if (w.chainUpperFormed) {
-      w.diagonalMax = largest;
+    const RodChain::Formed formed =
+        w.rodChain.form(s, constraints, f, settings.stiffness, settings.damping,
+                        {w.rows, b_, w.diagonal, w.chainDiagonal, w.chainUpper, w.tridiagonal});
+    w.chainUpperFormed = formed.valid;
+    if (formed.valid) {
+      w.diagonalMax = formed.largest;
+      // The pass factorised J W Jᵀ as formed; a dead row would have had its
+      // diagonal replaced first (assembleChain), so the solve factorises again.
+      w.chainFactorised = !(formed.smallest <= kDeadDiagonal * formed.largest);
       return true;
     }
     w.rodChainKnown = w.rodChainBuilt = false;  // not the rods it was built from: gathered below, built again
   }
-  w.chainUpperFormed = false;
+  w.chainUpperFormed = w.chainFactorised = false;
   if (w.rows.gather(s, constraints))
     w.patternValid = w.cgPastWorkBound = w.chainKnown = w.rodChainKnown = w.rodChainBuilt = false;
   w.diagonalMax = w.rows.rhsAndDiagonal(s.inverseMass, s.v, f, settings.stiffness, settings.damping, b_, w.diagonal);
@@ -291,8 +299,12 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
   constexpr double kRankLossPivot = 1e-10, kRankLossShift = 1e-6;
   Workspace& w = *work_;
   const int m = static_cast<int>(b_.size());
-  for (int k = 0; k < m; ++k)
-    if (w.diagonal[k] <= dead) b_[k] = 0.0;
+  // The rods' pass factorised the chain already when no row was dead (formSystem).
+  const bool factorisedInPass = w.chainFactorised;
+  w.chainFactorised = false;
+  if (!factorisedInPass)
+    for (int k = 0; k < m; ++k)
+      if (w.diagonal[k] <= dead) b_[k] = 0.0;
   if (!w.chainKnown) findChain();
   const double diagMax = w.diagonalMax;
   // LDLᵀ of J W Jᵀ + shift·I: the chain's tridiagonal one, or the sparse one of the assembled matrix.
@@ -302,16 +314,18 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
                    : w.ldlt.factorize(w.pattern.matrix(), shift);
   };
   auto smallestPivot = [&] { return w.chain ? w.tridiagonal.smallestPivot() : w.ldlt.smallestPivot(); };
-  if (w.chain) assembleChain(dead);
-  else assemble(dead);
-  bool factorised = factorize(0.0);
-  if (!factorised || !(smallestPivot() > kRankLossPivot * diagMax)) {
+  if (!w.chain) assemble(dead);
+  else if (!factorisedInPass) assembleChain(dead);
+  bool factorised = factorisedInPass ? (++stats_.factorizations, w.tridiagonal.usable()) : factorize(0.0);
+  const bool rankLost = !factorised || !(smallestPivot() > kRankLossPivot * diagMax);
+  if (rankLost) {
     factorised = factorize(kRankLossShift * diagMax);
     stats_.regularized = true;
     if (!factorised) return false;
   }
   if (w.chain) {
-    w.tridiagonal.solve(b_, lambda_);
+    if (factorisedInPass && !rankLost) w.tridiagonal.backSubstitute(lambda_);  // b went forward in the pass
+    else w.tridiagonal.solve(b_, lambda_);
     relativeResidual = linear::Tridiagonal::relativeResidual(w.chainDiagonal, w.chainUpper, lambda_, b_);
     return true;
   }

@@ -161,6 +161,9 @@ TEST(ConstraintSolverMethods, AChainsDirectSolveMatchesTheDenseSolve) {
       s.setPositions(s.positions() + 0.002 * s.velocities());
       s.acceleration(s.positions(), s.velocities(), a);
       const Eigen::VectorXd expected = denseLambda(s);
+      // From the second evaluation the chain's rods form it in their own pass
+      // (rod_chain.h), the dead first row then assembled and factorised again.
+      EXPECT_EQ(ConstraintSolverProbe::rodChainPass(s.solver()), !closed && step > 0);
       EXPECT_EQ(s.solver().lambda()[0], 0.0);
       EXPECT_LT((s.solver().lambda() - expected).norm(), 1e-9 * expected.norm()) << "step " << step;
       EXPECT_LT(s.lastSolve().residual, 1e-12);
@@ -227,7 +230,8 @@ TEST(ConstraintSolverMethods, AChainOfRodsOwnPassMatchesTheGather) {
 // A straight chain pinned at both ends, fully extended: its rods pull only
 // along the line, and there are more of them than free coordinates along it,
 // so J W Jᵀ (tridiagonal) loses rank. The chain's direct solve notices the
-// lost pivot and damps the solve as the sparse one does: |λ| ≤ |b|/μ.
+// lost pivot and damps the solve as the sparse one does: |λ| ≤ |b|/μ. The
+// second evaluation factorises in the rods' own pass first (rod_chain.h).
 TEST(ConstraintSolverMethods, ATautChainsDirectSolveIsDamped) {
   ParticleSystem s;
   const int n = 8;
@@ -238,13 +242,16 @@ TEST(ConstraintSolverMethods, ATautChainsDirectSolveIsDamped) {
   s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
   s.solver().settings.method = SolveMethod::Direct;
   Eigen::VectorXd a;
-  s.acceleration(s.positions(), s.velocities(), a);
-  EXPECT_TRUE(a.allFinite());
-  EXPECT_TRUE(s.lastSolve().regularized);
-  EXPECT_EQ(s.lastSolve().factorizations, 2);
-  const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
-  const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
-  EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
+  for (int evaluation = 0; evaluation < 2; ++evaluation) {
+    s.acceleration(s.positions(), s.velocities(), a);
+    EXPECT_EQ(ConstraintSolverProbe::rodChainPass(s.solver()), evaluation > 0);
+    EXPECT_TRUE(a.allFinite());
+    EXPECT_TRUE(s.lastSolve().regularized);
+    EXPECT_EQ(s.lastSolve().factorizations, 2);
+    const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
+    const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
+    EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
+  }
 }
 
 TEST(ConstraintSolverMethods, PinnedOnlyRowsGetZeroLambdaInEveryMethod) {

@@ -1,6 +1,7 @@
 #include "constraints/rod_chain.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace particles {
 
@@ -28,19 +29,22 @@ bool RodChain::build(const ConstraintList& constraints) {
   return true;
 }
 
-double RodChain::form(const Phase& s, const ConstraintList& constraints, const Eigen::VectorXd& f, double stiffness,
-                      double damping, const Output& out) const {
+RodChain::Formed RodChain::form(const Phase& s, const ConstraintList& constraints, const Eigen::VectorXd& f,
+                                double stiffness, double damping, const Output& out) const {
   using Point = Eigen::Map<const Eigen::Vector2d>;
   const int m = static_cast<int>(links_.size());
-  if (static_cast<int>(constraints.size()) != m || out.rows.size() != m) return -1.0;
+  if (static_cast<int>(constraints.size()) != m || out.rows.size() != m) return {};
+  const std::size_t bands = static_cast<std::size_t>(std::max(m - 1, 0));
   out.b.resize(m);
   out.diagonal.resize(m);
-  out.upper.resize(static_cast<std::size_t>(std::max(m - 1, 0)));
+  out.bandDiagonal.resize(static_cast<std::size_t>(m));
+  out.upper.resize(bands);
+  out.tridiagonal.start(static_cast<std::size_t>(m));
   Eigen::Vector2d *J = out.rows.J.data(), *Jdot = out.rows.Jdot.data();
   double *C = out.rows.C.data(), *Cdot = out.rows.Cdot.data();
-  double *b = out.b.data(), *diagonal = out.diagonal.data(), *upper = out.upper.data();
+  double *b = out.b.data(), *diagonal = out.diagonal.data(), *band = out.bandDiagonal.data(), *upper = out.upper.data();
   const double *w = s.inverseMass.data(), *x = s.x.data(), *v = s.v.data(), *q = f.data();
-  double largest = 0.0;
+  Formed formed{true, 0.0, std::numeric_limits<double>::infinity()};
   const Link* links = links_.data();
   const std::unique_ptr<Constraint>* listed = constraints.data();
   for (int k = 0; k < m; ++k) {
@@ -48,33 +52,35 @@ double RodChain::form(const Phase& s, const ConstraintList& constraints, const E
     const RodConstraint& rod = *link.rod;
     // The solver's list only grows (ParticleSystem::addConstraint), and a
     // rod's particles never change; the check costs a few loads a rod.
-    if (listed[k].get() != &rod || rod.particles()[0] != link.i ||
-        rod.particles()[1] != link.j)
-      return -1.0;
+    if (listed[k].get() != &rod || rod.particles()[0] != link.i || rod.particles()[1] != link.j) return {};
     const int i = link.i, j = link.j;
     const Point vi(v + 2 * i), vj(v + 2 * j), qi(q + 2 * i), qj(q + 2 * j);
     const ConstraintKernel<2> kernel = rodKernel(rod.form(), Point(x + 2 * i), Point(x + 2 * j), vi, vj, rod.length());
     const double jdotv = kernel.Jdot[0].dot(vi) + kernel.Jdot[1].dot(vj);
     const double jwq = w[i] * kernel.J[0].dot(qi) + w[j] * kernel.J[1].dot(qj);
     b[k] = linear::constraintRhs(jdotv, jwq, kernel.C, kernel.Cdot, stiffness, damping);
-    diagonal[k] = w[i] * kernel.J[0].squaredNorm() + w[j] * kernel.J[1].squaredNorm();
-    largest = std::max(largest, diagonal[k]);
+    const double jwj = w[i] * kernel.J[0].squaredNorm() + w[j] * kernel.J[1].squaredNorm();
+    diagonal[k] = band[k] = jwj;
+    formed.largest = std::max(formed.largest, jwj);
+    formed.smallest = std::min(formed.smallest, jwj);
     C[k] = kernel.C;
     Cdot[k] = kernel.Cdot;
     for (int n = 0; n < 2; ++n) {
       J[2 * k + n] = kernel.J[n];
       Jdot[2 * k + n] = kernel.Jdot[n];
     }
-    if (k == 0) continue;
-    const Link& before = links[k - 1];
-    double sum = 0.0;
-    for (int n = 0; n < before.shared; ++n) {
-      const int p = before.mine[n] == 0 ? before.i : before.j;
-      sum += w[p] * J[2 * (k - 1) + before.mine[n]].dot(J[2 * k + before.next[n]]);
+    double sum = 0.0;  // (J W Jᵀ)_{k−1,k}
+    if (k > 0) {
+      const Link& before = links[k - 1];
+      for (int n = 0; n < before.shared; ++n) {
+        const int p = before.mine[n] == 0 ? before.i : before.j;
+        sum += w[p] * J[2 * (k - 1) + before.mine[n]].dot(J[2 * k + before.next[n]]);
+      }
+      upper[k - 1] = sum;
     }
-    upper[k - 1] = sum;
+    out.tridiagonal.row(static_cast<std::size_t>(k), jwj, sum, b[k]);
   }
-  return largest;
+  return formed;
 }
 
 void RodChain::addJtTimes(const linear::ConstraintRows& rows, const Eigen::VectorXd& lambda, Eigen::VectorXd& f) const {

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "linear/constraint_rows.h"
+#include "linear/tridiagonal.h"
 #include "particles/constraint.h"
 #include "particles/constraints/rod.h"
 
@@ -29,13 +30,18 @@ class RodChain {
   struct Output {
     linear::ConstraintRows& rows;  // C, Ċ, J, J̇ (rows built by gather, two entries a rod)
     Eigen::VectorXd& b;
-    Eigen::VectorXd& diagonal;    // (J W Jᵀ)_kk
-    std::vector<double>& upper;   // (J W Jᵀ)_k,k+1
+    Eigen::VectorXd& diagonal;           // (J W Jᵀ)_kk
+    std::vector<double>& bandDiagonal;   // the same, as the tridiagonal solve reads it
+    std::vector<double>& upper;          // (J W Jᵀ)_k,k+1
+    linear::Tridiagonal& tridiagonal;    // factorised row by row as the pass goes (no shift), b forward-substituted
   };
-  // The pass above at s with forces Q = f; returns max_k (J W Jᵀ)_kk, or a
-  // negative number when `constraints` are no longer the rods built from
-  // (then nothing is meant to be read: the solve gathers generically).
-  double form(const Phase& s, const ConstraintList& constraints, const Eigen::VectorXd& f, double stiffness,
+  struct Formed {
+    bool valid = false;  // false: `constraints` are no longer the rods built from; read nothing
+    double largest = 0.0, smallest = 0.0;  // max_k and min_k of (J W Jᵀ)_kk
+  };
+  // The pass above at s with forces Q = f, which also factorises J W Jᵀ
+  // (Tridiagonal::row) while the pass's own work hides the recursion's latency.
+  Formed form(const Phase& s, const ConstraintList& constraints, const Eigen::VectorXd& f, double stiffness,
               double damping, const Output& out) const;
   // f += Jᵀ λ.
   void addJtTimes(const linear::ConstraintRows& rows, const Eigen::VectorXd& lambda, Eigen::VectorXd& f) const;

@@ -8,32 +8,39 @@ namespace particles::linear {
 
 bool Tridiagonal::factorize(const std::vector<double>& diagonal, const std::vector<double>& upper, double shift) {
   const std::size_t m = diagonal.size();
-  inversePivot_.resize(m);
-  lower_.resize(m > 0 ? m - 1 : 0);
-  const double *t = diagonal.data(), *u = upper.data();
-  double *inverse = inversePivot_.data(), *l = lower_.data();
-  bool usable = true;
-  double smallest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < m; ++k) {
-    double d = t[k] + shift;
-    if (k > 0) d -= l[k - 1] * u[k - 1];
-    usable = usable && d != 0.0 && std::isfinite(d);
-    smallest = std::min(smallest, d);
-    inverse[k] = 1.0 / d;             // off the recursion's path
-    if (k + 1 < m) l[k] = u[k] / d;   // on it: d_{k+1} waits for l_k
-  }
-  smallestPivot_ = smallest;
-  return usable;
+  start(m, shift);
+  for (std::size_t k = 0; k < m; ++k) row(k, diagonal[k], k > 0 ? upper[k - 1] : 0.0, 0.0);
+  return usable_;
 }
 
-double Tridiagonal::smallestPivot() const { return smallestPivot_; }
+void Tridiagonal::start(std::size_t m, double shift) {
+  inversePivot_.resize(m);
+  y_.resize(m);
+  lower_.resize(m > 0 ? m - 1 : 0);
+  shift_ = shift;
+  pivot_ = 0.0;
+  smallestPivot_ = std::numeric_limits<double>::infinity();
+  usable_ = true;
+}
 
 void Tridiagonal::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   const Eigen::Index m = static_cast<Eigen::Index>(inversePivot_.size());
   x = b;
   double* y = x.data();
-  const double *inverse = inversePivot_.data(), *l = lower_.data();
+  const double* l = lower_.data();
   for (Eigen::Index k = 1; k < m; ++k) y[k] -= l[k - 1] * y[k - 1];
+  backSubstituteInPlace(y);
+}
+
+void Tridiagonal::backSubstitute(Eigen::VectorXd& x) const {
+  x = Eigen::Map<const Eigen::VectorXd>(y_.data(), static_cast<Eigen::Index>(y_.size()));
+  backSubstituteInPlace(x.data());
+}
+
+// x_{m−1} = y_{m−1} / d_{m−1},  x_k = y_k / d_k − l_k x_{k+1}, over y in place.
+void Tridiagonal::backSubstituteInPlace(double* y) const {
+  const Eigen::Index m = static_cast<Eigen::Index>(inversePivot_.size());
+  const double *inverse = inversePivot_.data(), *l = lower_.data();
   if (m > 0) y[m - 1] *= inverse[m - 1];
   for (Eigen::Index k = m - 2; k >= 0; --k) y[k] = y[k] * inverse[k] - l[k] * y[k + 1];
 }

@@ -10,6 +10,8 @@
 // shares the interface: a failed factorisation (a zero or non-finite pivot)
 // and the smallest pivot, which tells when T has lost rank. (xpbd's hanging
 // lines solve their own lane-interleaved systems: xpbd/hanging_lines.h.)
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -20,8 +22,31 @@ class Tridiagonal {
  public:
   // Factorises T + shift·I; false when a pivot is zero or not finite.
   bool factorize(const std::vector<double>& diagonal, const std::vector<double>& upper, double shift = 0.0);
+  // The same factorisation row by row, for a caller that forms T and b in
+  // order (a chain of rods' pass, whose work then hides the recursions'
+  // latency): start(m, shift), row(k, T_kk, T_{k−1,k}, b_k) for k = 0 … m − 1
+  // (T_{k−1,k} unused for k = 0), then usable() is what factorize() returns,
+  // and backSubstitute(x) is solve(b, x) for that b: row() also does the
+  // forward substitution y_k = b_k − l_{k−1} y_{k−1}.
+  void start(std::size_t m, double shift = 0.0);
+  void row(std::size_t k, double diagonal, double upperBefore, double rhs) {
+    double d = diagonal + shift_;
+    if (k > 0) {
+      const double l = upperBefore / pivot_;  // l_{k−1} = T_{k−1,k} / d_{k−1}
+      lower_[k - 1] = l;
+      d -= l * upperBefore;
+      rhs -= l * forward_;
+    }
+    usable_ = usable_ && d != 0.0 && std::isfinite(d);
+    smallestPivot_ = std::min(smallestPivot_, d);
+    pivot_ = d;
+    forward_ = y_[k] = rhs;
+    inversePivot_[k] = 1.0 / d;  // off the recursion's path
+  }
+  bool usable() const { return usable_; }
+  void backSubstitute(Eigen::VectorXd& x) const;
   // min_k d_k of the last factorisation.
-  double smallestPivot() const;
+  double smallestPivot() const { return smallestPivot_; }
   // x = (L D Lᵀ)⁻¹ b (x may be b).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   // |T x − b| / |b| (0 when b = 0), T without the shift: one pass, no T x kept.
@@ -29,8 +54,11 @@ class Tridiagonal {
                                  const Eigen::VectorXd& x, const Eigen::VectorXd& b);
 
  private:
-  std::vector<double> inversePivot_, lower_;  // 1/d_k, l_k
+  std::vector<double> inversePivot_, lower_, y_;  // 1/d_k, l_k; y_k of the rows given to row()
+  double shift_ = 0.0, pivot_ = 0.0, forward_ = 0.0;  // μ; the last row's d_k and y_k
   double smallestPivot_ = 0.0;
+  bool usable_ = true;
+  void backSubstituteInPlace(double* y) const;
 };
 
 }  // namespace particles::linear
