@@ -324,9 +324,9 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
     if (!factorised) return false;
   }
   if (w.chain) {
-    if (factorisedInPass && !rankLost) w.tridiagonal.backSubstitute(lambda_);  // b went forward in the pass
-    else w.tridiagonal.solve(b_, lambda_);
-    relativeResidual = linear::Tridiagonal::relativeResidual(w.chainDiagonal, w.chainUpper, lambda_, b_);
+    relativeResidual = factorisedInPass && !rankLost  // b went forward in the pass
+                           ? w.tridiagonal.backSubstitute(b_, lambda_, w.chainDiagonal, w.chainUpper)
+                           : w.tridiagonal.solve(b_, lambda_, w.chainDiagonal, w.chainUpper);
     return true;
   }
   w.pattern.toStored(b_, w.stored);

@@ -23,41 +23,44 @@ void Tridiagonal::start(std::size_t m, double shift) {
   usable_ = true;
 }
 
-void Tridiagonal::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+double Tridiagonal::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, const std::vector<double>& diagonal,
+                          const std::vector<double>& upper) const {
   const Eigen::Index m = static_cast<Eigen::Index>(inversePivot_.size());
   x = b;
   double* y = x.data();
   const double* l = lower_.data();
   for (Eigen::Index k = 1; k < m; ++k) y[k] -= l[k - 1] * y[k - 1];
-  backSubstituteInPlace(y);
+  return backward(b.data(), y, diagonal.data(), upper.data());
 }
 
-void Tridiagonal::backSubstitute(Eigen::VectorXd& x) const {
+double Tridiagonal::backSubstitute(const Eigen::VectorXd& b, Eigen::VectorXd& x, const std::vector<double>& diagonal,
+                                  const std::vector<double>& upper) const {
   x = Eigen::Map<const Eigen::VectorXd>(y_.data(), static_cast<Eigen::Index>(y_.size()));
-  backSubstituteInPlace(x.data());
+  return backward(b.data(), x.data(), diagonal.data(), upper.data());
 }
 
-// x_{m−1} = y_{m−1} / d_{m−1},  x_k = y_k / d_k − l_k x_{k+1}, over y in place.
-void Tridiagonal::backSubstituteInPlace(double* y) const {
+double Tridiagonal::backward(const double* b, double* x, const double* t, const double* u) const {
   const Eigen::Index m = static_cast<Eigen::Index>(inversePivot_.size());
+  if (m == 0) return 0.0;
   const double *inverse = inversePivot_.data(), *l = lower_.data();
-  if (m > 0) y[m - 1] *= inverse[m - 1];
-  for (Eigen::Index k = m - 2; k >= 0; --k) y[k] = y[k] * inverse[k] - l[k] * y[k + 1];
-}
-
-double Tridiagonal::relativeResidual(const std::vector<double>& diagonal, const std::vector<double>& upper,
-                                     const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
-  const Eigen::Index m = x.size();
-  const double *t = diagonal.data(), *u = upper.data(), *in = x.data(), *rhs = b.data();
   double residual = 0.0, norm = 0.0;  // |T x − b|², |b|²
-  for (Eigen::Index k = 0; k < m; ++k) {
-    double r = t[k] * in[k];
-    if (k > 0) r += u[k - 1] * in[k - 1];
-    if (k + 1 < m) r += u[k] * in[k + 1];
-    r -= rhs[k];
+  // Row k's residual once x_{k−1}, x_k, x_{k+1} (0 past either end) are known.
+  auto addResidual = [&](Eigen::Index k, double before, double at, double after) {
+    const double r = (k > 0 ? u[k - 1] * before : 0.0) + t[k] * at + (k + 1 < m ? u[k] * after : 0.0) - b[k];
     residual += r * r;
-    norm += rhs[k] * rhs[k];
+    norm += b[k] * b[k];
+  };
+  // The recursion's values are carried in registers, not read back from x.
+  double next = x[m - 1] * inverse[m - 1], afterNext = 0.0;  // x_{k+1}, x_{k+2}
+  x[m - 1] = next;
+  for (Eigen::Index k = m - 2; k >= 0; --k) {
+    const double at = x[k] * inverse[k] - l[k] * next;
+    x[k] = at;
+    addResidual(k + 1, at, next, afterNext);
+    afterNext = next;
+    next = at;
   }
+  addResidual(0, 0.0, next, afterNext);
   return norm == 0.0 ? 0.0 : std::sqrt(residual) / std::sqrt(norm);
 }
 

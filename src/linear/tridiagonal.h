@@ -3,13 +3,14 @@
 // T_{k,k+1} = T_{k+1,k} = upper[k]) plus a shift μ I, in O(m):
 //   d_0 = T_00 + μ,   l_k = T_{k,k+1} / d_k,   d_{k+1} = T_{k+1,k+1} + μ − l_k T_{k,k+1};
 // then T x = b by  y_k = b_k − l_{k−1} y_{k−1},  x_{m−1} = y_{m−1} / d_{m−1},
-// x_k = y_k / d_k − l_k x_{k+1}. The factorisation keeps 1/d_k (one
-// division a row, which the pivot recursion waits for anyway), so the back
-// substitution, a recursion too, waits for a multiplication only. The constraint solve of a chain of
-// constraints uses it in place of the sparse LDLᵀ (ldlt.h), with which it
-// shares the interface: a failed factorisation (a zero or non-finite pivot)
-// and the smallest pivot, which tells when T has lost rank. (xpbd's hanging
-// lines solve their own lane-interleaved systems: xpbd/hanging_lines.h.)
+// x_k = y_k / d_k − l_k x_{k+1}. The factorisation keeps 1/d_k (one division
+// a row, beside the one the pivot recursion waits for), so the back
+// substitution, a recursion too, waits for a multiplication only. The
+// constraint solve of a chain of constraints uses it in place of the sparse
+// LDLᵀ (ldlt.h), with which it shares the interface: a failed factorisation
+// (a zero or non-finite pivot) and the smallest pivot, which tells when T has
+// lost rank. (xpbd's hanging lines solve their own lane-interleaved systems:
+// xpbd/hanging_lines.h.)
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -44,21 +45,24 @@ class Tridiagonal {
     inversePivot_[k] = 1.0 / d;  // off the recursion's path
   }
   bool usable() const { return usable_; }
-  void backSubstitute(Eigen::VectorXd& x) const;
   // min_k d_k of the last factorisation.
   double smallestPivot() const { return smallestPivot_; }
-  // x = (L D Lᵀ)⁻¹ b (x may be b).
-  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
-  // |T x − b| / |b| (0 when b = 0), T without the shift: one pass, no T x kept.
-  static double relativeResidual(const std::vector<double>& diagonal, const std::vector<double>& upper,
-                                 const Eigen::VectorXd& x, const Eigen::VectorXd& b);
+  // x = (L D Lᵀ)⁻¹ b (x not b). Returns |T x − b| / |b| (0 when b = 0) for
+  // T = (diagonal, upper) without the shift, summed in the back substitution's
+  // pass, whose own recursion leaves time for it.
+  double solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, const std::vector<double>& diagonal,
+               const std::vector<double>& upper) const;
+  // The same for the b given to row(), whose forward substitution is done.
+  double backSubstitute(const Eigen::VectorXd& b, Eigen::VectorXd& x, const std::vector<double>& diagonal,
+                        const std::vector<double>& upper) const;
 
  private:
   std::vector<double> inversePivot_, lower_, y_;  // 1/d_k, l_k; y_k of the rows given to row()
   double shift_ = 0.0, pivot_ = 0.0, forward_ = 0.0;  // μ; the last row's d_k and y_k
   double smallestPivot_ = 0.0;
   bool usable_ = true;
-  void backSubstituteInPlace(double* y) const;
+  // x = y on entry; x_{m−1} = y_{m−1} / d_{m−1}, x_k = y_k / d_k − l_k x_{k+1}; the residual as solve() says.
+  double backward(const double* b, double* x, const double* diagonal, const double* upper) const;
 };
 
 }  // namespace particles::linear
