@@ -2,8 +2,8 @@
 // The largest scene particle-lab and the demo accept, in one place: the scene
 // table's builders and the scene-file reader check these before allocating,
 // so that an absurd size is one line and exit 2 rather than an exhausted
-// memory or a step that never ends. Documented in README.md and
-// demos/scenes/FORMAT.md.
+// memory or a step that never ends. Documented in demos/scenes/FORMAT.md
+// (Hostile input, Limits).
 #include <cstddef>
 #include <string>
 

@@ -16,7 +16,7 @@ set format y '10^{%L}'
 
 # --- stability -------------------------------------------------------------
 # A value the scan could not resolve is never drawn as an ordinary point: a
-# safe dt below the grid (safe_dt 0) is drawn at the grid's bottom as ▼, one
+# largest surviving dt below the grid (0) is drawn at the grid's bottom as ▼, one
 # at the grid's top with no failure (first_failure_dt 0) as ▲.
 quoted(key) = system(sprintf("awk -F, '$1 == \"%s\" { print $2 }' '%s/values.csv'", key, data))
 T = quoted('stability.duration') + 0
@@ -27,10 +27,10 @@ resolved(d, k) = (at(d, k) && $5 > 0 && $6 > 0 ? $5 : NaN)
 below(d, k) = (at(d, k) && $5 == 0 ? $9 : NaN)
 above(d, k) = (at(d, k) && $6 == 0 ? $5 : NaN)
 set output fig.'/stability_boundary.png'
-set title sprintf('Safe dt of the test chain, T = %g s (every grid dt at or below it survives on every start)', T)
+set title sprintf('Largest surviving dt of the test chain (coarse scan), T = %g s (every grid dt at or below it survived on every start)', T)
 set logscale xy
 set xlabel 'chain length (particles)'
-set ylabel 'safe dt (s)'
+set ylabel 'largest surviving dt (s)'
 set key outside right top
 plot for [k=1:words(names(f))] f using 2:(strcol(1) eq word(names(f), k) ? resolved(T, ks) : NaN) \
        with linespoints lc k pt 7 title word(names(f), k), \
@@ -42,9 +42,9 @@ plot for [k=1:words(names(f))] f using 2:(strcol(1) eq word(names(f), k) ? resol
      NaN with points lc 'black' pt 9 ps 1.5 title '▲ survives the grid top'
 
 set output fig.'/stability_vs_duration.png'
-set title 'Safe dt against the survival time T (chains of 6, 12, 24)'
+set title 'Largest surviving dt (coarse scan) against the survival time T (chains of 6, 12, 24)'
 set xlabel 'T (simulated s)'
-set ylabel 'safe dt (s)'
+set ylabel 'largest surviving dt (s)'
 lens = system(sprintf("awk -F, 'NR > 1 && ($4 - %g)^2 > 1e-12 { print $2 }' '%s' | sort -nu | tr '\\n' ' '", T, f))
 plot for [k=1:words(names(f))] for [l in lens] f using 4:(strcol(1) eq word(names(f), k) && $2 == l+0 && $3 == ks && $5 > 0 && $6 > 0 ? $5 : NaN) \
        with linespoints lc k pt (l+0 == 6 ? 7 : l+0 == 12 ? 5 : 13) title word(names(f), k).' cl '.l, \
@@ -57,9 +57,9 @@ plot for [k=1:words(names(f))] for [l in lens] f using 4:(strcol(1) eq word(name
 # link rate, 2√((cl−1) g / r)).
 # Where one frequency governs, dt·ω is constant along a line of slope −1.
 set output fig.'/stability_frequency.png'
-set title sprintf("Safe dt against the stiffest frequency present, T = %g s; the stiffest is\n● the feedback √k_s, ■ the whip (fastest rod rotation, measured), ▲ the static chain mode 2√((cl−1)g/r)", T)
+set title sprintf("Largest surviving dt against the stiffest frequency present, T = %g s; the stiffest is\n● the feedback √k_s, ■ the whip (fastest rod rotation, measured), ▲ the static chain mode 2√((cl−1)g/r)", T)
 set xlabel 'stiffest frequency ω (1/s)'
-set ylabel 'safe dt (s)'
+set ylabel 'largest surviving dt (s)'
 omega(x) = ($12 > $13 ? ($12 > $14 ? $12 : $14) : ($13 > $14 ? $13 : $14))
 ok(k) = (strcol(1) eq word(names(f), k) && abs($4 - T) < 1e-9 && $5 > 0 && $6 > 0)
 plot for [k=1:words(names(f))] f using (omega(0)):(ok(k) && strcol(15) eq 'feedback' ? $5 : NaN) \
@@ -186,17 +186,17 @@ set format y '10^{%L}'
 # --- extremes --------------------------------------------------------------
 f = data.'/extremes_stiffness.csv'
 set output fig.'/extremes_stiffness.png'
-set title 'Safe dt of the 8-way cloth against spring stiffness (▼ fails at the window bottom, ▲ survives its top)'
+set title 'Largest surviving dt of the 8-way cloth against spring stiffness (▼ fails at the window bottom, ▲ survives its top)'
 set logscale xy
 set xlabel 'spring k_s'
-set ylabel 'safe dt (s)'
+set ylabel 'largest surviving dt (s)'
 plot for [k=1:words(names(f))] f using 2:(strcol(1) eq word(names(f), k) && $3 > 0 && $4 > 0 ? $3 : NaN) with linespoints lc k pt 7 title word(names(f), k), \
      for [k=1:words(names(f))] f using 2:(strcol(1) eq word(names(f), k) && $3 == 0 ? $6 : NaN) with points lc k pt 11 ps 1.5 notitle, \
      for [k=1:words(names(f))] f using 2:(strcol(1) eq word(names(f), k) && $4 == 0 ? $3 : NaN) with points lc k pt 9 ps 1.5 notitle
 
 f = data.'/extremes_mass_ratio.csv'
 set output fig.'/extremes_mass_ratio.png'
-set title 'Safe dt against the tip-to-link mass ratio (▲ survives the grid top; below the grid: not drawn)'
+set title 'Largest surviving dt against the tip-to-link mass ratio (▲ survives the grid top; below the grid: not drawn)'
 set xlabel 'tip mass / link mass'
 plot for [k=1:words(names(f))] f using 2:(strcol(1) eq word(names(f), k) && $3 > 0 && $4 > 0 ? $3 : NaN) with linespoints lc k pt 7 title word(names(f), k), \
      for [k=1:words(names(f))] f using 2:(strcol(1) eq word(names(f), k) && $3 > 0 && $4 == 0 ? $3 : NaN) with points lc k pt 9 ps 1.5 notitle
@@ -313,6 +313,6 @@ set xlabel 'particles'
 set ylabel 'CPU s per simulated s of the cheapest pick'
 set title sprintf('The cost of accuracy against size (first %g s from release)', quoted('cost.size_horizon') + 0)
 plot for [fam in "chain cloth"] for [b in "0.01 0.0001"] \
-       f using (strcol(1) eq fam && abs($6 - real(b)) < 1e-12 ? $3 : NaN):11:12:13 with yerrorlines \
+       f using (strcol(1) eq fam && abs($6 - real(b)) < 1e-12 ? $3 : NaN):12:13:14 with yerrorlines \
        title fam.', budget '.b
 unset title

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's pictures of the demo with the program's own
+# Regenerates the pictures of the demo (README.md, demos/gui/SCRIPTING.md) with its own
 # --screenshot: the cloth with a corner pulled by a scripted mouse drag, the hair,
 # compare mode, the cloth ripped by a pull in the wind, the gallery's five
 # scenes, and a scene built by script in build mode, saved and run from its file.

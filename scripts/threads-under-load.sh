@@ -12,7 +12,11 @@
 # one-thread time measured in the same conditions, then the share of
 # --threads 2's steps that ran on more than one thread (the CSV's threads)
 # and the range over the rounds of each round's --threads 2 and default time
-# over its one-thread time (the spread of the ratios).
+# over its one-thread time (the spread of the ratios), then the median over
+# the rounds of each round's ratio of mean step times (the run's wall time
+# stepping over its steps: beside busy programs a run's steps are often
+# bimodal, a core to itself or shared with one of them, and its median step
+# then tells which phase the run mostly saw, where the mean is what it cost).
 #   bash scripts/threads-under-load.sh [build-dir] [rounds] [step-scale]
 # (defaults: build, 5, 1: about a second per run; a step-scale of 0.01 is a
 # quick check of the script itself.) No number here is asserted anywhere.
@@ -47,13 +51,15 @@ cases=(
   "stiff 64^2 xpbd 1/60|100|$stiff"
 )
 
-# run ARGS...: median step_us of the run's steps (row 0, the initial state, left out), then the share
-# of steps on more than one thread.
+# run ARGS...: median step_us of the run's steps (row 0, the initial state, left out), their mean,
+# then the share of steps on more than one thread.
 run() {
   "$lab" run "$@" --csv "$work/run.csv" >/dev/null 2>"$work/run.err" ||
     { echo "threads-under-load: particle-lab run $* failed: $(head -c 300 "$work/run.err")" >&2; exit 1; }
   awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next } NR > 2 { print $col["step_us"] }' \
     "$work/run.csv" | median
+  awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next } NR > 2 { n++; sum += $col["step_us"] }
+           END { print sum / n }' "$work/run.csv"
   awk -F, 'NR == 1 { for (k = 1; k <= NF; ++k) if ($k == "threads") c = k; next } NR > 2 { n++; if (c) more += $c > 1 }
            END { print c ? more / n : -1 }' "$work/run.csv"  # -1: a CSV without the threads column
 }
@@ -61,8 +67,8 @@ run() {
 median() { sort -g | awk '{ v[NR] = $1 } END { print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 echo "threads under load: $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)); medians over $rounds runs of each run's median step_us"
-printf '%-22s %4s %10s %20s %20s %8s %11s %11s %s\n' case busy "1 thread" "--threads 2" "default" ">1 used" \
-  "2/1 range" "def/1 range" "load average"
+printf '%-22s %4s %10s %20s %20s %8s %11s %11s %8s %8s %s\n' case busy "1 thread" "--threads 2" "default" ">1 used" \
+  "2/1 range" "def/1 range" "mean 2/1" "mean d/1" "load average"
 settings=("--threads 1" "--threads 2" "")
 for competitors in 0 1 2; do
   for ((c = 0; c < competitors; ++c)); do
@@ -74,13 +80,15 @@ for competitors in 0 1 2; do
     IFS='|' read -r name steps args <<<"$entry"
     steps=$(awk -v s="$steps" -v f="$scale" 'BEGIN { n = int(s * f + 0.5); print n < 3 ? 3 : n }')
     : >"$work/times-0"; : >"$work/times-1"; : >"$work/times-2"; : >"$work/more"
+    : >"$work/means-0"; : >"$work/means-1"; : >"$work/means-2"
     for ((r = 0; r < rounds; ++r)); do
       for ((k = 0; k < 3; ++k)); do
         s=$(((k + r) % 3))
         # shellcheck disable=SC2086
         run $args --steps "$steps" ${settings[$s]} >"$work/result"
-        { read -r time; read -r more; } <"$work/result"
+        { read -r time; read -r mean; read -r more; } <"$work/result"
         echo "$time" >>"$work/times-$s"
+        echo "$mean" >>"$work/means-$s"
         [ "$s" = 1 ] && echo "$more" >>"$work/more"
       done
     done
@@ -93,11 +101,16 @@ for competitors in 0 1 2; do
              if (NR == 1 || a < alo) alo = a; if (NR == 1 || a > ahi) ahi = a
              if (NR == 1 || b < blo) blo = b; if (NR == 1 || b > bhi) bhi = b }
            END { printf "%.2f-%.2f %.2f-%.2f", alo, ahi, blo, bhi }')
+    means=$(paste "$work/means-0" "$work/means-1" "$work/means-2" |
+      awk '{ print $2 / $1, $3 / $1 }' | { read -r -d '' all || true; echo "$all"; })
+    mean2=$(awk '{ print $1 }' <<<"$means" | median)
+    meandef=$(awk '{ print $2 }' <<<"$means" | median)
     awk -v name="$name" -v busy="$competitors" -v one="$one" -v two="$two" -v def="$default" \
       -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" -v spread="$spread" \
+      -v mean2="$mean2" -v meandef="$meandef" \
       'BEGIN { used = more < 0 ? "-" : sprintf("%.0f%%", 100 * more); split(spread, range, " ")
-               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %11s %11s %s\n",
-                      name, busy, one, two, two / one, def, def / one, used, range[1], range[2], load }'
+               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %11s %11s %7.2fx %7.2fx %s\n",
+                      name, busy, one, two, two / one, def, def / one, used, range[1], range[2], mean2, meandef, load }'
   done
   stop_busy
 done

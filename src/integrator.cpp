@@ -21,6 +21,12 @@ template <class T>
 std::unique_ptr<Integrator> make() {
   return std::make_unique<T>();
 }
+
+// IntegratorInfo's flags (usesTolerance, usesSubsteps, inLabSweeps), named
+// where the table sets them.
+constexpr bool kReadsTolerance = true, kNoTolerance = false;
+constexpr bool kReadsSubsteps = true, kNoSubsteps = false;
+constexpr bool kOutOfLabSweeps = false;
 }  // namespace
 
 const std::vector<IntegratorInfo>& integratorTable() {
@@ -42,16 +48,16 @@ const std::vector<IntegratorInfo>& integratorTable() {
       // chains of up to 1000 particles leave it out until it uses the direct solve.
       {"rattle", "RATTLE: velocity Verlet with positions and velocities projected onto the constraints; no drift",
        "symplectic, constraints held exactly: omega dt < 2; 1 force evaluation and two projections a step", 2,
-       make<RattleIntegrator>, false, false, false},
+       make<RattleIntegrator>, kNoTolerance, kNoSubsteps, kOutOfLabSweeps},
       {"implicit-euler", "backward Euler, constraints in the solve, Newton passes to convergence; never gains energy",
        "stable at any dt, but damps the motion, more at larger dt; a linear solve per Newton pass", 1,
        make<ImplicitEulerIntegrator>},
       {"dopri5", "Dormand-Prince 5(4), FSAL, PI step control: internal step chosen to meet --tolerance",
        "accurate to its tolerance, but a stiff scene makes it take many small internal steps; 6 evaluations each", 5,
-       make<Dopri5Integrator>, true},
+       make<Dopri5Integrator>, kReadsTolerance},
       {"xpbd", "XPBD: --substeps substeps of --iterations constraint passes, springs as compliance (--lines: hanging lines solved directly)",
        "stable at any dt on springs and constraints, a little damping; one pass over every spring a substep", 1,
-       make<XpbdIntegrator>, false, true},
+       make<XpbdIntegrator>, kNoTolerance, kReadsSubsteps},
   };
   return table;
 }

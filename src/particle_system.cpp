@@ -253,9 +253,12 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
     if (solve.failed) one.failure = StepFailure::SolveFailed;
     evaluations_ += one;
   }
+  // a = W f and then, range by range in one pass.
   a.resize(x.size());
-  for (int i = 0; i < size(); ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
-  if (then) parallelRanges(size(), threadCount(), kParallelParticles, then);
+  parallelRanges(size(), threadCount(), kParallelParticles, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
+    if (then) then(begin, end);
+  });
 }
 
 void ParticleSystem::accelerations(const std::vector<StatePoint>& points, Eigen::VectorXd& a,

@@ -14,7 +14,6 @@
 #include <gtest/gtest.h>
 
 #include "particles/collider.h"
-#include "particles/constants.h"
 #include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
@@ -24,6 +23,7 @@
 #include "particles/xpbd/distance.h"
 #include "particles/xpbd/distance_blocks.h"
 #include "scenes/cloth.h"
+#include "oscillator_fixture.h"
 #include "test_support.h"
 
 using namespace particles;
@@ -31,11 +31,15 @@ using Eigen::Vector2d;
 
 namespace {
 
-std::unique_ptr<Integrator> xpbd(int substeps, int iterations) {
+IntegratorSettings xpbdSettings(int substeps, int iterations) {
   IntegratorSettings settings;
   settings.xpbd.substeps = substeps;
   settings.xpbd.iterations = iterations;
-  return makeIntegrator("xpbd", settings);
+  return settings;
+}
+
+std::unique_ptr<Integrator> xpbd(int substeps, int iterations) {
+  return makeIntegrator("xpbd", xpbdSettings(substeps, iterations));
 }
 
 // Particle 1 (mass m) on a spring of rest length r below particle 0, pinned.
@@ -57,16 +61,6 @@ ParticleSystem rodChain(int links, double r, RodForm form) {
   for (int i = 0; i < links; ++i) system.addConstraint(std::make_unique<RodConstraint>(i, i + 1, r, form));
   system.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
   return system;
-}
-
-double fittedSlope(const std::vector<double>& x, const std::vector<double>& y) {
-  const int n = static_cast<int>(x.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (int k = 0; k < n; ++k) {
-    const double a = std::log(x[k]), b = std::log(y[k]);
-    sx += a, sy += b, sxx += a * a, sxy += a * b;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // A user's own force type, unknown to xpbd's table: a steady push F on every
@@ -326,14 +320,15 @@ TEST(Xpbd, ZeroComplianceRodsHoldAfterTheSubsteps) {
 }
 
 TEST(Xpbd, DampingRemovesTheEnergyOfTheDampedSpring) {
-  // Mass m on a damped spring to a pinned particle, released stretched, no
-  // gravity. The force-based reference (RK4 at dt = 1e-4) gives the energy the
-  // damper removes over T; XPBD at a small h must remove the same.
-  const double mass = 1.0, stiffness = 4.0 * particles::kPi * particles::kPi, damping = 0.8, T = 2.0;
+  // The oscillator (m = 1, ω = 2π) with a damper, released 0.2 beyond its
+  // rest length. The force-based reference (RK4 at dt = 1e-4) gives the
+  // energy the damper removes over T; XPBD at a small h must remove the same.
+  const double damping = 0.8, T = 2.0;
   auto build = [&](double kd) {
-    ParticleSystem system = hangingSpring(mass, stiffness, kd, 0.0);
-    system.setPosition(1, Eigen::Vector2d(system.position(1).x(), -1.2));
-    return system;
+    test_support::Oscillator oscillator;
+    oscillator.params.damping = kd;
+    oscillator.params.stretch = 0.2;
+    return oscillator.build();
   };
   ParticleSystem reference = build(damping);
   const double e0 = reference.totalEnergy();
@@ -355,19 +350,11 @@ TEST(Xpbd, DampingRemovesTheEnergyOfTheDampedSpring) {
 }
 
 TEST(Xpbd, PositionErrorIsFirstOrderInTheSubstep) {
-  // Undamped oscillator, ω = 2π, released at rest from r + A: x(t) = r + A cos ωt.
-  const double omega = 2.0 * particles::kPi, A = 0.1, T = 1.3;
-  std::vector<double> hs, errors;
-  for (int steps : {100, 200, 400, 800}) {
-    ParticleSystem system = hangingSpring(1.0, omega * omega, 0.0, 0.0);
-    system.setPosition(1, Eigen::Vector2d(system.position(1).x(), -1.0 - A));
-    auto integrator = xpbd(10, 1);
-    for (int k = 0; k < steps; ++k) system.step(*integrator, T / steps);
-    const double exact = -1.0 - A * std::cos(omega * T);
-    hs.push_back(T / steps / 10);
-    errors.push_back(std::abs(system.position(1).y() - exact));
-  }
-  EXPECT_NEAR(fittedSlope(hs, errors), 1.0, 0.15) << errors.front() << " to " << errors.back();
+  // The undamped oscillator (ω = 2π, ±0.1 about r = 1) at 10 substeps of one
+  // pass: h = dt/10, so the slope against dt is the slope against h.
+  const test_support::OrderFit fit =
+      test_support::Oscillator().measureOrder("xpbd", 1.3, {100, 200, 400, 800}, xpbdSettings(10, 1));
+  EXPECT_NEAR(fit.order, 1.0, 0.15) << fit.errors.front() << " to " << fit.errors.back();
 }
 
 TEST(Xpbd, AppliesAUserForceWithoutAPositionFormInThePrediction) {

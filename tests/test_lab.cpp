@@ -22,6 +22,8 @@
 #include "output/format_number.h"
 #include "lab/render.h"
 #include "lab/values.h"
+#include "particles/integrator.h"
+#include "test_support.h"
 
 using namespace lab;
 
@@ -326,13 +328,13 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
   s.duration = 10.0;
   ASSERT_EQ(runStability(o, s), 0);
   const Table rows = readCsv(o.outDir + "/stability_boundary.csv",
-                             {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
-                              "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
-                              "omega_chain", "omega_whip", "stiffest"});
+                             {"integrator", "chain_length", "feedback_ks", "duration", "largest_surviving_dt",
+                              "first_failure_dt", "first_failure", "survival_above", "grid_lo", "grid_hi", "members",
+                              "omega_feedback", "omega_chain", "omega_whip", "stiffest"});
   std::map<std::string, std::map<std::string, double>> safe;
   for (const auto& row : rows)
     if (row.at("duration") == "10" && row.at("feedback_ks") == "60")
-      safe[row.at("integrator")][row.at("chain_length")] = std::stod(row.at("safe_dt"));
+      safe[row.at("integrator")][row.at("chain_length")] = std::stod(row.at("largest_surviving_dt"));
   ASSERT_FALSE(safe["rk4"].empty());
   // A longer chain whips faster: the measured link rate grows with its length.
   std::map<int, double> whip;
@@ -359,24 +361,34 @@ TEST(StabilityQuick, WritesTheBoundaryAndRk4SafeStepExceedsEulers) {
       EXPECT_LE(std::stod(row.at("max_energy_rise")), o.criterion.energyRiseFraction) << row.at("dt");
       EXPECT_LE(std::stod(row.at("max_relative_stretch")), o.criterion.maxRelativeConstraintError) << row.at("dt");
     }
-  // Table 2's certificates: one per integrator and table length, each below
-  // its smallest failure with a whole decade of survival under that failure.
+  // Table 2: one scan per integrator and table length, each survived dt below
+  // its smallest failure with a whole decade of survival under that failure,
+  // and the bound its runs support.
   const Table certified = readCsv(
       o.outDir + "/stability_certified.csv",
-      {"integrator", "chain_length", "duration", "safe_dt", "smallest_failure_dt", "smallest_failure", "grid_lo",
-       "grid_hi", "resolution", "members", "points", "runs", "full_decades", "points_1_1.1", "failed_1_1.1",
-       "points_1.1_1.25", "failed_1.1_1.25", "points_1.25_1.5", "failed_1.25_1.5", "points_1.5_2", "failed_1.5_2"});
-  EXPECT_EQ(certified.size(), safe.size());  // the quick plan certifies one chain length
+      {"integrator", "chain_length", "duration", "survived_dt", "runs_at_and_below", "failure_bound",
+       "smallest_failure_dt", "smallest_failure", "grid_lo", "grid_hi", "resolution", "members", "points", "runs",
+       "full_decades", "points_0.1_0.5", "failed_points_0.1_0.5", "runs_0.1_0.5", "failed_runs_0.1_0.5",
+       "points_0.5_1", "failed_points_0.5_1", "runs_0.5_1", "failed_runs_0.5_1", "points_1_1.1",
+       "failed_points_1_1.1", "runs_1_1.1", "failed_runs_1_1.1", "points_1.1_1.25", "failed_points_1.1_1.25",
+       "runs_1.1_1.25", "failed_runs_1.1_1.25", "points_1.25_1.5", "failed_points_1.25_1.5", "runs_1.25_1.5",
+       "failed_runs_1.25_1.5", "points_1.5_2", "failed_points_1.5_2", "runs_1.5_2", "failed_runs_1.5_2",
+       "coarse_surviving_dt"});
+  EXPECT_EQ(certified.size(), safe.size());  // the quick plan scans one chain length
   for (const auto& row : certified) {
     EXPECT_EQ(row.at("members"), "10");
     EXPECT_EQ(row.at("resolution"), "0.01");
     const double smallest = std::stod(row.at("smallest_failure_dt"));
     if (smallest == 0.0 || row.at("full_decades") != "1") continue;
-    EXPECT_LT(std::stod(row.at("safe_dt")), smallest) << row.at("integrator");
+    EXPECT_LT(std::stod(row.at("survived_dt")), smallest) << row.at("integrator");
     EXPECT_LE(std::stod(row.at("grid_lo")), smallest / 10.0 * (1 + 1e-9)) << row.at("integrator");
-    // Every start ran at every grid dt (70 per octave) from the bottom up to the certified one.
-    const long below = std::lround(70.0 * std::log2(std::stod(row.at("safe_dt")) / std::stod(row.at("grid_lo")))) + 1;
-    EXPECT_GE(std::stol(row.at("runs")), 10 * below) << row.at("integrator");
+    // Every start ran at every grid dt (70 per octave) from the bottom up to the survived one,
+    // and the bound is that of those runs, none failing.
+    const long below = std::lround(70.0 * std::log2(std::stod(row.at("survived_dt")) / std::stod(row.at("grid_lo")))) + 1;
+    EXPECT_EQ(std::stol(row.at("runs_at_and_below")), 10 * below) << row.at("integrator");
+    EXPECT_NEAR(std::stod(row.at("failure_bound")), 1.0 - std::pow(0.05, 1.0 / (10.0 * below)), 1e-9);
+    EXPECT_EQ(row.at("failed_runs_0.1_0.5"), "0");
+    EXPECT_EQ(row.at("failed_runs_0.5_1"), "0");
   }
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/stability_certified.md"));
   EXPECT_TRUE(std::filesystem::exists(o.outDir + "/table1.md"));
@@ -424,8 +436,11 @@ TEST(LongtimeQuick, DriftRatesOfTheSymplecticFamilies) {
   ASSERT_EQ(rate.size(), 3u);
   for (auto& [problem, schemes] : rate) {
     const auto order = [&](const std::string& name) {
+      // Between the smallest and the largest dt; a drift may be a loss, at both.
       const auto& r = schemes[name];
-      return std::log(r.rbegin()->second / r.begin()->second) / std::log(r.rbegin()->first / r.begin()->first);
+      const double first = r.begin()->second, last = r.rbegin()->second;
+      EXPECT_GT(first * last, 0.0) << problem << " " << name << ": the drift changes sign with dt";
+      return test_support::logLogSlope({r.begin()->first, r.rbegin()->first}, {std::abs(first), std::abs(last)});
     };
     EXPECT_NEAR(order("symplectic-euler"), 1.0, 0.2) << problem;
     const double h = schemes["rattle"].begin()->first;
@@ -486,11 +501,18 @@ TEST(CostQuick, CostAgainstSizeFitsItsOwnRows) {
   ASSERT_EQ(runCost(o), 0);
   const Table rows = readCsv(o.outDir + "/cost_vs_size.csv",
                              {"family", "scene", "particles", "horizon", "size", "budget_relative", "integrator", "dt",
-                              "tolerance", "max_error", "cpu_per_simulated_second", "cpu_min", "cpu_max",
-                              "reference_agreement"});
+                              "tolerance", "max_error", "worst_error", "cpu_per_simulated_second", "cpu_min",
+                              "cpu_max", "reference_agreement", "certified_lo", "certified_hi", "margin_runs",
+                              "failure_bound"});
   std::map<std::pair<std::string, std::string>, std::vector<std::pair<double, double>>> series;
   for (const auto& row : rows) {
     EXPECT_LE(std::stod(row.at("max_error")), std::stod(row.at("budget_relative")) * std::stod(row.at("size")));
+    // Certified: the bound is that of the margin's runs, none failing, and every start is within budget.
+    const long runs = std::stol(row.at("margin_runs"));
+    EXPECT_GT(runs, 0);
+    EXPECT_NEAR(std::stod(row.at("failure_bound")), 1.0 - std::pow(0.05, 1.0 / runs), 1e-9);
+    EXPECT_LE(std::stod(row.at("max_error")), std::stod(row.at("worst_error")));
+    EXPECT_LE(std::stod(row.at("worst_error")), std::stod(row.at("budget_relative")) * std::stod(row.at("size")));
     EXPECT_GT(std::stod(row.at("cpu_per_simulated_second")), 0.0);
     series[{row.at("family"), row.at("budget_relative")}].emplace_back(std::stod(row.at("particles")),
                                                                        std::stod(row.at("cpu_per_simulated_second")));
@@ -501,10 +523,34 @@ TEST(CostQuick, CostAgainstSizeFitsItsOwnRows) {
   for (const auto& row : values) value[row.at("key")] = row.at("value");
   for (const auto& [key, points] : series) {
     ASSERT_EQ(points.size(), 2u) << key.first << " " << key.second;
-    const double slope = std::log(points[1].second / points[0].second) / std::log(points[1].first / points[0].first);
+    const double slope =
+        test_support::logLogSlope({points[0].first, points[1].first}, {points[0].second, points[1].second});
     const std::string name = "cost.size_slope." + key.first + "." + lab::general(std::stod(key.second));
     ASSERT_TRUE(value.count(name)) << name;
     EXPECT_NEAR(std::stod(value[name]), slope, 0.006) << name;
+  }
+  // Where each integrator is the cheapest pick, as the report's advice quotes it, agrees with the rows.
+  std::map<std::string, std::string> quoted = readValues(o.outDir);
+  for (const auto& row : rows)
+    EXPECT_NE(quoted["cost.where_cheapest." + row.at("integrator")].find(row.at("particles") + "-particle " +
+                                                                          row.at("family")),
+              std::string::npos)
+        << row.at("integrator") << ": " << quoted["cost.where_cheapest." + row.at("integrator")];
+  for (const auto& info : particles::integratorTable())  // every scheme has its clause, picked or not
+    EXPECT_EQ(quoted["cost.where_cheapest." + std::string(info.name)].rfind("is ", 0), 0u) << info.name;
+  // The contact question of the quick plan: a reference by self-convergence and a pick, or a refusal saying why.
+  const Table contacts = readCsv(o.outDir + "/cost_contacts.csv",
+                                 {"scene", "particles", "horizon", "error", "contact", "reference", "refused",
+                                  "certifiable_horizon", "integrator", "dt", "worst_error", "headroom", "certified_lo",
+                                  "certified_hi", "margin_runs", "failure_bound", "cpu_per_simulated_second"});
+  ASSERT_EQ(contacts.size(), 1u);
+  const auto& contact = contacts[0];
+  EXPECT_NE(contact.at("contact").find("touch"), std::string::npos) << contact.at("contact");
+  if (contact.at("refused") == "0") {
+    EXPECT_NE(contact.at("reference").find("self-convergence"), std::string::npos) << contact.at("reference");
+    if (!contact.at("integrator").empty()) {
+      EXPECT_LE(std::stod(contact.at("worst_error")), std::stod(contact.at("error")));
+    }
   }
 }
 
@@ -534,9 +580,9 @@ TEST(ExtremesQuick, WritesEverySweep) {
   LabOptions o = quickOptions("extremes");
   o.integrators = {"midpoint", "rk4"};
   ASSERT_EQ(runExtremes(o), 0);
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_stiffness.csv", {"integrator", "stiffness", "safe_dt", "first_failure_dt",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_stiffness.csv", {"integrator", "stiffness", "largest_surviving_dt", "first_failure_dt",
                                                               "first_failure", "grid_lo", "grid_hi"}).empty());
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_mass_ratio.csv", {"integrator", "mass_ratio", "safe_dt", "first_failure_dt",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_mass_ratio.csv", {"integrator", "mass_ratio", "largest_surviving_dt", "first_failure_dt",
                                                                "first_failure", "cg_iterations_per_step"}).empty());
   EXPECT_FALSE(readCsv(o.outDir + "/extremes_feedback.csv", {"ks", "kd", "critical_kd", "survived", "failure",
                                                               "max_relative_stretch", "final_relative_stretch"}).empty());
@@ -544,7 +590,7 @@ TEST(ExtremesQuick, WritesEverySweep) {
                                                                       "failure", "max_relative_stretch",
                                                                       "cg_iterations_per_step"});
   EXPECT_FALSE(budget.empty());
-  EXPECT_FALSE(readCsv(o.outDir + "/extremes_rod_form.csv", {"integrator", "rod", "safe_dt", "step_seconds",
+  EXPECT_FALSE(readCsv(o.outDir + "/extremes_rod_form.csv", {"integrator", "rod", "largest_surviving_dt", "step_seconds",
                                                               "cg_iterations_per_step", "max_relative_stretch"}).empty());
   EXPECT_FALSE(readCsv(o.outDir + "/extremes_taut_chain.csv", {"integrator", "max_iterations", "survived", "reason",
                                                                 "time", "max_relative_stretch",

@@ -16,8 +16,20 @@
 #include "lab/scan.h"
 #include "scenes/oscillator.h"
 #include "scenes/pendulum.h"
+#include "scene_file/scene_file.h"
 
 using namespace lab;
+
+// A survey's horizon T and error budget E (the abort error too), and the
+// integrators it tries (all of them when none are named).
+static SurveySettings surveyAt(double horizon, double error, std::vector<std::string> integrators = {}) {
+  SurveySettings settings;
+  settings.horizon = horizon;
+  settings.targetError = settings.abortError = error;
+  if (!integrators.empty()) settings.integrators = std::move(integrators);
+  return settings;
+}
+
 
 namespace {
 
@@ -93,9 +105,7 @@ TEST(OdeintReference, SlowestPeriodIsThePendulumsPeriod) {
 
 TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
   const double error = 1e-4, horizon = 32.0;
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
+  SurveySettings settings = surveyAt(horizon, error);
   settings.maxSteps = 20000;
   settings.repeats = 3;
   const auto build = [] { return scenes::buildScene("oscillator"); };
@@ -127,10 +137,7 @@ TEST(Advise, OscillatorPickMeetsTheClosedFormAndIsNearlyTheCheapestGridPoint) {
 // the pick is rerun from its options with the same energy error.
 TEST(Advise, EnergyAndDriftBudgetsAreMetByEveryPick) {
   const auto build = [] { return scenes::buildScene("pendulum"); };
-  SurveySettings settings;
-  settings.horizon = 20.0;
-  settings.targetError = settings.abortError = 1e-2;
-  settings.integrators = {"rk4", "verlet", "midpoint"};
+  SurveySettings settings = surveyAt(20.0, 1e-2, {"rk4", "verlet", "midpoint"});
   settings.repeats = 1;
   settings.certifyMembers = 0;
   const double energy = 1e-4, drift = 1e-5;
@@ -163,10 +170,7 @@ TEST(Advise, APrintedPickRerunFromItsOptionsReproducesItsError) {
   // would and rerun: the closed-form error of the rerun is within 10% of the
   // error the survey measured for the pick against its reference.
   const double error = 1e-4, horizon = 16.0;
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
-  settings.integrators = {"dopri5", "rk4", "verlet"};
+  SurveySettings settings = surveyAt(horizon, error, {"dopri5", "rk4", "verlet"});
   settings.maxSteps = 20000;
   settings.repeats = 1;
   const auto build = [] { return scenes::buildScene("oscillator"); };
@@ -197,10 +201,7 @@ TEST(Advise, PastTheChaoticHorizonSaysSoAndNamesTheHorizonItCanCertify) {
   // The rod chain's two references part by more than E/10 = 1e-3 within 10 s:
   // no integrator is scanned, and the horizon named as certifiable is
   // certified when asked for (the references agree within E/10 over it).
-  SurveySettings settings;
-  settings.horizon = 10.0;
-  settings.targetError = settings.abortError = 1e-2;
-  settings.integrators = {"rk4"};
+  SurveySettings settings = surveyAt(10.0, 1e-2, {"rk4"});
   settings.repeats = 1;
   const auto build = [] { return scenes::buildScene("rod-chain"); };
   const Survey survey = surveyScene(build, settings);
@@ -215,25 +216,98 @@ TEST(Advise, PastTheChaoticHorizonSaysSoAndNamesTheHorizonItCanCertify) {
   ASSERT_EQ(shorter.integrators.size(), 1u);
 }
 
-TEST(Advise, AReferenceThatMeetsAContactCertifiesNothingPastIt) {
-  // The hair's discs meet one another or its colliders early; the
-  // reference models no contact, so advise names the contact and a shorter horizon.
-  SurveySettings settings;
-  settings.horizon = 0.2;
-  settings.targetError = settings.abortError = 1e-3;
-  settings.integrators = {"rk4"};
+TEST(Advise, AReferenceThatMeetsAContactNamesItAndWithoutContactReferencesCertifiesNothingPastIt) {
+  // The hair's discs meet one another early (it has no walls); odeint models
+  // no contact, so with contact references off advise names the contact (the
+  // discs that touch, and when) and a shorter horizon.
+  SurveySettings settings = surveyAt(0.2, 1e-3, {"rk4"});
   settings.repeats = 1;
+  settings.contactReference = false;
   const Survey survey = surveyScene([] { return scenes::buildScene("hair"); }, settings);
-  EXPECT_NE(survey.limit.find("contact"), std::string::npos) << survey.limit;
+  EXPECT_TRUE(survey.touchedWall);
+  EXPECT_NE(survey.contact.find("the discs of particles"), std::string::npos) << survey.contact;
+  EXPECT_NE(survey.contact.find("touch at t = "), std::string::npos) << survey.contact;
+  EXPECT_NE(survey.limit.find(survey.contact), std::string::npos) << survey.limit;
+  EXPECT_EQ(survey.limit.find("wall"), std::string::npos) << survey.limit;
   EXPECT_TRUE(survey.integrators.empty());
   EXPECT_LT(survey.certifiableHorizon, 0.2);
 }
 
+namespace {
+
+// A finer run than the reference: its scheme at half its step, sampled as it is.
+Trajectory finerRun(const std::function<scenes::Scene()>& build, const Survey& survey) {
+  const SelfConvergence& r = survey.contactReference;
+  const long stride = std::lround(survey.referenceTrajectory->interval / r.dt);
+  const std::optional<Trajectory> finer =
+      steppedTrajectory(build, r.scheme, 0.5 * r.dt, 2 * stride, survey.horizon, FailureCriterion{});
+  EXPECT_TRUE(finer.has_value());
+  return finer ? *finer : Trajectory{};
+}
+
+// What advise must do on a scene with contacts: its contact reference
+// converges (two successive halvings within E/10, an order observed) and its
+// pick is within E of a run finer than the reference, from every start it
+// claims. (A budget self-convergence cannot reach is refused: the CLI test
+// advise.contacts-not-converged.)
+void expectContactAdvice(const std::function<scenes::Scene()>& build, SurveySettings settings, const char* what) {
+  const double error = settings.targetError;
+  const Advice advice = advise(build, settings);
+  ASSERT_TRUE(advice.complete) << what;
+  const Survey& survey = advice.survey;
+  ASSERT_TRUE(survey.touchedWall) << what << ": the scene meets no contact: no test";
+  const SelfConvergence& reference = survey.contactReference;
+  ASSERT_GE(reference.halvings.size(), 1u) << what;
+  ASSERT_TRUE(reference.converged) << what << ": " << survey.limit;
+  EXPECT_TRUE(survey.limit.empty()) << what << ": " << survey.limit;
+  EXPECT_LE(reference.difference, error / 10.0) << what;
+  EXPECT_NE(survey.reference.find("self-convergence of " + reference.scheme), std::string::npos) << survey.reference;
+  EXPECT_NEAR(reference.dt, reference.halvings.back().dt, 1e-15) << what;
+  ASSERT_GE(advice.best, 0) << what << ": the reference converged but nothing meets E";
+  const Pick& pick = advice.picks[advice.best];
+  ASSERT_TRUE(pick.certified()) << what;
+  EXPECT_LE(pick.error(), error) << what;
+  EXPECT_GE(pick.worstError, pick.candidate.maxError) << what;
+  // The pick against a run twice as fine as the reference, from every start it was certified on.
+  const Trajectory fine = finerRun(build, survey);
+  for (int member = 0; member < pick.starts; ++member) {
+    const auto perturbed = [&] {
+      scenes::Scene scene = build();
+      perturbStart(scene, member);
+      return scene;
+    };
+    const Candidate again = measureRun(perturbed, fine, pick.candidate.integrator, pick.candidate.dt,
+                                       pick.candidate.tolerance, settings.horizon, settings.failure, 1.0);
+    EXPECT_TRUE(again.survived) << what << " start " << member;
+    EXPECT_LE(again.maxError, error) << what << " " << pickArguments(pick.candidate) << " start " << member;
+  }
+}
+
+SurveySettings contactSettings(double horizon, double error) {
+  SurveySettings settings = surveyAt(horizon, error, {"symplectic-euler", "rk4", "verlet"});
+  settings.repeats = 1;
+  settings.certifyMembers = 3;
+  settings.maxSteps = 20000;
+  return settings;
+}
+
+}  // namespace
+
+// A small hair (2 strands of 12) whose discs meet within 0.2 s.
+TEST(Advise, AHairWithContactsGetsAPickAFinerRunConfirms) {
+  expectContactAdvice([] { return scenes::buildScene("hair", {{"curls", "2"}, {"particles", "12"}}); },
+                      contactSettings(0.2, 1e-3), "hair");
+}
+
+// Discs falling through a funnel of two capsules onto a floor (the example
+// scene file capsule.json): impacts with restitution and friction.
+TEST(Advise, DiscsInAFunnelGetAPickAFinerRunConfirms) {
+  const std::string file = std::string(SCENES_DIR) + "/capsule.json";
+  expectContactAdvice([&] { return scenes::loadSceneFile(file); }, contactSettings(3.0, 1e-3), "funnel");
+}
+
 TEST(Advise, NothingWithinAnUnreachableBudget) {
-  SurveySettings settings;
-  settings.horizon = 10.0;
-  settings.targetError = settings.abortError = 1e-6;
-  settings.integrators = {"euler"};
+  SurveySettings settings = surveyAt(10.0, 1e-6, {"euler"});
   settings.maxSteps = 2000;
   settings.repeats = 1;
   const auto build = [] { return scenes::buildScene("oscillator"); };
@@ -255,9 +329,7 @@ TEST(Advise, RejectsBadSettingsNamingTheField) {
 }
 
 TEST(Advise, ACancelledSurveyIsIncompleteAndNamesNoPick) {
-  SurveySettings settings;
-  settings.horizon = 5.0;
-  settings.targetError = settings.abortError = 1e-2;
+  SurveySettings settings = surveyAt(5.0, 1e-2);
   settings.repeats = 1;
   settings.certifyMembers = 2;
   const auto build = [] { return scenes::buildScene("pendulum"); };
@@ -290,9 +362,7 @@ TEST(Advise, ACancelledSurveyIsIncompleteAndNamesNoPick) {
 TEST(Advise, SafeBoundaryIsTheLabsScanOverTheEnsemble) {
   // The 6-chain over 5 s: fixed-step schemes fail at the top of the grid.
   const auto build = [] { return buildLabScene("test-chain", {{"cl", "6"}}); };
-  SurveySettings settings;
-  settings.horizon = 5.0;
-  settings.targetError = settings.abortError = 1e-3;
+  SurveySettings settings = surveyAt(5.0, 1e-3);
   settings.maxSteps = 1000;
   settings.repeats = 1;
   settings.integrators = {"symplectic-euler", "midpoint", "rk4"};
@@ -325,9 +395,7 @@ TEST(Advise, SafeBoundaryIsTheLabsScanOverTheEnsemble) {
 TEST(Advise, APickIsMovedBelowTheFailuresInItsMarginAndHoldsBetweenItsGridPoints) {
   const double horizon = 50.0, error = 0.5;
   const auto build = [] { return buildLabScene("test-chain", {{"cl", "24"}}); };
-  SurveySettings settings;
-  settings.horizon = horizon;
-  settings.targetError = settings.abortError = error;
+  SurveySettings settings = surveyAt(horizon, error);
   settings.repeats = 1;
   settings.integrators = {"rk4"};
   const Survey survey = surveyScene(build, settings);
@@ -348,6 +416,62 @@ TEST(Advise, APickIsMovedBelowTheFailuresInItsMarginAndHoldsBetweenItsGridPoints
     for (int member = 0; member < settings.certifyMembers; ++member)
       ASSERT_TRUE(runMember(build, "rk4", dt, member, horizon, settings.failure)->survives(horizon, dt))
           << "dt " << dt << " start " << member;
+}
+
+// The margin of a fixed-step pick keeps the error within E, not only the
+// run alive: on the pendulum every dt of each certified margin (and between
+// its 1% grid points) is within E of the reference from the start as built,
+// and a pick whose margin's top missed E was moved below it.
+TEST(Advise, AFixedStepPicksMarginKeepsTheErrorWithinE) {
+  const double error = 1e-3, horizon = 20.0;
+  const auto build = [] { return scenes::buildScene("pendulum"); };
+  SurveySettings settings = surveyAt(horizon, error, {"midpoint", "rk4", "verlet"});
+  settings.repeats = 1;
+  settings.certifyMembers = 2;
+  settings.certifyAll = true;
+  const Survey survey = surveyScene(build, settings);
+  ASSERT_TRUE(survey.limit.empty()) << survey.limit;
+  SurveySettings scanOnly = settings;
+  scanOnly.certifyMembers = 0;
+  const std::vector<Pick> first = pickPerIntegrator(build, survey, scanOnly, error);
+  const std::vector<Pick> picks = pickPerIntegrator(build, survey, settings, error);
+  int moved = 0;
+  for (std::size_t k = 0; k < picks.size(); ++k) {
+    const Pick& p = picks[k];
+    ASSERT_TRUE(p.found && p.certified()) << p.candidate.integrator << ": " << p.uncertified;
+    EXPECT_LE(p.marginError, error) << p.candidate.integrator;
+    EXPECT_EQ(p.marginRuns.failures, 0);
+    EXPECT_GE(p.marginRuns.runs, 40L * settings.certifyMembers);
+    moved += p.candidate.dt < first[k].candidate.dt;
+    for (double dt = p.certifiedLo; dt <= p.certifiedHi * (1 + 1e-12); dt *= 1.005) {
+      const Candidate c = measureRun(build, *survey.referenceTrajectory, p.candidate.integrator, dt, 0.0, horizon,
+                                     settings.failure, survey.energyScale);
+      ASSERT_TRUE(c.survived) << p.candidate.integrator << " dt " << dt;
+      EXPECT_LE(c.maxError, error) << p.candidate.integrator << " dt " << dt;
+    }
+  }
+  EXPECT_GT(moved, 0) << "every first pick's margin already kept E: the test shows nothing";
+}
+
+// The flags of a pick: headroom against E, thin within 5%, and the timing spread behind a tie.
+TEST(Advise, HeadroomIsFlaggedWithinFivePercentAndNoisyTiesShowTheirSpread) {
+  Pick p;
+  p.found = true;
+  p.candidate.maxError = 0.9e-3;
+  EXPECT_NEAR(headroom(p, 1e-3), 0.1, 1e-12);
+  EXPECT_FALSE(thinHeadroom(p, 1e-3));
+  p.certifiedLo = 0.1, p.certifiedHi = 0.2, p.worstError = 0.995e-3;  // certified: the worst start counts
+  EXPECT_TRUE(thinHeadroom(p, 1e-3));
+  std::vector<Pick> picks(3, p);
+  picks[0].cpuPerSimulatedSecond = 1.0, picks[0].cpuMin = 0.5, picks[0].cpuMax = 4.0;
+  picks[1].cpuPerSimulatedSecond = 1.2, picks[1].cpuMin = 1.1, picks[1].cpuMax = 1.3;
+  picks[2].cpuPerSimulatedSecond = 9.0, picks[2].cpuMin = 8.0, picks[2].cpuMax = 10.0;
+  markTies(picks, 0);
+  const TimingSpread spread = timingSpread(picks, 0);
+  EXPECT_EQ(spread.ties, 1);
+  EXPECT_NEAR(spread.spread, 8.0, 1e-12);
+  EXPECT_EQ(spread.lo, 0.5);
+  EXPECT_EQ(spread.hi, 4.0);
 }
 
 TEST(Advise, PicksWhoseTimingRangesOverlapTheCheapestAreTies) {

@@ -21,6 +21,7 @@
 #include "particles/forces/spring.h"
 #include "particles/integrators/implicit_euler.h"
 #include "particles/particle_system.h"
+#include "oscillator_fixture.h"
 #include "scene.h"
 #include "test_support.h"
 
@@ -302,11 +303,11 @@ TEST(RunnerDivergence, BuiltInScenesStayInsideTheEnergyBoundAtTheirDefaults) {
 // energy by 1 + ω²h² = 2 each step: the run ends at the energy bound within
 // 20 steps, with the state still finite (it overflows only after ~1000).
 TEST(RunnerDivergence, ExplicitEulerOnAStiffSpringEndsAtTheEnergyBound) {
-  ParticleSystem system;
-  system.addParticle(Vector2d(0.0, 0.0), 1.0);
-  system.setPinned(0, true);
-  system.addParticle(Vector2d(0.51, 0.0), 1.0);
-  system.addForce(std::make_unique<SpringForce>(1, 0, 0.5, 1e4, 0.0));
+  test_support::Oscillator oscillator;  // unit mass, undamped
+  oscillator.params.stiffness = 1e4;
+  oscillator.params.rest = 0.5;
+  oscillator.params.stretch = 0.01;
+  ParticleSystem system = oscillator.build();
   auto euler = makeIntegrator("euler");
   cli::RunLoop loop(system, *euler, 0.01, {nullptr, nullptr, 1}, 2.0);
   ASSERT_EQ(loop.start(), "");

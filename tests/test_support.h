@@ -1,10 +1,14 @@
 #pragma once
 // Helpers shared by the unit tests: parameter-rejection checks, central finite
-// differences, and dense views of force contributions.
+// differences, dense views of force contributions, and the log-log slope that
+// every convergence-order test fits.
+#include <cmath>
+#include <cstddef>
 #include <functional>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <gtest/gtest.h>
@@ -22,6 +26,20 @@ inline constexpr bool kSanitizerBuild = true;
 #else
 inline constexpr bool kSanitizerBuild = false;
 #endif
+
+// Least-squares slope of log y against log x: the order p of y ≈ C xᵖ
+// (of a global error against dt, of an error against a tolerance). Over two
+// points, the slope between them.
+inline double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("logLogSlope needs two or more (x, y) pairs");
+  const double n = static_cast<double>(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double lx = std::log(x[k]), ly = std::log(y[k]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
 
 // Records, at each of its evaluations, the CG iterations the solver reports
 // then: forces are applied at the start of each derivative evaluation, when

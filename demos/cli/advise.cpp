@@ -16,7 +16,6 @@
 #include "options/option_checks.h"
 #include "options/scene_source.h"
 #include "particles/check.h"
-#include "output/format_number.h"
 
 namespace cli {
 
@@ -33,6 +32,7 @@ struct AdviseOptions {
   long maxSteps = 100000;
   double referenceTolerance = lab::SurveySettings{}.referenceTolerance;
   int certifyStarts = lab::SurveySettings{}.certifyMembers;
+  double failureBound = 0.0;  // 0: certifyStarts per grid point of a margin
   bool certifyAll = false;
 };
 
@@ -46,34 +46,59 @@ std::string budgetsLine(const AdviseOptions& o) {
   return text;
 }
 
+// One line of the table: columns padded to their widths.
+std::string columns(const std::vector<std::pair<std::string, int>>& cells) {
+  std::string line;
+  for (const auto& [text, width] : cells) {
+    line += text;
+    // Pad by characters, not bytes: "–" is one column wide.
+    int shown = 0;
+    for (unsigned char c : text) shown += (c & 0xC0) != 0x80;
+    line += std::string(std::max(1, width - shown), ' ');
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  return line;
+}
+
+// "12%" of the budget left, flagged when it is thin (lab::thinHeadroom).
+std::string headroomText(const lab::Pick& p, double error) {
+  const double left = lab::headroom(p, error);
+  return output::formatFixed(100.0 * left, 0) + "%" + (lab::thinHeadroom(p, error) ? " !" : "");
+}
+
+// The certified margin and the bound its runs support: "0.00025-0.00039, p ≤ 0.0067".
+std::string marginText(const lab::Pick& p) {
+  if (!p.certified()) return "–";
+  return cell(p.certifiedLo) + "-" + cell(p.certifiedHi) + ", " + lab::boundText(p.marginRuns);
+}
+
 // The table: one line per integrator, its pick or why it has none.
-void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks, const std::string& budgetsText) {
-  std::cout << "integrator        dt          tolerance  max error  energy err |C|/r       safe dt     CPU s per sim s "
-               "(min-max)   certified margin\n";
+void printPicks(const lab::Survey& survey, const std::vector<lab::Pick>& picks, const std::string& budgetsText,
+                double error) {
+  std::cout << columns({{"integrator", 18}, {"dt", 12}, {"tolerance", 11}, {"max error", 11}, {"headroom", 10},
+                        {"energy err", 11}, {"|C|/r", 10}, {"surviving dt", 13}, {"CPU s per sim s (min-max)", 28},
+                        {"certified margin, failure bound", 0}})
+            << "\n";
   for (std::size_t k = 0; k < picks.size(); ++k) {
     const auto& scan = survey.integrators[k];
     const auto& p = picks[k];
     const std::string safe = scan.adaptive ? "–" : cell(scan.safeDt) + (scan.safeAtTop ? "+" : "");
-    char line[256];
+    std::string line;
     if (!scan.refused.empty())
-      std::snprintf(line, sizeof line, "%-17s refuses the scene: %.180s\n", scan.integrator.c_str(),
-                    scan.refused.c_str());
+      line = columns({{scan.integrator, 18}}) + " refuses the scene: " + scan.refused.substr(0, 180);
     else if (p.found)
-      std::snprintf(line, sizeof line, "%-17s %-11s %-10s %-10s %-10s %-10s %-11s %-27s %s%s\n",
-                    scan.integrator.c_str(), cell(p.candidate.dt).c_str(),
-                    scan.adaptive ? cell(p.candidate.tolerance).c_str() : "–", cell(p.candidate.maxError).c_str(),
-                    cell(p.candidate.energyError).c_str(), cell(p.candidate.constraintDrift).c_str(), safe.c_str(),
-                    (cell(p.cpuPerSimulatedSecond) + " (" + cell(p.cpuMin) + "-" + cell(p.cpuMax) + ")").c_str(),
-                    p.certifiedHi > 0.0 ? (cell(p.certifiedLo) + "-" + cell(p.certifiedHi)).c_str() : "–",
-                    p.tie ? "  (tie)" : "");
+      line = columns({{scan.integrator, 18}, {cell(p.candidate.dt), 12},
+                      {scan.adaptive ? cell(p.candidate.tolerance) : "–", 11}, {cell(p.error()), 11},
+                      {headroomText(p, error), 10}, {cell(p.candidate.energyError), 11},
+                      {cell(p.candidate.constraintDrift), 10}, {safe, 13},
+                      {cell(p.cpuPerSimulatedSecond) + " (" + cell(p.cpuMin) + "-" + cell(p.cpuMax) + ")", 28},
+                      {marginText(p) + (p.tie ? "  (tie)" : ""), 0}});
     else if (!p.uncertified.empty())
-      std::snprintf(line, sizeof line, "%-17s none certified: %.200s\n", scan.integrator.c_str(),
-                    p.uncertified.c_str());
+      line = columns({{scan.integrator, 18}}) + " none certified: " + p.uncertified.substr(0, 200);
     else
-      std::snprintf(line, sizeof line, "%-17s none within %s on the scanned grid (%s), safe dt %s\n",
-                    scan.integrator.c_str(), budgetsText.c_str(),
-                    output::plural(static_cast<long long>(scan.scanned.size()), "run").c_str(), safe.c_str());
-    std::cout << line;
+      line = columns({{scan.integrator, 18}}) + " none within " + budgetsText + " on the scanned grid (" +
+             output::plural(static_cast<long long>(scan.scanned.size()), "run") + "), surviving dt " + safe;
+    std::cout << line << "\n";
   }
 }
 
@@ -89,6 +114,7 @@ lab::SurveySettings surveySettings(const AdviseOptions& o) {
   settings.maxSteps = o.maxSteps;
   settings.referenceTolerance = o.referenceTolerance;
   settings.certifyMembers = o.certifyStarts;
+  settings.failureBound = o.failureBound;
   settings.certifyAll = o.certifyAll;
   auto lastReport = std::make_shared<double>(-1.0);
   settings.progress = [lastReport, horizon = o.horizon, repeats = o.repeats](double fraction) {
@@ -108,6 +134,36 @@ std::string budgetsName(const AdviseOptions& o) {
   return std::isfinite(o.energyBudget) || std::isfinite(o.driftBudget) ? "the budgets" : "E";
 }
 
+// The reference and what it met, before the table.
+void printReference(const lab::Survey& survey) {
+  std::cout << "reference: " << survey.reference << "\n";
+  if (survey.touchedWall)
+    std::cout << "contacts: the odeint reference met one (" << survey.contact << ")"
+              << (survey.limit.empty() ? "; the reference is the self-converged run of a contact-aware scheme, "
+                                         "and every error below is measured against it"
+                                       : "")
+              << "\n";
+}
+
+// What the margins and bounds of the table mean.
+void printMarginNote(const lab::SurveySettings& settings, const std::string& budgets) {
+  if (settings.certifyMembers <= 0) return;
+  std::cout << "certified margin: every dt (adaptive: tolerance) " << lab::general(100.0 * settings.certifyResolution)
+            << "% apart in it survives T within " << budgets << " on every start ("
+            << (settings.failureBound > 0.0 ? "enough starts for a bound of " + lab::general(settings.failureBound)
+                                            : output::plural(settings.certifyMembers, "start"))
+            << ": as built and perturbed by 1e-6 of the scene's size); the failure bound p is the 95% upper bound on "
+               "the per-run probability of a failure or a miss of E that the margin's runs support (none failed); "
+               "max error is the largest over those starts at the pick's dt; headroom is 1 - max error / E, "
+               "! when under "
+            << lab::general(100.0 * lab::kThinHeadroom) << "%; a pick is at most " << lab::general(settings.safeFraction)
+            << " of its margin's top; surviving dt: the survey's coarse scan (" << settings.members
+            << " starts), not a safe step; "
+            << (settings.certifyAll ? "every pick is certified"
+                                    : "the cheapest pick and its ties are certified (--certify-all: every pick)")
+            << "\n";
+}
+
 int advise(const AdviseOptions& o) {
   lab::installInterruptHandler();  // a signal while a large scene file is read stops it too
   o.source.load();  // bad scene input fails here, before any measurement
@@ -117,35 +173,40 @@ int advise(const AdviseOptions& o) {
   const lab::Survey& survey = advice.survey;
   const std::vector<lab::Pick>& picks = advice.picks;
 
-  std::cout << "scene " << output::printable(survey.scene) << ", " << output::plural(survey.particles, "particle") << ", size "
-            << lab::general(survey.size) << ", T = " << lab::general(o.horizon) << " s, E = " << lab::general(o.error)
-            << budgetsLine(o) << "\nreference: " << survey.reference << (survey.touchedWall ? " [passes through a wall]" : "") << "\n";
+  std::cout << "scene " << output::printable(survey.scene) << ", " << output::plural(survey.particles, "particle")
+            << ", size " << lab::general(survey.size) << ", T = " << lab::general(o.horizon)
+            << " s, E = " << lab::general(o.error) << budgetsLine(o) << "\n";
+  printReference(survey);
   if (!survey.limit.empty()) {
     std::cout << "advise: " << survey.limit << "; the longest horizon it can certify: --horizon "
               << output::formatNumber(survey.certifiableHorizon) << "\n";
     return kCannotCertify;
   }
-  printPicks(survey, picks, budgetsName(o));
-  if (settings.certifyMembers > 0)
-    std::cout << "certified margin: every dt (adaptive: tolerance) " << lab::general(100.0 * settings.certifyResolution)
-              << "% apart in it survives T on " << output::plural(settings.certifyMembers, "start")
-              << " (adaptive: within " << budgetsName(o) << " from the start as built); a pick is at most "
-              << lab::general(settings.safeFraction) << " of its margin's top; "
-              << (settings.certifyAll ? "every pick is certified" : "the cheapest pick and its ties are certified (--certify-all: every pick)")
-              << "\n";
+  printPicks(survey, picks, budgetsName(o), o.error);
+  printMarginNote(settings, budgetsName(o));
   const int best = advice.best;
   if (best < 0) {
     std::cout << "advise: no integrator meets --error " << lab::general(o.error) << budgetsLine(o) << " over "
               << lab::general(o.horizon) << " s within its safe range\n";
     return 1;
   }
+  const lab::Pick& chosen = picks[best];
   std::string ties;
   for (const lab::Pick& p : picks)
     if (p.tie) ties += (ties.empty() ? "" : ", ") + p.candidate.integrator;
   if (!ties.empty())
-    std::cout << "advise: within the timing spread of " << picks[best].candidate.integrator << " (a tie, "
+    std::cout << "advise: within the timing spread of " << chosen.candidate.integrator << " (a tie, "
               << output::plural(o.repeats, "interleaved repeat") << "): " << ties << "\n";
-  std::cout << "advise: " << lab::pickArguments(picks[best].candidate) << "\n";
+  const lab::TimingSpread spread = lab::timingSpread(picks, best);
+  if (spread.ties > 0 && spread.spread > settings.noisySpread)
+    std::cout << "advise: warning: the timings are noisy: the repeats of the tied picks spread up to "
+              << output::formatFixed(spread.spread, 1) << "x (" << cell(spread.lo) << "-" << cell(spread.hi)
+              << " CPU s per simulated s), so " << output::plural(spread.ties + 1, "pick")
+              << " tie; run again on a quieter machine or with more --repeats\n";
+  if (lab::thinHeadroom(chosen, o.error))
+    std::cout << "advise: warning: the pick's error " << cell(chosen.error()) << " is within "
+              << lab::general(100.0 * lab::kThinHeadroom) << "% of E: no headroom\n";
+  std::cout << "advise: " << lab::pickArguments(chosen.candidate) << "\n";
   return kSuccess;
 }
 
@@ -186,8 +247,21 @@ Command addAdviseCommand(CLI::App& app) {
                       "starts on which every dt of a pick's margin must survive (0: picks are not certified)")
       ->capture_default_str()
       ->check(options::decimalInteger(0, 1000));
+  command->add_option("--failure-bound", options->failureBound,
+                      "run enough starts at every dt of a pick's margin that its runs, none failing, bound the "
+                      "per-run probability of a failure or a miss of E by this at 95% confidence (Clopper-Pearson; "
+                      "at least --certify-starts)")
+      ->check(options::numberInRange(1e-6, 0.5));
   command->add_flag("--certify-all", options->certifyAll,
                     "certify every integrator's pick, not only the cheapest and its ties");
+  command->footer(
+      "A scene whose odeint reference meets a contact (discs touching, a particle or edge reaching a collider) is\n"
+      "measured against a reference by self-convergence of the contact-aware schemes: dt halved until two\n"
+      "successive runs agree within E/10 over T; the table's first lines say which scheme, dt and observed order.\n"
+      "Exit codes: 0 a pick (the last line gives it as run options); 1 no integrator meets the budgets within\n"
+      "its safe range; 2 bad option value or scene file (one line on stderr); 5 no reference can certify E over\n"
+      "T (the references part by more than E/10: chaos; or self-convergence with contacts not reached), with\n"
+      "the longest horizon that can be certified; 130 interrupted.");
   return {command, [=](const Context&) { return advise(*options); }};
 }
 

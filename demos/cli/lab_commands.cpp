@@ -127,6 +127,11 @@ Command addStabilityCommand(CLI::App& app) {
                       "T of Tables 1 and 2: simulated seconds a run must survive")
       ->capture_default_str()
       ->check(options::numberInRange(lab::StabilityOptions::minDuration, lab::StabilityOptions::maxDuration));
+  command->add_option("--failure-bound", stability->failureBound,
+                      "Table 2: run enough starts per grid dt that the runs of the decade below each step, none "
+                      "failing, bound the per-run failure probability by this at 95% confidence (default: the "
+                      "plan's starts, and the bound they reach)")
+      ->check(options::numberInRange(lab::StabilityOptions::minFailureBound, lab::StabilityOptions::maxFailureBound));
   return {command, [=](const Context& context) {
             return experiment(command, *options, context, [&] { return lab::runStability(*options, *stability); });
           }};

@@ -42,11 +42,12 @@ void drawPickRow(const lab::IntegratorSurvey& scan, const lab::Pick& p, bool bes
   // An adaptive scheme's dt is its call interval; its tolerance sets the steps.
   ImGui::TextUnformatted(scan.adaptive ? ("tol " + cell(p.candidate.tolerance)).c_str() : cell(p.candidate.dt).c_str());
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s %s s; certified margin %s to %s", scan.adaptive ? "called every" : "scan's safe boundary",
+    ImGui::SetTooltip("%s %s s; certified margin %s to %s (%s)",
+                      scan.adaptive ? "called every" : "coarse scan's largest surviving dt",
                       cell(scan.adaptive ? p.candidate.dt : scan.safeDt).c_str(), cell(p.certifiedLo).c_str(),
-                      cell(p.certifiedHi).c_str());
+                      cell(p.certifiedHi).c_str(), p.certified() ? lab::boundText(p.marginRuns).c_str() : "-");
   ImGui::TableNextColumn();
-  ImGui::TextUnformatted(cell(p.candidate.maxError).c_str());
+  ImGui::TextUnformatted(cell(p.error()).c_str());
   ImGui::TableNextColumn();
   ImGui::TextUnformatted((cell(p.cpuPerSimulatedSecond) + (p.tie ? " (tie)" : "")).c_str());
   if (ImGui::IsItemHovered())

@@ -257,10 +257,8 @@ void App::advance() {
   if (panes_.size() == 1 && panes_.front()->divergedAt()) paused_ = true;
 }
 
-void App::draw() {
-  const auto start = std::chrono::steady_clock::now();
-  renderer_.clearWindow(windowWidth_, windowHeight_, palette::paneBorder);
-  const std::vector<ViewTransform> views = paneViews();
+void App::drawPanes(const std::vector<ViewTransform>& views) {
+  paneDrawings_.resize(panes_.size());
   for (std::size_t k = 0; k < panes_.size(); ++k) {
     GhostFrame ghost;
     // Running with a dt longer than a frame, the drawing is between steps
@@ -272,9 +270,15 @@ void App::draw() {
     const bool ghostShown = exact_ && !disturbedAt_;
     if (ghostShown) ghost = exact_(drawnTime);
     renderer_.drawPane(pane, views[k], windowHeight_, options, ghostShown ? &ghost : nullptr);
-    paneDrawings_.resize(panes_.size());
     paneDrawings_[k] = renderer_.drawing();
   }
+}
+
+void App::draw() {
+  const auto start = std::chrono::steady_clock::now();
+  renderer_.clearWindow(windowWidth_, windowHeight_, palette::paneBorder);
+  const std::vector<ViewTransform> views = paneViews();
+  drawPanes(views);
   if (build_.active()) drawBuildOverlay(views.front());
   // The drawing is timed on one frame in drawTimingPeriod, which waits for
   // the GL to finish so that the time includes its work, not just its
@@ -291,6 +295,7 @@ void App::draw() {
   ImGui_ImplGLUT_NewFrame();  // also ImGui::NewFrame() in 1.86
   overlays_.clear();
   widgets_.clear();
+  backdrops_.clear();
   // Between NewFrame and Render nothing may leave the frame open: an error
   // thrown by a panel closes the windows it left open and ends the frame
   // before it reaches the top bar (an open frame aborts the next NewFrame,
@@ -309,10 +314,15 @@ void App::draw() {
   }
   closePopups_ = false;
   ImGui::Render();
+  for (const Backdrop& b : backdrops_) renderer_.clearRect(b.rect, windowHeight_, b.colour);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!timed) return;
   glFinish();
   overlayDrawMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sceneDone).count();
+  if (frame_ > 0 && overlayDrawSamples_.size() < 100000) {
+    sceneDrawSamples_.push_back(sceneDrawMs_);
+    overlayDrawSamples_.push_back(overlayDrawMs_);
+  }
 }
 
 // A numbered PNG name in a directory: DIR/stem-000042.png.
@@ -392,6 +402,8 @@ bool App::writeStateLog() const {
   extras.advice.applied = adviceApplied_;
   extras.sceneDrawMs = sceneDrawMs_;
   extras.overlayDrawMs = overlayDrawMs_;
+  extras.sceneDrawSamples = sceneDrawSamples_;
+  extras.overlayDrawSamples = overlayDrawSamples_;
   extras.panelShown = showPanel_;
   extras.frameMs = frameMs_;
   extras.frameSimulationMs = frameSimulationMs_;

@@ -57,6 +57,15 @@ struct WindTearControls {
   double tearStrain = 0.5;  // springs stretched by half their rest length tear
 };
 
+// An opaque rectangle under the bars' text or the panel, filled by a clear
+// before ImGui draws on it (App::draw): drawn as ImGui's triangles, these were
+// nine tenths of the pixels its draw lists cover, each one textured and
+// blended by a software rasteriser.
+struct Backdrop {
+  PixelRect rect;
+  Rgb colour;
+};
+
 class App {
  public:
   // Builds the first scene and reads the script: throws std::invalid_argument
@@ -99,6 +108,7 @@ class App {
   void playScript();
   void advance();
   void draw();
+  void drawPanes(const std::vector<ViewTransform>& views);  // each pane's scene, ghost and drawing record
   void drawTopBar();
   std::string sceneSummary() const;   // the title's summary of the first pane's scene
   int particlesOutOfView() const;     // the first pane's particles outside its view
@@ -287,8 +297,12 @@ class App {
   // The drawing's time, measured on one frame in drawTimingPeriod (App::draw).
   static constexpr int drawTimingPeriod = 30;
   double sceneDrawMs_ = 0.0, overlayDrawMs_ = 0.0;
+  // Every timed frame's two times after the first (which compiles the
+  // shaders), for the state log's medians.
+  std::vector<double> sceneDrawSamples_, overlayDrawSamples_;
   std::vector<Renderer::PaneDrawing> paneDrawings_;  // each pane's shaded faces in the last frame
   std::vector<Overlay> overlays_;  // the text and controls drawn in the last frame
+  std::vector<Backdrop> backdrops_;  // the last frame's, under the bars' text and the panel
   std::map<std::string, WrappedText> barText_;  // each bar's text as laid out last (overlay.cpp)
   std::vector<Overlay> widgets_;   // the panel's buttons and combos, for scripted clicks
   // Wall time of every frame (input, stepping, drawing, swap) and its

@@ -38,15 +38,15 @@ using fmt::format;
 ImU32 colour(Rgb c, int alpha = 255) { return IM_COL32(c.r, c.g, c.b, alpha); }
 const ImU32 titleColour = IM_COL32(255, 217, 115, 255);
 const ImU32 dimColour = IM_COL32(150, 155, 165, 255);
-const ImU32 barColour = IM_COL32(14, 16, 20, 255);
+constexpr Rgb barColour{14, 16, 20};
 
-// Fills the bar and writes its lines, wrapped to its width: the bar is the
-// overlay's rectangle, its text the overlay's text. Lines beyond what the
+// Fills the bar (a backdrop, App::backdrops_) and writes its lines, wrapped
+// to its width: the bar is the overlay's rectangle, its text the overlay's text. Lines beyond what the
 // bar holds are left out, the last one kept ending in "...", and the overlay
 // says so.
 // `text` keeps the bar's layout between frames (text_layout.h).
 Overlay drawBar(const char* kind, const PixelRect& r, const std::vector<Line>& lines, int lineHeight, int padding,
-                WrappedText& text) {
+                WrappedText& text, std::vector<Backdrop>& backdrops) {
   constexpr float margin = 8.0f;
   const float width = r.width - 2.0f * margin;
   const std::size_t holds = static_cast<std::size_t>(std::max((r.height - 2 * padding) / lineHeight, 1));
@@ -55,7 +55,7 @@ Overlay drawBar(const char* kind, const PixelRect& r, const std::vector<Line>& l
   overlay.shortened = text.shortened();
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const ImVec2 a(r.x, r.y), b(r.x + r.width, r.y + r.height);
-  draw->AddRectFilled(a, b, barColour);
+  backdrops.push_back({r, barColour});
   draw->PushClipRect(a, b, true);
   float y = r.y + padding;
   for (const Line& line : wrapped) {
@@ -197,7 +197,7 @@ void App::drawTopBar() {
     nameAndMessage.push_back({"   " + message, messageColour});
     lines.push_back(nameAndMessage);
   }
-  overlays_.push_back(drawBar("top-bar", l.topBar, lines, m.lineHeight, m.padding, barText_["top-bar"]));
+  overlays_.push_back(drawBar("top-bar", l.topBar, lines, m.lineHeight, m.padding, barText_["top-bar"], backdrops_));
 }
 
 void App::drawBottomBar() {
@@ -252,7 +252,7 @@ void App::drawBottomBar() {
     if (!s.constraints().empty()) legend.push_back({" --> J^T lambda", colour(palette::constraintForceArrow), true});
     lines.push_back(legend);
   }
-  overlays_.push_back(drawBar("hud", l.bottomBar, lines, m.lineHeight, m.padding, barText_["hud"]));
+  overlays_.push_back(drawBar("hud", l.bottomBar, lines, m.lineHeight, m.padding, barText_["hud"], backdrops_));
 }
 
 void App::drawPaneHeaders() {
@@ -270,7 +270,7 @@ void App::drawPaneHeaders() {
                       text}});
     lines.push_back({{paneStateLine(sim, true), sim.stopped() ? colour(palette::divergenceText) : titleColour}});
     overlays_.push_back(
-        drawBar("pane-hud", l.headers[k], lines, m.lineHeight, m.padding, barText_["pane-hud " + std::to_string(k)]));
+        drawBar("pane-hud", l.headers[k], lines, m.lineHeight, m.padding, barText_["pane-hud " + std::to_string(k)], backdrops_));
   }
 }
 

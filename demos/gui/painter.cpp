@@ -130,6 +130,14 @@ void Painter::clearWindow(int width, int height, Rgb colour) {
   glClear(GL_COLOR_BUFFER_BIT);
 }
 
+void Painter::clearRect(const PixelRect& r, int windowHeight, Rgb colour) {
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(r.x, windowHeight - r.y - r.height, r.width, r.height);
+  glClearColor(colour.r / 255.f, colour.g / 255.f, colour.b / 255.f, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+}
+
 void Painter::beginPane(const ViewTransform& view, int windowHeight, const Rgb* background) {
   ensureProgram();
   const PixelRect& p = view.pane;

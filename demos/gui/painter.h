@@ -52,6 +52,10 @@ class Painter {
 
   // Clears the whole window (the colour shows between panes).
   void clearWindow(int width, int height, Rgb colour);
+  // Fills a rectangle of the window (pixels, origin top-left) with a colour
+  // by a scissored clear: a software rasteriser fills it without shading or
+  // blending a fragment, which the same rectangle drawn as triangles costs.
+  void clearRect(const PixelRect& rect, int windowHeight, Rgb colour);
   // Maps the pane's world rectangle onto its pixels (GL's window origin is
   // bottom-left, the pane's top-left) and keeps the drawing inside it until
   // endPane; clears it to `background` when given.

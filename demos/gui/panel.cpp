@@ -60,6 +60,18 @@ bool choose(const char* label, const std::vector<Labelled<Value>>& table, Value&
 // A trace against frames (newest at the right), labelled with its quantity and
 // unit; the overlay gives the newest value and the y axis's range, which is
 // the trace's own minimum to maximum.
+// An ImGui colour as it blends over an opaque one, in ImGui's 8-bit
+// channels: c a + under (1 − a).
+Rgb over(const ImVec4& c, Rgb under) {
+  const ImU32 packed = ImGui::ColorConvertFloat4ToU32(c);
+  const int a = static_cast<int>(packed >> IM_COL32_A_SHIFT & 0xFF);
+  auto channel = [&](int shift, std::uint8_t below) {
+    const int top = static_cast<int>(packed >> shift & 0xFF);
+    return static_cast<std::uint8_t>((top * a + below * (255 - a) + 127) / 255);
+  };
+  return {channel(IM_COL32_R_SHIFT, under.r), channel(IM_COL32_G_SHIFT, under.g), channel(IM_COL32_B_SHIFT, under.b)};
+}
+
 void plot(const char* label, const char* unit, const std::vector<float>& values, float height) {
   if (values.empty()) return;
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
@@ -79,12 +91,20 @@ void App::drawPanel() {
   const PixelRect area = layout().panel;
   ImGui::SetNextWindowPos(ImVec2(static_cast<float>(area.x), 0.0f));
   ImGui::SetNextWindowSize(ImVec2(static_cast<float>(area.width), static_cast<float>(area.height)));
+  // The panel's background is a backdrop (app.h): the colour ImGui's WindowBg
+  // has over the window's, filled by a clear; ImGui draws none, and the
+  // panel's corners are square, as the rectangle filled.
+  backdrops_.push_back({area, over(ImGui::GetStyleColorVec4(ImGuiCol_WindowBg), palette::paneBorder)});
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(0, 0, 0, 0));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.0f);
   // The scroll bar is always there, so that the rows that wrap (panel_rows.h)
   // wrap alike whether the panel's content overflows or not, and a control
   // keeps its place when a section opens.
   ImGui::Begin("Control panel", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysVerticalScrollbar);
+  ImGui::PopStyleVar();
+  ImGui::PopStyleColor();
   ImGui::PushItemWidth(-110.0f);
 
   drawSceneSection();
@@ -149,7 +169,8 @@ void App::drawPresetCombo() {
       SceneChoice changed = scene_;
       changed.preset = preset.name;
       try {
-        loadScene(changed, true);
+        const bool keepIntegrators = true;
+        loadScene(changed, keepIntegrators);
         setStatus(std::string("preset: ") + preset.name);
       } catch (const std::exception& e) {
         setStatus(e.what());
@@ -184,7 +205,8 @@ void App::drawSceneParams() {
       SceneChoice changed = scene_;
       changed.params[spec.name] = buffer;
       try {
-        loadScene(changed, true);
+        const bool keepIntegrators = true;
+        loadScene(changed, keepIntegrators);
         setStatus("rebuilt with " + spec.name + " = " + buffer);
       } catch (const std::exception& e) {
         setStatus(e.what());

@@ -59,6 +59,10 @@ int pointDiameter(const particles::Phase& phase, double pixelsPerUnit) {
 
 void Renderer::clearWindow(int width, int height, Rgb colour) { painter_.clearWindow(width, height, colour); }
 
+void Renderer::clearRect(const PixelRect& rect, int windowHeight, Rgb colour) {
+  painter_.clearRect(rect, windowHeight, colour);
+}
+
 void Renderer::drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                         const DrawOptions& options, const GhostFrame* ghost) {
   collectPane(simulation, view, options, ghost);

@@ -46,6 +46,8 @@ class Renderer {
  public:
   // Clears the whole window (the colour shows between panes).
   void clearWindow(int width, int height, Rgb colour);
+  // Fills a rectangle of the window with a colour (Painter::clearRect).
+  void clearRect(const PixelRect& rect, int windowHeight, Rgb colour);
   // ghost: the exact solution at the pane's time, or null.
   void drawPane(const Simulation& simulation, const ViewTransform& view, int windowHeight,
                 const DrawOptions& options, const GhostFrame* ghost = nullptr);

@@ -47,7 +47,8 @@ void App::loadState() {
   SceneChoice choice;
   choice.file = stateFile_;
   choice.label = std::filesystem::path(stateFile_).filename().string();
-  loadScene(choice, false);  // the file's integrator, dt and clock
+  const bool keepIntegrators = false;  // the file's integrator, dt and clock
+  loadScene(choice, keepIntegrators);
   setStatus("loaded " + stateFile_ + ": t = " + std::to_string(panes_.front()->system().time()).substr(0, 6) + " s");
 }
 

@@ -101,7 +101,10 @@ void writeStateRecords(std::ostream& out, const std::vector<PaneState>& panes, c
   const BuildRecord& b = extras.build;
   out << "build," << (b.active ? 1 : 0) << "," << b.tool << "," << b.selection << "," << b.historyState << ","
       << b.historyStates << "," << b.gesturePoints << "," << b.grid << "," << b.file << "\n";
-  out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << "\n";
+  out << "timing," << extras.sceneDrawMs << "," << extras.overlayDrawMs << "," << (extras.panelShown ? 1 : 0) << ","
+      << extras.overlayDrawSamples.size() << "," << quantile(extras.sceneDrawSamples, 0.5) << ","
+      << quantile(extras.overlayDrawSamples, 0.5) << "," << quantile(extras.overlayDrawSamples, 0.1) << ","
+      << quantile(extras.overlayDrawSamples, 0.9) << "\n";
 }
 
 }  // namespace

@@ -34,7 +34,10 @@
 //   advice,<state>,<progress 0..1>,<integrator>,<dt>,<tolerance>,<frames drawn while it ran>,<applied>
 //     (the panel's advice: idle, running, done, cancelled or failed; the
 //     cheapest pick when done, else empty and 0; the options last applied, if any)
-//   timing,<scene draw ms>,<text and panel draw ms>,<panel shown 0|1>
+//   timing,<scene draw ms>,<text and panel draw ms>,<panel shown 0|1>,<timed frames>,<median scene draw ms>,
+//          <median text and panel ms>,<10th percentile>,<90th percentile>
+//     (the first three of the last timed frame; the drawing is timed on one frame in 30, GL work
+//     included, the first frame left out: it compiles the shaders)
 //   build,<active 0|1>,<tool>,<selection: list[index], or scene>,<history state>,<history states>,<gesture points>,<grid>,<file>
 //     (build mode: the history's current state counts from 1)
 //   frame-times,<frames>,<median ms>,<10th percentile>,<90th percentile>,<median stepping ms>
@@ -87,7 +90,8 @@ struct StateExtras {
   std::vector<Overlay> overlays, widgets;
   AdviceRecord advice;
   BuildRecord build;
-  double sceneDrawMs = 0.0, overlayDrawMs = 0.0;
+  double sceneDrawMs = 0.0, overlayDrawMs = 0.0;       // the last timed frame's
+  std::vector<double> sceneDrawSamples, overlayDrawSamples;  // every timed frame's after the first
   bool panelShown = false;
   std::vector<double> frameMs, frameSimulationMs;  // every frame's wall time and its stepping part
   FrameBudget lastBudget;                          // the last frame's stepping budget (frame_budget.h)

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "lab/lab_scene.h"
 #include "particles/check.h"
 
 namespace lab {
@@ -32,6 +33,9 @@ void validate(const SurveySettings& s) {
   if (s.members < 1) throw std::invalid_argument("members must be >= 1, got " + std::to_string(s.members));
   if (s.maxSteps < 1) throw std::invalid_argument("max steps must be >= 1, got " + std::to_string(s.maxSteps));
   if (s.repeats < 1) throw std::invalid_argument("repeats must be >= 1, got " + std::to_string(s.repeats));
+  if (s.failureBound != 0.0) particles::requireInRange("failure bound", s.failureBound, 1e-6, 0.5);
+  if (s.referenceMaxSteps < 0)
+    throw std::invalid_argument("reference max steps must be >= 0, got " + std::to_string(s.referenceMaxSteps));
   for (const auto& name : s.integrators) particles::requireIntegrator(name);  // rejects unknown names
 }
 
@@ -44,6 +48,17 @@ struct Measurer {
   Candidate run(const std::string& name, double dt, double tolerance, bool abortOnError) const {
     return measureRun(build, reference, name, dt, tolerance, settings.horizon, settings.failure, energyScale,
                       abortOnError ? settings.abortError : std::numeric_limits<double>::infinity(), settings.cancel);
+  }
+  // The same from ensemble member `member` (perturbStart), measured against the reference of
+  // the start as built: its error includes the start's own offset (1e-6 of the scene's size).
+  Candidate runFrom(int member, const std::string& name, double dt, double tolerance) const {
+    const auto perturbed = [&] {
+      scenes::Scene scene = build();
+      perturbStart(scene, member);
+      return scene;
+    };
+    return measureRun(perturbed, reference, name, dt, tolerance, settings.horizon, settings.failure, energyScale,
+                      settings.abortError, settings.cancel);
   }
 };
 
@@ -145,6 +160,9 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
   long k = 0;
   const RunResult r = simulate(scene, *stepper, dt, horizon, failure, [&](const particles::ParticleSystem& system) {
     ++k;
+    // round(T / dt) steps can end past T by up to dt/2 when dt does not divide T (a margin's
+    // grid): the error is measured over [0, T], where the reference is.
+    if (k * dt > reference.duration() * (1.0 + 1e-12)) return !stop();
     error = maxParticleDistance(system.positions(), reference.positionsAt(k * dt));
     c.maxError = std::max(c.maxError, error);
     // Energy is compared where the reference has a sample.
@@ -169,26 +187,29 @@ Candidate measureRun(const std::function<scenes::Scene()>& build, const Trajecto
   return c;
 }
 
-double referenceBytes(double samples, std::size_t particles) {
-  return samples * (48.0 * static_cast<double>(particles) + 104.0);
-}
-
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
-                        double tolerance, const ClosedForm& closedForm, const std::atomic<bool>* cancel) {
+                        double tolerance, const ClosedForm& closedForm, const std::atomic<bool>* cancel,
+                        bool stopAtContact) {
   ReferenceSettings tight;
   tight.tolerance = tolerance;
   tight.interval = interval;
   tight.cancel = cancel;
+  tight.stopAtContact = stopAtContact && !closedForm;
   // The check integrates again at 100× the tolerance, observed only about once
   // a second so that odeint chooses its own steps (observed every interval,
   // both runs would be held to the same short steps and agree trivially).
   ReferenceSettings check = tight;
   check.tolerance = 100.0 * tight.tolerance;
+  check.stopAtContact = false;
   const long stride = std::max(1L, std::lround(1.0 / interval));
   check.interval = stride * interval;
   Reference out;
   scenes::Scene scene = build();
   out.trajectory = closedForm ? closedForm(horizon, interval) : odeintReference(scene, horizon, tight);
+  if (tight.stopAtContact && out.trajectory.touchedWall) {
+    out.description = "odeint RKF78 at tolerance " + general(tight.tolerance) + ", up to its first contact";
+    return out;  // wrong past the contact: not worth checking
+  }
   scenes::Scene again = build();
   const Trajectory checked = odeintReference(again, horizon, check);
   for (std::size_t k = 0; k < checked.x.size() && k * stride < out.trajectory.x.size(); ++k) {
@@ -243,19 +264,51 @@ namespace {
 // (Survey::limit), and the longest horizon it can; empty when it can.
 void limitOfReference(const Reference& reference, double budget, double horizon, Survey& survey) {
   const double threshold = budget / 10.0;
-  if (reference.trajectory.touchedWall) {
-    // the last sample before the contact
-    survey.certifiableHorizon = std::max(0.0, reference.trajectory.contactTime - reference.trajectory.interval);
-    survey.limit = "the reference meets a contact at t = " + general(reference.trajectory.contactTime, 4) +
-                   " s (a particle in a collider or two discs overlapping) and does not model contacts, so no "
-                   "integrator can be certified against it past that time";
-  } else if (reference.agreement > threshold) {
+  if (reference.agreement > threshold) {
     survey.certifiableHorizon = predictableUntil(reference, threshold, horizon);
     survey.limit = "the two references (at two tolerances) part by " + general(reference.agreement) +
                    ", more than E/10 = " + general(threshold) + ", after t = " + general(survey.certifiableHorizon, 4) +
                    " s (their last common sample within it): past that time the scene is not predictable at this error (chaos, or a reference that "
                    "cannot converge), so no integrator can be certified over T";
   }
+}
+
+// A scene whose odeint reference met a contact: the reference is the self-converged run of a
+// contact-aware scheme (self_convergence.h) at E/10, or the survey's limit says why there is none.
+void contactReference(const std::function<scenes::Scene()>& build, const SurveySettings& s, double interval,
+                      Reference& reference, Survey& survey) {
+  const Trajectory& odeint = reference.trajectory;
+  survey.touchedWall = true;
+  survey.contact = odeint.contact + " at t = " + general(odeint.contactTime, 4) + " s";
+  // The last sample before the contact: how far odeint alone holds.
+  const double beforeContact = std::max(0.0, odeint.contactTime - odeint.interval);
+  if (!s.contactReference) {
+    survey.certifiableHorizon = beforeContact;
+    survey.limit = "the odeint reference meets a contact (" + survey.contact +
+                   ") and contact references are off, so no integrator can be certified past that time";
+    return;
+  }
+  SelfConvergenceSettings settings;
+  settings.interval = interval;
+  settings.threshold = s.targetError / 10.0;
+  settings.maxSteps = s.referenceMaxSteps > 0 ? s.referenceMaxSteps : 16 * s.maxSteps;
+  settings.maxBytes = kMaxReferenceBytes;
+  settings.failure = s.failure;
+  settings.cancel = s.cancel;
+  SelfConvergence converged = selfConvergedReference(build, s.horizon, settings);
+  if (!converged.converged) {
+    survey.certifiableHorizon = std::max(beforeContact, converged.agreesUntil);
+    survey.limit = "the odeint reference meets a contact (" + survey.contact +
+                   ") and self-convergence of the contact-aware schemes was not reached within E/10 = " +
+                   general(settings.threshold) + " (" + converged.why + "), so no integrator can be certified over T";
+    survey.contactReference = std::move(converged);
+    return;
+  }
+  reference.trajectory = std::move(converged.trajectory);
+  converged.trajectory = Trajectory{};
+  reference.agreement = converged.difference;
+  reference.description = "self-convergence of " + converged.description();
+  survey.contactReference = std::move(converged);
 }
 
 }  // namespace
@@ -287,13 +340,22 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
   if (s.progress) s.progress(0.0);  // valid: the reference starts
   const double scale = releasableEnergy(*first.system);
 
-  Reference reference = makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm, s.cancel);
-  survey.referenceAgreement = reference.agreement;
-  survey.reference = reference.description;
-  survey.size = reference.trajectory.size();
-  survey.touchedWall = reference.trajectory.touchedWall;
+  Reference reference =
+      makeReference(build, s.horizon, interval, s.referenceTolerance, closedForm, s.cancel, /*stopAtContact=*/true);
+  survey.size = reference.trajectory.size();  // of the run up to any contact: relative budgets need it first
   survey.energyScale = scale;
   if (s.relativeToSize) s.abortError *= survey.size, s.targetError *= survey.size;
+  if (reference.trajectory.touchedWall) {
+    contactReference(build, s, interval, reference, survey);
+    if (!survey.limit.empty()) {
+      survey.reference = reference.description;
+      return survey;
+    }
+    // The whole motion's size, where no budget was taken of the size up to the contact.
+    if (!s.relativeToSize) survey.size = reference.trajectory.size();
+  }
+  survey.referenceAgreement = reference.agreement;
+  survey.reference = reference.description;
   limitOfReference(reference, s.targetError, s.horizon, survey);
   if (!survey.limit.empty()) return survey;
   survey.referenceTrajectory = std::make_shared<const Trajectory>(std::move(reference.trajectory));
@@ -327,35 +389,40 @@ Pick firstPick(const IntegratorSurvey& scan, const SurveySettings& s, double err
   return pick;
 }
 
-// A pick's certification: grid points of its window, each checked once.
+// One grid point of a margin: whether every start survived T within the budgets, the runs
+// made there (a point stops at its first failing start), and their largest max error.
+struct PointCheck {
+  bool passed = false;
+  FailureCount runs;
+  double worstError = 0.0;
+};
+
+// A pick's certification: grid points of its margin, each checked once on `starts` starts.
 struct Certifier {
-  const std::function<scenes::Scene()>& build;
   const Measurer& measurer;
   const SurveySettings& s;
   double error;
-  std::map<double, bool> known;  // grid point → it passed
+  int starts;
+  std::map<double, PointCheck> known;  // grid point → its check
   long runs = 0;
 
-  // Fixed step: every start survives T at dt (members after a failure are not run).
-  bool passesStep(const std::string& name, double dt) {
-    for (int member = 0; member < s.certifyMembers; ++member) {
-      const auto probe = runMember(build, name, dt, member, s.horizon, s.failure, s.cancel);
-      ++runs;
-      if (!probe || !probe->survives(s.horizon, dt)) return false;
-    }
-    return true;
-  }
-  // Adaptive: the start as built survives T within the budget at this tolerance.
-  bool passesTolerance(const Candidate& pick, double tolerance) {
-    ++runs;
-    const Candidate c = measurer.run(pick.integrator, pick.dt, tolerance, true);
-    return withinBudgets(c, error, s);
-  }
-  bool passes(const Candidate& pick, double value) {
+  // Every start at one grid point (dt, or the tolerance of an adaptive pick), measured against
+  // the reference; a run that fails or misses a budget fails the point.
+  const PointCheck& check(const Candidate& pick, double value) {
     const auto found = known.find(value);
     if (found != known.end()) return found->second;
-    const bool ok = pick.tolerance > 0.0 ? passesTolerance(pick, value) : passesStep(pick.integrator, value);
-    return known[value] = ok;
+    const bool adaptive = pick.tolerance > 0.0;
+    PointCheck point;
+    point.passed = true;
+    for (int member = 0; member < starts && point.passed && !cancelled(s); ++member) {
+      const Candidate c =
+          measurer.runFrom(member, pick.integrator, adaptive ? pick.dt : value, adaptive ? value : 0.0);
+      ++runs, ++point.runs.runs;
+      point.worstError = std::max(point.worstError, c.maxError);
+      if (!withinBudgets(c, error, s)) point.passed = false, ++point.runs.failures;
+    }
+    point.passed = point.passed && !cancelled(s);
+    return known[value] = point;
   }
 };
 
@@ -366,12 +433,26 @@ double belowFailure(double failed, double anchor, const SurveySettings& s) {
   return grid.empty() ? 0.0 : grid.back();
 }
 
-// Certifies a pick: every grid point (certifyResolution apart, anchored at the
-// first pick) of [safeFraction × v, v / safeFraction] passes, v its dt (its
-// tolerance for an adaptive scheme). A failure moves the pick down to the grid
-// point whose window lies below it; a moved pick is measured again, and one
-// that fails or misses the budget counts as a failure there. Ends uncertified
-// below the survey's smallest dt (T / maxSteps) or tolerance.
+// The starts per grid point of a margin of `points` points: certifyMembers, or enough for the
+// margin's runs to reach the failure bound asked for.
+int startsFor(const SurveySettings& s, std::size_t points) {
+  if (!(s.failureBound > 0.0) || points == 0) return s.certifyMembers;
+  const long needed = runsForBound(s.failureBound);
+  return std::max(s.certifyMembers, static_cast<int>((needed + points - 1) / static_cast<long>(points)));
+}
+
+// The margin of a pick of value v (its dt, or its tolerance): the grid certifyResolution apart,
+// anchored at the first pick, over [safeFraction × v, v / safeFraction].
+std::vector<double> marginOf(double v, double anchor, const SurveySettings& s) {
+  return stepGrid(v * s.safeFraction, v / s.safeFraction, s.certifyResolution, anchor);
+}
+
+// Certifies a pick: every grid point of its margin passes on every start
+// (Certifier::check: survives T within E and the other budgets), so that the
+// margin keeps the error within E as well as the run alive. A failure moves
+// the pick down to the grid point whose margin lies below it; a moved pick is
+// measured again, and one that fails or misses the budget counts as a failure
+// there. Ends uncertified below the survey's smallest dt (T / maxSteps) or tolerance.
 void certifyPick(Certifier& certifier, Pick& pick) {
   const SurveySettings& s = certifier.s;
   const bool adaptive = pick.candidate.tolerance > 0.0;
@@ -393,19 +474,29 @@ void certifyPick(Certifier& certifier, Pick& pick) {
       pick.candidate = moved;
     }
     const double v = value(pick.candidate);
-    const std::vector<double> window = stepGrid(v * s.safeFraction, v / s.safeFraction, s.certifyResolution, anchor);
+    const std::vector<double> margin = marginOf(v, anchor, s);
     failed = 0.0;
-    for (auto point = window.rbegin(); point != window.rend() && failed == 0.0 && !cancelled(s); ++point)
-      if (!certifier.passes(pick.candidate, *point)) failed = *point;
-    if (failed == 0.0) {
-      pick.certifiedLo = window.front(), pick.certifiedHi = window.back();
+    for (auto point = margin.rbegin(); point != margin.rend() && failed == 0.0 && !cancelled(s); ++point)
+      if (!certifier.check(pick.candidate, *point).passed) failed = *point;
+    if (failed == 0.0 && !cancelled(s)) {
+      pick.certifiedLo = margin.front(), pick.certifiedHi = margin.back();
+      pick.starts = certifier.starts;
+      pick.marginRuns = {};
+      pick.marginError = 0.0;
+      for (double point : margin) {
+        const PointCheck& checked = certifier.known.at(point);
+        pick.marginRuns += checked.runs;
+        pick.marginError = std::max(pick.marginError, checked.worstError);
+      }
+      pick.worstError = certifier.known.at(v).worstError;
       return;
     }
   }
+  if (cancelled(s)) return;
   pick.found = false;
   pick.uncertified = std::string("every ") + (adaptive ? "tolerance" : "dt") + " from the pick down to " +
-                     output::formatNumber(floor) + " has a failure within its margin (the lowest at " +
-                     output::formatNumber(failed) + ")";
+                     output::formatNumber(floor) + " has a failure or an error above the budget within its margin " +
+                     "(the lowest at " + output::formatNumber(failed) + ")";
 }
 
 // `repeats` timed runs of every found pick, interleaved (pick 1, 2, ..., 1, 2, ...) so that a load
@@ -467,7 +558,8 @@ std::vector<Pick> pickPerIntegrator(const std::function<scenes::Scene()>& build,
     if (settings.progress) settings.progress(0.8 * static_cast<double>(k) / picks.size());
     tried[k] = true;
     const Measurer measurer{build, s, *survey.referenceTrajectory, survey.energyScale};
-    Certifier certifier{build, measurer, s, error, {}, 0};
+    const double first = picks[k].candidate.tolerance > 0.0 ? picks[k].candidate.tolerance : picks[k].candidate.dt;
+    Certifier certifier{measurer, s, error, startsFor(s, marginOf(first, first, s).size()), {}, 0};
     const Candidate before = picks[k].candidate;
     certifyPick(certifier, picks[k]);
     picks[k].certifyRuns = certifier.runs;
@@ -514,6 +606,19 @@ void markTies(std::vector<Pick>& picks, int best) {
   if (best < 0) return;
   for (int k = 0; k < static_cast<int>(picks.size()); ++k)
     picks[k].tie = k != best && picks[k].found && picks[k].cpuMin <= picks[best].cpuMax;
+}
+
+TimingSpread timingSpread(const std::vector<Pick>& picks, int best) {
+  TimingSpread out;
+  if (best < 0) return out;
+  for (int k = 0; k < static_cast<int>(picks.size()); ++k) {
+    const Pick& p = picks[k];
+    if (k != best && !p.tie) continue;
+    out.ties += k != best;
+    const double spread = p.cpuMin > 0.0 ? p.cpuMax / p.cpuMin : 1.0;
+    if (spread > out.spread) out.spread = spread, out.lo = p.cpuMin, out.hi = p.cpuMax;
+  }
+  return out;
 }
 
 int cheapest(const std::vector<Pick>& picks) {

@@ -13,8 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "lab/failure_bound.h"
 #include "lab/lab.h"
 #include "lab/reference.h"
+#include "lab/self_convergence.h"
 
 namespace lab {
 
@@ -23,15 +25,6 @@ namespace lab {
 // --tolerance).
 inline constexpr double kMinReferenceTolerance = 1e-13;
 
-// The reference holds T / interval samples, each of them the positions,
-// velocities and accelerations of every particle (three Eigen vectors of 2n
-// doubles, each with its handle and the allocator's header: 16 + 16n + 16
-// bytes) and the energy: 48 n + 104 bytes a sample. A survey whose reference
-// would take more than kMaxReferenceBytes is refused before it starts (a
-// limit on samples alone let a one-particle scene reach 3.9 GB: 160 bytes a
-// sample, of which 16 are the particle's position).
-inline constexpr double kMaxReferenceBytes = 1e9;
-double referenceBytes(double samples, std::size_t particles);
 
 struct SurveySettings {
   double horizon = 10.0;            // T, simulated seconds
@@ -55,15 +48,27 @@ struct SurveySettings {
   double adaptiveInterval = 0.1;    // an adaptive scheme's call (output) interval, simulated seconds:
                                     // long enough that its tolerance, not the call, limits its step
   int repeats = 5;                  // timed repeats of each pick, interleaved across picks; the median is reported
+  // Ties whose repeats spread wider than this (largest / smallest CPU time of the cheapest or a
+  // tie) are the machine's noise rather than a measured equality: advise warns (timingSpread).
+  double noisySpread = 1.5;
   // Certification of each pick (certifyPick): every dt of a grid certifyResolution apart in
   // [safeFraction × dt, dt / safeFraction] (tolerances: [safeFraction × tol, tol / safeFraction])
-  // survives T on certifyMembers starts, and a tolerance's error stays within the budget across it.
+  // survives T within the budgets on certifyMembers starts (the start as built and perturbed
+  // copies, perturbStart), its error measured against the reference of the start as built.
   int certifyMembers = 10;          // 0: picks are not certified
+  // When > 0: enough starts per grid point of a margin that its runs, none failing, bound the
+  // per-run failure probability by this at 95% confidence (failure_bound.h); at least certifyMembers.
+  double failureBound = 0.0;
   double certifyResolution = 0.01;
   bool certifyAll = false;          // every pick; else the cheapest and its ties (a pick that moves
                                     // is timed again, and the cheapest certified pick wins)
   FailureCriterion failure;         // the failure criterion (lab/failure.h)
   double referenceTolerance = 1e-11;  // odeint's, in [kMinReferenceTolerance, 1]; the check run uses 100× this
+  // A scene whose odeint reference meets a contact gets a reference by self-convergence of the
+  // contact-aware schemes (self_convergence.h) instead, its finest run at most this many steps
+  // (0: 16 × maxSteps); false: such a scene is refused.
+  bool contactReference = true;
+  long referenceMaxSteps = 0;
   std::function<void(double)> progress;        // fraction done, 0..1, on the calling thread
   const std::atomic<bool>* cancel = nullptr;   // set (from any thread) to stop early
 };
@@ -119,13 +124,18 @@ struct Survey {
   double size = 0.0;                 // diagonal of the reference's bounding box, world units
   double referenceAgreement = 0.0;   // max distance between the references at two tolerances
   std::string reference;             // how it was computed
-  bool touchedWall = false;          // the reference passed through a wall (contacts ignored)
+  bool touchedWall = false;          // the odeint reference met a contact (it models none)
+  std::string contact;               // what it met and when ("" if nothing): "the discs of ... touch at t = ..."
+  // The contact reference, when touchedWall: the halvings of the scheme that converged (or the
+  // last one tried), its step and observed order; its trajectory is referenceTrajectory.
+  SelfConvergence contactReference;
   int particles = 0;
   // Why no integrator can be certified within E over T, empty if one can:
   // the references part by more than E/10 before T (chaos: the scene is not
-  // predictable that long at that error), or the reference meets a contact it
-  // does not model. Then no integrator is scanned, and certifiableHorizon is
-  // the longest T from 0 over which the reference still holds.
+  // predictable that long at that error), or the odeint reference meets a
+  // contact and no contact-aware scheme converged to within E/10 (or contact
+  // references are off). Then no integrator is scanned, and certifiableHorizon
+  // is the longest T from 0 over which a reference still holds.
   std::string limit;
   double certifiableHorizon = 0.0;
   std::vector<IntegratorSurvey> integrators;
@@ -149,10 +159,11 @@ struct Reference {
 // The longest T from 0 over which the references agree within `threshold`:
 // the last common sample before the first that parts by more (the horizon if none does).
 double predictableUntil(const Reference& reference, double threshold, double horizon);
-// Throws Cancelled once `cancel` is set.
+// Throws Cancelled once `cancel` is set. With stopAtContact, an odeint
+// reference ends at its first contact (Trajectory::touchedWall), unchecked.
 Reference makeReference(const std::function<scenes::Scene()>& build, double horizon, double interval,
                         double tolerance, const ClosedForm& closedForm = {},
-                        const std::atomic<bool>* cancel = nullptr);
+                        const std::atomic<bool>* cancel = nullptr, bool stopAtContact = false);
 
 // Runs the reference and scans every integrator. `build` makes a fresh scene
 // each call. The reference is the closed form when one is given (checked
@@ -165,24 +176,38 @@ Survey surveyScene(const std::function<scenes::Scene()>& build, const SurveySett
 
 struct Pick {
   bool found = false;
-  Candidate candidate;
+  Candidate candidate;        // the run from the start as built
   double cpuPerSimulatedSecond = 0.0, cpuMin = 0.0, cpuMax = 0.0;  // median and spread of repeats
-  // The certified window around the pick (dt, or the tolerance of an adaptive
-  // scheme): every grid point in [certifiedLo, certifiedHi] survived on every
-  // start; 0 when not certified. certifyRuns: the runs it took (the picks moved
-  // down past failures included).
+  // The certified margin around the pick (dt, or the tolerance of an adaptive
+  // scheme): every grid point in [certifiedLo, certifiedHi] survived within the
+  // budgets on every start; 0 when not certified. certifyRuns: the runs it took
+  // (the picks moved down past failures included).
   double certifiedLo = 0.0, certifiedHi = 0.0;
   long certifyRuns = 0;
+  int starts = 0;             // starts run at each grid point of the margin
+  FailureCount marginRuns;    // the margin's runs (no failure when certified): the bound they support
+  double worstError = 0.0;    // largest max error over the starts at the pick's own dt (tolerance)
+  double marginError = 0.0;   // largest max error over every run of the margin
   std::string uncertified;  // why no pick could be certified ("" when one was or none was tried)
   bool tie = false;         // within the timing spread of the cheapest (their repeats' ranges overlap)
+  bool certified() const { return certifiedHi > 0.0; }
+  // The error a user should expect of the pick: over every start when certified, else the start as built.
+  double error() const { return certified() ? worstError : candidate.maxError; }
 };
 template <class Io>
 void fields(Io& io, Pick& p) {
   io("found", p.found), io("candidate", p.candidate), io("cpu_per_simulated_second", p.cpuPerSimulatedSecond);
   io("cpu_min", p.cpuMin), io("cpu_max", p.cpuMax), io("certified_lo", p.certifiedLo);
-  io("certified_hi", p.certifiedHi), io("certify_runs", p.certifyRuns), io("uncertified", p.uncertified);
-  io("tie", p.tie);
+  io("certified_hi", p.certifiedHi), io("certify_runs", p.certifyRuns), io("starts", p.starts);
+  io("margin_runs", p.marginRuns), io("worst_error", p.worstError), io("margin_error", p.marginError);
+  io("uncertified", p.uncertified), io("tie", p.tie);
 }
+
+// 1 − error / E: how much of the budget E a pick leaves unused.
+inline double headroom(const Pick& pick, double error) { return 1.0 - pick.error() / error; }
+// A pick whose error is within 5% of E has no headroom worth the name: flagged.
+inline constexpr double kThinHeadroom = 0.05;
+inline bool thinHeadroom(const Pick& pick, double error) { return headroom(pick, error) < kThinHeadroom; }
 
 // Per integrator, the largest scanned safe dt (fixed-step: dt ≤ safeFraction ×
 // safeDt) or loosest tolerance whose maxError ≤ error, timed over `repeats`
@@ -200,6 +225,17 @@ bool withinBudgets(const Candidate& c, double error, const SurveySettings& setti
 int cheapest(const std::vector<Pick>& picks);
 // Marks the found picks whose timing range (min–max of the repeats) overlaps the cheapest's as ties.
 void markTies(std::vector<Pick>& picks, int best);
+
+// How wide the timings behind a tie are: the ties of the cheapest pick `best`
+// (markTies) and the largest spread, max / min CPU time of the repeats, among
+// it and them. A tie whose spread exceeds SurveySettings::noisySpread says
+// more about the machine's load than about the integrators.
+struct TimingSpread {
+  int ties = 0;
+  double spread = 1.0;
+  double lo = 0.0, hi = 0.0;  // the range of that widest spread, CPU s per simulated s
+};
+TimingSpread timingSpread(const std::vector<Pick>& picks, int best);
 
 // The whole advice for one scene, as `particle-lab advise` and the demo's
 // panel give it: surveyScene with the budget settings.targetError (the scan's

@@ -137,7 +137,7 @@ void claimRk4AgainstMidpoint(Context& context) {
                            verdict(rk4 / mid > 1.5 && rk4 / mid < 2.5)});
   context.table.push_back(
       {"RK4 allows more than twice midpoint's step",
-       "safe dt (scan, " + output::plural(scan.members, "start") + "), " + std::to_string(plan.scanLength) +
+       "largest surviving dt (coarse scan, " + output::plural(scan.members, "start") + "), " + std::to_string(plan.scanLength) +
            "-chain, T = " + general(plan.duration) + " s: RK4 " + safeStepText(boundaries[0]) + ", midpoint " +
            safeStepText(boundaries[1]) + " (ratio " + fixed(dtRk4 / dtMid, 2) + ")",
        dtMid > 0.0 && !boundaries[0].aboveGrid() ? verdict(dtRk4 > 2.0 * dtMid) : "undecided"});

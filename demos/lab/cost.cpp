@@ -12,6 +12,7 @@
 #include "lab/lab_scene.h"
 #include "lab/results.h"
 #include "output/format_number.h"
+#include "particles/integrator.h"
 
 namespace lab {
 
@@ -64,11 +65,23 @@ struct SizeFamily {
   std::vector<CostScene> sizes;
 };
 
+// A scene with contacts, asked as a user asks `advise`: its demo defaults
+// (not the seed's), an absolute budget E over T.
+struct ContactQuestion {
+  std::string label;
+  std::string scene;
+  std::map<std::string, std::string> params;
+  double horizon;  // T, simulated seconds
+  double error;    // E, world units
+};
+
 // What the experiment surveys.
 struct CostPlan {
   std::vector<CostScene> scenes;
   std::vector<SizeFamily> families;
   int repeats = 0;  // timed repeats per pick; the median is reported
+  std::vector<ContactQuestion> contacts;
+  int contactStarts = 3;  // starts per grid point of a contact pick's margin (its runs are long)
 };
 
 // Error budgets, × the scene's size: of the scenes, and of the size families.
@@ -93,6 +106,8 @@ CostPlan quickPlan() {
            {"hair", "hair", {{"curls", "1"}, {"particles", "6"}}, 1.0, 1000, false}},
           {{"chain", {chainOfLength(3, 1.0, 500), chainOfLength(6, 1.0, 500)}},
            {"cloth", {clothOfSide(4, 1.0, 500), clothOfSide(6, 1.0, 500)}}},
+          2,
+          {{"small hair", "hair", {{"curls", "2"}, {"particles", "8"}}, 0.1, 1e-3}},
           2};
 }
 
@@ -112,7 +127,11 @@ CostPlan fullPlan() {
            {"16x16 cloth", "cloth", {{"width", "16"}, {"height", "16"}}, 10.0, 10000, false},
            {"hair", "hair", {}, 10.0, 20000, false}},
           {{"chain", chains}, {"cloth", cloths}},
-          SurveySettings{}.repeats};
+          SurveySettings{}.repeats,
+          {{"hair", "hair", {}, 2.0, 1e-3},
+           {"8-way cloth with its wall", "cloth", {{"links", "8"}}, 5.0, 1e-3},
+           {"small hair (2 strands of 12)", "hair", {{"curls", "2"}, {"particles", "12"}}, 0.2, 1e-3}},
+          3};
 }
 
 // One survey: runs stop once beyond the loosest budget, and each
@@ -172,16 +191,22 @@ void writeSafeRows(Csv& csv, const CostScene& scene, const Surveyed& survey) {
   }
 }
 
+// A row per found pick; `cheapest` marks the one the table names (ties are marked apart).
 void writePickRows(Csv& csv, const CostScene& scene, const Surveyed& survey, double relative,
-                   const std::vector<Pick>& picks) {
+                   std::vector<Pick> picks) {
   const double budget = relative * survey.size;
+  const int best = cheapest(picks);
+  markTies(picks, best);
   for (std::size_t k = 0; k < picks.size(); ++k) {
     if (!picks[k].found) continue;
-    const Candidate& candidate = picks[k].candidate;
+    const Pick& p = picks[k];
+    const Candidate& candidate = p.candidate;
     csv << scene.label << static_cast<long>(survey.particles) << scene.horizon << survey.size << relative << budget
-        << candidate.integrator << candidate.dt << candidate.tolerance << candidate.maxError
-        << survey.integrators[k].safeDt << picks[k].cpuPerSimulatedSecond << picks[k].cpuMin << picks[k].cpuMax
-        << survey.referenceAgreement << picks[k].certifiedLo << picks[k].certifiedHi << static_cast<long>(picks[k].tie);
+        << candidate.integrator << candidate.dt << candidate.tolerance << candidate.maxError << p.worstError
+        << survey.integrators[k].safeDt << p.cpuPerSimulatedSecond << p.cpuMin << p.cpuMax
+        << survey.referenceAgreement << p.certifiedLo << p.certifiedHi << p.marginRuns.runs
+        << p.marginRuns.failures << p.marginRuns.upperBound() << static_cast<long>(static_cast<int>(k) == best)
+        << static_cast<long>(p.tie);
     csv.endRow();
   }
 }
@@ -203,21 +228,50 @@ std::vector<std::string> cheapestText(const CostScene& scene, const Surveyed& su
   if (!ties.empty()) name += " (tie: " + ties + ")";
   const std::string step =
       general(pick.candidate.dt) + (pick.candidate.tolerance > 0 ? ", tol " + general(pick.candidate.tolerance) : "");
-  const std::string margin = pick.certifiedHi > 0.0 ? (pick.candidate.tolerance > 0 ? "tol " : "dt ") +
-                                                          general(pick.certifiedLo, 3) + "–" + general(pick.certifiedHi, 3)
-                                                    : "–";
-  return {name, step, general(pick.candidate.maxError),
+  const std::string margin = pick.certified() ? (pick.candidate.tolerance > 0 ? "tol " : "dt ") +
+                                                    general(pick.certifiedLo, 3) + "–" + general(pick.certifiedHi, 3) +
+                                                    " (" + boundText(pick.marginRuns) + ")"
+                                              : "–";
+  return {name, step, general(pick.error()),
           general(pick.cpuPerSimulatedSecond) + " (" + general(pick.cpuMin, 2) + "–" + general(pick.cpuMax, 2) + ")",
           margin};
 }
 
-void writeResults(const LabOptions& options, const CostPlan& plan, const Results<Surveyed>& surveys) {
+// Where each integrator is the cheapest pick: "the 16x16 cloth at a budget of 0.01", ...
+using CheapestWhere = std::map<std::string, std::vector<std::string>>;
+
+// The cheapest found pick's integrator at a measurable budget, or "".
+std::string cheapestName(const Surveyed& survey, double budget, const std::vector<Pick>& picks) {
+  if (!measurable(budget, survey.referenceAgreement)) return "";
+  const int best = cheapest(picks);
+  return best < 0 ? "" : picks[best].candidate.integrator;
+}
+
+// For the report's advice (§5), per integrator of the table: "is the cheapest pick for A, B and
+// C" or "is never the cheapest pick": what the cost tables say, as a clause.
+void recordCheapestWhere(const LabOptions& options, const CheapestWhere& where) {
+  for (const auto& info : particles::integratorTable()) {
+    const auto found = where.find(info.name);
+    std::string clause = "is never the cheapest pick in the cost tables";
+    if (found != where.end() && !found->second.empty()) {
+      clause = "is the cheapest pick for ";
+      const auto& places = found->second;
+      for (std::size_t k = 0; k < places.size(); ++k)
+        clause += (k == 0 ? "" : k + 1 == places.size() ? " and " : ", ") + places[k];
+    }
+    recordValue(options, std::string("cost.where_cheapest.") + info.name, clause);
+  }
+}
+
+void writeResults(const LabOptions& options, const CostPlan& plan, const Results<Surveyed>& surveys,
+                  CheapestWhere& where) {
   Csv picksCsv(options, "cost_of_accuracy.csv",
                {"scene", "particles", "horizon", "size", "budget_relative", "budget", "integrator", "dt", "tolerance",
-                "max_error", "safe_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement",
-                "certified_lo", "certified_hi", "tie"});
+                "max_error", "worst_error", "surviving_dt", "cpu_per_simulated_second", "cpu_min", "cpu_max",
+                "reference_agreement", "certified_lo", "certified_hi", "margin_runs", "margin_failures",
+                "failure_bound", "cheapest", "tie"});
   Csv safeCsv(options, "cost_safe_dt.csv",
-              {"scene", "horizon", "integrator", "safe_dt", "first_failure_dt", "runs", "ensemble_runs"});
+              {"scene", "horizon", "integrator", "surviving_dt", "first_failure_dt", "runs", "ensemble_runs"});
   std::vector<std::vector<std::string>> table;
   for (const auto& [k, survey] : surveys) {
     const CostScene& scene = plan.scenes[k];
@@ -232,17 +286,21 @@ void writeResults(const LabOptions& options, const CostPlan& plan, const Results
       const std::vector<std::string> cheapestColumns = cheapestText(scene, survey, budget, survey.picks[b]);
       row.insert(row.end(), cheapestColumns.begin(), cheapestColumns.end());
       table.push_back(row);
+      const std::string name = cheapestName(survey, budget, survey.picks[b]);
+      if (!name.empty()) where[name].push_back("the " + scene.label + " at a budget of " + general(relative));
     }
   }
   writeTable(options, "cost_of_accuracy",
              "The cost of accuracy: cheapest integrator and dt whose max particle position error over [0, T] "
              "against the reference is within the budget (relative to the scene's size; absolute in brackets), "
-             "at dt <= 0.8 x its safe boundary, certified: every dt (adaptive: tolerance) " +
-                 general(100.0 * SurveySettings{}.certifyResolution) + "% apart in its margin survives on " +
-                 output::plural(SurveySettings{}.certifyMembers, "start") +
-                 "; CPU seconds per simulated second, median of repeats interleaved across the picks (min–max); a "
-                 "tie: a pick whose range overlaps the cheapest's",
-             {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s", "certified margin"}, table);
+             "at dt <= 0.8 x the coarse scan's largest surviving dt, certified: every dt (adaptive: tolerance) " +
+                 general(100.0 * SurveySettings{}.certifyResolution) + "% apart in its margin survives within the "
+                 "budget on " + output::plural(SurveySettings{}.certifyMembers, "start") +
+                 " (max error: the largest over them at the pick), with the 95% bound p on the per-run probability "
+                 "of a failure or a miss that the margin's runs support; CPU seconds per simulated second, median of "
+                 "repeats interleaved across the picks (min–max); a tie: a pick whose range overlaps the cheapest's",
+             {"scene", "budget", "cheapest", "dt", "max error", "CPU s / simulated s", "certified margin (bound)"},
+             table);
 }
 
 // Every surveyed scene in cell order: the scenes, then each family's sizes in turn.
@@ -263,10 +321,11 @@ std::vector<Surveyable> surveyables(const CostPlan& plan) {
 // and its table), and per family and budget the fitted slope of log CPU time
 // per simulated second against log particle count over the sizes with a pick.
 void writeSizeResults(const LabOptions& options, const CostPlan& plan, const std::vector<Surveyable>& all,
-                      const Results<Surveyed>& surveys) {
+                      const Results<Surveyed>& surveys, CheapestWhere& where) {
   Csv csv(options, "cost_vs_size.csv",
           {"family", "scene", "particles", "horizon", "size", "budget_relative", "integrator", "dt", "tolerance",
-           "max_error", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement"});
+           "max_error", "worst_error", "cpu_per_simulated_second", "cpu_min", "cpu_max", "reference_agreement",
+           "certified_lo", "certified_hi", "margin_runs", "failure_bound"});
   std::vector<std::vector<std::string>> table, slopes;
   for (std::size_t f = 0; f < plan.families.size(); ++f) {
     const SizeFamily& family = plan.families[f];
@@ -279,15 +338,18 @@ void writeSizeResults(const LabOptions& options, const CostPlan& plan, const std
         std::vector<std::string> row{family.name, std::to_string(survey.particles), general(scene.horizon),
                                      general(relative)};
         const std::vector<std::string> columns = cheapestText(scene, survey, budget, survey.picks[b]);
-        row.insert(row.end(), columns.begin(), columns.end() - 1);  // the certified margin stays in the scenes' table
+        row.insert(row.end(), columns.begin(), columns.end());
         table.push_back(row);
         const int best = measurable(budget, survey.referenceAgreement) ? cheapest(survey.picks[b]) : -1;
         if (best < 0) continue;
         const Pick& pick = survey.picks[b][best];
+        where[pick.candidate.integrator].push_back("the " + std::to_string(survey.particles) + "-particle " +
+                                                   family.name + " at " + general(relative));
         csv << family.name << scene.label << static_cast<long>(survey.particles) << scene.horizon << survey.size
             << relative << pick.candidate.integrator << pick.candidate.dt << pick.candidate.tolerance
-            << pick.candidate.maxError << pick.cpuPerSimulatedSecond << pick.cpuMin << pick.cpuMax
-            << survey.referenceAgreement;
+            << pick.candidate.maxError << pick.worstError << pick.cpuPerSimulatedSecond << pick.cpuMin
+            << pick.cpuMax << survey.referenceAgreement << pick.certifiedLo << pick.certifiedHi
+            << pick.marginRuns.runs << pick.marginRuns.upperBound();
         csv.endRow();
         particles.push_back(survey.particles);
         cpu.push_back(pick.cpuPerSimulatedSecond);
@@ -301,13 +363,96 @@ void writeSizeResults(const LabOptions& options, const CostPlan& plan, const std
   recordValue(options, "cost.size_horizon", general(plan.families.empty() ? 0.0 : plan.families[0].sizes[0].horizon));
   writeTable(options, "cost_vs_size",
              "The cost of accuracy against size: per family, size and budget (relative to the scene's size), the "
-             "cheapest integrator and dt within the budget over [0, T], chosen and certified as in the cost table; CPU "
-             "seconds per simulated second, median of interleaved repeats (min–max)",
-             {"family", "particles", "T (s)", "budget", "cheapest", "dt", "max error", "CPU s / simulated s"}, table);
+             "cheapest integrator and dt within the budget over [0, T], chosen and certified as in the cost table "
+             "(its margin and bound); CPU seconds per simulated second, median of interleaved repeats (min–max)",
+             {"family", "particles", "T (s)", "budget", "cheapest", "dt", "max error", "CPU s / simulated s",
+              "certified margin (bound)"},
+             table);
   writeTable(options, "cost_size_slopes",
              "Growth of the cheapest choice's cost with size: fitted slope of log CPU s per simulated s against log "
              "particle count, over the sizes with a pick",
              {"family", "budget", "slope", "sizes fitted"}, slopes);
+}
+
+// One contact question's answer: the reference (or why there is none) and the picks.
+struct ContactAnswer {
+  int particles = 0;
+  std::string contact, reference, limit;
+  double certifiableHorizon = 0.0;
+  std::vector<Pick> picks;
+  int best = -1;
+};
+template <class Io>
+void fields(Io& io, ContactAnswer& a) {
+  io("particles", a.particles), io("contact", a.contact), io("reference", a.reference), io("limit", a.limit);
+  io("certifiable_horizon", a.certifiableHorizon), io("picks", a.picks), io("best", a.best);
+}
+
+std::optional<ContactAnswer> adviseOnContacts(const LabOptions& options, const CostPlan& plan,
+                                              const ContactQuestion& q) {
+  SurveySettings settings;
+  settings.horizon = q.horizon;
+  settings.targetError = settings.abortError = q.error;
+  settings.integrators = selectedIntegrators(options);
+  settings.repeats = plan.repeats;
+  settings.certifyMembers = plan.contactStarts;
+  settings.failure = options.criterion;
+  const Advice advice = advise([&] { return scenes::buildScene(q.scene, q.params); }, settings);
+  if (!advice.complete) return std::nullopt;
+  return ContactAnswer{advice.survey.particles, advice.survey.contact, advice.survey.reference,
+                       advice.survey.limit, advice.survey.certifiableHorizon, advice.picks, advice.best};
+}
+
+// The command that asks the same question.
+std::string adviseCommand(const ContactQuestion& q, int starts) {
+  std::string command = "particle-lab advise --scene " + q.scene;
+  for (const auto& [key, value] : q.params) command += " --param " + key + "=" + value;
+  return command + " --error " + general(q.error) + " --horizon " + general(q.horizon) + " --certify-starts " +
+         std::to_string(starts);
+}
+
+// The contact table: per question its reference or refusal, and the cheapest certified pick.
+void writeContactResults(const LabOptions& options, const CostPlan& plan, const Results<ContactAnswer>& answers) {
+  Csv csv(options, "cost_contacts.csv",
+          {"scene", "particles", "horizon", "error", "contact", "reference", "refused", "certifiable_horizon",
+           "integrator", "dt", "worst_error", "headroom", "certified_lo", "certified_hi", "margin_runs",
+           "failure_bound", "cpu_per_simulated_second"});
+  std::vector<std::vector<std::string>> table;
+  for (const auto& [k, a] : answers) {
+    const ContactQuestion& q = plan.contacts[k];
+    const bool refused = !a.limit.empty();
+    const Pick* pick = a.best >= 0 ? &a.picks[a.best] : nullptr;
+    csv << q.label << static_cast<long>(a.particles) << q.horizon << q.error << a.contact << a.reference
+        << static_cast<long>(refused) << a.certifiableHorizon << (pick ? pick->candidate.integrator : "")
+        << (pick ? pick->candidate.dt : 0.0) << (pick ? pick->error() : 0.0)
+        << (pick ? headroom(*pick, q.error) : 0.0) << (pick ? pick->certifiedLo : 0.0)
+        << (pick ? pick->certifiedHi : 0.0) << (pick ? pick->marginRuns.runs : 0L)
+        << (pick ? pick->marginRuns.upperBound() : 1.0) << (pick ? pick->cpuPerSimulatedSecond : 0.0);
+    csv.endRow();
+    std::string answer;
+    if (refused)
+      answer = "refuses: " + a.limit + "; certifiable over " + general(a.certifiableHorizon, 3) + " s";
+    else if (!pick)
+      answer = "finds no integrator that meets E within its safe range";
+    else
+      answer = "answers " + pickArguments(pick->candidate) + ", max error " + general(pick->error(), 2) + " over " +
+               output::plural(pick->starts, "start") + " (headroom " + fixed(100.0 * headroom(*pick, q.error), 0) +
+               "%), margin dt " + general(pick->certifiedLo, 3) + "–" + general(pick->certifiedHi, 3) + ", " +
+               boundText(pick->marginRuns);
+    table.push_back({q.label + " (" + output::plural(a.particles, "particle") + ")", general(q.horizon),
+                     general(q.error), a.contact.empty() ? "–" : a.contact, refused ? "–" : a.reference, answer});
+    recordValue(options, "cost.contacts." + std::to_string(k) + ".command", adviseCommand(q, plan.contactStarts));
+    recordValue(options, "cost.contacts." + std::to_string(k) + ".answer", answer);
+  }
+  recordValue(options, "cost.contact_starts", std::to_string(plan.contactStarts));
+  writeTable(options, "cost_contacts",
+             "Advice on scenes with contacts (demo defaults, `particle-lab advise`): the contact the odeint "
+             "reference meets, the reference by self-convergence of the contact-aware schemes (dt halved until "
+             "two runs agree within E/10) or why there is none, and the cheapest pick certified on " +
+                 output::plural(plan.contactStarts, "start") +
+                 " per margin dt (its error within E at every dt of the margin, on every start), with the 95% "
+                 "bound on the per-run failure probability its margin's runs support",
+             {"scene", "T (s)", "E", "contact", "reference", "answer"}, table);
 }
 
 }  // namespace
@@ -328,8 +473,16 @@ int runCost(const LabOptions& options) {
       true, [&](std::size_t) { progress.tick(); });
   Results<Surveyed> scenes, sizes;
   for (const auto& [k, survey] : surveys) (all[k].family < 0 ? scenes : sizes).emplace(k, survey);
-  writeResults(options, plan, scenes);
-  writeSizeResults(options, plan, all, sizes);
+  CheapestWhere where;
+  writeResults(options, plan, scenes, where);
+  writeSizeResults(options, plan, all, sizes, where);
+  recordCheapestWhere(options, where);
+  if (interrupted()) return 130;
+  Progress contactProgress(options, "cost: contacts", static_cast<long>(plan.contacts.size()));
+  const auto answers = resultsInTurn<ContactAnswer>(
+      options, plan.contacts.size(), [&](std::size_t k) { return adviseOnContacts(options, plan, plan.contacts[k]); },
+      true, [&](std::size_t) { contactProgress.tick(); });
+  writeContactResults(options, plan, answers);
   return interrupted() ? 130 : 0;
 }
 

@@ -9,6 +9,9 @@ namespace lab {
 struct StabilityOptions {
   double duration = 60.0;  // T of Tables 1 and 2, simulated seconds a run must survive
   static constexpr double minDuration = 1.0, maxDuration = 1e4;  // accepted range of --duration, s
+  // Table 2: the per-run failure probability its runs must bound (failure_bound.h); 0: the plan's starts.
+  double failureBound = 0.0;
+  static constexpr double minFailureBound = 1e-5, maxFailureBound = 0.5;  // accepted range of --failure-bound
 };
 int runStability(const LabOptions& options, const StabilityOptions& stability);
 

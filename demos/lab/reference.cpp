@@ -1,5 +1,7 @@
 #include "lab/reference.h"
 
+#include "lab/lab.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,29 +13,49 @@
 
 namespace lab {
 
+double referenceBytes(double samples, std::size_t particles) {
+  return samples * (48.0 * static_cast<double>(particles) + 104.0);
+}
+
+
 namespace {
 
 // The first-order form y = (x, v), ẏ = (v, a(x, v)) that odeint integrates.
 using State = std::vector<double>;
 
-// Whether positions x put a particle inside a collider, or two collidable
-// particles (discs) into each other: a contact the reference does not model.
-bool inContact(const particles::ParticleSystem& system, const Eigen::VectorXd& x) {
+}  // namespace
+
+std::string contactAt(const particles::ParticleSystem& system, const Eigen::VectorXd& x) {
   const Eigen::VectorXd& r = system.radii();
-  for (const particles::Collider& collider : system.colliders())
+  const auto& colliders = system.colliders();
+  for (std::size_t c = 0; c < colliders.size(); ++c) {
+    const std::string collider =
+        std::string("collider ") + std::to_string(c) + " (" + particles::colliderName(colliders[c].shape) + ")";
     for (int i = 0; i < system.size(); ++i)
-      if (collider.distance(x.segment<2>(2 * i)).distance < r[i]) return true;
+      if (colliders[c].distance(x.segment<2>(2 * i)).distance < r[i])
+        return "particle " + std::to_string(i) + " reaches " + collider;
+    for (const particles::CollisionEdge& e : system.collisionEdges())
+      if (colliders[c].sweep(x.segment<2>(2 * e.a), x.segment<2>(2 * e.b), 0.0, 0.0))
+        return "the edge between particles " + std::to_string(e.a) + " and " + std::to_string(e.b) + " meets " +
+               collider;
+  }
   std::vector<int> discs;
   for (int i = 0; i < system.size(); ++i)
     if (system.collidable(i)) discs.push_back(i);
-  if (discs.size() < 2 || !system.colliding()) return false;
+  if (discs.size() < 2 || !system.colliding()) return "";
   for (std::size_t a = 0; a < discs.size(); ++a)
     for (std::size_t b = a + 1; b < discs.size(); ++b) {
       const int i = discs[a], j = discs[b];
-      if ((x.segment<2>(2 * i) - x.segment<2>(2 * j)).norm() < r[i] + r[j]) return true;
+      if ((x.segment<2>(2 * i) - x.segment<2>(2 * j)).norm() < r[i] + r[j])
+        return "the discs of particles " + std::to_string(i) + " and " + std::to_string(j) + " touch";
     }
-  return false;
+  return "";
 }
+
+namespace {
+
+// Thrown by the observer at the first contact when the reference stops there.
+struct ContactReached {};
 
 void recordSample(particles::ParticleSystem& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                   Trajectory& out) {
@@ -46,9 +68,12 @@ void recordSample(particles::ParticleSystem& system, const Eigen::VectorXd& x, c
   system.setPositions(x);
   system.setVelocities(v);
   out.energy.push_back(system.totalEnergy());
-  if (!out.touchedWall && inContact(system, x)) {
-    out.touchedWall = true;
-    out.contactTime = out.interval * static_cast<double>(out.x.size() - 1);
+  if (!out.touchedWall) {
+    out.contact = contactAt(system, x);
+    if (!out.contact.empty()) {
+      out.touchedWall = true;
+      out.contactTime = out.interval * static_cast<double>(out.x.size() - 1);
+    }
   }
   system.restore(saved);
 }
@@ -150,10 +175,38 @@ Trajectory odeintReference(scenes::Scene& scene, double duration, const Referenc
     if (settings.cancel && settings.cancel->load()) throw Cancelled();
     recordSample(system, Eigen::Map<const Eigen::VectorXd>(state.data(), n2),
                  Eigen::Map<const Eigen::VectorXd>(state.data() + n2, n2), out);
+    if (settings.stopAtContact && out.touchedWall) throw ContactReached();
   };
   auto stepper = odeint::make_controlled(settings.tolerance, settings.tolerance,
                                          odeint::runge_kutta_fehlberg78<State>());
-  odeint::integrate_times(stepper, rhs, y, times.begin(), times.end(), settings.interval / 10, observe);
+  try {
+    odeint::integrate_times(stepper, rhs, y, times.begin(), times.end(), settings.interval / 10, observe);
+  } catch (const ContactReached&) {
+    // The trajectory ends at its first contact: what follows it would be wrong.
+  }
+  return out;
+}
+
+std::optional<Trajectory> steppedTrajectory(const std::function<scenes::Scene()>& build, const std::string& integrator,
+                                            double dt, long stride, double duration,
+                                            const FailureCriterion& criterion, const std::atomic<bool>* cancel) {
+  scenes::Scene scene = build();
+  // Samples are evaluated on a second copy: the stepped system is only read,
+  // so that sampling leaves the run exactly as an unobserved one.
+  scenes::Scene evaluator = build();
+  Trajectory out;
+  out.interval = stride * dt;
+  recordSample(*evaluator.system, scene.system->positions(), scene.system->velocities(), out);
+  auto stepper = particles::makeIntegrator(integrator);
+  long k = 0;
+  bool cancelled = false;
+  const RunResult run = simulate(scene, *stepper, dt, duration, criterion, [&](const particles::ParticleSystem& s) {
+    if (++k % stride == 0) recordSample(*evaluator.system, s.positions(), s.velocities(), out);
+    cancelled = interrupted() || (cancel && cancel->load());
+    return !cancelled;
+  });
+  if (cancelled || run.cutShort) throw Cancelled();
+  if (run.failed) return std::nullopt;
   return out;
 }
 

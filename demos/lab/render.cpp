@@ -1,5 +1,6 @@
 #include "lab/render.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lab/text_checks.h"
 #include "lab/values.h"
 #include "output/output_file.h"
 
@@ -28,6 +30,7 @@ std::string readFile(const std::string& path) {
 std::string renderTemplate(const std::string& text, const std::string& dataDir) {
   const auto values = readValues(dataDir);
   std::string out;
+  std::vector<std::string> contradictions;
   std::size_t at = 0;
   while (true) {
     const std::size_t open = text.find("{{", at);
@@ -46,12 +49,21 @@ std::string renderTemplate(const std::string& text, const std::string& dataDir) 
       const auto found = values.find(name);
       if (found == values.end()) throw std::runtime_error("no value '" + name + "' in " + dataDir + "/values.csv");
       out += found->second;
+    } else if (kind == "check") {
+      const std::string broken = evaluateCheck(name, dataDir);
+      if (!broken.empty()) {
+        const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(open), '\n');
+        contradictions.push_back("template line " + std::to_string(line) + ": {{check:" + name + "}} fails: " + broken);
+      }
     } else {
       throw std::runtime_error("unknown template field '{{" + field + "}}'");
     }
     at = close + 2;
   }
-  return out + text.substr(at);
+  out += text.substr(at);
+  for (const std::string& found : proseContradictions(out, dataDir)) contradictions.push_back(found);
+  if (!contradictions.empty()) throw ReportContradiction(contradictions);
+  return out;
 }
 
 std::string sectionBegin(const std::string& name) {
@@ -102,7 +114,15 @@ std::string figureProblem(const std::string& text, const std::string& outPath) {
 }  // namespace
 
 int renderReport(const RenderOptions& options) {
-  std::string rendered = renderTemplate(readFile(options.templatePath), options.dataDir);
+  std::string rendered;
+  try {
+    rendered = renderTemplate(readFile(options.templatePath), options.dataDir);
+  } catch (const ReportContradiction& e) {
+    for (const std::string& found : e.found)
+      std::fprintf(stderr, "render-report: %s contradicts %s: %s\n", options.templatePath.c_str(),
+                   options.dataDir.c_str(), found.c_str());
+    return 1;
+  }
   if (!options.section.empty()) rendered = spliceSection(options.outPath, options.section, rendered);
   if (const std::string problem = figureProblem(rendered, options.outPath); !problem.empty()) {
     std::fprintf(stderr, "render-report: %s %s\n", options.outPath.c_str(), problem.c_str());

@@ -2,7 +2,9 @@
 // Fills the report template: {{table:NAME}} becomes DATA/NAME.md and
 // {{value:KEY}} the value recorded under KEY in DATA/values.csv. A missing
 // table or key is an error, so the report never shows a number the
-// experiments did not produce.
+// experiments did not produce. {{check:...}} holds a sentence against the
+// data (text_checks.h) and renders as nothing; a check that fails, or prose
+// the data contradicts, fails the rendering and --check alike.
 #include <string>
 
 namespace lab {
@@ -23,7 +25,8 @@ std::string sectionEnd(const std::string& name);
 
 int renderReport(const RenderOptions& options);
 
-// The substitution itself, for tests: returns the rendered text.
+// The substitution itself, for tests: returns the rendered text; throws
+// ReportContradiction (text_checks.h) listing every contradiction found.
 std::string renderTemplate(const std::string& text, const std::string& dataDir);
 
 }  // namespace lab

@@ -1,11 +1,13 @@
-// `particle-lab stability`: for each integrator and chain length, the safe
-// time step of the test chain — the largest dt on a 5% log grid at and below
-// which every grid dt survives T on every member of a small ensemble of
-// perturbed starts — found by scanning (scan.h), with the first failure, what
+// `particle-lab stability`: for each integrator and chain length, the largest
+// surviving time step of the test chain on a coarse scan — the largest dt on a
+// 5% log grid at and below which every grid dt survives T on every member of a
+// small ensemble of perturbed starts (scan.h), with the first failure, what
 // fired there, and any survival above it. The same runs give the stability
 // map (measured at every scanned dt), the boundary against T, and the
 // boundary against the stiffest frequency present; Table 1 (longest chain at
-// dt 0.2, 0.1, 0.05) is measured at those steps over a ladder of lengths.
+// dt 0.2, 0.1, 0.05) is measured at those steps over a ladder of lengths, and
+// Table 2 by a fine scan over more starts whose runs bound the per-run
+// failure probability (certify.h).
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -36,7 +38,7 @@ struct StabilityPlan {
   std::vector<int> tableLengths;      // Table 2's columns
   ScanSettings scan;                  // the dt grid and the ensemble
   int ladderMembers = 10;             // Table 1's ensemble
-  CertifySettings certify;            // Table 2: certified safe steps (certify.h) at T
+  CertifySettings certify;            // Table 2: survived steps and their failure bounds (certify.h) at T
   long certifyMaxSteps = 0;           // the certification's floor is T / this
   double perturbation = 1e-6;         // of the scene size, the perturbed starts
 };
@@ -299,7 +301,7 @@ std::vector<Verdict> verdictsOf(const Cell& cell, const std::vector<ScanRun>& ru
   return verdicts;
 }
 
-// safe[T][integrator][cl] at the default k_s; the boundaries at 4 k_s.
+// The coarse scan's boundaries, [T][integrator][cl] at the default k_s, and at 4 k_s.
 struct SafeSteps {
   std::map<double, std::map<std::string, std::map<int, Boundary>>> byDuration;
   std::map<std::string, std::map<int, Boundary>> stiff;
@@ -313,7 +315,7 @@ SafeSteps writeScanRows(const LabOptions& options, const StabilityPlan& plan, co
                         const Results<std::vector<ScanRun>>& scans, const ChainConstants& constants,
                         const std::map<int, double>& whipRate) {
   Csv boundaryCsv(options, "stability_boundary.csv",
-                  {"integrator", "chain_length", "feedback_ks", "duration", "safe_dt", "first_failure_dt",
+                  {"integrator", "chain_length", "feedback_ks", "duration", "largest_surviving_dt", "first_failure_dt",
                    "first_failure", "survival_above", "grid_lo", "grid_hi", "members", "omega_feedback",
                    "omega_chain", "omega_whip", "stiffest"});
   Csv mapCsv(options, "stability_map.csv",
@@ -345,7 +347,7 @@ SafeSteps writeScanRows(const LabOptions& options, const StabilityPlan& plan, co
   return safe;
 }
 
-// Table 2's cells: every integrator at every table length, certified at T.
+// Table 2's cells: every integrator at every table length, scanned at T.
 struct CertifyCell {
   std::string integrator;
   int length;
@@ -386,32 +388,35 @@ Results<Certificate> runCertifications(const LabOptions& options, const Stabilit
 // certified[integrator][cl]: Table 2.
 using Certified = std::map<std::string, std::map<int, Certificate>>;
 
-std::string bandName(const FailureBand& band) { return general(band.lo, 3) + "_" + general(band.hi, 3); }
+std::string bandName(double lo, double hi) { return general(lo, 3) + "_" + general(hi, 3); }
 
 // stability_certified.csv, a row per certification; the certificates by integrator and length.
 Certified writeCertificationRows(const LabOptions& options, const StabilityPlan& plan,
-                                 const std::vector<CertifyCell>& cells, const Results<Certificate>& results) {
-  std::vector<std::string> columns{"integrator", "chain_length", "duration",   "safe_dt", "smallest_failure_dt",
-                                   "smallest_failure", "grid_lo", "grid_hi", "resolution", "members",
-                                   "points", "runs", "full_decades"};
+                                 const std::vector<CertifyCell>& cells, const Results<Certificate>& results,
+                                 SafeSteps& coarse) {
+  std::vector<std::string> columns{"integrator", "chain_length", "duration", "survived_dt", "runs_at_and_below",
+                                   "failure_bound", "smallest_failure_dt", "smallest_failure", "grid_lo", "grid_hi",
+                                   "resolution", "members", "points", "runs", "full_decades"};
   const std::vector<double>& edges = plan.certify.bandEdges;
   for (std::size_t k = 0; k + 1 < edges.size(); ++k) {
-    const std::string name = bandName({edges[k], edges[k + 1]});
-    columns.push_back("points_" + name);
-    columns.push_back("failed_" + name);
+    const std::string name = bandName(edges[k], edges[k + 1]);
+    for (const char* column : {"points_", "failed_points_", "runs_", "failed_runs_"}) columns.push_back(column + name);
   }
+  columns.push_back("coarse_surviving_dt");
   Csv csv(options, "stability_certified.csv", columns);
   Certified certified;
   for (const auto& [k, c] : results) {
     const CertifyCell& cell = cells[k];
-    csv << cell.integrator << static_cast<long>(cell.length) << plan.duration << c.safeDt << c.smallestFailureDt
-        << failureName(c.smallestFailure) << c.lowest << c.highest << plan.certify.resolution
-        << static_cast<long>(plan.certify.members) << static_cast<long>(c.points) << c.runs
+    csv << cell.integrator << static_cast<long>(cell.length) << plan.duration << c.survivedDt << c.atAndBelow.runs
+        << c.bound() << c.smallestFailureDt << failureName(c.smallestFailure) << c.lowest << c.highest
+        << plan.certify.resolution << static_cast<long>(plan.certify.members) << static_cast<long>(c.points) << c.runs
         << static_cast<long>(c.fullDecades);
     for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
       const FailureBand band = b < c.bands.size() ? c.bands[b] : FailureBand{};
-      csv << static_cast<long>(band.points) << static_cast<long>(band.failed);
+      csv << static_cast<long>(band.points) << static_cast<long>(band.failedPoints) << band.runs.runs
+          << band.runs.failures;
     }
+    csv << coarse.at(plan.duration, cell.integrator, cell.length).safeDt;
     csv.endRow();
     certified[cell.integrator][cell.length] = c;
   }
@@ -504,8 +509,11 @@ std::vector<std::vector<std::string>> table2Rows(const LabOptions& options, cons
   for (const auto& name : integrators) {
     std::vector<std::string> row{name};
     for (int length : plan.tableLengths) {
-      row.push_back(certifiedText(certified[name][length]));
-      recordValue(options, "stability.safe_dt." + name + ".cl" + std::to_string(length), row.back());
+      const Certificate& c = certified[name][length];
+      row.push_back(survivedWithBoundText(c));
+      const std::string key = name + ".cl" + std::to_string(length);
+      recordValue(options, "stability.survived_dt." + key, survivedText(c));
+      recordValue(options, "stability.bound." + key, c.belowFloor() ? "–" : boundText(c.atAndBelow));
     }
     appendSeed(row, seed, name);
     rows.push_back(row);
@@ -515,7 +523,7 @@ std::vector<std::vector<std::string>> table2Rows(const LabOptions& options, cons
 
 using Rows = std::vector<std::vector<std::string>>;
 
-// Safe dt, first failure (what fired) and survival above it, per integrator and length.
+// The coarse scan's largest surviving dt, first failure (what fired) and survival above it.
 Rows boundaryRows(const StabilityPlan& plan, const std::vector<std::string>& integrators, SafeSteps& safe) {
   Rows rows;
   for (const auto& name : integrators)
@@ -530,8 +538,9 @@ Rows boundaryRows(const StabilityPlan& plan, const std::vector<std::string>& int
   return rows;
 }
 
-// Each certification: the certified step, the smallest failure, the scanned range, the failing
-// fraction of grid points in each band above the certified step, and the coarse scan's safe dt.
+// Each certification: the survived dt with its bound (failed runs / runs at and below it), the
+// smallest failure, the scanned range, the failed runs / runs in each band below and above the
+// survived dt, and the coarse scan's largest surviving dt.
 Rows certifiedRows(const StabilityPlan& plan, const std::vector<std::string>& integrators, Certified& certified,
                    SafeSteps& safe) {
   Rows rows;
@@ -539,15 +548,14 @@ Rows certifiedRows(const StabilityPlan& plan, const std::vector<std::string>& in
     for (int length : plan.tableLengths) {
       const Certificate& c = certified[name][length];
       std::vector<std::string> row{
-          name, std::to_string(length), certifiedText(c),
+          name, std::to_string(length), survivedText(c),
+          c.belowFloor() ? "–" : countText(c.atAndBelow) + ", " + boundText(c.atAndBelow),
           c.aboveGrid() ? "–" : general(c.smallestFailureDt, 4) + " (" + failureName(c.smallestFailure) + ")",
           general(c.lowest, 3) + "–" + general(c.highest, 3) + " (" + std::to_string(c.points) + " dt, " +
               std::to_string(c.runs) + " runs)",
           c.fullDecades ? "yes" : "no (floor)"};
       for (std::size_t b = 0; b + 1 < plan.certify.bandEdges.size(); ++b)
-        row.push_back(b < c.bands.size() && c.bands[b].points > 0
-                          ? std::to_string(c.bands[b].failed) + "/" + std::to_string(c.bands[b].points)
-                          : "–");
+        row.push_back(b < c.bands.size() && c.bands[b].points > 0 ? countText(c.bands[b].runs) : "–");
       row.push_back(safeStepText(safe.at(plan.duration, name, length)));
       rows.push_back(row);
     }
@@ -636,24 +644,31 @@ void writeSafeStepTables(const LabOptions& options, const StabilityPlan& plan, c
   for (int length : plan.tableLengths) table2Header.push_back("cl " + std::to_string(length));
   for (const char* seed : {"seed cl 6", "seed cl 12", "seed cl 24"}) table2Header.push_back(seed);
   writeTable(options, "table2",
-             "Table 2: certified safe dt (every grid dt from the scan's bottom up to it survives on every start), " +
+             "Table 2: the largest dt whose grid and starts all survived (it and every grid dt below it, down to "
+             "the scan's bottom, on every start), with the 95% upper bound p on the per-run failure probability "
+             "that those runs support (Clopper–Pearson, none failed), " +
                  certifiedConditionsText(plan),
              table2Header, table2);
-  std::vector<std::string> certifiedHeader{"integrator", "chain length", "certified dt", "smallest failure",
-                                           "scanned", "a decade below"};
+  std::vector<std::string> certifiedHeader{"integrator", "chain length", "survived dt", "failed/runs at and below, bound",
+                                           "smallest failure", "scanned", "a decade below"};
   const std::vector<double>& edges = plan.certify.bandEdges;
   for (std::size_t b = 0; b + 1 < edges.size(); ++b)
-    certifiedHeader.push_back("failing in (" + general(edges[b]) + ", " + general(edges[b + 1]) + "] × dt");
+    certifiedHeader.push_back("failed/runs in (" + general(edges[b]) + ", " + general(edges[b + 1]) + "] × dt");
   certifiedHeader.push_back("coarse scan (" + output::plural(plan.scan.members, "start") + ", 5%)");
   writeTable(options, "stability_certified",
-             "Certified safe dt, the smallest failure, and the failing fraction of grid dts in bands above the "
-             "certified dt, " + certifiedConditionsText(plan),
+             "Table 2 in detail: the survived dt, the runs at and below it and the bound they support, the smallest "
+             "failure, and the failed runs / runs in bands below and above the survived dt (every start run at every "
+             "grid dt up to " + general(edges.back()) + "×), " + certifiedConditionsText(plan),
              certifiedHeader, certified);
-  writeTable(options, "stability_boundary", "Safe dt, first failure (what fired) and survival above it, " + at,
-             {"integrator", "chain length", "safe dt", "first failure", "survives again at"}, boundaries);
+  writeTable(options, "stability_boundary",
+             "Coarse scan: the largest surviving dt (every grid dt at and below it survived on every start; no "
+             "bound: see Table 2), the first failure (what fired) and survival above it, " + at,
+             {"integrator", "chain length", "largest surviving dt", "first failure", "survives again at"}, boundaries);
   std::vector<std::string> header{"integrator", "chain length"};
   for (double d : plan.durations) header.push_back("T = " + general(d) + " s");
-  writeTable(options, "stability_vs_duration", "Safe dt against T (" + output::plural(plan.scan.members, "start") + ")",
+  writeTable(options, "stability_vs_duration",
+             "Largest surviving dt of the coarse scan against T (" + output::plural(plan.scan.members, "start") +
+                 ", 5% dt grid)",
              header, vsDuration);
 }
 
@@ -662,9 +677,9 @@ void writeFrequencyTables(const LabOptions& options, const StabilityPlan& plan, 
   const std::string at = conditionsText(plan);
   const std::string soft = general(constants.defaultStiffness), stiff = general(constants.stiffFeedback);
   writeTable(options, "stability_feedback",
-             "Short chains: safe dt at the feedback stiffness k_s = " + soft + " and " + stiff + " (" + at +
+             "Short chains: the coarse scan's largest surviving dt at the feedback stiffness k_s = " + soft + " and " + stiff + " (" + at +
                  "); dt·√k_s constant means the feedback governs",
-             {"integrator", "chain length", "safe dt, k_s " + soft, "safe dt, k_s " + stiff, "dt·√k_s at " + soft,
+             {"integrator", "chain length", "surviving dt, k_s " + soft, "surviving dt, k_s " + stiff, "dt·√k_s at " + soft,
               "dt·√k_s at " + stiff},
              feedback);
   Rows whipRows;
@@ -676,11 +691,11 @@ void writeFrequencyTables(const LabOptions& options, const StabilityPlan& plan, 
              "The whip: fastest rod rotation rate max |d × ḋ|/|d|² over the run (RK4, dt 0.005), 1/s",
              {"chain length", "ω_whip"}, whipRows);
   writeTable(options, "stability_frequency",
-             "Safe dt times each frequency present (" + at + "): √k_s = " +
+             "The coarse scan's largest surviving dt times each frequency present (" + at + "): √k_s = " +
                  general(std::sqrt(constants.defaultStiffness), 3) +
                  " (feedback), ω_whip measured, 2√((cl−1)g/r) (static chain mode); constant down a column: that "
                  "frequency governs",
-             {"integrator", "chain length", "safe dt", "dt·√k_s", "dt·ω_whip", "dt·ω_chain"}, frequency);
+             {"integrator", "chain length", "surviving dt", "dt·√k_s", "dt·ω_whip", "dt·ω_chain"}, frequency);
 }
 
 void recordSettings(const LabOptions& options, const StabilityPlan& plan, const ChainConstants& constants) {
@@ -718,7 +733,8 @@ int runStability(const LabOptions& options, const StabilityOptions& stability) {
   prepareOutput(options, "stability.");
   std::cout << describe(options.criterion) << "\n";
   const std::vector<std::string> integrators = scannedIntegrators(options);
-  const StabilityPlan plan = options.quick ? quickPlan(stability) : fullPlan(stability);
+  StabilityPlan plan = options.quick ? quickPlan(stability) : fullPlan(stability);
+  if (stability.failureBound > 0.0) plan.certify.members = membersForBound(plan.certify, stability.failureBound);
   const ChainConstants constants = chainConstants();
   const std::vector<Cell> cells = scanCells(plan, integrators, constants);
   printGrid(plan);
@@ -738,7 +754,7 @@ int runStability(const LabOptions& options, const StabilityOptions& stability) {
 
   const std::vector<CertifyCell> certifying = certifyCells(plan, integrators);
   Certified certified =
-      writeCertificationRows(options, plan, certifying, runCertifications(options, plan, certifying, safe));
+      writeCertificationRows(options, plan, certifying, runCertifications(options, plan, certifying, safe), safe);
   if (interrupted()) return 130;
 
   const Rows table1 = table1Rows(options, plan, integrators, survived);

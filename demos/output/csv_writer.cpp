@@ -30,6 +30,23 @@ std::string csvUnquote(const std::string& field) {
   return text;
 }
 
+std::vector<std::string> csvSplit(const std::string& row) {
+  std::vector<std::string> fields;
+  std::string field;
+  bool quoted = false;
+  for (char c : row) {
+    if (c == '"') quoted = !quoted;  // a doubled quote toggles twice: csvUnquote keeps one
+    if (c == ',' && !quoted) {
+      fields.push_back(csvUnquote(field));
+      field.clear();
+    } else if (c != '\r') {
+      field += c;
+    }
+  }
+  fields.push_back(csvUnquote(field));
+  return fields;
+}
+
 CsvWriter& CsvWriter::operator<<(const std::string& cell) { return append(csvField(cell)); }
 
 // Numbers never need quoting.

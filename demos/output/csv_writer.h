@@ -16,6 +16,8 @@ namespace output {
 std::string csvField(const std::string& cell);
 // The text of one field as csvField wrote it, quoted or not.
 std::string csvUnquote(const std::string& field);
+// The fields of one row as CsvWriter wrote it (a comma inside quotes is text), each unquoted.
+std::vector<std::string> csvSplit(const std::string& row);
 
 struct CsvFormat {
   int digits = 0;           // significant digits of a number; 0: the shortest text that reads back exactly

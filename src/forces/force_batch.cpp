@@ -162,18 +162,35 @@ void ForceBatches::applySegments(int begin, int end, const Phase& s, Eigen::Vect
   if (finish && !finished) parallelRanges(n, threads, kParallelParticles, finish);
 }
 
+// The trailing fields are added in the last pass of the segments before
+// them, range by range (one parallel region where there would be one per
+// field), each particle's terms in the order of the force list.
 void ForceBatches::apply(const Phase& s, Eigen::VectorXd& f) const {
-  applySegments(0, static_cast<int>(segments_.size()), s, f, {});
+  if (fieldsOnly()) {
+    f.resize(2 * s.size());
+    double* fd = f.data();
+    parallelRanges(s.size(), threadCount(), kParallelParticles,
+                   [&](int begin, int end) { addTail(begin, end, s, fd + 2 * begin, true); });
+    return;
+  }
+  applySegments(0, headSegments_, s, f, [&](int begin, int end) { addTail(begin, end, s, f.data() + 2 * begin, false); });
+}
+
+void ForceBatches::addTail(int begin, int end, const Phase& s, double* f, bool clear) const {
+  for (int b = begin; b < end; b += kParticleBlock) {
+    const int e = std::min(end, b + kParticleBlock);
+    double* fb = f + 2 * (b - begin);
+    if (clear) std::fill(fb, fb + 2 * (e - b), 0.0);
+    for (const FieldTerm& t : tail_) addField(t, b, e, s, fb);
+  }
 }
 
 void ForceBatches::tailAndDivide(int begin, int end, const Phase& s, double* f, double* a, bool clear) const {
   const double* w = s.inverseMass.data();
   for (int b = begin; b < end; b += kParticleBlock) {
     const int e = std::min(end, b + kParticleBlock);
-    double* fb = f + 2 * (b - begin);
-    if (clear) std::fill(fb, fb + 2 * (e - b), 0.0);
-    for (const FieldTerm& t : tail_) addField(t, b, e, s, fb);
-    divideByMass(b, e, w, fb, a + 2 * (b - begin));
+    addTail(b, e, s, f + 2 * (b - begin), clear);
+    divideByMass(b, e, w, f + 2 * (b - begin), a + 2 * (b - begin));
   }
 }
 

@@ -55,9 +55,9 @@ outputs speedup-one-round "$speedup" "$build" 64 1 -- \
 # One round of every case and load at a hundredth of the steps: the script's table, and its
 # busy processes gone afterwards.
 outputs load-one-round "$load" "$build" 1 0.01 -- \
-  "^case +busy +1 thread +--threads 2 +default +>1 used +2/1 range +def/1 range +load average$" \
-  "^cloth 64\^2 rk4 +0 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ [0-9.]+$" \
-  "^stiff 64\^2 xpbd 1/60 +2 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ [0-9.]+$"
+  "^case +busy +1 thread +--threads 2 +default +>1 used +2/1 range +def/1 range +mean 2/1 +mean d/1 +load average$" \
+  "^cloth 64\^2 rk4 +0 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ +[0-9.]+x +[0-9.]+x [0-9.]+$" \
+  "^stiff 64\^2 xpbd 1/60 +2 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ +[0-9.]+x +[0-9.]+x [0-9.]+$"
 if pgrep -f '^yes threads-under-load$' >/dev/null; then fail "load-one-round: its busy processes are still running"; fi
 if command -v valgrind >/dev/null; then
   outputs callgrind-counts "$callgrind" "$build" -- \

@@ -52,15 +52,17 @@ TEST(DemoAdvice, AdviceRunsOffTheMainLoopAndApplySetsTheAdvisedIntegratorAndDt) 
   const StateLog layout = adviceLayout(dir, "pendulum");
   for (const char* name : {"advice", "advise-error", "advise-horizon", "advise", "advise-apply"})
     ASSERT_NE(layout.widget(name), nullptr) << name;
-  // Start far from any advice (euler at a tiny dt), ask for E = 0.01 over
-  // T = 5 s, wait for the survey, apply, and run on.
+  // Start far from any advice (implicit Euler at a tiny dt: it never
+  // diverges, so the pane keeps running however long the survey takes; a
+  // paused pane's shorter "Run" label would move the panel's rows up), ask
+  // for E = 0.01 over T = 5 s, wait for the survey, apply, and run on.
   const std::string script = clickAt(2, *layout.widget("advice")) +
                              typeInto(10, *layout.widget("advise-horizon"), "5") +
                              typeInto(20, *layout.widget("advise-error"), "0.01") +
                              clickAt(30, *layout.widget("advise")) + "34 wait advice\n" +
                              clickAt(40, *layout.widget("advise-apply")) + "60 key q\n";
   const RunResult run = runDemo(dir,
-                                "--scene pendulum --window 1180x1010 --integrator euler --dt 0.001 --frames 1000000 "
+                                "--scene pendulum --window 1180x1010 --integrator implicit-euler --dt 0.001 --frames 1000000 "
                                 "--log-state state.txt --screenshot advice.png",
                                 script);
   ASSERT_EQ(run.exitCode, 0) << run.err;

@@ -224,7 +224,7 @@ TEST(DemoNewUser, TheWindLeavesTheCurtainOnItsRail) {
   EXPECT_EQ(inView, static_cast<int>(pane.particles.size()));
 }
 
-// The README's recipe: the 8-way 16 x 14 cloth in a 2 m/s wind with tearing at
+// The recipe of SCRIPTING.md's torn-cloth picture: the 8-way 16 x 14 cloth in a 2 m/s wind with tearing at
 // 15% strain, a particle in its middle pulled down 40 cm. Links break across
 // the cloth, along a line of faces, not only at the grabbed particle: more
 // than 10 of them far from it (two rows or columns away and more), in at

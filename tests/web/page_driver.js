@@ -142,7 +142,7 @@ function toPixel(view, p) {
 
 // The page's pixels as the browser shows them: a PNG screenshot decoded by
 // the browser itself (an image drawn on a 2D canvas), rows top to bottom.
-// canvasOnly: the demo's canvas alone (the README's picture), else the page.
+// canvasOnly: the demo's canvas alone (SCRIPTING.md's picture of the page), else the page.
 async function screenshot(page, file = null, canvasOnly = false) {
   const clip = canvasOnly ? await (await page.$('#canvas')).boundingBox() : undefined;
   const png = await page.screenshot({ type: 'png', omitBackground: false, clip });

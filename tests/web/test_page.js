@@ -108,7 +108,7 @@ webTest('IntegratorKeyChangesTheIntegrator', async () => {
 // As DemoScreenshot.ParticlesWhereTheLogSays…: on the page's screenshot each
 // particle's pixel has the particle's colour where the logged state and view
 // put it, and pixels far from every particle are the background. The shot
-// with the panel is the README's picture.
+// with the panel is SCRIPTING.md's picture of the page.
 webTest('ScreenshotParticlesWhereTheLogSays', async () => {
   const run = await session.run('scene=cloth&param=links=8&frames=90&no-panel&window=900x700', '0 key c\n');
   assert.equal(run.exitCode, 0, run.output);

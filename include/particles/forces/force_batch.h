@@ -85,8 +85,10 @@ class ForceBatches {
   // cleared first when begin is 0. finish runs after the last one.
   void applySegments(int begin, int end, const Phase& s, Eigen::VectorXd& f,
                      const ParticleRange& finish) const;
-  // The trailing fields and a = W f on particles [begin, end), f cleared
-  // there first when clear is set (f and a hold the range alone, as above).
+  // The trailing fields on particles [begin, end), f cleared there first
+  // when clear is set (f holds the range alone, as above).
+  void addTail(int begin, int end, const Phase& s, double* f, bool clear) const;
+  // The trailing fields and a = W f on particles [begin, end), as addTail.
   void tailAndDivide(int begin, int end, const Phase& s, double* f, double* a, bool clear) const;
 
   std::vector<Segment> segments_;
