@@ -7,6 +7,7 @@
 #include <Eigen/IterativeLinearSolvers>
 
 #include "constraint_solver_probe.h"
+#include "constraints/rod_chain.h"
 #include "linear/linear.h"
 #include "particles/cancel.h"
 #include "particles/check.h"
@@ -33,6 +34,7 @@ std::string directFallbackMessage(int constraints, const SolverSettings& setting
 struct ConstraintSolver::Workspace {
   linear::ConstraintRows rows;
   Eigen::VectorXd diagonal;  // diag(J W Jᵀ), the Jacobi preconditioner
+  double diagonalMax = 0.0;  // its largest entry
   const Eigen::VectorXd* inverseMass = nullptr;
   linear::CgScratch cg;
   mutable Eigen::VectorXd scatter;  // W Jᵀ y inside applyOperator
@@ -59,9 +61,17 @@ struct ConstraintSolver::Workspace {
   std::vector<int> chainPairStart, chainPairFirst, chainPairSecond;
   std::vector<double> chainDiagonal, chainUpper;
   linear::Tridiagonal tridiagonal;
+  // A chain whose every constraint is a rod: its rows, b and upper band come
+  // from RodChain's own pass (chainUpperFormed: this evaluation's did).
+  // chainFactorised: and factorised it (no dead row), for directSolve to use once.
+  bool rodChainKnown = false, rodChainBuilt = false, chainUpperFormed = false, chainFactorised = false;
+  RodChain rodChain;
 };
 
 namespace {
+
+// A row whose diagonal is at most this times the largest is treated as zero (dead).
+constexpr double kDeadDiagonal = 1e-14;
 
 // Every pair of entries e1, e2 of two constraints k < l on one particle: the
 // pairs that make the off-diagonal entries (J W Jᵀ)_kl.
@@ -116,24 +126,12 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   stats_.constraints = m;
   if (m == 0) return;
   Workspace& w = *work_;
-  if (w.rows.gather(s, constraints)) w.patternValid = w.cgPastWorkBound = w.chainKnown = false;
   w.inverseMass = &s.inverseMass;
-  const linear::ConstraintRows& rows = w.rows;
-  b_.resize(m);
-  w.diagonal.resize(m);
-  for (int k = 0; k < m; ++k) {
-    double jwq = 0.0;  // J W Q
-    for (int e = rows.rowStart[k]; e < rows.rowStart[k + 1]; ++e) {
-      const int p = rows.entryParticle[e];
-      jwq += s.inverseMass[p] * rows.J[e].dot(f.segment<2>(2 * p));
-    }
-    b_[k] = -rows.rowDotTimes(k, s.v) - jwq - settings.stiffness * rows.C[k] - settings.damping * rows.Cdot[k];
-    w.diagonal[k] = rows.diagonalOfJWJt(k, s.inverseMass);
-  }
+  const bool rods = formSystem(s, constraints, f);
 
   if (!settings.warmStart || lambda_.size() != m || !lambda_.allFinite()) lambda_.setZero(m);
   double residual = 0.0;
-  const double dead = 1e-14 * w.diagonal.maxCoeff();  // a diagonal this small is treated as zero
+  const double dead = kDeadDiagonal * w.diagonalMax;
   const bool direct = settings.method == SolveMethod::Direct || w.cgPastWorkBound;
   if (direct && directSolve(dead, residual)) {
     stats_.iterations = 0;
@@ -161,7 +159,40 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
     stats_.failed = true;  // reported through StepStats; never hand NaN to the integrator
     lambda_.setZero();
   }
-  w.rows.addJtTimes(lambda_, f);
+  if (rods) w.rodChain.addJtTimes(w.rows, lambda_, f);
+  else w.rows.addJtTimes(lambda_, f);
+  if (w.chainKnown && w.chain && !w.rodChainKnown) {  // the next evaluations take the rods' own pass
+    w.rodChainKnown = true;
+    w.rodChainBuilt = w.rodChain.build(constraints);
+  }
+}
+
+// The rows, b and diag(J W Jᵀ) at s (with forces f): by the chain of rods'
+// own pass (constraints/rod_chain.h, which also forms the chain's upper band)
+// when the direct solve has found one, else by the generic gather. Returns
+// whether the rods' pass formed them.
+bool ConstraintSolver::formSystem(const Phase& s, const ConstraintList& constraints, const Eigen::VectorXd& f) {
+  Workspace& w = *work_;
+  const bool direct = settings.method == SolveMethod::Direct || w.cgPastWorkBound;
+  if (direct && w.rodChainBuilt) {
+    const RodChain::Formed formed =
+        w.rodChain.form(s, constraints, f, settings.stiffness, settings.damping,
+                        {w.rows, b_, w.diagonal, w.chainDiagonal, w.chainUpper, w.tridiagonal});
+    w.chainUpperFormed = formed.valid;
+    if (formed.valid) {
+      w.diagonalMax = formed.largest;
+      // The pass factorised J W Jᵀ as formed; a dead row would have had its
+      // diagonal replaced first (assembleChain), so the solve factorises again.
+      w.chainFactorised = !(formed.smallest <= kDeadDiagonal * formed.largest);
+      return true;
+    }
+    w.rodChainKnown = w.rodChainBuilt = false;  // not the rods it was built from: gathered below, built again
+  }
+  w.chainUpperFormed = w.chainFactorised = false;
+  if (w.rows.gather(s, constraints))
+    w.patternValid = w.cgPastWorkBound = w.chainKnown = w.rodChainKnown = w.rodChainBuilt = false;
+  w.diagonalMax = w.rows.rhsAndDiagonal(s.inverseMass, s.v, f, settings.stiffness, settings.damping, b_, w.diagonal);
+  return false;
 }
 
 // Conjugate gradient on A λ = b with A = J W Jᵀ symmetric positive
@@ -268,10 +299,14 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
   constexpr double kRankLossPivot = 1e-10, kRankLossShift = 1e-6;
   Workspace& w = *work_;
   const int m = static_cast<int>(b_.size());
-  for (int k = 0; k < m; ++k)
-    if (w.diagonal[k] <= dead) b_[k] = 0.0;
+  // The rods' pass factorised the chain already when no row was dead (formSystem).
+  const bool factorisedInPass = w.chainFactorised;
+  w.chainFactorised = false;
+  if (!factorisedInPass)
+    for (int k = 0; k < m; ++k)
+      if (w.diagonal[k] <= dead) b_[k] = 0.0;
   if (!w.chainKnown) findChain();
-  const double diagMax = w.diagonal.maxCoeff();
+  const double diagMax = w.diagonalMax;
   // LDLᵀ of J W Jᵀ + shift·I: the chain's tridiagonal one, or the sparse one of the assembled matrix.
   auto factorize = [&](double shift) {
     ++stats_.factorizations;
@@ -279,19 +314,19 @@ bool ConstraintSolver::directSolve(double dead, double& relativeResidual) {
                    : w.ldlt.factorize(w.pattern.matrix(), shift);
   };
   auto smallestPivot = [&] { return w.chain ? w.tridiagonal.smallestPivot() : w.ldlt.smallestPivot(); };
-  if (w.chain) assembleChain(dead);
-  else assemble(dead);
-  bool factorised = factorize(0.0);
-  if (!factorised || !(smallestPivot() > kRankLossPivot * diagMax)) {
+  if (!w.chain) assemble(dead);
+  else if (!factorisedInPass) assembleChain(dead);
+  bool factorised = factorisedInPass ? (++stats_.factorizations, w.tridiagonal.usable()) : factorize(0.0);
+  const bool rankLost = !factorised || !(smallestPivot() > kRankLossPivot * diagMax);
+  if (rankLost) {
     factorised = factorize(kRankLossShift * diagMax);
     stats_.regularized = true;
     if (!factorised) return false;
   }
   if (w.chain) {
-    w.tridiagonal.solve(b_, lambda_);
-    linear::Tridiagonal::multiply(w.chainDiagonal, w.chainUpper, lambda_, w.product);
-    const double bNorm = b_.norm();
-    relativeResidual = bNorm == 0.0 ? 0.0 : (b_ - w.product).norm() / bNorm;
+    relativeResidual = factorisedInPass && !rankLost  // b went forward in the pass
+                           ? w.tridiagonal.backSubstitute(b_, lambda_, w.chainDiagonal, w.chainUpper)
+                           : w.tridiagonal.solve(b_, lambda_, w.chainDiagonal, w.chainUpper);
     return true;
   }
   w.pattern.toStored(b_, w.stored);
@@ -330,18 +365,21 @@ void ConstraintSolver::findChain() {
   }
 }
 
-// The chain's J W Jᵀ as its diagonal and its upper band; a dead row (diagonal
+// The chain's J W Jᵀ as its diagonal and its upper band (the latter already
+// formed when the rods' pass ran, formSystem); a dead row (diagonal
 // at most `dead`) gets a unit diagonal and, with b = 0, λ = 0, as in assemble().
 void ConstraintSolver::assembleChain(double dead) {
   Workspace& w = *work_;
   const int m = w.rows.size();
   w.chainDiagonal.resize(static_cast<std::size_t>(m));
   w.chainUpper.resize(static_cast<std::size_t>(std::max(m - 1, 0)));
-  for (int k = 0; k < m; ++k) w.chainDiagonal[static_cast<std::size_t>(k)] = w.diagonal[k] <= dead ? 1.0 : w.diagonal[k];
+  const double* diagonal = w.diagonal.data();
+  double *chainDiagonal = w.chainDiagonal.data(), *upper = w.chainUpper.data();
+  for (int k = 0; k < m; ++k) chainDiagonal[k] = diagonal[k] <= dead ? 1.0 : diagonal[k];
+  if (w.chainUpperFormed) return;
+  const int* pairStart = w.chainPairStart.data();
   for (int k = 0; k + 1 < m; ++k)
-    w.chainUpper[static_cast<std::size_t>(k)] = pairSum(w.rows, *w.inverseMass, w.chainPairFirst, w.chainPairSecond,
-                                                        w.chainPairStart[static_cast<std::size_t>(k)],
-                                                        w.chainPairStart[static_cast<std::size_t>(k + 1)]);
+    upper[k] = pairSum(w.rows, *w.inverseMass, w.chainPairFirst, w.chainPairSecond, pairStart[k], pairStart[k + 1]);
 }
 
 Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, int particleCount) {
@@ -350,5 +388,6 @@ Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, in
 Eigen::MatrixXd ConstraintSolverProbe::denseJdot(const ConstraintSolver& solver, int particleCount) {
   return solver.work_->rows.denseJdot(particleCount);
 }
+bool ConstraintSolverProbe::rodChainPass(const ConstraintSolver& solver) { return solver.work_->chainUpperFormed; }
 
 }  // namespace particles

@@ -2,6 +2,7 @@
 // matrix-free CG with and without warm start, incomplete-Cholesky CG, and the
 // sparse direct LDLᵀ — against a dense solve of the same J W Jᵀ λ = b.
 #include <random>
+#include <string>
 #include <type_traits>
 
 #include <Eigen/Dense>
@@ -160,6 +161,9 @@ TEST(ConstraintSolverMethods, AChainsDirectSolveMatchesTheDenseSolve) {
       s.setPositions(s.positions() + 0.002 * s.velocities());
       s.acceleration(s.positions(), s.velocities(), a);
       const Eigen::VectorXd expected = denseLambda(s);
+      // From the second evaluation the chain's rods form it in their own pass
+      // (rod_chain.h), the dead first row then assembled and factorised again.
+      EXPECT_EQ(ConstraintSolverProbe::rodChainPass(s.solver()), !closed && step > 0);
       EXPECT_EQ(s.solver().lambda()[0], 0.0);
       EXPECT_LT((s.solver().lambda() - expected).norm(), 1e-9 * expected.norm()) << "step " << step;
       EXPECT_LT(s.lastSolve().residual, 1e-12);
@@ -168,10 +172,66 @@ TEST(ConstraintSolverMethods, AChainsDirectSolveMatchesTheDenseSolve) {
   }
 }
 
+// A chain of rods of both forms, one of them named end first, its first
+// particle pinned, under gravity and a spring: from the second evaluation on
+// the direct solve forms the rows, b and J W Jᵀ by the rods' own pass
+// (constraints/rod_chain.h). Along a trajectory its rows, b, λ and
+// accelerations are those of the generic gather (a fresh system at the same
+// state, whose first evaluation gathers), and λ is the dense solve's.
+TEST(ConstraintSolverMethods, AChainOfRodsOwnPassMatchesTheGather) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 24;
+  std::vector<Vector2d> x, v;
+  std::vector<double> mass;
+  for (int i = 0; i < n; ++i) {
+    x.emplace_back(0.1 * i, 0.03 * u(rng));
+    v.emplace_back(u(rng), u(rng));
+    mass.push_back(1.0 + 0.5 * (u(rng) + 1.0));
+  }
+  auto make = [&] {
+    auto s = std::make_unique<ParticleSystem>();
+    for (int i = 0; i < n; ++i) s->addParticle(x[i], mass[i], v[i]);
+    s->setPinned(0, true);
+    for (int i = 0; i + 1 < n; ++i) {
+      const RodForm form = i % 3 == 1 ? RodForm::Root : RodForm::Squared;
+      if (i == 7) s->addConstraint(std::make_unique<RodConstraint>(i + 1, i, 0.1, form));
+      else s->addConstraint(std::make_unique<RodConstraint>(i, i + 1, 0.1, form));
+    }
+    s->addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
+    s->addForce(std::make_unique<SpringForce>(3, 17, 1.0, 5.0, 0.5));
+    s->solver().settings.method = SolveMethod::Direct;
+    return s;
+  };
+  auto chain = make();
+  Eigen::VectorXd a, expectedA;
+  for (int step = 0; step < 4; ++step) {
+    SCOPED_TRACE("evaluation " + std::to_string(step));
+    chain->setPositions(chain->positions() + 0.002 * chain->velocities());
+    chain->acceleration(chain->positions(), chain->velocities(), a);
+    EXPECT_EQ(ConstraintSolverProbe::rodChainPass(chain->solver()), step > 0);
+    auto gathered = make();
+    gathered->setPositions(chain->positions());
+    gathered->setVelocities(chain->velocities());
+    gathered->acceleration(gathered->positions(), gathered->velocities(), expectedA);
+    ASSERT_FALSE(ConstraintSolverProbe::rodChainPass(gathered->solver()));
+    const ConstraintSolver &own = chain->solver(), &generic = gathered->solver();
+    EXPECT_EQ(ConstraintSolverProbe::denseJ(own, n), ConstraintSolverProbe::denseJ(generic, n));
+    EXPECT_EQ(ConstraintSolverProbe::denseJdot(own, n), ConstraintSolverProbe::denseJdot(generic, n));
+    EXPECT_LE((own.rhs() - generic.rhs()).norm(), 1e-14 * generic.rhs().norm());
+    EXPECT_LE((own.lambda() - generic.lambda()).norm(), 1e-12 * generic.lambda().norm());
+    EXPECT_LE((a - expectedA).norm(), 1e-12 * expectedA.norm());
+    EXPECT_LT((own.lambda() - denseLambda(*chain)).norm(), 1e-9 * own.lambda().norm());
+    EXPECT_FALSE(chain->lastSolve().regularized);
+    EXPECT_LT(chain->lastSolve().residual, 1e-12);
+  }
+}
+
 // A straight chain pinned at both ends, fully extended: its rods pull only
 // along the line, and there are more of them than free coordinates along it,
 // so J W Jᵀ (tridiagonal) loses rank. The chain's direct solve notices the
-// lost pivot and damps the solve as the sparse one does: |λ| ≤ |b|/μ.
+// lost pivot and damps the solve as the sparse one does: |λ| ≤ |b|/μ. The
+// second evaluation factorises in the rods' own pass first (rod_chain.h).
 TEST(ConstraintSolverMethods, ATautChainsDirectSolveIsDamped) {
   ParticleSystem s;
   const int n = 8;
@@ -182,13 +242,16 @@ TEST(ConstraintSolverMethods, ATautChainsDirectSolveIsDamped) {
   s.addForce(std::make_unique<GravityForce>(Vector2d(0.0, -9.8)));
   s.solver().settings.method = SolveMethod::Direct;
   Eigen::VectorXd a;
-  s.acceleration(s.positions(), s.velocities(), a);
-  EXPECT_TRUE(a.allFinite());
-  EXPECT_TRUE(s.lastSolve().regularized);
-  EXPECT_EQ(s.lastSolve().factorizations, 2);
-  const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
-  const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
-  EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
+  for (int evaluation = 0; evaluation < 2; ++evaluation) {
+    s.acceleration(s.positions(), s.velocities(), a);
+    EXPECT_EQ(ConstraintSolverProbe::rodChainPass(s.solver()), evaluation > 0);
+    EXPECT_TRUE(a.allFinite());
+    EXPECT_TRUE(s.lastSolve().regularized);
+    EXPECT_EQ(s.lastSolve().factorizations, 2);
+    const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
+    const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
+    EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
+  }
 }
 
 TEST(ConstraintSolverMethods, PinnedOnlyRowsGetZeroLambdaInEveryMethod) {

@@ -114,6 +114,8 @@ class ConstraintSolver {
   // changed structure; dead rows get a unit diagonal.
   void assemble(double dead);
   bool directSolve(double dead, double& relativeResidual);  // false: fall back to CG
+  // Fills the rows, b and diag(J W Jᵀ); true when a chain of rods' own pass did.
+  bool formSystem(const Phase& s, const ConstraintList& constraints, const Eigen::VectorXd& f);
   // A chain of constraints (each sharing particles only with its neighbours
   // in the list): J W Jᵀ is tridiagonal and solved in O(m).
   void findChain();

@@ -4,36 +4,6 @@
 
 namespace particles {
 
-ConstraintKernel<2> rodKernel(RodForm form, const Eigen::Vector2d& xi, const Eigen::Vector2d& xj,
-                              const Eigen::Vector2d& vi, const Eigen::Vector2d& vj, double length) {
-  const Eigen::Vector2d d = xi - xj, ddot = vi - vj;
-  ConstraintKernel<2> k;
-  if (form == RodForm::Squared) {
-    k.C = d.squaredNorm() - length * length;
-    k.Cdot = 2.0 * d.dot(ddot);
-    k.J[0] = 2.0 * d;
-    k.Jdot[0] = 2.0 * ddot;
-  } else {
-    const double l = d.norm();
-    if (l == 0.0) {  // coincident ends: no direction to push along
-      k.C = -length;
-      k.Cdot = 0.0;
-      k.J[0].setZero();
-      k.Jdot[0].setZero();
-    } else {
-      const Eigen::Vector2d u = d / l;
-      const double rate = u.dot(ddot);  // d·ḋ/|d|
-      k.C = l - length;
-      k.Cdot = rate;
-      k.J[0] = u;
-      k.Jdot[0] = (ddot - u * rate) / l;  // ḋ/|d| − d (d·ḋ)/|d|³
-    }
-  }
-  k.J[1] = -k.J[0];
-  k.Jdot[1] = -k.Jdot[0];
-  return k;
-}
-
 const char* rodFormName(RodForm form) { return form == RodForm::Squared ? "squared" : "root"; }
 
 RodForm parseRodForm(const std::string& name) {

@@ -1,5 +1,7 @@
 #include "linear/constraint_rows.h"
 
+#include <algorithm>
+
 namespace particles::linear {
 
 bool ConstraintRows::gather(const Phase& s, const ConstraintList& constraints) {
@@ -21,20 +23,68 @@ bool ConstraintRows::gather(const Phase& s, const ConstraintList& constraints) {
   Jdot.resize(count);
   C.resize(m);
   Cdot.resize(m);
+  // Local pointers: the stores through row would otherwise make the compiler
+  // reload every array's address after each constraint.
+  const int* start = rowStart.data();
+  int* particle = entryParticle.data();
+  Eigen::Vector2d *j = J.data(), *jdot = Jdot.data();
+  double *c = C.data(), *cdot = Cdot.data();
   for (int k = 0; k < m; ++k) {
-    const Constraint& c = *constraints[k];
+    const Constraint& constraint = *constraints[k];
     ConstraintRow row;
-    row.J = &J[rowStart[k]];
-    row.Jdot = &Jdot[rowStart[k]];
-    c.evaluate(s, row);
-    C[k] = row.C;
-    Cdot[k] = row.Cdot;
-    for (int e = rowStart[k], n = 0; e < rowStart[k + 1]; ++e, ++n) {
-      changed |= entryParticle[e] != c.particles()[n];
-      entryParticle[e] = c.particles()[n];
+    row.J = j + start[k];
+    row.Jdot = jdot + start[k];
+    constraint.evaluate(s, row);
+    c[k] = row.C;
+    cdot[k] = row.Cdot;
+    const int* named = constraint.particles().data();
+    for (int e = start[k]; e < start[k + 1]; ++e, ++named) {
+      changed |= particle[e] != *named;
+      particle[e] = *named;
     }
   }
   return changed;
+}
+
+double ConstraintRows::rhsAndDiagonal(const Eigen::VectorXd& w, const Eigen::VectorXd& v, const Eigen::VectorXd& f,
+                                      double stiffness, double damping, Eigen::VectorXd& b,
+                                      Eigen::VectorXd& diagonal) const {
+  const int m = size();
+  b.resize(m);
+  diagonal.resize(m);
+  const int *start = rowStart.data(), *particle = entryParticle.data();
+  const Eigen::Vector2d *j = J.data(), *jdot = Jdot.data();
+  const double *wp = w.data(), *vp = v.data(), *fp = f.data(), *c = C.data(), *cdot = Cdot.data();
+  double *bp = b.data(), *dp = diagonal.data();
+  double largest = 0.0;
+  for (int k = 0; k < m; ++k) {
+    double jdotv = 0.0, jwq = 0.0, jwj = 0.0;  // J̇_k q̇, J_k W Q, Σ w_p |J_e|²
+    for (int e = start[k]; e < start[k + 1]; ++e) {
+      const int p = particle[e];
+      const double jx = j[e].x(), jy = j[e].y();
+      jdotv += jdot[e].x() * vp[2 * p] + jdot[e].y() * vp[2 * p + 1];
+      jwq += wp[p] * (jx * fp[2 * p] + jy * fp[2 * p + 1]);
+      jwj += wp[p] * (jx * jx + jy * jy);
+    }
+    bp[k] = constraintRhs(jdotv, jwq, c[k], cdot[k], stiffness, damping);
+    dp[k] = jwj;
+    largest = std::max(largest, jwj);
+  }
+  return largest;
+}
+
+void ConstraintRows::addJtTimes(const Eigen::VectorXd& lambda, Eigen::VectorXd& f) const {
+  const int m = size();
+  const int *start = rowStart.data(), *particle = entryParticle.data();
+  const Eigen::Vector2d* j = J.data();
+  const double* l = lambda.data();
+  double* fp = f.data();
+  for (int k = 0; k < m; ++k)
+    for (int e = start[k]; e < start[k + 1]; ++e) {
+      const int p = particle[e];
+      fp[2 * p] += j[e].x() * l[k];
+      fp[2 * p + 1] += j[e].y() * l[k];
+    }
 }
 
 void ConstraintRows::applyJWJt(const Eigen::VectorXd& w, const Eigen::VectorXd& y, Eigen::VectorXd& out,

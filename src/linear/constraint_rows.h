@@ -11,6 +11,12 @@
 
 namespace particles::linear {
 
+// Row k of the constraint solve's right-hand side from its products J̇_k q̇
+// and J_k W Q: b_k = −J̇_k q̇ − J_k W Q − k_s C_k − k_d Ċ_k.
+inline double constraintRhs(double jdotQdot, double jwq, double C, double Cdot, double stiffness, double damping) {
+  return -jdotQdot - jwq - stiffness * C - damping * Cdot;
+}
+
 struct ConstraintRows {
   std::vector<int> rowStart{0};
   std::vector<int> entryParticle;
@@ -32,14 +38,17 @@ struct ConstraintRows {
     for (int e = rowStart[k]; e < rowStart[k + 1]; ++e) sum += w[entryParticle[e]] * J[e].squaredNorm();
     return sum;
   }
+  // For every row k, the right-hand side of the constraint solve and the
+  // diagonal of J W Jᵀ, in one pass over the entries:
+  //   b_k = −J̇_k q̇ − J_k W Q − k_s C_k − k_d Ċ_k,   (J W Jᵀ)_kk = Σ_e w_p |J_e|²,
+  // with Q the accumulated forces f. Returns max_k (J W Jᵀ)_kk (0 for m = 0).
+  double rhsAndDiagonal(const Eigen::VectorXd& w, const Eigen::VectorXd& v, const Eigen::VectorXd& f,
+                        double stiffness, double damping, Eigen::VectorXd& b, Eigen::VectorXd& diagonal) const;
   // out = J W Jᵀ y, never formed: scatter = W Jᵀ y (2n), then out = J scatter.
   void applyJWJt(const Eigen::VectorXd& w, const Eigen::VectorXd& y, Eigen::VectorXd& out,
                  Eigen::VectorXd& scatter) const;
   // f += Jᵀ λ.
-  void addJtTimes(const Eigen::VectorXd& lambda, Eigen::VectorXd& f) const {
-    for (int k = 0; k < size(); ++k)
-      for (int e = rowStart[k]; e < rowStart[k + 1]; ++e) f.segment<2>(2 * entryParticle[e]) += J[e] * lambda[k];
-  }
+  void addJtTimes(const Eigen::VectorXd& lambda, Eigen::VectorXd& f) const;
   // J_k · u and J̇_k · u for a 2n vector u.
   double rowTimes(int k, const Eigen::VectorXd& u) const { return rowTimes(J, k, u); }
   double rowDotTimes(int k, const Eigen::VectorXd& u) const { return rowTimes(Jdot, k, u); }

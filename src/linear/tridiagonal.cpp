@@ -8,43 +8,60 @@ namespace particles::linear {
 
 bool Tridiagonal::factorize(const std::vector<double>& diagonal, const std::vector<double>& upper, double shift) {
   const std::size_t m = diagonal.size();
-  pivot_.resize(m);
+  start(m, shift);
+  for (std::size_t k = 0; k < m; ++k) row(k, diagonal[k], k > 0 ? upper[k - 1] : 0.0, 0.0);
+  return usable_;
+}
+
+void Tridiagonal::start(std::size_t m, double shift) {
+  inversePivot_.resize(m);
+  y_.resize(m);
   lower_.resize(m > 0 ? m - 1 : 0);
-  bool usable = true;
-  for (std::size_t k = 0; k < m; ++k) {
-    double d = diagonal[k] + shift;
-    if (k > 0) d -= lower_[k - 1] * upper[k - 1];
-    pivot_[k] = d;
-    usable = usable && d != 0.0 && std::isfinite(d);
-    if (k + 1 < m) lower_[k] = upper[k] / d;
-  }
-  return usable;
+  shift_ = shift;
+  pivot_ = 0.0;
+  smallestPivot_ = std::numeric_limits<double>::infinity();
+  usable_ = true;
 }
 
-double Tridiagonal::smallestPivot() const {
-  return pivot_.empty() ? std::numeric_limits<double>::infinity() : *std::min_element(pivot_.begin(), pivot_.end());
-}
-
-void Tridiagonal::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  const Eigen::Index m = static_cast<Eigen::Index>(pivot_.size());
+double Tridiagonal::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, const std::vector<double>& diagonal,
+                          const std::vector<double>& upper) const {
+  const Eigen::Index m = static_cast<Eigen::Index>(inversePivot_.size());
   x = b;
-  for (Eigen::Index k = 1; k < m; ++k) x[k] -= lower_[static_cast<std::size_t>(k - 1)] * x[k - 1];
-  for (Eigen::Index k = m - 1; k >= 0; --k) {
-    x[k] /= pivot_[static_cast<std::size_t>(k)];
-    if (k + 1 < m) x[k] -= lower_[static_cast<std::size_t>(k)] * x[k + 1];
-  }
+  double* y = x.data();
+  const double* l = lower_.data();
+  for (Eigen::Index k = 1; k < m; ++k) y[k] -= l[k - 1] * y[k - 1];
+  return backward(b.data(), y, diagonal.data(), upper.data());
 }
 
-void Tridiagonal::multiply(const std::vector<double>& diagonal, const std::vector<double>& upper,
-                           const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  const Eigen::Index m = x.size();
-  y.resize(m);
-  for (Eigen::Index k = 0; k < m; ++k) {
-    double sum = diagonal[static_cast<std::size_t>(k)] * x[k];
-    if (k > 0) sum += upper[static_cast<std::size_t>(k - 1)] * x[k - 1];
-    if (k + 1 < m) sum += upper[static_cast<std::size_t>(k)] * x[k + 1];
-    y[k] = sum;
+double Tridiagonal::backSubstitute(const Eigen::VectorXd& b, Eigen::VectorXd& x, const std::vector<double>& diagonal,
+                                  const std::vector<double>& upper) const {
+  x = Eigen::Map<const Eigen::VectorXd>(y_.data(), static_cast<Eigen::Index>(y_.size()));
+  return backward(b.data(), x.data(), diagonal.data(), upper.data());
+}
+
+double Tridiagonal::backward(const double* b, double* x, const double* t, const double* u) const {
+  const Eigen::Index m = static_cast<Eigen::Index>(inversePivot_.size());
+  if (m == 0) return 0.0;
+  const double *inverse = inversePivot_.data(), *l = lower_.data();
+  double residual = 0.0, norm = 0.0;  // |T x − b|², |b|²
+  // Row k's residual once x_{k−1}, x_k, x_{k+1} (0 past either end) are known.
+  auto addResidual = [&](Eigen::Index k, double before, double at, double after) {
+    const double r = (k > 0 ? u[k - 1] * before : 0.0) + t[k] * at + (k + 1 < m ? u[k] * after : 0.0) - b[k];
+    residual += r * r;
+    norm += b[k] * b[k];
+  };
+  // The recursion's values are carried in registers, not read back from x.
+  double next = x[m - 1] * inverse[m - 1], afterNext = 0.0;  // x_{k+1}, x_{k+2}
+  x[m - 1] = next;
+  for (Eigen::Index k = m - 2; k >= 0; --k) {
+    const double at = x[k] * inverse[k] - l[k] * next;
+    x[k] = at;
+    addResidual(k + 1, at, next, afterNext);
+    afterNext = next;
+    next = at;
   }
+  addResidual(0, 0.0, next, afterNext);
+  return norm == 0.0 ? 0.0 : std::sqrt(residual) / std::sqrt(norm);
 }
 
 }  // namespace particles::linear

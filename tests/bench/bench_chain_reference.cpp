@@ -16,6 +16,7 @@
 //
 //   ./build/tests/bench_chain_reference --benchmark_repetitions=9
 //     --benchmark_enable_random_interleaving=true (one command line)
+// (scripts/callgrind-chain.sh counts the two steps' instructions instead.)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

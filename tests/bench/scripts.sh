@@ -7,6 +7,7 @@ source_dir=$1 build=$2 WORK=$3 PROGRAM=bash
 source "$source_dir/tests/cli/common.sh"
 rm -rf "$WORK" && mkdir -p "$WORK"
 ratio=$source_dir/scripts/bench-ratio.sh callgrind=$source_dir/scripts/callgrind-step.sh
+chain=$source_dir/scripts/callgrind-chain.sh
 speedup=$source_dir/scripts/speedup-rounds.sh
 
 expect ratio-runs-not-a-number 2 "^bench-ratio: runs must be a positive integer, got 'x'$" -- "$ratio" "$build" x
@@ -28,6 +29,9 @@ expect frames-threads 2 "^demo-frame-times: --threads takes a count >= 1, got '0
 expect frames-option 2 "^demo-frame-times: unknown option '--fast' \(--load N, --threads N, --key K\)$" -- "$frames" --fast
 expect callgrind-no-build 2 \
   "^callgrind-step: no $WORK/none/tests/bench_step \(build the bench_step target first\)$" -- "$callgrind" "$WORK/none"
+expect callgrind-chain-no-build 2 \
+  "^callgrind-chain: no $WORK/none/tests/bench_chain_reference \(build the bench_chain_reference target first\)$" \
+  -- "$chain" "$WORK/none"
 
 # outputs NAME SCRIPT ARGS... -- REGEX...: exit 0 and a stdout line matching each regex.
 outputs() {
@@ -58,7 +62,9 @@ if pgrep -f '^yes threads-under-load$' >/dev/null; then fail "load-one-round: it
 if command -v valgrind >/dev/null; then
   outputs callgrind-counts "$callgrind" "$build" -- \
     "^chain80-dt10ms/dopri5: 1200 timed steps, [0-9]+ instructions per step$" "^dopri5 / rk4 = [0-9]+\.[0-9]{3}$"
+  outputs callgrind-chain-counts "$chain" "$build" -- \
+    "^rod chain 80: engine [0-9]+, reference [0-9]+ instructions per RK4 step, engine / reference = [0-9]+\.[0-9]{3}$"
 else
-  echo "valgrind is not installed: callgrind-step.sh's run is not tested"
+  echo "valgrind is not installed: callgrind-step.sh's and callgrind-chain.sh's runs are not tested"
 fi
 finish
