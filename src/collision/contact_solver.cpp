@@ -22,6 +22,7 @@ namespace {
 struct Kept {
   std::uint64_t key;
   double lambdaN, lambdaT;
+  double side;  // Contact::side
 };
 
 // The target of a normal row that holds nothing: any approach is allowed
@@ -77,6 +78,11 @@ void ContactSolver::resetWarmStart() {
 }
 
 bool ContactSolver::persists(std::uint64_t key) const { return rows_->keptFor(key) != nullptr; }
+
+double ContactSolver::lastSide(std::uint64_t key) const {
+  const Kept* k = rows_->keptFor(key);
+  return k ? k->side : 0.0;
+}
 
 const Kept* ContactSolver::Rows::keptFor(std::uint64_t key) const {
   const auto found = std::lower_bound(kept.begin(), kept.end(), key,
@@ -294,7 +300,8 @@ void ContactSolver::Rows::keep(int constraintCount) {
       keptLambda[row.source] = row.lambda;
       keptValid[row.source] = 1;
     } else if (row.kind == RowKind::Normal) {
-      Kept k{(*R.contacts)[row.source].key, row.lambda, 0.0};
+      const Contact& contact = (*R.contacts)[row.source];
+      Kept k{contact.key, row.lambda, 0.0, contact.side};
       if (row.friction >= 0) k.lambdaT = R.rows[row.friction].lambda;
       keeping.push_back(k);
     }

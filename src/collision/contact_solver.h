@@ -87,6 +87,9 @@ class ContactSolver {
 
   // Whether the contact with this key was in the last solve (it is not new).
   bool persists(std::uint64_t key) const;
+  // The side (Contact::side) of the contact with this key in the last solve,
+  // 0 when it was not in it.
+  double lastSide(std::uint64_t key) const;
 
   // The particles the last solve moved (its contacts' and the constraints'
   // it included), ascending.

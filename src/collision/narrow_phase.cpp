@@ -131,6 +131,30 @@ void discPairContacts(const NarrowInput& in, const std::vector<int>& discs,
   }
 }
 
+// The side of the line through a → b (the sign of cross(b − a, ·)) that a
+// collider touching it at a corner lies on: where its other corners lie,
+// when the line only touches it there (an edge lying on a box's top face
+// has the box below it, however the step moved it). A line that cuts the
+// collider has no such side; then the side the edge moves towards
+// (`motion`, its displacement at the corner over the step) is the corner's.
+double colliderSide(const Collider& collider, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                    const Eigen::Vector2d& motion, double slop) {
+  const Eigen::Vector2d line = b - a;
+  const double touching = slop * line.norm();
+  double side = 0.0;
+  for (const Eigen::Vector2d& p : collider.points) {
+    const double s = cross(line, p - a);
+    if (std::abs(s) <= touching) continue;
+    if (side == 0.0) {
+      side = s;
+    } else if ((s > 0.0) != (side > 0.0)) {
+      side = 0.0;  // corners on both sides: the line cuts the collider
+      break;
+    }
+  }
+  return side != 0.0 ? side : Eigen::Vector2d(-line.y(), line.x()).dot(motion);
+}
+
 void edgeCornerContacts(const NarrowInput& in, const std::vector<CollisionEdge>& edges,
                         const std::vector<int>& candidates, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                         std::vector<Contact>& out) {
@@ -147,6 +171,8 @@ void edgeCornerContacts(const NarrowInput& in, const std::vector<CollisionEdge>&
     const Eigen::Vector2d edge = xj - xi;
     const double length2 = edge.squaredNorm();
     if (length2 == 0.0) continue;
+    // How far the edge's contacts could turn it over the step: twice its ends' largest move.
+    const double speculative = 2.0 * std::max((xi - si).norm(), (xj - sj).norm());
     for (int k = 0; k < static_cast<int>(colliders.size()); ++k) {
       const Collider& collider = colliders[k];
       if (collider.shape == ColliderShape::HalfPlane) continue;  // no corner: its particles keep edges out
@@ -155,12 +181,19 @@ void edgeCornerContacts(const NarrowInput& in, const std::vector<CollisionEdge>&
         const Eigen::Vector2d& q = collider.points[m];
         const double b = (q - xi).dot(edge) / length2;
         if (!(b > 0.0 && b < 1.0)) continue;  // beyond an end: the end's own contacts hold it
-        // The corner's side of the edge at the step's start; for an edge
-        // that starts on the corner (resting on it), the side it moves
-        // towards.
-        const Eigen::Vector2d e0 = sj - si, left = Eigen::Vector2d(-e0.y(), e0.x());
-        double side0 = cross(e0, q - si);
-        if (std::abs(side0) <= slop * e0.norm()) side0 = left.dot((1.0 - b) * (xi - si) + b * (xj - sj));
+        // The corner's side of the edge: the side of the last solve's
+        // contact, which holds the edge there (a step that ended a little
+        // past the corner, as an explicit step can, does not turn it over);
+        // for a new contact the side at the step's start, and for an edge
+        // that starts on the corner (resting on it) the collider's side.
+        const std::uint64_t key = edgeCornerKey(e, k, m);
+        const Eigen::Vector2d e0 = sj - si;
+        double side0 = -in.last.lastSide(key);
+        if (side0 == 0.0) {
+          side0 = cross(e0, q - si);
+          if (std::abs(side0) <= slop * e0.norm())
+            side0 = colliderSide(collider, si, sj, (1.0 - b) * (xi - si) + b * (xj - sj), slop);
+        }
         if (side0 == 0.0) continue;  // on the edge's line and not moving off it
         Contact c;
         c.kind = ContactKind::EdgeCorner;
@@ -169,11 +202,16 @@ void edgeCornerContacts(const NarrowInput& in, const std::vector<CollisionEdge>&
         c.point = q;
         c.reach = collider.radius;
         c.side = side0 > 0.0 ? -1.0 : 1.0;
-        if (c.evaluate(x) > slop) continue;
-        c.swept = true;  // past or within reach of the corner at the end, from the side it started on
+        // Past or within reach of the corner at the end, from the side it
+        // started on; or near enough that the solve's turn of the edge about
+        // another contact could carry it past (a speculative row: open while
+        // the gap stays, pushed out by the projection if the solve closes it).
+        const double gap = c.evaluate(x);
+        if (gap > slop + speculative) continue;
+        c.swept = gap <= slop;
         c.friction = collider.friction;
         c.restitution = collider.restitution;
-        c.key = edgeCornerKey(e, k, m);
+        c.key = key;
         add(in, c, x, v, out);
       }
     }
