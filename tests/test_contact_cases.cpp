@@ -10,9 +10,8 @@
 //
 // Suite ContactCases holds what the engine gets right and must keep (label
 // unit); suite ContactCasesOpen what it does not get right yet (labels unit
-// and contacts-open, which scripts/run-tests.sh leaves out): an edge on a
-// 4 mm post under explicit Euler, a pile of 200 discs coming to rest within
-// its horizon. Horizons are the script's unless a test says otherwise.
+// and contacts-open, which scripts/run-tests.sh leaves out): a pile of 200
+// discs coming to rest within its horizon. Horizons are the script's unless a test says otherwise.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -238,7 +237,7 @@ bool passes(const Vec& a0, const Vec& b0, const Vec& a1, const Vec& b1, const Ve
   return false;
 }
 
-TEST(ContactCasesOpen, AnEdgeNeverPassesACorner) {
+TEST(ContactCases, AnEdgeNeverPassesACorner) {
   // A two-particle spring with a collision edge dropped 1 mm above a
   // triangle's apex, and 2 cm above a 4 mm post: the edge is caught by the
   // corner (or slides off past an end), never passes it. 0.5 s, not the
