@@ -23,14 +23,14 @@ double steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// The second of two empty regions: the first starts the threads (after a
-// release they are created again), the second is what a step's hand-offs
-// then cost.
-double emptyRegionSeconds(int threads) {
+// Two empty regions: the first starts the threads (after a release they
+// are created again), the second is what a step's hand-offs then cost.
+ThreadUse::HandOff emptyRegionSeconds(int threads) {
+  const double begin = steadySeconds();
   parallelTeam(threads, [](const Team&) {});
-  const double start = steadySeconds();
+  const double started = steadySeconds();
   parallelTeam(threads, [](const Team&) {});
-  return steadySeconds() - start;
+  return {started - begin, steadySeconds() - started};
 }
 
 std::string shortest(double value) {
@@ -84,12 +84,13 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
     if (!probing_ && !nothingToShare_ && static_cast<int>(presentTimes_.size()) >= settings.history && probeDue()) {
       probing_ = true;
       if (present_ == 1) {
-        const double trip = handoff(most);
+        const HandOff times = handoff(most);
+        probeStart_ = times.start + times.trip;
         previous_ = most;
-        if (trip > settings.handoff * median(presentTimes_)) {
+        if (times.trip > settings.handoff * median(presentTimes_)) {
           probing_ = false;
-          now_ += trip;
-          lost(trip);
+          now_ += probeStart_;
+          lost(probeStart_);
         }
       }
     }
@@ -146,7 +147,7 @@ void ThreadUse::finishProbe() {
   if (present_ == most_) {
     lostInARow_ = 0;
   } else if (other == most_) {
-    double cost = 0.0;  // the probe's steps' time beyond one thread's
+    double cost = probeStart_;  // the threads' start and hand-off, and the probe's steps' time beyond one thread's
     for (const double t : probeTimes_) cost += std::max(0.0, t - one);
     lost(cost);
   } else {

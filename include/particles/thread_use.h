@@ -15,7 +15,8 @@
 //   probes that lost cost (at most `probeShare` of the time spent stepping,
 //   between `quickestRetry` and `longestRetry`), so the threads come back
 //   within seconds of the machine getting quiet. It starts with one hand-off:
-//   an empty parallel region on the threads (after one that starts them). If
+//   an empty parallel region on the threads (after one that starts them; a
+//   probe that loses is charged both). If
 //   that alone takes `handoff` times a one-thread step, a step of many
 //   hand-offs cannot be faster, and the probe ends there (on a machine far
 //   busier than its cores a probe step took 140 one-thread steps). A probe
@@ -50,10 +51,15 @@ class ThreadUse {
   ThreadUseSettings settings;
   // Wall time in seconds; a steady clock unless a test gives its own.
   std::function<double()> clock;
-  // The wall time of one hand-off on `threads` threads: an empty parallel
-  // region (the threads start, meet at its end's barrier and part) after one
-  // that starts them, unless a test gives its own.
-  std::function<double(int threads)> handoff;
+  // The wall times of a probe's start on `threads` threads: an empty
+  // parallel region that starts them, then one hand-off, a second empty
+  // region (the threads start, meet at its end's barrier and part); unless a
+  // test gives its own.
+  struct HandOff {
+    double start = 0.0;  // s: the threads' start, the first region
+    double trip = 0.0;   // s: the hand-off, the second
+  };
+  std::function<HandOff(int threads)> handoff;
 
   ThreadUse();
   // The threads for the next step (1 ≤ threads ≤ most) of a system whose
@@ -85,6 +91,7 @@ class ThreadUse {
   double otherMedian_ = -1.0;  // the other count's median from the last probe (< 0: none yet)
   double nextProbe_ = 0.0;     // clock time from which one thread may probe more
   double retry_ = 0.0;         // the wait after the last probe of more threads that lost
+  double probeStart_ = 0.0;    // s: the present probe's start and hand-off, charged to it if it loses
   int lostInARow_ = 0;         // probes of more threads lost since more threads last won
   std::uint64_t structure_ = 0;
   bool nothingToShare_ = false;  // a step on more threads entered no region: no probes
