@@ -13,6 +13,12 @@ namespace particles {
 
 namespace {
 
+double mean(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
@@ -72,7 +78,7 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
     presentTimes_.clear();
     probing_ = false;
     probeTimes_.clear();
-    otherMedian_ = -1.0;
+    otherMean_ = -1.0;
     nextProbe_ = -std::numeric_limits<double>::infinity();
     retry_ = settings.quickestRetry;
     lostInARow_ = 0;
@@ -103,10 +109,10 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
 }
 
 // On one thread: once the wait after the last probe is over. On more: as
-// soon as their steps are no faster than one thread's were at the last probe.
+// soon as their steps' mean is no less than one thread's at the last probe.
 bool ThreadUse::probeDue() const {
   if (present_ == 1) return now_ >= nextProbe_;
-  return otherMedian_ < 0.0 || median(presentTimes_) > otherMedian_;
+  return otherMean_ < 0.0 || mean(presentTimes_) > otherMean_;
 }
 
 void ThreadUse::end(bool parallel) {
@@ -134,15 +140,18 @@ void ThreadUse::end(bool parallel) {
 void ThreadUse::finishProbe() {
   probing_ = false;
   const int other = present_ == 1 ? most_ : 1;
-  const double probe = median(probeTimes_), present = median(presentTimes_);
+  // Means: beside a busy program the steps on more threads alternate between
+  // fast and slow (a thread descheduled every other step), and what they
+  // cost is their mean; a median of three can pick the fast ones.
+  const double probe = mean(probeTimes_), present = mean(presentTimes_);
   const double more = present_ == 1 ? probe : present, one = present_ == 1 ? present : probe;
   const int faster = more <= settings.gain * one ? most_ : 1;
   if (faster == other) {
-    otherMedian_ = present;
+    otherMean_ = present;
     present_ = other;
     presentTimes_ = probeTimes_;
   } else {
-    otherMedian_ = probe;
+    otherMean_ = probe;
   }
   if (present_ == most_) {
     lostInARow_ = 0;

@@ -28,10 +28,18 @@ using particles::ThreadUse;
 struct SimulatedMachine {
   bool slowThread = false;
   bool quickHandoff = false;
+  // Beside a busy program: two threads' steps alternate 0.4 ms and 2.4 ms
+  // (the other thread descheduled every other step), mean 1.4 ms.
+  bool alternating = false;
+  mutable int twoThreadSteps = 0;
   double now = 100.0;
   int handoffs = 0;
   std::vector<double> handoffAt;  // the clock at each hand-off's start
-  double stepTime(int threads) const { return threads == 1 ? 1e-3 : slowThread ? 3e-3 : 0.55e-3; }
+  double stepTime(int threads) const {
+    if (threads == 1) return 1e-3;
+    if (alternating) return ++twoThreadSteps % 2 ? 0.4e-3 : 2.4e-3;
+    return slowThread ? 3e-3 : 0.55e-3;
+  }
   double handoffTime() const { return slowThread && !quickHandoff ? 2e-3 : 2e-5; }
 };
 
@@ -122,6 +130,21 @@ TEST(ThreadUse, ProbesThatLoseCostAtMostTheProbeShare) {
   EXPECT_GT(probes, 3 * use.settings.probeSteps);
   const double lost = probes * (machine.stepTime(2) - machine.stepTime(1));
   EXPECT_LE(lost, use.settings.probeShare * (machine.now - start)) << probes << " probe steps";
+}
+
+// Two threads' steps alternating fast and slow: their mean is slower than one
+// thread, though two of three probe steps can be fast. One thread is kept:
+// steps on two threads are the probes' only, and the run takes at most the
+// probe share longer than on one thread.
+TEST(ThreadUse, AlternatingFastAndSlowStepsKeepOneThread) {
+  SimulatedMachine machine;
+  machine.alternating = true;
+  machine.quickHandoff = true;
+  ThreadUse use = simulated(machine);
+  const double start = machine.now;
+  const std::vector<int> counts = run(use, machine, 2, 20000);
+  EXPECT_LE(stepsOn(counts, 2), 60) << "two threads kept after a probe";
+  EXPECT_LE(machine.now - start, (1.0 + use.settings.probeShare) * 20000 * machine.stepTime(1));
 }
 
 // A probe step that takes `abandon` times the present median ends the probe at once.

@@ -5,11 +5,12 @@
 // each hand-off between them waits until the scheduler runs the other
 // instead of a busy program. The steps' wall time on each count tells.
 //
-// The steps on the present count are timed (the median of the last
-// `history`). Now and then a probe runs `probeSteps` steps on the other
-// count, and the faster count is kept: more threads while the median of
-// their steps is at most `gain` times one thread's.
-// - On more threads a probe runs as soon as their median is no faster than
+// The steps on the present count are timed (the mean of the last
+// `history`: what they cost; their median is the typical step). Now and
+// then a probe runs `probeSteps` steps on the other count, and the faster
+// count is kept: more threads while the mean of their steps is at most
+// `gain` times one thread's.
+// - On more threads a probe runs as soon as their mean is no less than
 //   one thread's at the last probe.
 // - On one thread, a probe runs after a wait that grows with what the
 //   probes that lost cost (at most `probeShare` of the time spent stepping,
@@ -35,7 +36,7 @@ namespace particles {
 struct ThreadUseSettings {
   bool adaptive = true;         // false: every step on the most threads
   double gain = 0.9;            // more threads are kept while they take at most gain × one thread's time
-  int history = 5;              // steps whose median is the present count's time
+  int history = 5;              // steps whose mean is the present count's time
   int probeSteps = 3;           // steps on the other count in a probe
   double abandon = 4.0;         // a probe step over abandon × the present median ends the probe
   double handoff = 0.5;         // a probe's first hand-off over handoff × one thread's step ends it
@@ -88,7 +89,7 @@ class ThreadUse {
   std::vector<double> presentTimes_;  // the last steps on present_, oldest first
   bool probing_ = false;
   std::vector<double> probeTimes_;
-  double otherMedian_ = -1.0;  // the other count's median from the last probe (< 0: none yet)
+  double otherMean_ = -1.0;    // the other count's mean from the last probe (< 0: none yet)
   double nextProbe_ = 0.0;     // clock time from which one thread may probe more
   double retry_ = 0.0;         // the wait after the last probe of more threads that lost
   double probeStart_ = 0.0;    // s: the present probe's start and hand-off, charged to it if it loses
