@@ -13,6 +13,12 @@ namespace particles {
 
 namespace {
 
+double mean(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
@@ -23,14 +29,14 @@ double steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// The second of two empty regions: the first starts the threads (after a
-// release they are created again), the second is what a step's hand-offs
-// then cost.
-double emptyRegionSeconds(int threads) {
+// Two empty regions: the first starts the threads (after a release they
+// are created again), the second is what a step's hand-offs then cost.
+ThreadUse::HandOff emptyRegionSeconds(int threads) {
+  const double begin = steadySeconds();
   parallelTeam(threads, [](const Team&) {});
-  const double start = steadySeconds();
+  const double started = steadySeconds();
   parallelTeam(threads, [](const Team&) {});
-  return steadySeconds() - start;
+  return {started - begin, steadySeconds() - started};
 }
 
 std::string shortest(double value) {
@@ -72,7 +78,7 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
     presentTimes_.clear();
     probing_ = false;
     probeTimes_.clear();
-    otherMedian_ = -1.0;
+    otherMean_ = -1.0;
     nextProbe_ = -std::numeric_limits<double>::infinity();
     retry_ = settings.quickestRetry;
     lostInARow_ = 0;
@@ -84,12 +90,13 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
     if (!probing_ && !nothingToShare_ && static_cast<int>(presentTimes_.size()) >= settings.history && probeDue()) {
       probing_ = true;
       if (present_ == 1) {
-        const double trip = handoff(most);
+        const HandOff times = handoff(most);
+        probeStart_ = times.start + times.trip;
         previous_ = most;
-        if (trip > settings.handoff * median(presentTimes_)) {
+        if (times.trip > settings.handoff * median(presentTimes_)) {
           probing_ = false;
-          now_ += trip;
-          lost(trip);
+          now_ += probeStart_;
+          lost(probeStart_);
         }
       }
     }
@@ -102,10 +109,10 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
 }
 
 // On one thread: once the wait after the last probe is over. On more: as
-// soon as their steps are no faster than one thread's were at the last probe.
+// soon as their steps' mean is no less than one thread's at the last probe.
 bool ThreadUse::probeDue() const {
   if (present_ == 1) return now_ >= nextProbe_;
-  return otherMedian_ < 0.0 || median(presentTimes_) > otherMedian_;
+  return otherMean_ < 0.0 || mean(presentTimes_) > otherMean_;
 }
 
 void ThreadUse::end(bool parallel) {
@@ -133,20 +140,23 @@ void ThreadUse::end(bool parallel) {
 void ThreadUse::finishProbe() {
   probing_ = false;
   const int other = present_ == 1 ? most_ : 1;
-  const double probe = median(probeTimes_), present = median(presentTimes_);
+  // Means: beside a busy program the steps on more threads alternate between
+  // fast and slow (a thread descheduled every other step), and what they
+  // cost is their mean; a median of three can pick the fast ones.
+  const double probe = mean(probeTimes_), present = mean(presentTimes_);
   const double more = present_ == 1 ? probe : present, one = present_ == 1 ? present : probe;
   const int faster = more <= settings.gain * one ? most_ : 1;
   if (faster == other) {
-    otherMedian_ = present;
+    otherMean_ = present;
     present_ = other;
     presentTimes_ = probeTimes_;
   } else {
-    otherMedian_ = probe;
+    otherMean_ = probe;
   }
   if (present_ == most_) {
     lostInARow_ = 0;
   } else if (other == most_) {
-    double cost = 0.0;  // the probe's steps' time beyond one thread's
+    double cost = probeStart_;  // the threads' start and hand-off, and the probe's steps' time beyond one thread's
     for (const double t : probeTimes_) cost += std::max(0.0, t - one);
     lost(cost);
   } else {

@@ -23,13 +23,23 @@ using particles::ThreadUse;
 // Step times, seconds: one thread 1 ms; two threads 0.55 ms, or 3 ms while
 // one of them is slowed (descheduled in favour of another program). A
 // hand-off between the threads (an empty region) takes 20 µs, or 2 ms while
-// one is slowed, unless the test makes it quick whatever the threads.
+// one is slowed, unless the test makes it quick whatever the threads; the
+// threads' start before it as long again, not in the hand-off's own time.
 struct SimulatedMachine {
   bool slowThread = false;
   bool quickHandoff = false;
+  // Beside a busy program: two threads' steps alternate 0.4 ms and 2.4 ms
+  // (the other thread descheduled every other step), mean 1.4 ms.
+  bool alternating = false;
+  mutable int twoThreadSteps = 0;
   double now = 100.0;
   int handoffs = 0;
-  double stepTime(int threads) const { return threads == 1 ? 1e-3 : slowThread ? 3e-3 : 0.55e-3; }
+  std::vector<double> handoffAt;  // the clock at each hand-off's start
+  double stepTime(int threads) const {
+    if (threads == 1) return 1e-3;
+    if (alternating) return ++twoThreadSteps % 2 ? 0.4e-3 : 2.4e-3;
+    return slowThread ? 3e-3 : 0.55e-3;
+  }
   double handoffTime() const { return slowThread && !quickHandoff ? 2e-3 : 2e-5; }
 };
 
@@ -56,8 +66,9 @@ ThreadUse simulated(SimulatedMachine& machine) {
   use.clock = [&machine] { return machine.now; };
   use.handoff = [&machine](int) {
     ++machine.handoffs;
-    machine.now += machine.handoffTime();
-    return machine.handoffTime();
+    machine.handoffAt.push_back(machine.now);
+    machine.now += 2.0 * machine.handoffTime();  // the threads' start, then the hand-off
+    return ThreadUse::HandOff{machine.handoffTime(), machine.handoffTime()};
   };
   return use;
 }
@@ -66,8 +77,9 @@ ThreadUse simulated(SimulatedMachine& machine) {
 
 // Quiet: after `history` steps on one thread a probe finds two faster and
 // they stay. A slow thread: within a few steps back on one, which then
-// tries two rarely, each try ending at its first hand-off, at a total cost
-// within the probe share. Quiet again: two threads return within the
+// tries two rarely, each try ending at its first hand-off, each try's cost
+// (the threads' start and the hand-off) within the probe share of the time
+// until the next. Quiet again: two threads return within the
 // longest retry.
 TEST(ThreadUse, FallsBackWhileAThreadIsSlowAndReturnsWhenItIsNot) {
   SimulatedMachine machine;
@@ -89,7 +101,12 @@ TEST(ThreadUse, FallsBackWhileAThreadIsSlowAndReturnsWhenItIsNot) {
   EXPECT_EQ(stepsOn(slow, 2, firstOnOne), 0) << "no step on two threads: each try ends at its hand-off";
   const int tries = machine.handoffs - handoffsBefore;
   EXPECT_GT(tries, 3) << "one thread tries two now and then";
-  EXPECT_LE(tries * machine.handoffTime(), s.probeShare * (machine.now - slowStart)) << tries << " tries";
+  EXPECT_LE(tries * 2.0 * machine.handoffTime(), s.probeShare * (machine.now - slowStart)) << tries << " tries";
+  // Each try that lost, its threads' start included, is at most the probe
+  // share of the time until the next.
+  for (std::size_t k = handoffsBefore + 1; k < machine.handoffAt.size(); ++k)
+    EXPECT_LE(2.0 * machine.handoffTime(), s.probeShare * (machine.handoffAt[k] - machine.handoffAt[k - 1]))
+        << "try " << k - handoffsBefore;
 
   machine.slowThread = false;
   const std::vector<int> after = run(use, machine, 2, 20000);
@@ -113,6 +130,21 @@ TEST(ThreadUse, ProbesThatLoseCostAtMostTheProbeShare) {
   EXPECT_GT(probes, 3 * use.settings.probeSteps);
   const double lost = probes * (machine.stepTime(2) - machine.stepTime(1));
   EXPECT_LE(lost, use.settings.probeShare * (machine.now - start)) << probes << " probe steps";
+}
+
+// Two threads' steps alternating fast and slow: their mean is slower than one
+// thread, though two of three probe steps can be fast. One thread is kept:
+// steps on two threads are the probes' only, and the run takes at most the
+// probe share longer than on one thread.
+TEST(ThreadUse, AlternatingFastAndSlowStepsKeepOneThread) {
+  SimulatedMachine machine;
+  machine.alternating = true;
+  machine.quickHandoff = true;
+  ThreadUse use = simulated(machine);
+  const double start = machine.now;
+  const std::vector<int> counts = run(use, machine, 2, 20000);
+  EXPECT_LE(stepsOn(counts, 2), 60) << "two threads kept after a probe";
+  EXPECT_LE(machine.now - start, (1.0 + use.settings.probeShare) * 20000 * machine.stepTime(1));
 }
 
 // A probe step that takes `abandon` times the present median ends the probe at once.
@@ -248,7 +280,7 @@ TEST(ThreadUse, AStepsThreadsFollowASlowThreadWithTheOneThreadBits) {
     atEnd = !atEnd;
     return machine.now;
   };
-  shared.threadUse().handoff = [&](int) { return machine.handoffTime(); };
+  shared.threadUse().handoff = [&](int) { return ThreadUse::HandOff{0.0, machine.handoffTime()}; };
   machine.quickHandoff = true;  // the probes run their steps (on two threads, for real)
   // Probes of two threads every 20 one-thread steps, one step long while a thread is slow.
   shared.threadUse().settings.quickestRetry = 0.02;

@@ -5,17 +5,19 @@
 // each hand-off between them waits until the scheduler runs the other
 // instead of a busy program. The steps' wall time on each count tells.
 //
-// The steps on the present count are timed (the median of the last
-// `history`). Now and then a probe runs `probeSteps` steps on the other
-// count, and the faster count is kept: more threads while the median of
-// their steps is at most `gain` times one thread's.
-// - On more threads a probe runs as soon as their median is no faster than
+// The steps on the present count are timed (the mean of the last
+// `history`: what they cost; their median is the typical step). Now and
+// then a probe runs `probeSteps` steps on the other count, and the faster
+// count is kept: more threads while the mean of their steps is at most
+// `gain` times one thread's.
+// - On more threads a probe runs as soon as their mean is no less than
 //   one thread's at the last probe.
 // - On one thread, a probe runs after a wait that grows with what the
 //   probes that lost cost (at most `probeShare` of the time spent stepping,
 //   between `quickestRetry` and `longestRetry`), so the threads come back
 //   within seconds of the machine getting quiet. It starts with one hand-off:
-//   an empty parallel region on the threads (after one that starts them). If
+//   an empty parallel region on the threads (after one that starts them; a
+//   probe that loses is charged both). If
 //   that alone takes `handoff` times a one-thread step, a step of many
 //   hand-offs cannot be faster, and the probe ends there (on a machine far
 //   busier than its cores a probe step took 140 one-thread steps). A probe
@@ -34,7 +36,7 @@ namespace particles {
 struct ThreadUseSettings {
   bool adaptive = true;         // false: every step on the most threads
   double gain = 0.9;            // more threads are kept while they take at most gain × one thread's time
-  int history = 5;              // steps whose median is the present count's time
+  int history = 5;              // steps whose mean is the present count's time
   int probeSteps = 3;           // steps on the other count in a probe
   double abandon = 4.0;         // a probe step over abandon × the present median ends the probe
   double handoff = 0.5;         // a probe's first hand-off over handoff × one thread's step ends it
@@ -50,10 +52,15 @@ class ThreadUse {
   ThreadUseSettings settings;
   // Wall time in seconds; a steady clock unless a test gives its own.
   std::function<double()> clock;
-  // The wall time of one hand-off on `threads` threads: an empty parallel
-  // region (the threads start, meet at its end's barrier and part) after one
-  // that starts them, unless a test gives its own.
-  std::function<double(int threads)> handoff;
+  // The wall times of a probe's start on `threads` threads: an empty
+  // parallel region that starts them, then one hand-off, a second empty
+  // region (the threads start, meet at its end's barrier and part); unless a
+  // test gives its own.
+  struct HandOff {
+    double start = 0.0;  // s: the threads' start, the first region
+    double trip = 0.0;   // s: the hand-off, the second
+  };
+  std::function<HandOff(int threads)> handoff;
 
   ThreadUse();
   // The threads for the next step (1 ≤ threads ≤ most) of a system whose
@@ -82,9 +89,10 @@ class ThreadUse {
   std::vector<double> presentTimes_;  // the last steps on present_, oldest first
   bool probing_ = false;
   std::vector<double> probeTimes_;
-  double otherMedian_ = -1.0;  // the other count's median from the last probe (< 0: none yet)
+  double otherMean_ = -1.0;    // the other count's mean from the last probe (< 0: none yet)
   double nextProbe_ = 0.0;     // clock time from which one thread may probe more
   double retry_ = 0.0;         // the wait after the last probe of more threads that lost
+  double probeStart_ = 0.0;    // s: the present probe's start and hand-off, charged to it if it loses
   int lostInARow_ = 0;         // probes of more threads lost since more threads last won
   std::uint64_t structure_ = 0;
   bool nothingToShare_ = false;  // a step on more threads entered no region: no probes
