@@ -99,6 +99,13 @@ struct LoggedOverlay {
   std::string kind;  // top-bar, hud, pane-hud, indicator, help, panel; widget names for widgets
   int x = 0, y = 0, width = 0, height = 0;
   std::string text;  // line breaks as " | "
+  // The text with its line breaks as spaces: a message read whole wherever
+  // the bar wrapped it (a long path wraps where its width decides).
+  std::string joined() const {
+    std::string whole = text;
+    for (std::size_t at = whole.find(" | "); at != std::string::npos; at = whole.find(" | ", at)) whole.replace(at, 3, " ");
+    return whole;
+  }
   // A bar's text-fit record: its widest line and its lines in pixels, and
   // whether it was shortened with "...".
   int textWidth = 0, textHeight = 0;

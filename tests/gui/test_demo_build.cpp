@@ -402,7 +402,7 @@ TEST(DemoBuild, BadFilesAndRefusedEditsGiveAMessageAndChangeNothing) {
     const StateLog log = runScript(dir, s);
     const LoggedOverlay* top = log.overlay("top-bar");
     ASSERT_NE(top, nullptr);
-    EXPECT_NE(top->text.find(c.message), std::string::npos) << top->text;
+    EXPECT_NE(top->joined().find(c.message), std::string::npos) << top->text;
     EXPECT_TRUE(log.build.active);
     EXPECT_EQ(log.build.historyStates, 3);  // the start, the new scene, the particle: nothing more
     ASSERT_EQ(log.panes.at(0).particles.size(), 1u);
