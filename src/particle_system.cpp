@@ -305,7 +305,6 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   tearing_.settings.validate();
   threadUse_.settings.validate();
   const int threads = threadUse_.begin(threadCount(), structureStamp_);
-  if (threadUse_.releasesThreads()) releaseIdleThreads();
   const ThreadCountScope scope(threads);
   const long long regions = parallelRegions();
   for (Force* force : clocked_) force->setTime(time_);

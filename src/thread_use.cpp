@@ -39,6 +39,12 @@ ThreadUse::HandOff emptyRegionSeconds(int threads) {
   return {started - begin, steadySeconds() - started};
 }
 
+double releasedSeconds() {
+  const double begin = steadySeconds();
+  releaseIdleThreads();
+  return steadySeconds() - begin;
+}
+
 std::string shortest(double value) {
   std::ostringstream out;
   out << value;
@@ -64,7 +70,7 @@ void ThreadUseSettings::validate() const {
     require(false, "longest retry", longestRetry, (">= the quickest retry (" + shortest(quickestRetry) + " s)").c_str());
 }
 
-ThreadUse::ThreadUse() : clock(steadySeconds), handoff(emptyRegionSeconds) {}
+ThreadUse::ThreadUse() : clock(steadySeconds), handoff(emptyRegionSeconds), release(releasedSeconds) {}
 
 // The clock is read once a step at each end: a decision uses the time the last step ended.
 int ThreadUse::begin(int most, std::uint64_t structure) {
@@ -102,7 +108,11 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
     }
     threads = probing_ ? (present_ == 1 ? most : 1) : present_;
   }
-  release_ = threads == 1 && previous_ > 1;
+  if (threads == 1 && previous_ > 1) {
+    const double seconds = release();
+    if (releaseCharged_) charge(seconds);
+    releaseCharged_ = false;
+  }
   threads_ = threads;
   started_ = clock();
   return threads;
@@ -130,11 +140,23 @@ void ThreadUse::end(bool parallel) {
   if (probing_) {
     probeTimes_.push_back(seconds);
     const bool hopeless = seconds > settings.abandon * median(presentTimes_);
-    if (hopeless || static_cast<int>(probeTimes_.size()) >= settings.probeSteps) finishProbe();
+    if (hopeless || probeDecided() || static_cast<int>(probeTimes_.size()) >= settings.probeSteps) finishProbe();
     return;
   }
   presentTimes_.push_back(seconds);
   if (static_cast<int>(presentTimes_.size()) > settings.history) presentTimes_.erase(presentTimes_.begin());
+}
+
+// A probe of more threads is decided once its steps so far, with every step
+// left at one thread's mean over the thread count (no step is faster than
+// its work shared perfectly), still make a mean over gain × one thread's.
+bool ThreadUse::probeDecided() const {
+  if (present_ != 1) return false;
+  const double one = mean(presentTimes_);
+  const double left = static_cast<double>(settings.probeSteps) - static_cast<double>(probeTimes_.size());
+  double best = left * one / most_;
+  for (const double t : probeTimes_) best += t;
+  return best > settings.gain * one * settings.probeSteps;
 }
 
 void ThreadUse::finishProbe() {
@@ -171,7 +193,16 @@ void ThreadUse::lost(double cost) {
   const double doubled = lostInARow_ > 0 ? 2.0 * retry_ : settings.quickestRetry;
   retry_ = std::clamp(std::max(doubled, cost / settings.probeShare), settings.quickestRetry, settings.longestRetry);
   ++lostInARow_;
-  nextProbe_ = now_ + retry_;
+  lostCost_ = cost;
+  lostAt_ = now_;
+  releaseCharged_ = true;
+  nextProbe_ = lostAt_ + retry_;
+}
+
+void ThreadUse::charge(double seconds) {
+  lostCost_ += seconds;
+  retry_ = std::clamp(std::max(retry_, lostCost_ / settings.probeShare), settings.quickestRetry, settings.longestRetry);
+  nextProbe_ = lostAt_ + retry_;
 }
 
 }  // namespace particles

@@ -16,12 +16,18 @@
 //   probes that lost cost (at most `probeShare` of the time spent stepping,
 //   between `quickestRetry` and `longestRetry`), so the threads come back
 //   within seconds of the machine getting quiet. It starts with one hand-off:
-//   an empty parallel region on the threads (after one that starts them; a
-//   probe that loses is charged both). If
+//   an empty parallel region on the threads (after one that starts them). If
 //   that alone takes `handoff` times a one-thread step, a step of many
 //   hand-offs cannot be faster, and the probe ends there (on a machine far
-//   busier than its cores a probe step took 140 one-thread steps). A probe
-//   step slower than `abandon` times the present median ends its probe too.
+//   busier than its cores a probe step took 140 one-thread steps). It also
+//   ends as soon as its steps so far decide it: once more threads could not
+//   win even if every step left took one thread's mean over the thread count
+//   (beside one busy program a probe's second or third step on two threads
+//   stalled for 120–200 ms while the first two had already lost). A lost
+//   probe is charged the threads' start, hand-off and release and what its
+//   steps took beyond one thread's.
+// - A probe step slower than `abandon` times the present median ends its
+//   probe too.
 // A step on more threads that entered no parallel region (a system below
 // every parallel loop's threshold) ends the probing until the system's
 // structure changes: its threads have nothing to share.
@@ -61,29 +67,33 @@ class ThreadUse {
     double trip = 0.0;   // s: the hand-off, the second
   };
   std::function<HandOff(int threads)> handoff;
+  // Ends the idle threads that steps on more threads started
+  // (particles/threads.h: releaseIdleThreads), before a step on one thread
+  // that follows them; returns the seconds it took. A test gives its own.
+  std::function<double()> release;
 
   ThreadUse();
   // The threads for the next step (1 ≤ threads ≤ most) of a system whose
   // structure stamp is `structure`, and the start of its timing.
   int begin(int most, std::uint64_t structure = 0);
-  // Whether the step begin() chose follows one on more threads (or a
-  // hand-off): the caller releases the idle threads (releaseIdleThreads) before stepping.
-  bool releasesThreads() const { return release_; }
   // The end of the step begin() chose, which entered a parallel region or
   // not: its wall time is recorded.
   void end(bool parallel = true);
 
  private:
   bool probeDue() const;
+  // Whether the probe's steps so far decide it: more threads cannot win.
+  bool probeDecided() const;
   void finishProbe();
   // A probe of more threads lost, at `cost` beyond what one thread took: the next one waits longer.
   void lost(double cost);
+  // The release of the threads a lost probe started, `seconds` more of its cost.
+  void charge(double seconds);
 
   int most_ = 0;
   int present_ = 1;         // the count in use outside probes
   int threads_ = 1;         // the count of the step begun
   int previous_ = 1;        // the count of the last thread use (a step or a hand-off)
-  bool release_ = false;
   double started_ = 0.0;
   double now_ = 0.0;        // the clock at the last end()
   std::vector<double> presentTimes_;  // the last steps on present_, oldest first
@@ -94,6 +104,9 @@ class ThreadUse {
   double retry_ = 0.0;         // the wait after the last probe of more threads that lost
   double probeStart_ = 0.0;    // s: the present probe's start and hand-off, charged to it if it loses
   int lostInARow_ = 0;         // probes of more threads lost since more threads last won
+  double lostCost_ = 0.0;      // s: what the last probe that lost cost, charged so far
+  double lostAt_ = 0.0;        // clock time it ended
+  bool releaseCharged_ = false;  // the next release is the lost probe's
   std::uint64_t structure_ = 0;
   bool nothingToShare_ = false;  // a step on more threads entered no region: no probes
 };
