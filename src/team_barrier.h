@@ -1,10 +1,10 @@
 #pragma once
 // A barrier of the threads of one parallel region that waits as WaitWord
 // does (a short spin, then a sleep in the kernel), used in place of
-// OpenMP's barriers: libgomp's waiting threads spin for 300000 pauses
-// unless OMP_WAIT_POLICY or GOMP_SPINCOUNT say otherwise — 3 ms on bare
-// metal, 0.1 s on a VM that traps pauses — and it reads those variables
-// once, as it is loaded, before a program's main() could set them.
+// OpenMP's barriers: libgomp's waiting threads spin for 300000 pauses (3 ms
+// on bare metal, 7 ms on a 2-core EPYC VM) unless the environment or the
+// executable's start (src/startup/openmp_short_spin.cpp) says otherwise, and
+// a count of pauses is not a time.
 #include <atomic>
 #include <cstdint>
 

@@ -9,10 +9,13 @@
 // part of that in CPU time.
 #include <gtest/gtest.h>
 
+#include <sched.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 #include <vector>
@@ -32,6 +35,12 @@ constexpr int kWaits = 20;
 double threadCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
@@ -200,6 +209,38 @@ TEST(Threads, ReleasingTheIdleThreadsEndsThem) {
   ran = 0;
   particles::parallelRanges(100000, 2, 1, [&](int, int) { ++ran; });
   EXPECT_EQ(ran.load(), 2) << "a region after the release starts its thread again";
+}
+
+// Between regions libgomp's idle threads spin only briefly, then sleep
+// (src/startup/openmp_short_spin.cpp): while the stepping thread is away
+// for 20 × 5 ms after a region each time, the process uses under a quarter
+// of that in CPU time (by default an idle thread would spin through each
+// 5 ms: 300000 pauses, 7 ms on a 2-core EPYC VM, 3 ms or more on bare metal).
+TEST(Threads, AnIdleThreadBetweenRegionsSleeps) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT"))
+    GTEST_SKIP() << "the environment sets how OpenMP's threads wait";
+  const Waited w = leastBusyOf([] {
+    Waited waited;
+    for (int k = 0; k < kWaits; ++k) {
+      particles::parallelRanges(100000, 2, 1, [](int, int) {});
+      const double wall = wallSeconds(), cpu = processCpuSeconds();
+      std::this_thread::sleep_for(kHeldBack);
+      waited.wall += wallSeconds() - wall;
+      waited.cpu += processCpuSeconds() - cpu;
+    }
+    return waited;
+  });
+  expectSlept(w, "between regions (the process's CPU time)");
+}
+
+// The executable's start narrows its affinity while libgomp counts the CPUs
+// and restores it: the program runs with the CPUs it was given (its parent's).
+TEST(Threads, TheProgramKeepsTheCpusItWasGiven) {
+  cpu_set_t mine, parents;
+  ASSERT_EQ(sched_getaffinity(0, sizeof mine, &mine), 0);
+  ASSERT_EQ(sched_getaffinity(getppid(), sizeof parents, &parents), 0);
+  EXPECT_TRUE(CPU_EQUAL(&mine, &parents)) << CPU_COUNT(&mine) << " CPUs, the parent has " << CPU_COUNT(&parents);
+  EXPECT_EQ(particles::affinityCpuCount(), CPU_COUNT(&parents));
 }
 
 // threadCount() is the innermost scope's count on the thread that opened it,

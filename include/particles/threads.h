@@ -37,11 +37,12 @@ long long parallelRegions();
 void countParallelRegion();
 
 // Ends the OpenMP threads that this thread's parallel regions started and
-// that now wait for its next region. libgomp's idle threads spin for 300000
-// pauses before they sleep (3 ms on bare metal, 0.1 s on a VM that traps
-// pauses), on a core a busy program or this thread could use; a thread that
-// steps on one thread for a while releases them (the next region starts
-// them again, for some tens of microseconds). Does nothing inside a region.
+// that now wait for its next region. Idle OpenMP threads spin briefly before
+// they sleep (src/startup/openmp_short_spin.cpp), or as long as the
+// environment's OMP_WAIT_POLICY or GOMP_SPINCOUNT says; a thread that steps
+// on one thread for a while releases them, so that none waits on a core a
+// busy program or this thread could use (the next region starts them again,
+// for some tens of microseconds). Does nothing inside a region.
 void releaseIdleThreads();
 
 // CPUs in this process's affinity mask (sched_getaffinity; taskset, Slurm's
