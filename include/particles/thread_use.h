@@ -46,7 +46,7 @@ struct ThreadUseSettings {
   int probeSteps = 3;           // steps on the other count in a probe
   double abandon = 4.0;         // a probe step over abandon × the present median ends the probe
   double handoff = 0.5;         // a probe's first hand-off over handoff × one thread's step ends it
-  double probeShare = 0.02;     // probes of more threads that lose cost at most this share of the time
+  double probeShare = 0.01;     // probes of more threads that lose cost at most this share of the time
   double quickestRetry = 0.05;  // s: the shortest wait before probing more threads again
   double longestRetry = 5.0;    // s: the longest
 
