@@ -95,6 +95,7 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
   } else if (most > 1) {
     if (!probing_ && !nothingToShare_ && static_cast<int>(presentTimes_.size()) >= settings.history && probeDue()) {
       probing_ = true;
+      probeStart_ = 0.0;
       if (present_ == 1) {
         const HandOff times = handoff(most);
         probeStart_ = times.start + times.trip;
@@ -102,7 +103,7 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
         if (times.trip > settings.handoff * median(presentTimes_)) {
           probing_ = false;
           now_ += probeStart_;
-          lost(probeStart_);
+          lost(probeStart_, true);
         }
       }
     }
@@ -110,7 +111,8 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
   }
   if (threads == 1 && previous_ > 1) {
     const double seconds = release();
-    if (releaseCharged_) charge(seconds);
+    if (releaseCharged_) charge(seconds);  // the end of a lost probe of more threads
+    else if (probing_) probeStart_ = seconds;  // the start of a probe of one thread
     releaseCharged_ = false;
   }
   threads_ = threads;
@@ -118,11 +120,11 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
   return threads;
 }
 
-// On one thread: once the wait after the last probe is over. On more: as
-// soon as their steps' mean is no less than one thread's at the last probe.
+// Once the wait after the last probe is over; on more threads also as soon
+// as their steps' mean is over one thread's at the last probe.
 bool ThreadUse::probeDue() const {
-  if (present_ == 1) return now_ >= nextProbe_;
-  return otherMean_ < 0.0 || mean(presentTimes_) > otherMean_;
+  if (now_ >= nextProbe_) return true;
+  return present_ != 1 && (otherMean_ < 0.0 || mean(presentTimes_) > otherMean_);
 }
 
 void ThreadUse::end(bool parallel) {
@@ -168,34 +170,31 @@ void ThreadUse::finishProbe() {
   const double probe = mean(probeTimes_), present = mean(presentTimes_);
   const double more = present_ == 1 ? probe : present, one = present_ == 1 ? present : probe;
   const int faster = more <= settings.gain * one ? most_ : 1;
-  if (faster == other) {
+  if (faster == other) {  // the probe won: its count is kept, and the other probed after the quickest retry
     otherMean_ = present;
     present_ = other;
     presentTimes_ = probeTimes_;
-  } else {
-    otherMean_ = probe;
-  }
-  if (present_ == most_) {
     lostInARow_ = 0;
-  } else if (other == most_) {
-    double cost = probeStart_;  // the threads' start and hand-off, and the probe's steps' time beyond one thread's
-    for (const double t : probeTimes_) cost += std::max(0.0, t - one);
-    lost(cost);
-  } else {
-    nextProbe_ = now_ + settings.quickestRetry;  // one thread just won a probe from more
+    retry_ = settings.quickestRetry;
+    nextProbe_ = now_ + settings.quickestRetry;
+  } else {  // it lost: its start, and its steps' time beyond the present count's
+    otherMean_ = probe;
+    double cost = probeStart_;
+    for (const double t : probeTimes_) cost += std::max(0.0, t - present);
+    lost(cost, other == most_);
   }
   probeTimes_.clear();
 }
 
 // The next probe waits twice as long as the last that lost, and long
 // enough for this one's cost to be at most probeShare of the time until then.
-void ThreadUse::lost(double cost) {
+void ThreadUse::lost(double cost, bool releaseFollows) {
   const double doubled = lostInARow_ > 0 ? 2.0 * retry_ : settings.quickestRetry;
   retry_ = std::clamp(std::max(doubled, cost / settings.probeShare), settings.quickestRetry, settings.longestRetry);
   ++lostInARow_;
   lostCost_ = cost;
   lostAt_ = now_;
-  releaseCharged_ = true;
+  releaseCharged_ = releaseFollows;
   nextProbe_ = lostAt_ + retry_;
 }
 

@@ -10,12 +10,15 @@
 // then a probe runs `probeSteps` steps on the other count, and the faster
 // count is kept: more threads while the mean of their steps is at most
 // `gain` times one thread's.
-// - On more threads a probe runs as soon as their mean is no less than
-//   one thread's at the last probe.
-// - On one thread, a probe runs after a wait that grows with what the
-//   probes that lost cost (at most `probeShare` of the time spent stepping,
-//   between `quickestRetry` and `longestRetry`), so the threads come back
-//   within seconds of the machine getting quiet. It starts with one hand-off:
+// - A probe runs after a wait that grows with what the probes that lost
+//   cost (at most `probeShare` of the time spent stepping, between
+//   `quickestRetry` and `longestRetry`), so the faster count comes back
+//   within seconds of a change in the machine's load; on more threads also
+//   as soon as their mean is over one thread's at the last probe. (Beside
+//   two busy programs one thread alone on a core ran 1.9 times faster than
+//   two threads sharing theirs, which compared with one thread's time from
+//   a probe made while it shared a core, kept their count.)
+// - A probe of more threads starts with one hand-off:
 //   an empty parallel region on the threads (after one that starts them). If
 //   that alone takes `handoff` times a one-thread step, a step of many
 //   hand-offs cannot be faster, and the probe ends there (on a machine far
@@ -85,8 +88,9 @@ class ThreadUse {
   // Whether the probe's steps so far decide it: more threads cannot win.
   bool probeDecided() const;
   void finishProbe();
-  // A probe of more threads lost, at `cost` beyond what one thread took: the next one waits longer.
-  void lost(double cost);
+  // A probe lost, at `cost` beyond what the present count took: the next one waits longer.
+  // releaseFollows: the threads it started are released next, and that adds to its cost.
+  void lost(double cost, bool releaseFollows);
   // The release of the threads a lost probe started, `seconds` more of its cost.
   void charge(double seconds);
 
@@ -100,10 +104,10 @@ class ThreadUse {
   bool probing_ = false;
   std::vector<double> probeTimes_;
   double otherMean_ = -1.0;    // the other count's mean from the last probe (< 0: none yet)
-  double nextProbe_ = 0.0;     // clock time from which one thread may probe more
-  double retry_ = 0.0;         // the wait after the last probe of more threads that lost
-  double probeStart_ = 0.0;    // s: the present probe's start and hand-off, charged to it if it loses
-  int lostInARow_ = 0;         // probes of more threads lost since more threads last won
+  double nextProbe_ = 0.0;     // clock time from which the other count may be probed
+  double retry_ = 0.0;         // the wait after the last probe that lost
+  double probeStart_ = 0.0;    // s: the present probe's start (threads' start and hand-off, or their release), charged to it if it loses
+  int lostInARow_ = 0;         // probes lost since the present count last changed
   double lostCost_ = 0.0;      // s: what the last probe that lost cost, charged so far
   double lostAt_ = 0.0;        // clock time it ended
   bool releaseCharged_ = false;  // the next release is the lost probe's
