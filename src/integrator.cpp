@@ -3,16 +3,16 @@
 #include <stdexcept>
 
 #include "particles/check.h"
-#include "particles/integrators/dopri5.h"
+#include "integrators/dopri5.h"
 #include "particles/particle_system.h"
-#include "particles/integrators/explicit_euler.h"
-#include "particles/integrators/implicit_euler.h"
-#include "particles/integrators/midpoint.h"
-#include "particles/integrators/rattle.h"
-#include "particles/integrators/rk4.h"
-#include "particles/integrators/symplectic_euler.h"
-#include "particles/integrators/verlet.h"
-#include "particles/integrators/xpbd.h"
+#include "integrators/explicit_euler.h"
+#include "integrators/implicit_euler.h"
+#include "integrators/midpoint.h"
+#include "integrators/rattle.h"
+#include "integrators/rk4.h"
+#include "integrators/symplectic_euler.h"
+#include "integrators/verlet.h"
+#include "integrators/xpbd.h"
 
 namespace particles {
 

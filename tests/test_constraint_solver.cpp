@@ -15,7 +15,7 @@
 #include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
 #include "test_support.h"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "bench/cloth_grid.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/particle_system.h"
 #include "particles/thread_use.h"
 #include "particles/threads.h"

@@ -1,6 +1,7 @@
 #pragma once
 // The whole engine in one include: the particle system, its forces,
-// constraints, colliders and integrators.
+// constraints and colliders, and the integrators by name (integrator.h's
+// table: makeIntegrator("rk4")).
 //   #include <particles/particles.h>
 #include "particles/collider.h"
 #include "particles/collision.h"
@@ -20,15 +21,6 @@
 #include "particles/forces/wind.h"
 #include "particles/grab.h"
 #include "particles/integrator.h"
-#include "particles/integrators/dopri5.h"
-#include "particles/integrators/explicit_euler.h"
-#include "particles/integrators/implicit_euler.h"
-#include "particles/integrators/midpoint.h"
-#include "particles/integrators/rattle.h"
-#include "particles/integrators/rk4.h"
-#include "particles/integrators/symplectic_euler.h"
-#include "particles/integrators/verlet.h"
-#include "particles/integrators/xpbd.h"
 #include "particles/particle_system.h"
 #include "particles/phase.h"
 #include "particles/solver_names.h"

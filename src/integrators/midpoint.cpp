@@ -1,4 +1,4 @@
-#include "particles/integrators/midpoint.h"
+#include "integrators/midpoint.h"
 
 #include "particles/particle_system.h"
 #include "vector_kernels.h"

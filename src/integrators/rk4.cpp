@@ -1,4 +1,4 @@
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 
 #include "particles/particle_system.h"
 #include "vector_kernels.h"

@@ -1,4 +1,4 @@
-#include "particles/xpbd/distance_blocks.h"
+#include "xpbd/distance_blocks.h"
 
 #include <algorithm>
 #include <cmath>

@@ -29,7 +29,7 @@
 #include "cloth_grid.h"
 #include "plain_rk4.h"
 #include "repetition_reporter.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/threads.h"
 
 namespace {

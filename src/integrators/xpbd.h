@@ -8,11 +8,11 @@
 #include "particles/force.h"
 #include "particles/forces/force_batch.h"
 #include "particles/integrator.h"
-#include "particles/xpbd/angle.h"
-#include "particles/xpbd/area.h"
-#include "particles/xpbd/attachment.h"
-#include "particles/xpbd/distance_blocks.h"
-#include "particles/xpbd/hanging_lines.h"
+#include "xpbd/angle.h"
+#include "xpbd/area.h"
+#include "xpbd/attachment.h"
+#include "xpbd/distance_blocks.h"
+#include "xpbd/hanging_lines.h"
 
 namespace particles {
 

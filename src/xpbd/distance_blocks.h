@@ -11,7 +11,7 @@
 
 #include "particles/phase.h"
 #include "particles/thread_balance.h"
-#include "particles/xpbd/distance.h"
+#include "xpbd/distance.h"
 
 namespace particles {
 

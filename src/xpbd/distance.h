@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include "particles/thread_balance.h"
-#include "particles/xpbd/multiplier.h"
+#include "xpbd/multiplier.h"
 
 namespace particles {
 
