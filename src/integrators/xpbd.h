@@ -47,7 +47,6 @@ class XpbdIntegrator : public Integrator {
   const char* name() const override { return "xpbd"; }
   bool collidesInSubsteps() const override { return true; }
   // The mouse joint is projected as a compliant attachment, stable at any stiffness.
-  double explicitForceStep(double) const override { return 0.0; }
   StepStats step(ParticleSystem& system, double dt) override;
   // Takes IntegratorSettings::xpbd (validated first).
   void configure(const IntegratorSettings& settings) override;
