@@ -6,7 +6,6 @@
 
 #include <Eigen/IterativeLinearSolvers>
 
-#include "constraint_solver_probe.h"
 #include "linear/linear.h"
 #include "particles/cancel.h"
 #include "particles/check.h"
@@ -344,11 +343,7 @@ void ConstraintSolver::assembleChain(double dead) {
                                                         w.chainPairStart[static_cast<std::size_t>(k + 1)]);
 }
 
-Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, int particleCount) {
-  return solver.work_->rows.denseJ(particleCount);
-}
-Eigen::MatrixXd ConstraintSolverProbe::denseJdot(const ConstraintSolver& solver, int particleCount) {
-  return solver.work_->rows.denseJdot(particleCount);
-}
+Eigen::MatrixXd ConstraintSolver::denseJ(int particleCount) const { return work_->rows.denseJ(particleCount); }
+Eigen::MatrixXd ConstraintSolver::denseJdot(int particleCount) const { return work_->rows.denseJdot(particleCount); }
 
 }  // namespace particles

@@ -7,7 +7,6 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "constraint_solver_probe.h"  // dense J and J̇ of the last solve
 
 #include "particles/constraints/circular_wire.h"
 #include "particles/constraints/line.h"
@@ -71,7 +70,7 @@ std::unique_ptr<ParticleSystem> rodMesh(std::mt19937& rng, RodForm form) {
 // diagonal is zero — every particle pinned — have λ = 0).
 Eigen::VectorXd denseLambda(const ParticleSystem& s) {
   const ConstraintSolver& solver = s.solver();
-  const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(solver, s.size());
+  const Eigen::MatrixXd J = solver.denseJ(s.size());
   Eigen::VectorXd w2(2 * s.size());
   for (int i = 0; i < s.size(); ++i) w2.segment<2>(2 * i).setConstant(s.inverseMasses()[i]);
   Eigen::MatrixXd A = J * w2.asDiagonal() * J.transpose();
@@ -186,7 +185,7 @@ TEST(ConstraintSolverMethods, ATautChainsDirectSolveIsDamped) {
   EXPECT_TRUE(a.allFinite());
   EXPECT_TRUE(s.lastSolve().regularized);
   EXPECT_EQ(s.lastSolve().factorizations, 2);
-  const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
+  const Eigen::MatrixXd J = s.solver().denseJ(n);
   const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
   EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
 }
@@ -234,7 +233,7 @@ TEST(ConstraintSolverMethods, TautChainBetweenWiresStaysFiniteInEveryMethod) {
     // (J W Jᵀ + μ I) λ = b with μ = 1e-6·max diag, so |λ| ≤ |b|/μ.
     if (method.method == SolveMethod::Direct) {
       EXPECT_TRUE(s.lastSolve().regularized);
-      const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
+      const Eigen::MatrixXd J = s.solver().denseJ(n);
       const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
       EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
     }

@@ -15,6 +15,7 @@
 #include "particles/particle_system.h"
 #include "particles/thread_use.h"
 #include "particles/threads.h"
+#include "system_internals.h"
 
 namespace {
 
@@ -243,17 +244,18 @@ TEST(ThreadUse, AStepsThreadsFollowASlowThreadWithTheOneThreadBits) {
   // The step's clock, read at its start and its end: the end adds the time
   // the step takes on the simulated machine on the threads it ran on.
   bool atEnd = false;
-  shared.threadUse().clock = [&] {
+  particles::ThreadUse& controller = particles::SystemInternals::threadUse(shared);
+  controller.clock = [&] {
     if (atEnd) machine.now += machine.stepTime(particles::threadCount());
     atEnd = !atEnd;
     return machine.now;
   };
-  shared.threadUse().handoff = [&](int) { return machine.handoffTime(); };
+  controller.handoff = [&](int) { return machine.handoffTime(); };
   machine.quickHandoff = true;  // the probes run their steps (on two threads, for real)
   // Probes of two threads every 20 one-thread steps, one step long while a thread is slow.
-  shared.threadUse().settings.quickestRetry = 0.02;
-  shared.threadUse().settings.longestRetry = 0.02;
-  shared.threadUse().settings.abandon = 2.5;
+  shared.threadUse().quickestRetry = 0.02;
+  shared.threadUse().longestRetry = 0.02;
+  shared.threadUse().abandon = 2.5;
   std::vector<int> used;
   for (int k = 0; k < steps; ++k) {
     machine.slowThread = k >= 40 && k < 100;

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include "particle_range.h"
 #include "particles/force.h"
 #include "particles/forces/spring_batch.h"
 

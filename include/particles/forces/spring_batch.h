@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 
+#include "particle_range.h"
 #include "particles/phase.h"
 #include "particles/thread_balance.h"
 
