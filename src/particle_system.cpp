@@ -9,7 +9,7 @@
 #include "parallel_for.h"
 #include "particles/check.h"
 #include "particles/forces/angular_spring.h"
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 #include "particles/forces/spring.h"
 #include "particles/tearing.h"
 #include "particles/threads.h"

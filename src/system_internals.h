@@ -8,7 +8,7 @@
 
 #include "particle_range.h"
 #include "particles/particle_system.h"
-#include "particles/thread_use.h"
+#include "thread_use.h"
 
 namespace particles {
 

@@ -16,13 +16,13 @@
 #include <stdexcept>
 
 #include "particles/constraints/rod.h"
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
-#include "particles/forces/spring_batch.h"
+#include "forces/spring_batch.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
-#include "particles/thread_balance.h"
+#include "thread_balance.h"
 #include "particles/threads.h"
 #include "scene.h"
 #include "system_internals.h"

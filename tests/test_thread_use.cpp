@@ -1,4 +1,4 @@
-// How many threads a system's steps run on (particles/thread_use.h): more
+// How many threads a system's steps run on (src/thread_use.h): more
 // threads while their steps are faster, one thread while a slow thread
 // makes them slower, more again once it is gone; with the same bits as one
 // thread throughout. The step times come from a simulated clock (a step on
@@ -13,7 +13,7 @@
 #include "bench/cloth_grid.h"
 #include "integrators/rk4.h"
 #include "particles/particle_system.h"
-#include "particles/thread_use.h"
+#include "thread_use.h"
 #include "particles/threads.h"
 #include "system_internals.h"
 

@@ -481,7 +481,7 @@ std::optional<Frames> timeXpbdFrames(const SmallStepsPlan& plan, int substeps, b
 std::optional<ThreadedFrames> timeThreadedXpbdFrames(const SmallStepsPlan& plan, int substeps) {
   scenes::Scene one = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
   scenes::Scene two = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
-  // Two threads on every frame, not the engine's choice (particles/thread_use.h):
+  // Two threads on every frame, not the engine's choice (src/thread_use.h):
   // this compares the counts themselves.
   two.system->threadUse().adaptive = false;
   particles::IntegratorSettings settings;

@@ -1,7 +1,7 @@
 #pragma once
 // How many threads the engine's parallel loops use (OpenMP). The results are
 // the same bits for any count: every parallel loop writes disjoint entries,
-// and sums keep the serial order (see forces/force_batch.h). With 1 (the
+// and sums keep the serial order (see src/forces/force_batch.h). With 1 (the
 // library's default) no parallel region is entered and no thread is started.
 //
 // setThreadCount() sets the most threads; each ParticleSystem::step then runs

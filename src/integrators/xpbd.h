@@ -6,7 +6,7 @@
 
 #include "particles/collision.h"
 #include "particles/force.h"
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 #include "particles/integrator.h"
 #include "xpbd/angle.h"
 #include "xpbd/area.h"

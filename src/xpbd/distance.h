@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "particles/thread_balance.h"
+#include "thread_balance.h"
 #include "xpbd/multiplier.h"
 
 namespace particles {

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "parallel_for.h"
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 #include "particles/threads.h"
 
 namespace particles {

@@ -11,7 +11,7 @@
 
 #include "particle_range.h"
 #include "particles/phase.h"
-#include "particles/thread_balance.h"
+#include "thread_balance.h"
 #include "xpbd/distance.h"
 
 namespace particles {

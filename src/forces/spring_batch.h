@@ -29,7 +29,7 @@
 
 #include "particle_range.h"
 #include "particles/phase.h"
-#include "particles/thread_balance.h"
+#include "thread_balance.h"
 
 namespace particles {
 

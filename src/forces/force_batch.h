@@ -21,7 +21,7 @@
 
 #include "particle_range.h"
 #include "particles/force.h"
-#include "particles/forces/spring_batch.h"
+#include "forces/spring_batch.h"
 
 namespace particles {
 
