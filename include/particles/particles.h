@@ -3,6 +3,8 @@
 // constraints and colliders, and the integrators by name (integrator.h's
 // table: makeIntegrator("rk4")).
 //   #include <particles/particles.h>
+#include "particles/cancel.h"
+#include "particles/check.h"
 #include "particles/collider.h"
 #include "particles/collision.h"
 #include "particles/constants.h"
@@ -15,8 +17,11 @@
 #include "particles/force.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/drag.h"
+#include "particles/forces/face_area.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/mouse_spring.h"
+#include "particles/forces/polygon_area.h"
+#include "particles/forces/pressure.h"
 #include "particles/forces/spring.h"
 #include "particles/forces/wind.h"
 #include "particles/grab.h"
