@@ -6,7 +6,6 @@
 
 #include <Eigen/IterativeLinearSolvers>
 
-#include "constraint_solver_probe.h"
 #include "constraints/rod_chain.h"
 #include "linear/linear.h"
 #include "particles/cancel.h"
@@ -128,6 +127,7 @@ void ConstraintSolver::addConstraintForces(const Phase& s, const ConstraintList&
   Workspace& w = *work_;
   w.inverseMass = &s.inverseMass;
   const bool rods = formSystem(s, constraints, f);
+  stats_.chainPass = rods;
 
   if (!settings.warmStart || lambda_.size() != m || !lambda_.allFinite()) lambda_.setZero(m);
   double residual = 0.0;
@@ -382,12 +382,7 @@ void ConstraintSolver::assembleChain(double dead) {
     upper[k] = pairSum(w.rows, *w.inverseMass, w.chainPairFirst, w.chainPairSecond, pairStart[k], pairStart[k + 1]);
 }
 
-Eigen::MatrixXd ConstraintSolverProbe::denseJ(const ConstraintSolver& solver, int particleCount) {
-  return solver.work_->rows.denseJ(particleCount);
-}
-Eigen::MatrixXd ConstraintSolverProbe::denseJdot(const ConstraintSolver& solver, int particleCount) {
-  return solver.work_->rows.denseJdot(particleCount);
-}
-bool ConstraintSolverProbe::rodChainPass(const ConstraintSolver& solver) { return solver.work_->chainUpperFormed; }
+Eigen::MatrixXd ConstraintSolver::denseJ(int particleCount) const { return work_->rows.denseJ(particleCount); }
+Eigen::MatrixXd ConstraintSolver::denseJdot(int particleCount) const { return work_->rows.denseJdot(particleCount); }
 
 }  // namespace particles

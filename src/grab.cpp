@@ -8,6 +8,7 @@
 
 #include "particles/check.h"
 #include "particles/constants.h"
+#include "particles/integrator.h"
 #include "particles/particle_system.h"
 
 namespace particles {
@@ -69,6 +70,11 @@ GrabReach grabReach(const ParticleSystem& system, int particle, const Force* ign
                                                             Eigen::EigenvaluesOnly);
   reach.stiffness = std::max(0.0, eigen.eigenvalues()(1));
   return reach;
+}
+
+double explicitForceStep(const std::string& scheme, double dt) {
+  const IntegratorInfo* info = findIntegrator(scheme);
+  return info != nullptr && info->implicitForces ? 0.0 : dt;
 }
 
 MouseSpringGains mouseSpringGains(const GrabReach& reach, const MouseJointSettings& joint, double explicitStep) {

@@ -3,16 +3,16 @@
 #include <stdexcept>
 
 #include "particles/check.h"
-#include "particles/integrators/dopri5.h"
+#include "integrators/dopri5.h"
 #include "particles/particle_system.h"
-#include "particles/integrators/explicit_euler.h"
-#include "particles/integrators/implicit_euler.h"
-#include "particles/integrators/midpoint.h"
-#include "particles/integrators/rattle.h"
-#include "particles/integrators/rk4.h"
-#include "particles/integrators/symplectic_euler.h"
-#include "particles/integrators/verlet.h"
-#include "particles/integrators/xpbd.h"
+#include "integrators/explicit_euler.h"
+#include "integrators/implicit_euler.h"
+#include "integrators/midpoint.h"
+#include "integrators/rattle.h"
+#include "integrators/rk4.h"
+#include "integrators/symplectic_euler.h"
+#include "integrators/verlet.h"
+#include "integrators/xpbd.h"
 
 namespace particles {
 
@@ -22,11 +22,11 @@ std::unique_ptr<Integrator> make() {
   return std::make_unique<T>();
 }
 
-// IntegratorInfo's flags (usesTolerance, usesSubsteps, inLabSweeps), named
+// IntegratorInfo's flags (usesTolerance, usesSubsteps, implicitForces), named
 // where the table sets them.
 constexpr bool kReadsTolerance = true, kNoTolerance = false;
 constexpr bool kReadsSubsteps = true, kNoSubsteps = false;
-constexpr bool kOutOfLabSweeps = false;
+constexpr bool kImplicitForces = true;
 }  // namespace
 
 const std::vector<IntegratorInfo>& integratorTable() {
@@ -43,21 +43,18 @@ const std::vector<IntegratorInfo>& integratorTable() {
       {"verlet", "velocity Verlet, velocity-dependent forces at a predicted velocity",
        "symplectic: energy bounded for omega dt < 2; 1 force evaluation a step", 2,
        make<VerletIntegrator>},
-      // Its projections are solved by CG, about m iterations each on a chain of
-      // m rods: 75x a Verlet step on the 80-rod chain, so the sweeps over
-      // chains of up to 1000 particles leave it out until it uses the direct solve.
       {"rattle", "RATTLE: velocity Verlet with positions and velocities projected onto the constraints; no drift",
        "symplectic, constraints held exactly: omega dt < 2; 1 force evaluation and two projections a step", 2,
-       make<RattleIntegrator>, kNoTolerance, kNoSubsteps, kOutOfLabSweeps},
+       make<RattleIntegrator>},
       {"implicit-euler", "backward Euler, constraints in the solve, Newton passes to convergence; never gains energy",
        "stable at any dt, but damps the motion, more at larger dt; a linear solve per Newton pass", 1,
-       make<ImplicitEulerIntegrator>},
+       make<ImplicitEulerIntegrator>, kNoTolerance, kNoSubsteps, kImplicitForces},
       {"dopri5", "Dormand-Prince 5(4), FSAL, PI step control: internal step chosen to meet --tolerance",
        "accurate to its tolerance, but a stiff scene makes it take many small internal steps; 6 evaluations each", 5,
        make<Dopri5Integrator>, kReadsTolerance},
       {"xpbd", "XPBD: --substeps substeps of --iterations constraint passes, springs as compliance (--lines: hanging lines solved directly)",
        "stable at any dt on springs and constraints, a little damping; one pass over every spring a substep", 1,
-       make<XpbdIntegrator>, kNoTolerance, kReadsSubsteps},
+       make<XpbdIntegrator>, kNoTolerance, kReadsSubsteps, kImplicitForces},
   };
   return table;
 }

@@ -9,17 +9,33 @@
 #include "parallel_for.h"
 #include "particles/check.h"
 #include "particles/forces/angular_spring.h"
+#include "forces/force_batch.h"
 #include "particles/forces/spring.h"
+#include "particles/tearing.h"
 #include "particles/threads.h"
+#include "system_internals.h"
 
 namespace particles {
 
+struct ParticleSystem::Impl {
+  ForceBatches batches;  // forces_ as flat arrays, rebuilt on a structure change
+  Tearing tearing;
+  ThreadUse threadUse;
+};
+
 ParticleSystem::ParticleSystem()
-    : contacts_(std::make_unique<ContactPass>()), islands_(std::make_unique<Islands>()) {}
+    : impl_(std::make_unique<Impl>()), contacts_(std::make_unique<ContactPass>()),
+      islands_(std::make_unique<Islands>()) {}
 ParticleSystem::~ParticleSystem() = default;
 ParticleSystem::ParticleSystem(ParticleSystem&&) noexcept = default;
 ParticleSystem& ParticleSystem::operator=(ParticleSystem&&) noexcept = default;
 
+TearSettings& ParticleSystem::tearing() { return impl_->tearing.settings; }
+const TearSettings& ParticleSystem::tearing() const { return impl_->tearing.settings; }
+int ParticleSystem::tornLastStep() const { return impl_->tearing.tornLastStep(); }
+ThreadUseSettings& ParticleSystem::threadUse() { return impl_->threadUse.settings; }
+const ThreadUseSettings& ParticleSystem::threadUse() const { return impl_->threadUse.settings; }
+ThreadUse& SystemInternals::threadUse(ParticleSystem& system) { return system.impl_->threadUse; }
 ContactSettings& ParticleSystem::contactSettings() { return contacts_->settings(); }
 const ContactSettings& ParticleSystem::contactSettings() const { return contacts_->settings(); }
 bool ParticleSystem::colliding() const { return contactScene().colliding(); }
@@ -230,19 +246,24 @@ void ParticleSystem::setVelocity(int i, const Eigen::Vector2d& v) {
   wake();
 }
 
-void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
-                                  Eigen::VectorXd& a, const ParticleRange& then) {
-  const Phase s = phase(x, v);
-  batches_.update(forces_, structureStamp_);
-  ++evaluations_.forceEvaluations;
-  if (constraints_.empty()) {  // nothing is added to f after the forces
-    batches_.applyAndDivide(s, f_, a, then);
+void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a) {
+  SystemInternals::acceleration(*this, x, v, a, {});
+}
+
+void SystemInternals::acceleration(ParticleSystem& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                   Eigen::VectorXd& a, const ParticleRange& then) {
+  ForceBatches& batches = system.impl_->batches;
+  const Phase s = system.phase(x, v);
+  batches.update(system.forces_, system.structureStamp_);
+  ++system.evaluations_.forceEvaluations;
+  if (system.constraints_.empty()) {  // nothing is added to f after the forces
+    batches.applyAndDivide(s, system.f_, a, then);
     return;
   }
-  batches_.apply(s, f_);
+  batches.apply(s, system.f_);
   {
-    solver_.addConstraintForces(s, constraints_, f_);
-    const SolveStats& solve = solver_.stats();
+    system.solver_.addConstraintForces(s, system.constraints_, system.f_);
+    const SolveStats& solve = system.solver_.stats();
     StepStats one{};
     one.solves = 1;
     one.cgIterations = solve.iterations;
@@ -251,35 +272,36 @@ void ParticleSystem::acceleration(const Eigen::VectorXd& x, const Eigen::VectorX
     one.directFallbacks = solve.directFallback;
     one.internalSteps = 0;
     if (solve.failed) one.failure = StepFailure::SolveFailed;
-    evaluations_ += one;
+    system.evaluations_ += one;
   }
   // a = W f and then, range by range in one pass.
   a.resize(x.size());
-  parallelRanges(size(), threadCount(), kParallelParticles, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) a.segment<2>(2 * i) = inverseMass_[i] * f_.segment<2>(2 * i);
+  parallelRanges(system.size(), threadCount(), kParallelParticles, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) a.segment<2>(2 * i) = system.inverseMass_[i] * system.f_.segment<2>(2 * i);
     if (then) then(begin, end);
   });
 }
 
-void ParticleSystem::accelerations(const std::vector<StatePoint>& points, Eigen::VectorXd& a,
-                                   const StageRange& then) {
+void SystemInternals::accelerations(ParticleSystem& system, const std::vector<StatePoint>& points,
+                                    Eigen::VectorXd& a, const StageRange& then) {
   const int count = static_cast<int>(points.size());
-  if (!constraints_.empty()) {  // a solve between the forces and a: evaluations one by one
+  if (!system.constraints_.empty()) {  // a solve between the forces and a: evaluations one by one
     for (int k = 0; k < count; ++k)
-      acceleration(points[k].x, points[k].v, a, stagePass(then, k));
+      acceleration(system, points[k].x, points[k].v, a, stagePass(then, k));
     return;
   }
-  batches_.update(forces_, structureStamp_);
-  evaluations_.forceEvaluations += count;
+  ForceBatches& batches = system.impl_->batches;
+  batches.update(system.forces_, system.structureStamp_);
+  system.evaluations_.forceEvaluations += count;
   std::vector<Phase> phases;
   phases.reserve(points.size());
-  for (const StatePoint& p : points) phases.push_back(phase(p.x, p.v));
-  batches_.applyAndDivide(phases, f_, a, then);
+  for (const StatePoint& point : points) phases.push_back(system.phase(point.x, point.v));
+  batches.applyAndDivide(phases, system.f_, a, then);
 }
 
 void ParticleSystem::appliedForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
-  batches_.update(forces_, structureStamp_);
-  batches_.apply(phase(x, v), f);
+  impl_->batches.update(forces_, structureStamp_);
+  impl_->batches.apply(phase(x, v), f);
   ++evaluations_.forceEvaluations;
 }
 
@@ -302,9 +324,9 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   // bad value never leaves a step half done.
   evaluations_ = StepStats{};
   solver_.settings.validate();
-  tearing_.settings.validate();
-  threadUse_.settings.validate();
-  const int threads = threadUse_.begin(threadCount(), structureStamp_);
+  impl_->tearing.settings.validate();
+  impl_->threadUse.settings.validate();
+  const int threads = impl_->threadUse.begin(threadCount(), structureStamp_);
   const ThreadCountScope scope(threads);
   const long long regions = parallelRegions();
   for (Force* force : clocked_) force->setTime(time_);
@@ -329,11 +351,11 @@ StepStats ParticleSystem::step(Integrator& integrator, double dt) {
   stats.sleeping = islands_->sleeping();
   // Tear: springs stretched past the limit break, decided once from the
   // step's end state, so every stage of the next step sees the same springs.
-  tearing_.tear(*this);
+  impl_->tearing.tear(*this);
   // Advance the clock.
   time_ += dt;
   const bool parallel = parallelRegions() > regions;
-  threadUse_.end(parallel);
+  impl_->threadUse.end(parallel);
   stats.threads = parallel ? threads : 1;
   lastStepStats_ = stats;
   return stats;

@@ -1,4 +1,4 @@
-#include "particles/step_continuation.h"
+#include "step_continuation.h"
 
 #include "particles/particle_system.h"
 

@@ -1,4 +1,4 @@
-#include "particles/thread_balance.h"
+#include "thread_balance.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "particles/thread_use.h"
+#include "thread_use.h"
 
 #include <algorithm>
 #include <chrono>

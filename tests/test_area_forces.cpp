@@ -20,7 +20,7 @@
 #include "particles/forces/spring.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
-#include "particles/xpbd/area.h"
+#include "xpbd/area.h"
 #include "test_support.h"
 
 using namespace particles;

@@ -8,14 +8,13 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "constraint_solver_probe.h"  // dense J and J̇ of the last solve
 
 #include "particles/constraints/circular_wire.h"
 #include "particles/constraints/line.h"
 #include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
 #include "test_support.h"
@@ -119,7 +118,7 @@ void expectSolveMatchesDenseSystem(ParticleSystem& system) {
   const ConstraintSolver& solver = system.solver();
   const SolverSettings& settings = solver.settings;
   const int n = system.size();
-  const MatrixXd J = ConstraintSolverProbe::denseJ(solver, n), Jdot = ConstraintSolverProbe::denseJdot(solver, n);
+  const MatrixXd J = solver.denseJ(n), Jdot = solver.denseJdot(n);
   const ConstraintTerms t = gatherIndependently(system);
   const VectorXd& v = system.velocities();
   EXPECT_EQ(J, t.J) << "the solver gathered rows other than the constraints'";
@@ -296,7 +295,7 @@ TEST(ConstraintSolver, StraightChainBetweenTwoWiresGivesFiniteSolve) {
       VectorXd a;
       for (int solve = 0; solve < 3; ++solve) {  // a repeated solve starts warm from the first
         system.acceleration(system.positions(), system.velocities(), a);
-        const MatrixXd J = ConstraintSolverProbe::denseJ(system.solver(), system.size());
+        const MatrixXd J = system.solver().denseJ(system.size());
         Eigen::FullPivLU<MatrixXd> lu(J * J.transpose());
         lu.setThreshold(1e-10);
         ASSERT_LT(lu.rank(), system.solver().stats().constraints) << "J W Jᵀ has full rank";

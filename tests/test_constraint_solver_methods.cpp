@@ -8,7 +8,6 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "constraint_solver_probe.h"  // dense J and J̇ of the last solve
 
 #include "particles/constraints/circular_wire.h"
 #include "particles/constraints/line.h"
@@ -72,7 +71,7 @@ std::unique_ptr<ParticleSystem> rodMesh(std::mt19937& rng, RodForm form) {
 // diagonal is zero — every particle pinned — have λ = 0).
 Eigen::VectorXd denseLambda(const ParticleSystem& s) {
   const ConstraintSolver& solver = s.solver();
-  const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(solver, s.size());
+  const Eigen::MatrixXd J = solver.denseJ(s.size());
   Eigen::VectorXd w2(2 * s.size());
   for (int i = 0; i < s.size(); ++i) w2.segment<2>(2 * i).setConstant(s.inverseMasses()[i]);
   Eigen::MatrixXd A = J * w2.asDiagonal() * J.transpose();
@@ -163,7 +162,7 @@ TEST(ConstraintSolverMethods, AChainsDirectSolveMatchesTheDenseSolve) {
       const Eigen::VectorXd expected = denseLambda(s);
       // From the second evaluation the chain's rods form it in their own pass
       // (rod_chain.h), the dead first row then assembled and factorised again.
-      EXPECT_EQ(ConstraintSolverProbe::rodChainPass(s.solver()), !closed && step > 0);
+      EXPECT_EQ(s.solver().stats().chainPass, !closed && step > 0);
       EXPECT_EQ(s.solver().lambda()[0], 0.0);
       EXPECT_LT((s.solver().lambda() - expected).norm(), 1e-9 * expected.norm()) << "step " << step;
       EXPECT_LT(s.lastSolve().residual, 1e-12);
@@ -209,15 +208,15 @@ TEST(ConstraintSolverMethods, AChainOfRodsOwnPassMatchesTheGather) {
     SCOPED_TRACE("evaluation " + std::to_string(step));
     chain->setPositions(chain->positions() + 0.002 * chain->velocities());
     chain->acceleration(chain->positions(), chain->velocities(), a);
-    EXPECT_EQ(ConstraintSolverProbe::rodChainPass(chain->solver()), step > 0);
+    EXPECT_EQ(chain->solver().stats().chainPass, step > 0);
     auto gathered = make();
     gathered->setPositions(chain->positions());
     gathered->setVelocities(chain->velocities());
     gathered->acceleration(gathered->positions(), gathered->velocities(), expectedA);
-    ASSERT_FALSE(ConstraintSolverProbe::rodChainPass(gathered->solver()));
+    ASSERT_FALSE(gathered->solver().stats().chainPass);
     const ConstraintSolver &own = chain->solver(), &generic = gathered->solver();
-    EXPECT_EQ(ConstraintSolverProbe::denseJ(own, n), ConstraintSolverProbe::denseJ(generic, n));
-    EXPECT_EQ(ConstraintSolverProbe::denseJdot(own, n), ConstraintSolverProbe::denseJdot(generic, n));
+    EXPECT_EQ(own.denseJ(n), generic.denseJ(n));
+    EXPECT_EQ(own.denseJdot(n), generic.denseJdot(n));
     EXPECT_LE((own.rhs() - generic.rhs()).norm(), 1e-14 * generic.rhs().norm());
     EXPECT_LE((own.lambda() - generic.lambda()).norm(), 1e-12 * generic.lambda().norm());
     EXPECT_LE((a - expectedA).norm(), 1e-12 * expectedA.norm());
@@ -244,11 +243,11 @@ TEST(ConstraintSolverMethods, ATautChainsDirectSolveIsDamped) {
   Eigen::VectorXd a;
   for (int evaluation = 0; evaluation < 2; ++evaluation) {
     s.acceleration(s.positions(), s.velocities(), a);
-    EXPECT_EQ(ConstraintSolverProbe::rodChainPass(s.solver()), evaluation > 0);
+    EXPECT_EQ(s.solver().stats().chainPass, evaluation > 0);
     EXPECT_TRUE(a.allFinite());
     EXPECT_TRUE(s.lastSolve().regularized);
     EXPECT_EQ(s.lastSolve().factorizations, 2);
-    const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
+    const Eigen::MatrixXd J = s.solver().denseJ(n);
     const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
     EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
   }
@@ -297,7 +296,7 @@ TEST(ConstraintSolverMethods, TautChainBetweenWiresStaysFiniteInEveryMethod) {
     // (J W Jᵀ + μ I) λ = b with μ = 1e-6·max diag, so |λ| ≤ |b|/μ.
     if (method.method == SolveMethod::Direct) {
       EXPECT_TRUE(s.lastSolve().regularized);
-      const Eigen::MatrixXd J = ConstraintSolverProbe::denseJ(s.solver(), n);
+      const Eigen::MatrixXd J = s.solver().denseJ(n);
       const double diagMax = (J * J.transpose()).diagonal().maxCoeff();  // unit masses: W = I
       EXPECT_LE(s.solver().lambda().norm(), s.solver().rhs().norm() / (1e-6 * diagMax) * (1.0 + 1e-9));
     }

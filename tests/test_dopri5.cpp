@@ -15,7 +15,7 @@
 #include "particles/collider.h"
 #include "particles/constraints/circular_wire.h"
 #include "particles/forces/gravity.h"
-#include "particles/integrators/dopri5.h"
+#include "integrators/dopri5.h"
 #include "particles/particle_system.h"
 #include "bench/rod_chain.h"
 #include "oscillator_fixture.h"

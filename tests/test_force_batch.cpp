@@ -16,15 +16,16 @@
 #include <stdexcept>
 
 #include "particles/constraints/rod.h"
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
-#include "particles/forces/spring_batch.h"
+#include "forces/spring_batch.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
-#include "particles/thread_balance.h"
+#include "thread_balance.h"
 #include "particles/threads.h"
 #include "scene.h"
+#include "system_internals.h"
 
 namespace {
 
@@ -411,7 +412,8 @@ TEST(ForceBatchThreads, AccelerationsThenSeesEachParticleOnceWithItsFinalAcceler
       const int n = cloth->size();
       Eigen::VectorXd a, seen = Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::quiet_NaN());
       std::vector<int> calls(static_cast<std::size_t>(n), 0);
-      cloth->acceleration(cloth->positions(), cloth->velocities(), a, [&](int begin, int end) {
+      particles::SystemInternals::acceleration(*cloth, cloth->positions(), cloth->velocities(), a,
+                                               [&](int begin, int end) {
         for (int i = begin; i < end; ++i) {
           ++calls[static_cast<std::size_t>(i)];
           seen.segment<2>(2 * i) = a.segment<2>(2 * i);
@@ -448,7 +450,8 @@ TEST(ForceBatchThreads, AccelerationsSequenceSeesEachParticleOnceAnEvaluationWit
       std::vector<int> stageOrder;  // then may run on several threads: appended under a lock
       Eigen::VectorXd a;
       cloth->takeEvaluationStats();
-      cloth->accelerations({{xs[0], vs[0]}, {xs[1], vs[1]}, {xs[2], vs[2]}}, a, [&](int k, int begin, int end) {
+      particles::SystemInternals::accelerations(*cloth, {{xs[0], vs[0]}, {xs[1], vs[1]}, {xs[2], vs[2]}}, a,
+                                                [&](int k, int begin, int end) {
 #pragma omp critical
         stageOrder.push_back(k);
         for (int i = begin; i < end; ++i) {
@@ -488,7 +491,7 @@ TEST(ForceBatchThreads, ThreadedTrajectoriesEqualOneThreadBitForBit) {
       system = std::move(built.system);
       dt = built.dt;
     }
-    system->threadUse().settings.adaptive = false;  // every step on `threads` threads, however fast
+    system->threadUse().adaptive = false;  // every step on `threads` threads, however fast
     particles::IntegratorSettings settings;
     settings.xpbd.lines = integratorName == "xpbd-lines";
     auto integrator = particles::makeIntegrator(settings.xpbd.lines ? "xpbd" : integratorName, settings);

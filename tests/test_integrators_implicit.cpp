@@ -17,7 +17,7 @@
 #include "particles/forces/gravity.h"
 #include "particles/forces/mouse_spring.h"
 #include "particles/forces/spring.h"
-#include "particles/integrators/implicit_euler.h"
+#include "integrators/implicit_euler.h"
 #include "particles/particle_system.h"
 #include "scenes/cloth.h"
 #include "scenes/pendulum.h"

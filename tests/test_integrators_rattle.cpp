@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "particles/constants.h"
-#include "particles/integrators/rattle.h"
+#include "integrators/rattle.h"
 #include "particles/particle_system.h"
 #include "scenes/pendulum.h"
 #include "scenes/test_chain.h"

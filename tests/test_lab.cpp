@@ -569,7 +569,7 @@ TEST(TimingQuick, WritesPositiveStepTimesForEveryIntegrator) {
     ++perIntegrator[row.at("integrator")];
   }
   std::size_t swept = 0;
-  for (const auto& info : particles::integratorTable()) swept += info.inLabSweeps;
+  for (const auto& info : particles::integratorTable()) swept += inLabSweeps(info.name);
   EXPECT_EQ(perIntegrator.size(), swept);
   const Table table3 = readCsv(o.outDir + "/table3_step_cost.csv",
                                {"integrator", "dt", "step_ms", "step_ms_min", "step_ms_max", "cg_iterations_per_step"});

@@ -19,7 +19,7 @@
 #include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
-#include "particles/integrators/implicit_euler.h"
+#include "integrators/implicit_euler.h"
 #include "particles/particle_system.h"
 #include "oscillator_fixture.h"
 #include "scene.h"

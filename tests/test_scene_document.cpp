@@ -9,7 +9,7 @@
 #include "build_mode.h"
 #include "build_tools.h"
 #include "edit_history.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/constants.h"
 #include "scene_document.h"
 #include "scene_file/scene_file.h"

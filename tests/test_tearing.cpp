@@ -15,6 +15,7 @@
 #include "particles/forces/wind.h"
 #include "particles/integrator.h"
 #include "particles/particle_system.h"
+#include "particles/tearing.h"
 #include "test_support.h"
 
 using namespace particles;

@@ -1,4 +1,4 @@
-// How many threads a system's steps run on (particles/thread_use.h): more
+// How many threads a system's steps run on (src/thread_use.h): more
 // threads while their steps are faster, one thread while a slow thread
 // makes them slower, more again once it is gone; with the same bits as one
 // thread throughout. The step times come from a simulated clock (a step on
@@ -11,10 +11,11 @@
 #include <vector>
 
 #include "bench/cloth_grid.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/particle_system.h"
-#include "particles/thread_use.h"
+#include "thread_use.h"
 #include "particles/threads.h"
+#include "system_internals.h"
 
 namespace {
 
@@ -343,17 +344,18 @@ TEST(ThreadUse, AStepsThreadsFollowASlowThreadWithTheOneThreadBits) {
   // The step's clock, read at its start and its end: the end adds the time
   // the step takes on the simulated machine on the threads it ran on.
   bool atEnd = false;
-  shared.threadUse().clock = [&] {
+  particles::ThreadUse& controller = particles::SystemInternals::threadUse(shared);
+  controller.clock = [&] {
     if (atEnd) machine.now += machine.stepTime(particles::threadCount());
     atEnd = !atEnd;
     return machine.now;
   };
-  shared.threadUse().handoff = [&](int) { return ThreadUse::HandOff{0.0, machine.handoffTime()}; };
+  controller.handoff = [&](int) { return ThreadUse::HandOff{0.0, machine.handoffTime()}; };
   machine.quickHandoff = true;  // the probes run their steps (on two threads, for real)
   // Probes of two threads every 20 one-thread steps, one step long while a thread is slow.
-  shared.threadUse().settings.quickestRetry = 0.02;
-  shared.threadUse().settings.longestRetry = 0.02;
-  shared.threadUse().settings.abandon = 2.5;
+  shared.threadUse().quickestRetry = 0.02;
+  shared.threadUse().longestRetry = 0.02;
+  shared.threadUse().abandon = 2.5;
   std::vector<int> used;
   for (int k = 0; k < steps; ++k) {
     machine.slowThread = k >= 40 && k < 100;
@@ -370,7 +372,7 @@ TEST(ThreadUse, AStepsThreadsFollowASlowThreadWithTheOneThreadBits) {
     return n;
   };
   // Probes every 0.02 s of simulated time (36 steps on two threads): at most one in 30 steps.
-  const int probeSteps = shared.threadUse().settings.probeSteps;
+  const int probeSteps = shared.threadUse().probeSteps;
   EXPECT_GE(range(10, 40, 2), 30 - probeSteps) << "quiet: two threads but for a probe of one";
   EXPECT_GE(range(50, 100, 1), 40) << "a slow thread: one thread but for probes";
   EXPECT_GE(range(130, 160, 2), 30 - probeSteps) << "quiet again: two threads but for a probe of one";

@@ -13,9 +13,9 @@
 #include "particles/constraints/line.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
-#include "particles/integrators/xpbd.h"
+#include "integrators/xpbd.h"
 #include "particles/particle_system.h"
-#include "particles/xpbd/hanging_lines.h"
+#include "xpbd/hanging_lines.h"
 #include "scenes/cloth.h"
 
 using namespace particles;

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "particles/tearing.h"
 #include "particles/threads.h"
 #include "cli/command.h"
 #include "cli/run_loop.h"

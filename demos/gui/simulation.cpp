@@ -8,6 +8,7 @@
 #include "particles/check.h"
 #include "particles/constants.h"
 #include "particles/forces/polygon_area.h"
+#include "particles/tearing.h"
 
 namespace demo {
 
@@ -209,7 +210,7 @@ std::optional<int> Simulation::particleNear(const Eigen::Vector2d& world, double
 
 particles::MouseSpringGains Simulation::grabGains(int particle, const particles::MouseJointSettings& joint) const {
   return particles::mouseSpringGains(particles::grabReach(system(), particle, spring_), joint,
-                                     integrator_->explicitForceStep(dt_));
+                                     particles::explicitForceStep(integrator_->name(), dt_));
 }
 
 void Simulation::grab(int particle, const Eigen::Vector2d& target, const particles::MouseJointSettings& joint) {

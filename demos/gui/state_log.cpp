@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "output/output_file.h"
+#include "particles/tearing.h"
 
 namespace demo {
 

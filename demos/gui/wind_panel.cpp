@@ -8,6 +8,7 @@
 #include "app.h"
 #include "output/format_number.h"
 #include "particles/constants.h"
+#include "particles/tearing.h"
 
 namespace demo {
 

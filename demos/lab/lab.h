@@ -100,9 +100,15 @@ std::string safeStepText(const Boundary& boundary);
 // Magnitude of the scene's gravity (0 without a gravity force).
 double gravityMagnitude(const particles::ParticleSystem& system);
 
+// Whether the laboratory's default sweeps over long chains and large scenes
+// (stability, timing, cost, extremes) run the integrator named `scheme`; one
+// left out is run there only when named (--integrators), and the long-time
+// and accuracy experiments on small scenes run every scheme.
+bool inLabSweeps(const std::string& scheme);
+
 // Integrators selected by the options, in table order: those named by
 // --integrators, else every scheme of the table (everyScheme) or those in the
-// laboratory's sweeps (IntegratorInfo::inLabSweeps).
+// laboratory's sweeps (inLabSweeps).
 std::vector<std::string> selectedIntegrators(const LabOptions& options, bool everyScheme = false);
 
 // Log-spaced values from lo to hi inclusive.

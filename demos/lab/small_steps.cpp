@@ -481,9 +481,9 @@ std::optional<Frames> timeXpbdFrames(const SmallStepsPlan& plan, int substeps, b
 std::optional<ThreadedFrames> timeThreadedXpbdFrames(const SmallStepsPlan& plan, int substeps) {
   scenes::Scene one = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
   scenes::Scene two = scenes::buildCloth(scenes::stiffClothParams(plan.clothSize));
-  // Two threads on every frame, not the engine's choice (particles/thread_use.h):
+  // Two threads on every frame, not the engine's choice (src/thread_use.h):
   // this compares the counts themselves.
-  two.system->threadUse().settings.adaptive = false;
+  two.system->threadUse().adaptive = false;
   particles::IntegratorSettings settings;
   settings.xpbd.substeps = substeps;
   auto xpbdOne = particles::makeIntegrator("xpbd", settings);

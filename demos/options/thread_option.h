@@ -1,7 +1,7 @@
 #pragma once
 // --threads of particle-lab run and particle-demo: the most threads the
 // engine's steps may use. The engine runs a step on them while they make it
-// faster and on one thread while they do not (particles/thread_use.h).
+// faster and on one thread while they do not (src/thread_use.h).
 #include <string>
 
 #include <CLI/CLI.hpp>

@@ -17,6 +17,7 @@
 #include "particles/integrator.h"
 #include "particles/solver_names.h"
 #include "particles/forces/face_area.h"
+#include "particles/tearing.h"
 #include "scene_file/codecs.h"
 #include "scene_file/json_parse.h"
 #include "scene_limits.h"

@@ -2,6 +2,7 @@
 #include <cstring>
 
 #include "particles/solver_names.h"
+#include "particles/tearing.h"
 #include "scene_file/codecs.h"
 #include "scene_file/scene_file.h"
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "particles/check.h"
+#include "particles/tearing.h"
 #include "scenes/world.h"
 
 namespace scenes {

@@ -68,6 +68,9 @@ struct SolveStats {
   bool regularized = false;
   // CG was asked for but solved directly: its work passed maxCgWork.
   bool directFallback = false;
+  // The rows came from a chain of rods' own pass (src/constraints/rod_chain.h),
+  // not from the generic gather.
+  bool chainPass = false;
 };
 
 // What the tools say when CG falls back to the direct solve: "CG on 8000
@@ -93,11 +96,12 @@ class ConstraintSolver {
 
   // The right-hand side b of the last solve (m).
   const Eigen::VectorXd& rhs() const { return b_; }
+  // J and J̇ of the last solve as dense m × 2n matrices for n particles: for
+  // checks on small systems (against finite differences, a dense solve).
+  Eigen::MatrixXd denseJ(int particleCount) const;
+  Eigen::MatrixXd denseJdot(int particleCount) const;
 
  private:
-  // Dense J and J̇ of the last solve, for the tests (src/constraint_solver_probe.h).
-  friend struct ConstraintSolverProbe;
-
   // A·y = J W Jᵀ y applied matrix-free, from the gathered rows.
   void applyOperator(const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
   // The rows, the assembled J W Jᵀ, its factorisations and the CG scratch

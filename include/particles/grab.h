@@ -23,8 +23,8 @@
 // Gravity shifts the particle by a constant M g/k that a move leaves alone.
 //
 // An integrator that applies the joint as an explicit force over a step h
-// (Integrator::explicitForceStep; 0 for implicit Euler and xpbd, which take
-// it implicitly) bounds both on p's own mass m:
+// (explicitForceStep below; 0 for implicit Euler and xpbd, which take it
+// implicitly) bounds both on p's own mass m:
 //   √(k/m) h ≤ 1 (kExplicitJointRate = 0.4 where a constraint holds p),
 //   c h/m ≤ 1/2
 // (measured: velocity Verlet on the cloth diverges at c h/m = 1 and holds at
@@ -34,6 +34,8 @@
 // test chain (rods of 0.1 m, dt 0.01) dragged 0.28 m at its tip diverges
 // under midpoint, RK4 and symplectic Euler at √(k/m) h = 1 and 0.52 and holds
 // at 0.42 and below, the demo's DemoCompare.MouseDragReachesEveryPane).
+#include <string>
+
 #include "particles/forces/mouse_spring.h"
 
 namespace particles {
@@ -62,6 +64,11 @@ struct GrabReach {
 // M and K of particle p at the system's present state; the force `ignore`
 // (the joint being replaced) is left out.
 GrabReach grabReach(const ParticleSystem& system, int particle, const Force* ignore = nullptr);
+
+// The step h over which the integrator named `scheme` applies the joint as an
+// explicit force: dt, or 0 for a scheme of the table that takes forces
+// implicitly (IntegratorInfo::implicitForces).
+double explicitForceStep(const std::string& scheme, double dt);
 
 struct MouseSpringGains {
   double stiffness;  // k, force / length

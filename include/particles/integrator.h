@@ -1,19 +1,91 @@
 #pragma once
-// The Integrator interface and the table of integrators selectable by name.
+// The Integrator interface, the settings a scheme may take, and the table of
+// integrators selectable by name (the schemes themselves: src/integrators/).
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "particles/integrators/dopri5_settings.h"
-#include "particles/integrators/implicit_euler_settings.h"
-#include "particles/integrators/xpbd_settings.h"
 #include "particles/step_stats.h"
 
 namespace particles {
 
 class ParticleSystem;
+
+// Dormand–Prince 5(4) (src/integrators/dopri5.h).
+struct Dopri5Settings {
+  // Local error allowed per internal step, mixed absolute and relative —
+  // error_i against tolerance·(1 + |y_i|) for every component of y = (x, v);
+  // dopri5.h gives the norm.
+  // 2e-5, the tightest value of the 1–2–5 series at which dopri5 on the
+  // 80-rod chain at dt 0.01 keeps within the engine's cost target of 1.6 RK4
+  // steps: 29 internal steps and 1 rejected per 30 output steps, 6.0
+  // evaluations per output step against RK4's 4, 1.54 RK4 steps in
+  // instructions (tests/bench/bench_step.cpp, scripts/callgrind-step.sh); it
+  // ends 0.35 s 4.8× closer to a tight reference than RK4 at that dt does
+  // (test Dopri5.TheDefaultToleranceBeatsRk4AtTheScenesStep prints both
+  // errors). At 1e-5 it took 33 internal steps (6.6 evaluations, 1.70 RK4
+  // steps) for 8.6× RK4's accuracy. The global error follows the tolerance
+  // (report, §3.4 "Accuracy: work against precision").
+  double tolerance = 2e-5;
+  // Below this the error estimate is dominated by rounding (the stages differ
+  // by a few ulps of y): a smaller tolerance is refused rather than chased.
+  static constexpr double minTolerance = 1e-13;
+  // Floor of the internal step, as a fraction of the interval dt of one call:
+  // a step the controller would shrink below it fails the call with
+  // StepFailure::StepBelowFloor instead of being accepted anyway.
+  double minStepFraction = 1e-9;
+  // Work cap: internal steps (accepted and rejected) one call may attempt
+  // before it fails with StepFailure::WorkCapReached.
+  long maxStepsPerCall = 100000;
+  // false: every call is one step of dt, no error control (order tests).
+  bool adaptive = true;
+
+  void validate() const;  // throws naming the bad field
+};
+
+// Implicit Euler (src/integrators/implicit_euler.h).
+enum class ImplicitLinearSolver {
+  Direct,             // LDLᵀ of the Newton passes' KKT matrix
+  ConjugateGradient,  // Jacobi-preconditioned CG on A; constrained systems use Direct
+};
+
+struct ImplicitEulerSettings {
+  // true: constraints inside the solve (the coupled scheme of src/integrators/implicit_euler.h). false: the constraint forces of
+  // the explicit solve (ConstraintSolver, k_s/k_d feedback) at the start state,
+  // held fixed through the step — the lagged scheme, kept for comparison.
+  bool coupledConstraints = true;
+  double stabilization = 1.0;          // β ∈ [0, 1]: fraction of C(x₀) removed in one step
+  int constraintPasses = 20;           // most Newton solves per step (≥ 1)
+  double constraintTolerance = 1e-10;  // relative residuals that end the passes (the stopping test)
+  // Add G, the constraints' geometric stiffness (Tournier et al.
+  // 2015). Without it the passes are Gauss–Newton and stall or diverge on a
+  // long chain, whose tension h²|λ| ∇²C outweighs M.
+  bool geometricStiffness = true;
+  double compliance = 1e-10;           // ε, relative to diag(J W Jᵀ)
+  ImplicitLinearSolver solver = ImplicitLinearSolver::ConjugateGradient;  // measured: tests/bench/bench_solvers.cpp
+  double cgTolerance = 1e-6;           // relative residual of the CG solves
+  int cgMaxIterations = 1000;
+
+  void validate() const;  // throws naming the bad field
+};
+
+// XPBD (src/integrators/xpbd.h).
+struct XpbdSettings {
+  // A step of dt is `substeps` substeps of h = dt/substeps, each with
+  // `iterations` Gauss–Seidel passes over the constraints. Macklin et al.
+  // 2019 favour many substeps of one pass; the defaults are measured by
+  // `particle-lab small-steps` (report, "Small steps").
+  int substeps = 20;     // in [1, 100000]
+  int iterations = 1;    // in [1, 10000]
+  // Solve each straight line of springs hanging from a held particle
+  // directly, before each pass's Gauss–Seidel sweep (src/xpbd/hanging_lines.h):
+  // a hanging cloth or strand then holds its length with a few substeps.
+  bool lines = false;
+
+  void validate() const;  // throws naming the bad field
+};
 
 // Settings an integrator may use, set by name from the command line and the
 // panel: one struct per scheme that has any. Fixed-step schemes ignore them;
@@ -46,12 +118,6 @@ class Integrator {
   // whole step (ParticleSystem::step) is then skipped.
   virtual bool collidesInSubsteps() const { return false; }
 
-  // The step over which this scheme applies a stiff force on one particle
-  // (the mouse joint) explicitly, which bounds how stiff that force may be
-  // (grab.h): dt for the explicit schemes; 0 for a scheme that takes it
-  // implicitly (implicit Euler through its Jacobians, xpbd in position form).
-  virtual double explicitForceStep(double dt) const { return dt; }
-
   // The internal step size last used; equals dt for fixed-step schemes.
   virtual double lastInternalStep() const { return lastStep_; }
 
@@ -78,11 +144,9 @@ struct IntegratorInfo {
   std::unique_ptr<Integrator> (*make)();
   bool usesTolerance = false;  // reads IntegratorSettings::dopri5 (tolerance, step floor, work cap)
   bool usesSubsteps = false;   // reads IntegratorSettings::xpbd (substeps, iterations)
-  // Part of the laboratory's default sweeps over long chains and large
-  // scenes (stability, timing, cost, extremes); a scheme left out is run there
-  // only when named (--integrators), and the long-time and accuracy experiments
-  // on small scenes run every scheme.
-  bool inLabSweeps = true;
+  // Takes stiff forces implicitly (implicit Euler through its Jacobians, xpbd
+  // in position form): no step bounds how stiff a force may be (grab.h).
+  bool implicitForces = false;
 };
 
 // Every integrator, in the order the demo cycles through them.

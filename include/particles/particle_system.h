@@ -1,6 +1,7 @@
 #pragma once
 // State (q, q̇, force accumulator, inverse masses), the force and constraint
 // objects acting on it, and the derivative evaluation that integrators drive.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -13,10 +14,6 @@
 #include "particles/constraint_solver.h"
 #include "particles/force.h"
 #include "particles/integrator.h"
-#include "particles/step_stats.h"
-#include "particles/tearing.h"
-#include "particles/thread_use.h"
-#include "particles/forces/force_batch.h"
 
 namespace particles {
 
@@ -29,6 +26,8 @@ struct Snapshot {
 class ContactPass;  // the collision phase of a step (src/collision/contact_pass.h)
 struct ContactScene;
 class Islands;      // islands and sleep (src/collision/islands.h)
+struct TearSettings;       // particles/tearing.h
+struct ThreadUseSettings;  // particles/threads.h
 
 class ParticleSystem {
  public:
@@ -78,10 +77,10 @@ class ParticleSystem {
   // Every link broken so far, (min, max), in the order they broke.
   const std::vector<std::array<int, 2>>& brokenLinks() const { return brokenLinks_; }
   // Springs that break when stretched too far, decided once per step.
-  TearSettings& tearing() { return tearing_.settings; }
-  const TearSettings& tearing() const { return tearing_.settings; }
+  TearSettings& tearing();
+  const TearSettings& tearing() const;
   // Links broken by the tear phase of the last step.
-  int tornLastStep() const { return tearing_.tornLastStep(); }
+  int tornLastStep() const;
 
   // --- state --------------------------------------------------------------
   int size() const { return static_cast<int>(mass_.size()); }
@@ -134,28 +133,8 @@ class ParticleSystem {
   // q̈ at (x, v): clear forces → apply forces → solve λ → add Jᵀλ → a = W(Q + Q̂).
   // The constraint solve is skipped when there are no constraints. Each call
   // is tallied (one force evaluation, the solve's statistics) for takeEvaluationStats().
-  // then(begin, end), when given, runs over ranges of particles covering them
-  // all once a's entries of those particles are final: fused into the force
-  // pass when nothing follows the forces, on threadCount() threads. Other
-  // ranges may still be reading x and v: then writes neither, and no entry of
-  // another range (ForceBatches::applyAndDivide).
-  void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a,
-                    const ParticleRange& then = {});
-  // acceleration() at points[0], points[1], … in turn, with then(k, begin,
-  // end) as evaluation k's then. A particle's point k + 1 is read only after
-  // then(k, ·) has run on every range whose particles its forces read, so
-  // points[k + 1] may be what then(k, ·) writes (the stages of an explicit
-  // Runge–Kutta method), and then(k, ·) may write what evaluation k − 1 read.
-  // then reads and writes the entries of its own range only: other ranges may
-  // meanwhile be in evaluation k − 1 or k + 1. a holds the last
-  // evaluation's accelerations. Without constraints the whole sequence is one
-  // pass of the force batches (one parallel region, ForceBatches::applyAndDivide);
-  // tallied as points.size() force evaluations.
-  struct StatePoint {
-    const Eigen::VectorXd& x;
-    const Eigen::VectorXd& v;
-  };
-  void accelerations(const std::vector<StatePoint>& points, Eigen::VectorXd& a, const StageRange& then);
+  // (The explicit schemes fuse their stages into this pass: src/system_internals.h.)
+  void acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& a);
   // The applied forces Q at (x, v) alone (every force object, no constraint
   // forces) into f: the first two phases of acceleration(), for schemes that
   // impose the constraints themselves (RATTLE). Tallied as one force evaluation.
@@ -181,12 +160,12 @@ class ParticleSystem {
   // skipped when off) → advance the clock. Throws std::invalid_argument for dt ≤ 0 or NaN.
   // Returns the integrator's statistics of the step, also kept as lastStepStats().
   // The step runs on threadUse()'s choice of threads, at most threadCount()
-  // (particles/thread_use.h), reported as StepStats::threads.
+  // (particles/threads.h), reported as StepStats::threads.
   StepStats step(Integrator& integrator, double dt);
   const StepStats& lastStepStats() const { return lastStepStats_; }
-  // How many threads step() uses, with its settings.
-  ThreadUse& threadUse() { return threadUse_; }
-  const ThreadUse& threadUse() const { return threadUse_; }
+  // How step() chooses its threads (particles/threads.h).
+  ThreadUseSettings& threadUse();
+  const ThreadUseSettings& threadUse() const;
 
   // Colliders or at least two collidable discs: step() has a collision phase.
   bool colliding() const;
@@ -214,13 +193,17 @@ class ParticleSystem {
   int sleeping() const;
 
  private:
-  friend class Integrator;  // advances x_ and v_ in place (Integrator::positionsOf)
+  friend class Integrator;       // advances x_ and v_ in place (Integrator::positionsOf)
+  friend struct SystemInternals;  // the engine's own passes over the system (src/system_internals.h)
+  // The force batches (forces_ as flat arrays, rebuilt on a structure
+  // change), the tear phase and the thread-use controller (src/particle_system.cpp).
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
   Eigen::VectorXd x_, v_, f_;
   Eigen::VectorXd mass_, inverseMass_, radius_;
   double time_ = 0.0;
   std::vector<std::unique_ptr<Force>> forces_;
   std::vector<Force*> clocked_;  // the time-dependent ones among forces_, told the clock each step
-  ForceBatches batches_;  // forces_ as flat arrays, rebuilt on a structure change
   ConstraintList constraints_;
   std::vector<Collider> colliders_;
   std::vector<CollisionEdge> edges_;
@@ -230,8 +213,6 @@ class ParticleSystem {
   std::unique_ptr<ContactPass> contacts_;
   std::unique_ptr<Islands> islands_;
   void wake();
-  Tearing tearing_;
-  ThreadUse threadUse_;
   StepStats evaluations_;  // tally of acceleration(); its internalSteps is not used
   StepStats lastStepStats_;
   std::uint64_t structureStamp_ = nextStructureStamp();

@@ -1,7 +1,10 @@
 #pragma once
 // The whole engine in one include: the particle system, its forces,
-// constraints, colliders and integrators.
+// constraints and colliders, and the integrators by name (integrator.h's
+// table: makeIntegrator("rk4")).
 //   #include <particles/particles.h>
+#include "particles/cancel.h"
+#include "particles/check.h"
 #include "particles/collider.h"
 #include "particles/collision.h"
 #include "particles/constants.h"
@@ -14,21 +17,15 @@
 #include "particles/force.h"
 #include "particles/forces/angular_spring.h"
 #include "particles/forces/drag.h"
+#include "particles/forces/face_area.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/mouse_spring.h"
+#include "particles/forces/polygon_area.h"
+#include "particles/forces/pressure.h"
 #include "particles/forces/spring.h"
 #include "particles/forces/wind.h"
 #include "particles/grab.h"
 #include "particles/integrator.h"
-#include "particles/integrators/dopri5.h"
-#include "particles/integrators/explicit_euler.h"
-#include "particles/integrators/implicit_euler.h"
-#include "particles/integrators/midpoint.h"
-#include "particles/integrators/rattle.h"
-#include "particles/integrators/rk4.h"
-#include "particles/integrators/symplectic_euler.h"
-#include "particles/integrators/verlet.h"
-#include "particles/integrators/xpbd.h"
 #include "particles/particle_system.h"
 #include "particles/phase.h"
 #include "particles/solver_names.h"

@@ -1,7 +1,6 @@
 #pragma once
 // A configuration at which forces and constraints are evaluated.
 #include <Eigen/Core>
-#include <functional>
 #include <vector>
 
 namespace particles {
@@ -20,20 +19,6 @@ struct Phase {
   Eigen::Vector2d velocity(int i) const { return v.segment<2>(2 * i); }
   int size() const { return static_cast<int>(mass.size()); }
 };
-
-// A pass over the particles [begin, end) (entries [2 begin, 2 end) of a 2n
-// vector), called over ranges that cover every particle, on several threads
-// at once when the caller runs in parallel.
-using ParticleRange = std::function<void(int begin, int end)>;
-// The same pass in the k-th of a sequence of evaluations (an integrator's
-// stages): particles [begin, end) of evaluation `stage`.
-using StageRange = std::function<void(int stage, int begin, int end)>;
-// Evaluation `stage`'s pass of then as a ParticleRange (empty when then is;
-// it refers to then, which must outlive it).
-inline ParticleRange stagePass(const StageRange& then, int stage) {
-  if (!then) return {};
-  return [&then, stage](int begin, int end) { then(stage, begin, end); };
-}
 
 // World-space primitives that describe a force or constraint for drawing,
 // so that the core knows nothing of OpenGL.

@@ -32,7 +32,7 @@ struct StepStats {
   int directFallbacks = 0;       // constraint solves asked of CG and solved directly (SolverSettings::maxCgWork)
   int sleeping = 0;              // particles asleep at the step's end (islands at rest: src/collision/islands.h)
   int threads = 1;  // threads the step's parallel loops ran on (ParticleSystem::step's choice,
-                    // particles/thread_use.h; 1 when the step entered no parallel region)
+                    // src/thread_use.h; 1 when the step entered no parallel region)
   StepFailure failure = StepFailure::None;  // the first failure, if any
 
   // Sums the counts, keeps the largest residual, the most sleeping, the most

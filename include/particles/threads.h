@@ -1,14 +1,34 @@
 #pragma once
 // How many threads the engine's parallel loops use (OpenMP). The results are
 // the same bits for any count: every parallel loop writes disjoint entries,
-// and sums keep the serial order (see forces/force_batch.h). With 1 (the
+// and sums keep the serial order (see src/forces/force_batch.h). With 1 (the
 // library's default) no parallel region is entered and no thread is started.
 //
 // setThreadCount() sets the most threads; each ParticleSystem::step then runs
-// on that many while they make its steps faster, else on one
-// (particles/thread_use.h), and threadCount() gives the parallel loops that
-// step's count.
+// on that many while they make its steps faster, else on one (the
+// ThreadUseSettings below, ParticleSystem::threadUse()), and threadCount()
+// gives the parallel loops that step's count.
+//
+// How a step chooses: the steps on the present count are timed (the mean of
+// the last `history`). Now and then a probe runs `probeSteps` steps on the
+// other count, and the faster count is kept: more threads while the mean of
+// their steps is at most `gain` times one thread's (the whole rule, with its
+// waits and hand-offs, in src/thread_use.h).
 namespace particles {
+
+struct ThreadUseSettings {
+  bool adaptive = true;         // false: every step on the most threads
+  double gain = 0.9;            // more threads are kept while they take at most gain × one thread's time
+  int history = 5;              // steps whose mean is the present count's time
+  int probeSteps = 3;           // steps on the other count in a probe
+  double abandon = 4.0;         // a probe step over abandon × the present median ends the probe
+  double handoff = 0.5;         // a probe's first hand-off over handoff × one thread's step ends it
+  double probeShare = 0.01;     // probes that lose cost at most this share of the time
+  double quickestRetry = 0.05;  // s: the shortest wait before probing the other count again
+  double longestRetry = 5.0;    // s: the longest
+
+  void validate() const;  // throws naming the bad field
+};
 
 // Sets the most threads; std::invalid_argument unless count >= 1.
 void setThreadCount(int count);

@@ -1,4 +1,4 @@
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "particles/forces/spring_batch.h"
+#include "forces/spring_batch.h"
 
 #include <algorithm>
 #include <cmath>

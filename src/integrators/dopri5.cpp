@@ -1,4 +1,4 @@
-#include "particles/integrators/dopri5.h"
+#include "integrators/dopri5.h"
 
 #include <algorithm>
 #include <array>

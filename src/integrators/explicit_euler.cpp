@@ -1,4 +1,4 @@
-#include "particles/integrators/explicit_euler.h"
+#include "integrators/explicit_euler.h"
 
 #include "particles/particle_system.h"
 

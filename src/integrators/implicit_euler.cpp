@@ -1,4 +1,4 @@
-#include "particles/integrators/implicit_euler.h"
+#include "integrators/implicit_euler.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,7 @@
-#include "particles/integrators/midpoint.h"
+#include "integrators/midpoint.h"
 
 #include "particles/particle_system.h"
+#include "system_internals.h"
 #include "vector_kernels.h"
 
 namespace particles {
@@ -31,14 +32,14 @@ void fullStep(double* x, double* v, const double* vMid, const double* a, int beg
 
 }  // namespace
 
-// The two evaluations are one sequence (ParticleSystem::accelerations): the
+// The two evaluations are one sequence (SystemInternals::accelerations): the
 // midpoint is written range by range in the first one's force pass, and the
 // step over y in the second's, so that a step is two passes over the particles.
 StepStats MidpointIntegrator::step(ParticleSystem& system, double dt) {
   Eigen::VectorXd& x = positionsOf(system);
   Eigen::VectorXd& v = velocitiesOf(system);
   for (Eigen::VectorXd* w : {&xMid_, &vMid_, &a_}) w->resize(x.size());
-  system.accelerations({{x, v}, {xMid_, vMid_}}, a_, [&](int stage, int begin, int end) {
+  SystemInternals::accelerations(system, {{x, v}, {xMid_, vMid_}}, a_, [&](int stage, int begin, int end) {
     if (stage == 0)
       halfStep(x.data(), v.data(), a_.data(), xMid_.data(), vMid_.data(), 2 * begin, 2 * end, 0.5 * dt);
     else

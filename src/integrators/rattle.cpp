@@ -1,4 +1,4 @@
-#include "particles/integrators/rattle.h"
+#include "integrators/rattle.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,7 @@
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 
 #include "particles/particle_system.h"
+#include "system_internals.h"
 #include "vector_kernels.h"
 
 namespace particles {
@@ -61,7 +62,7 @@ void lastStage(const Stage& s, int begin, int end, double h6) {
 // For y = (x, v) and y' = (v, a(x, v)), the four stages are evaluated at
 // y, y + (h/2) k1, y + (h/2) k2, y + h k3; dx_, dv_ accumulate the weighted
 // sum. Each stage's combination runs in its force pass, particle range by
-// particle range (ParticleSystem::accelerations's then), so a step is four
+// particle range (SystemInternals::accelerations's then), so a step is four
 // passes over the particles, evaluated as one sequence (one parallel region
 // when the forces allow); the stage points alternate between (xs_, vs_) and
 // (xt_, vt_). The start y0 is the system's own state, read until the last
@@ -83,9 +84,10 @@ StepStats Rk4Integrator::step(ParticleSystem& system, double dt) {
                         {stage(xs_, vs_, xt_, vt_), middleStage, 0.5 * dt},  // k2
                         {stage(xt_, vt_, xs_, vs_), middleStage, dt},        // k3
                         {stage(xs_, vs_, xs_, vs_), lastStage, dt / 6.0}};   // k4
-  system.accelerations({{x, v}, {xs_, vs_}, {xt_, vt_}, {xs_, vs_}}, a_, [&](int k, int begin, int end) {
-    rules[k].combine(rules[k].stage, 2 * begin, 2 * end, rules[k].c);
-  });
+  SystemInternals::accelerations(system, {{x, v}, {xs_, vs_}, {xt_, vt_}, {xs_, vs_}}, a_,
+                                 [&](int k, int begin, int end) {
+                                   rules[k].combine(rules[k].stage, 2 * begin, 2 * end, rules[k].c);
+                                 });
   lastStep_ = dt;
   return system.takeEvaluationStats();
 }

@@ -1,4 +1,4 @@
-#include "particles/integrators/symplectic_euler.h"
+#include "integrators/symplectic_euler.h"
 
 #include "particles/particle_system.h"
 

@@ -1,4 +1,4 @@
-#include "particles/integrators/verlet.h"
+#include "integrators/verlet.h"
 
 #include "particles/particle_system.h"
 

@@ -1,4 +1,4 @@
-#include "particles/integrators/xpbd.h"
+#include "integrators/xpbd.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -14,7 +14,7 @@
 #include "particles/forces/spring.h"
 #include "particles/particle_system.h"
 #include "particles/threads.h"
-#include "particles/xpbd/constraint_projection.h"
+#include "xpbd/constraint_projection.h"
 #include "vector_kernels.h"
 
 namespace particles {

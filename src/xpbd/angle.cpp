@@ -1,4 +1,4 @@
-#include "particles/xpbd/angle.h"
+#include "xpbd/angle.h"
 
 #include "particles/forces/angular_spring.h"
 

@@ -1,4 +1,4 @@
-#include "particles/xpbd/area.h"
+#include "xpbd/area.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "particles/xpbd/attachment.h"
+#include "xpbd/attachment.h"
 
 namespace particles {
 

@@ -1,4 +1,4 @@
-#include "particles/xpbd/constraint_projection.h"
+#include "xpbd/constraint_projection.h"
 
 #include "particles/phase.h"
 

@@ -1,4 +1,4 @@
-#include "particles/xpbd/distance.h"
+#include "xpbd/distance.h"
 
 #include <algorithm>
 #include <array>

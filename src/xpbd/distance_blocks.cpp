@@ -1,4 +1,4 @@
-#include "particles/xpbd/distance_blocks.h"
+#include "xpbd/distance_blocks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "parallel_for.h"
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 #include "particles/threads.h"
 
 namespace particles {

@@ -1,4 +1,4 @@
-#include "particles/xpbd/hanging_lines.h"
+#include "xpbd/hanging_lines.h"
 
 #include <algorithm>
 #include <cmath>

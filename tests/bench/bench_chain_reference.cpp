@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "particles/constraints/rod.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "plain_rk4.h"
 #include "repetition_reporter.h"
 #include "rod_chain.h"

@@ -29,7 +29,7 @@
 #include "cloth_grid.h"
 #include "plain_rk4.h"
 #include "repetition_reporter.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/threads.h"
 
 namespace {
@@ -129,7 +129,7 @@ void engineStep(benchmark::State& state, int size, int threads) {
   particles::setThreadCount(1);
   benchmark::DoNotOptimize(s.positions().data());
   state.counters["particles"] = s.size();
-  // The threads the steps ran on, on average (ParticleSystem::step chooses: particles/thread_use.h).
+  // The threads the steps ran on, on average (ParticleSystem::step chooses: src/thread_use.h).
   state.counters["threads"] = steps ? static_cast<double>(threadSteps) / steps : 0.0;
 }
 

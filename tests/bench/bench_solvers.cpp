@@ -29,8 +29,8 @@
 #include "particles/constraints/rod.h"
 #include "particles/forces/gravity.h"
 #include "particles/forces/spring.h"
-#include "particles/integrators/implicit_euler.h"
-#include "particles/integrators/rk4.h"
+#include "integrators/implicit_euler.h"
+#include "integrators/rk4.h"
 #include "particles/particle_system.h"
 
 using namespace particles;

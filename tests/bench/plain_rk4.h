@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "particles/integrators/rk4.h"
+#include "integrators/rk4.h"
 #include "particles/particle_system.h"
 
 namespace bench {

@@ -3,7 +3,7 @@
 // rest length 0 (the mouse joint, forces/mouse_spring.h) in position form.
 #include <Eigen/Core>
 
-#include "particles/xpbd/multiplier.h"
+#include "xpbd/multiplier.h"
 
 namespace particles {
 

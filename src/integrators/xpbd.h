@@ -6,13 +6,13 @@
 
 #include "particles/collision.h"
 #include "particles/force.h"
-#include "particles/forces/force_batch.h"
+#include "forces/force_batch.h"
 #include "particles/integrator.h"
-#include "particles/xpbd/angle.h"
-#include "particles/xpbd/area.h"
-#include "particles/xpbd/attachment.h"
-#include "particles/xpbd/distance_blocks.h"
-#include "particles/xpbd/hanging_lines.h"
+#include "xpbd/angle.h"
+#include "xpbd/area.h"
+#include "xpbd/attachment.h"
+#include "xpbd/distance_blocks.h"
+#include "xpbd/hanging_lines.h"
 
 namespace particles {
 
@@ -47,7 +47,6 @@ class XpbdIntegrator : public Integrator {
   const char* name() const override { return "xpbd"; }
   bool collidesInSubsteps() const override { return true; }
   // The mouse joint is projected as a compliant attachment, stable at any stiffness.
-  double explicitForceStep(double) const override { return 0.0; }
   StepStats step(ParticleSystem& system, double dt) override;
   // Takes IntegratorSettings::xpbd (validated first).
   void configure(const IntegratorSettings& settings) override;

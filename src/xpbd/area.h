@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "particles/xpbd/multiplier.h"
+#include "xpbd/multiplier.h"
 
 namespace particles {
 

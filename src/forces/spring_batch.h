@@ -27,8 +27,9 @@
 
 #include <Eigen/Core>
 
+#include "particle_range.h"
 #include "particles/phase.h"
-#include "particles/thread_balance.h"
+#include "thread_balance.h"
 
 namespace particles {
 

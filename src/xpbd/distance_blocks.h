@@ -9,9 +9,10 @@
 
 #include <Eigen/Core>
 
+#include "particle_range.h"
 #include "particles/phase.h"
-#include "particles/thread_balance.h"
-#include "particles/xpbd/distance.h"
+#include "thread_balance.h"
+#include "xpbd/distance.h"
 
 namespace particles {
 

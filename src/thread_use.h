@@ -40,22 +40,12 @@
 #include <functional>
 #include <vector>
 
+#include "particles/threads.h"
+
 namespace particles {
 
-struct ThreadUseSettings {
-  bool adaptive = true;         // false: every step on the most threads
-  double gain = 0.9;            // more threads are kept while they take at most gain × one thread's time
-  int history = 5;              // steps whose mean is the present count's time
-  int probeSteps = 3;           // steps on the other count in a probe
-  double abandon = 4.0;         // a probe step over abandon × the present median ends the probe
-  double handoff = 0.5;         // a probe's first hand-off over handoff × one thread's step ends it
-  double probeShare = 0.01;     // probes of more threads that lose cost at most this share of the time
-  double quickestRetry = 0.05;  // s: the shortest wait before probing more threads again
-  double longestRetry = 5.0;    // s: the longest
-
-  void validate() const;  // throws naming the bad field
-};
-
+// The controller behind ParticleSystem::threadUse(): the engine's own
+// (src/), with ThreadUseSettings public in particles/threads.h.
 class ThreadUse {
  public:
   ThreadUseSettings settings;

@@ -20,7 +20,6 @@ namespace particles {
 class ImplicitEulerIntegrator : public Integrator {
  public:
   // Every force enters through its Jacobians: the mouse joint may be as stiff as it likes.
-  double explicitForceStep(double) const override { return 0.0; }
   // Takes IntegratorSettings::implicitEuler (validated first).
   void configure(const IntegratorSettings& settings) override;
   const ImplicitEulerSettings& settings() const { return settings_; }

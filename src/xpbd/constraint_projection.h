@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 
 #include "particles/constraint.h"
-#include "particles/xpbd/multiplier.h"
+#include "xpbd/multiplier.h"
 
 namespace particles {
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "particles/thread_balance.h"
-#include "particles/xpbd/multiplier.h"
+#include "thread_balance.h"
+#include "xpbd/multiplier.h"
 
 namespace particles {
 

@@ -2,7 +2,7 @@
 // Compliant angle constraint: an angle spring in position form.
 #include <Eigen/Core>
 
-#include "particles/xpbd/multiplier.h"
+#include "xpbd/multiplier.h"
 
 namespace particles {
 

@@ -19,8 +19,9 @@
 
 #include <Eigen/Core>
 
+#include "particle_range.h"
 #include "particles/force.h"
-#include "particles/forces/spring_batch.h"
+#include "forces/spring_batch.h"
 
 namespace particles {
 

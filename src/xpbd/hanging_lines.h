@@ -35,7 +35,7 @@
 
 #include "particles/constraint.h"
 #include "particles/phase.h"
-#include "particles/xpbd/distance.h"
+#include "xpbd/distance.h"
 
 namespace particles {
 

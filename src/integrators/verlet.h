@@ -2,7 +2,7 @@
 #include <Eigen/Core>
 
 #include "particles/integrator.h"
-#include "particles/step_continuation.h"
+#include "step_continuation.h"
 
 namespace particles {
 

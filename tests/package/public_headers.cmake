@@ -1,0 +1,41 @@
+# Installs this build into a fresh prefix and checks the public API it holds:
+# at most MAX_HEADERS headers under include/particles (Box2D v3 installs 8;
+# the machinery stays in src/), and every header self-contained in the
+# installed tree: each "particles/…" it includes is installed, and it includes
+# no other header of this project by a quoted path (a src/ header that a user
+# does not have).
+#   cmake -DBUILD_DIR=... -DWORK_DIR=... -DMAX_HEADERS=30 -P public_headers.cmake
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+set(root ${prefix}/include)
+file(GLOB_RECURSE headers RELATIVE ${root} ${root}/particles/*)
+list(LENGTH headers count)
+if(count EQUAL 0)
+  message(FATAL_ERROR "no headers installed under ${root}/particles")
+endif()
+set(problems "")
+if(count GREATER MAX_HEADERS)
+  string(REPLACE ";" "\n  " listed "${headers}")
+  string(APPEND problems "${count} headers installed, more than ${MAX_HEADERS}:\n  ${listed}\n")
+endif()
+foreach(header IN LISTS headers)
+  file(STRINGS ${root}/${header} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[\"<]")
+  foreach(line IN LISTS lines)
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*([\"<])([^\">]*)[\">].*$" "\\1;\\2" parsed "${line}")
+    list(GET parsed 0 delimiter)
+    list(GET parsed 1 included)
+    if(included MATCHES "^particles/")
+      if(NOT EXISTS ${root}/${included})
+        string(APPEND problems "${header} includes ${included}, which is not installed\n")
+      endif()
+    elseif(delimiter STREQUAL "\"")
+      string(APPEND problems "${header} includes \"${included}\", which is not an installed header (particles/…)\n")
+    endif()
+  endforeach()
+endforeach()
+if(problems)
+  message(FATAL_ERROR "${problems}")
+endif()
+message(STATUS "public headers: ${count} installed (at most ${MAX_HEADERS}), each including installed headers only")
