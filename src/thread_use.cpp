@@ -189,13 +189,12 @@ void ThreadUse::finishProbe() {
 // The next probe waits twice as long as the last that lost, and long
 // enough for this one's cost to be at most probeShare of the time until then.
 void ThreadUse::lost(double cost, bool releaseFollows) {
-  const double doubled = lostInARow_ > 0 ? 2.0 * retry_ : settings.quickestRetry;
-  retry_ = std::clamp(std::max(doubled, cost / settings.probeShare), settings.quickestRetry, settings.longestRetry);
+  retry_ = lostInARow_ > 0 ? 2.0 * retry_ : settings.quickestRetry;
   ++lostInARow_;
-  lostCost_ = cost;
+  lostCost_ = 0.0;
   lostAt_ = now_;
   releaseCharged_ = releaseFollows;
-  nextProbe_ = lostAt_ + retry_;
+  charge(cost);
 }
 
 void ThreadUse::charge(double seconds) {
