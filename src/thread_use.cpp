@@ -103,7 +103,7 @@ int ThreadUse::begin(int most, std::uint64_t structure) {
         if (times.trip > settings.handoff * median(presentTimes_)) {
           probing_ = false;
           now_ += probeStart_;
-          lost(probeStart_, true);
+          lost(probeStart_);
         }
       }
     }
@@ -181,21 +181,20 @@ void ThreadUse::finishProbe() {
     otherMean_ = probe;
     double cost = probeStart_;
     for (const double t : probeTimes_) cost += std::max(0.0, t - present);
-    lost(cost, other == most_);
+    lost(cost);
   }
   probeTimes_.clear();
 }
 
 // The next probe waits twice as long as the last that lost, and long
 // enough for this one's cost to be at most probeShare of the time until then.
-void ThreadUse::lost(double cost, bool releaseFollows) {
-  const double doubled = lostInARow_ > 0 ? 2.0 * retry_ : settings.quickestRetry;
-  retry_ = std::clamp(std::max(doubled, cost / settings.probeShare), settings.quickestRetry, settings.longestRetry);
+void ThreadUse::lost(double cost) {
+  retry_ = lostInARow_ > 0 ? 2.0 * retry_ : settings.quickestRetry;
   ++lostInARow_;
-  lostCost_ = cost;
+  lostCost_ = 0.0;
   lostAt_ = now_;
-  releaseCharged_ = releaseFollows;
-  nextProbe_ = lostAt_ + retry_;
+  releaseCharged_ = present_ == 1;  // a probe of more threads: their release comes next
+  charge(cost);
 }
 
 void ThreadUse::charge(double seconds) {

@@ -79,9 +79,10 @@ class ThreadUse {
   bool probeDecided() const;
   void finishProbe();
   // A probe lost, at `cost` beyond what the present count took: the next one waits longer.
-  // releaseFollows: the threads it started are released next, and that adds to its cost.
-  void lost(double cost, bool releaseFollows);
-  // The release of the threads a lost probe started, `seconds` more of its cost.
+  // On one thread the lost probe was of more, whose release comes next and adds to its cost.
+  void lost(double cost);
+  // `seconds` more of what the last lost probe cost (its start and steps, then the release of its
+  // threads): the wait before the next grows to keep that within probeShare of it.
   void charge(double seconds);
 
   int most_ = 0;
