@@ -12,23 +12,31 @@
 # one-thread time measured in the same conditions, then the share of
 # --threads 2's steps that ran on more than one thread (the CSV's threads)
 # and the range over the rounds of each round's --threads 2 and default time
-# over its one-thread time (the spread of the ratios), then the median over
+# over its one-thread time (the spread of the ratios) with the median of those
+# paired ratios (beside two busy programs the kernel leaves one of three busy
+# threads a core to itself, and which one changes from run to run: the ratio
+# of two medians over the rounds then compares runs of different placements,
+# where a round's own ratio compares runs a few seconds apart), then the median over
 # the rounds of each round's ratio of mean step times (the run's wall time
 # stepping over its steps: beside busy programs a run's steps are often
 # bimodal, a core to itself or shared with one of them, and its median step
 # then tells which phase the run mostly saw, where the mean is what it cost).
-#   bash scripts/threads-under-load.sh [build-dir] [rounds] [step-scale]
-# (defaults: build, 5, 1: about a second per run; a step-scale of 0.01 is a
-# quick check of the script itself.) No number here is asserted anywhere.
+#   bash scripts/threads-under-load.sh [build-dir] [rounds] [step-scale] [busy counts]
+# (defaults: build, 5, 1, "0 1 2": about a second per run; a step-scale of
+# 0.01 is a quick check of the script itself; busy counts "2" runs only the
+# cases beside two busy processes.) No number here is asserted anywhere.
 set -euo pipefail
 build=${1:-build}
 rounds=${2:-5}
 scale=${3:-1}
+levels=${4:-0 1 2}
 lab="$build/demos/particle-lab"
 [ -x "$lab" ] || { echo "threads-under-load: no $lab (build the particle-lab target first)" >&2; exit 2; }
 [[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "threads-under-load: rounds must be a positive integer, got '$rounds'" >&2; exit 2; }
 [[ "$scale" =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ ]] && awk -v s="$scale" 'BEGIN { exit !(s > 0) }' ||
   { echo "threads-under-load: step-scale must be a number > 0, got '$scale'" >&2; exit 2; }
+[[ "$levels" =~ ^[0-9]+( [0-9]+)*$ ]] ||
+  { echo "threads-under-load: busy counts must be whole numbers separated by spaces, got '$levels'" >&2; exit 2; }
 
 work=$(mktemp -d)
 busy=()
@@ -67,10 +75,10 @@ run() {
 median() { sort -g | awk '{ v[NR] = $1 } END { print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 echo "threads under load: $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)); medians over $rounds runs of each run's median step_us"
-printf '%-22s %4s %10s %20s %20s %8s %11s %11s %8s %8s %s\n' case busy "1 thread" "--threads 2" "default" ">1 used" \
-  "2/1 range" "def/1 range" "mean 2/1" "mean d/1" "load average"
+printf '%-22s %4s %10s %20s %20s %8s %17s %17s %8s %8s %s\n' case busy "1 thread" "--threads 2" "default" ">1 used" \
+  "2/1 round (range)" "d/1 round (range)" "mean 2/1" "mean d/1" "load average"
 settings=("--threads 1" "--threads 2" "")
-for competitors in 0 1 2; do
+for competitors in $levels; do
   for ((c = 0; c < competitors; ++c)); do
     yes threads-under-load >/dev/null &  # named, so that a test can tell they are gone
     busy+=($!)
@@ -101,14 +109,17 @@ for competitors in 0 1 2; do
              if (NR == 1 || a < alo) alo = a; if (NR == 1 || a > ahi) ahi = a
              if (NR == 1 || b < blo) blo = b; if (NR == 1 || b > bhi) bhi = b }
            END { printf "%.2f-%.2f %.2f-%.2f", alo, ahi, blo, bhi }')
+    round2=$(paste "$work/times-0" "$work/times-1" | awk '{ print $2 / $1 }' | median)
+    rounddef=$(paste "$work/times-0" "$work/times-2" | awk '{ print $2 / $1 }' | median)
     mean2=$(paste "$work/means-0" "$work/means-1" | awk '{ print $2 / $1 }' | median)
     meandef=$(paste "$work/means-0" "$work/means-2" | awk '{ print $2 / $1 }' | median)
     awk -v name="$name" -v busy="$competitors" -v one="$one" -v two="$two" -v def="$default" \
       -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" -v spread="$spread" \
-      -v mean2="$mean2" -v meandef="$meandef" \
+      -v mean2="$mean2" -v meandef="$meandef" -v round2="$round2" -v rounddef="$rounddef" \
       'BEGIN { used = more < 0 ? "-" : sprintf("%.0f%%", 100 * more); split(spread, range, " ")
-               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %11s %11s %7.2fx %7.2fx %s\n",
-                      name, busy, one, two, two / one, def, def / one, used, range[1], range[2], mean2, meandef, load }'
+               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %4.2f (%s) %4.2f (%s) %7.2fx %7.2fx %s\n",
+                      name, busy, one, two, two / one, def, def / one, used, round2, range[1], rounddef, range[2],
+                      mean2, meandef, load }'
   done
   stop_busy
 done

@@ -74,9 +74,12 @@ ThreadUse::ThreadUse() : clock(steadySeconds), handoff(emptyRegionSeconds), rele
 
 // The clock is read once a step at each end: a decision uses the time the last step ended.
 int ThreadUse::begin(int most, std::uint64_t structure) {
+  const bool lastUntimed = untimed_;
+  untimed_ = false;
   if (structure != structure_) {
     structure_ = structure;
     nothingToShare_ = false;
+    untimed_ = !lastUntimed;
   }
   if (most != most_) {  // a new setting: start over on one thread, probing once the history is in
     most_ = most;
@@ -132,6 +135,7 @@ void ThreadUse::end(bool parallel) {
   if (most_ <= 1 || !settings.adaptive) return;
   now_ = clock();
   const double seconds = now_ - started_;
+  if (untimed_) return;
   if (threads_ > 1 && !parallel) {  // nothing to share: one thread, no more probes for this structure
     nothingToShare_ = true;
     probing_ = false;

@@ -31,6 +31,11 @@
 //   steps took beyond one thread's.
 // - A probe step slower than `abandon` times the present median ends its
 //   probe too.
+// The first step after the system's structure changes is not timed (its
+// caches are built then: a scene's first step took three times the next
+// ones, which made a probe of two threads win falsely), unless the step
+// before it was left out too: a structure that changes every step still
+// has every other step timed.
 // A step on more threads that entered no parallel region (a system below
 // every parallel loop's threshold) ends the probing until the system's
 // structure changes: its threads have nothing to share.
@@ -103,6 +108,7 @@ class ThreadUse {
   double lostAt_ = 0.0;        // clock time it ended
   bool releaseCharged_ = false;  // the next release is the lost probe's
   std::uint64_t structure_ = 0;
+  bool untimed_ = false;         // the step begun is not timed: the first after a structure change
   bool nothingToShare_ = false;  // a step on more threads entered no region: no probes
 };
 

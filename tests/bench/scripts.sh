@@ -24,6 +24,8 @@ expect load-no-build 2 "^threads-under-load: no $WORK/none/demos/particle-lab \(
   "$load" "$WORK/none"
 expect load-rounds 2 "^threads-under-load: rounds must be a positive integer, got '0'$" -- "$load" "$build" 0
 expect load-scale 2 "^threads-under-load: step-scale must be a number > 0, got '-1'$" -- "$load" "$build" 1 -1
+expect load-levels 2 "^threads-under-load: busy counts must be whole numbers separated by spaces, got '2,x'$" -- \
+  "$load" "$build" 1 1 2,x
 expect frames-load 2 "^demo-frame-times: --load takes a count >= 0, got 'x'$" -- "$frames" --load x
 expect frames-threads 2 "^demo-frame-times: --threads takes a count >= 1, got '0'$" -- "$frames" --threads 0
 expect frames-option 2 "^demo-frame-times: unknown option '--fast' \(--load N, --threads N, --key K\)$" -- "$frames" --fast
@@ -55,9 +57,9 @@ outputs speedup-one-round "$speedup" "$build" 64 1 -- \
 # One round of every case and load at a hundredth of the steps: the script's table, and its
 # busy processes gone afterwards.
 outputs load-one-round "$load" "$build" 1 0.01 -- \
-  "^case +busy +1 thread +--threads 2 +default +>1 used +2/1 range +def/1 range +mean 2/1 +mean d/1 +load average$" \
-  "^cloth 64\^2 rk4 +0 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ +[0-9.]+x +[0-9.]+x [0-9.]+$" \
-  "^stiff 64\^2 xpbd 1/60 +2 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+-[0-9.]+ +[0-9.]+-[0-9.]+ +[0-9.]+x +[0-9.]+x [0-9.]+$"
+  "^case +busy +1 thread +--threads 2 +default +>1 used +2/1 round \(range\) +d/1 round \(range\) +mean 2/1 +mean d/1 +load average$" \
+  "^cloth 64\^2 rk4 +0 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+ \([0-9.]+-[0-9.]+\) +[0-9.]+ \([0-9.]+-[0-9.]+\) +[0-9.]+x +[0-9.]+x [0-9.]+$" \
+  "^stiff 64\^2 xpbd 1/60 +2 +[0-9.]+ us +[0-9.]+ us \( *[0-9.]+x\) +[0-9.]+ us \( *[0-9.]+x\) +[0-9]+% +[0-9.]+ \([0-9.]+-[0-9.]+\) +[0-9.]+ \([0-9.]+-[0-9.]+\) +[0-9.]+x +[0-9.]+x [0-9.]+$"
 if pgrep -f '^yes threads-under-load$' >/dev/null; then fail "load-one-round: its busy processes are still running"; fi
 if command -v valgrind >/dev/null; then
   outputs callgrind-counts "$callgrind" "$build" -- \
