@@ -58,47 +58,47 @@ inline Rgb strainColour(Rgb rest, double strain) {
 inline Rgb constraintColour(Rgb kind, double relativeForce) { return mix(kind, constraintLoaded, relativeForce); }
 }  // namespace palette
 
-// Arrow colour of each force type ("f"), by Force::type(), and of the
-// constraint force Jᵀλ ("constraint"); a type not listed draws in
-// palette::otherForceArrow.
-struct ForceColour {
+// The colours of each force and constraint type, by type(): the arrows of
+// its load on the particles ("constraint": Jᵀλ, which is no object's) and
+// the lines it sketches. A type not listed draws arrows in
+// palette::otherForceArrow and lines in palette::spring. One row per type,
+// as the scene file's codecs (scene_file/force_codecs.cpp) and the engine's
+// fast paths (src/forces/force_kinds.cpp).
+struct TypeColours {
   const char* type;
-  Rgb colour;
+  Rgb arrow;
+  Rgb line;
 };
-constexpr ForceColour forceArrowColours[] = {
-    {"gravity", {90, 200, 255}},
-    {"spring", {255, 140, 60}},
-    {"angular-spring", {200, 120, 255}},
-    {"drag", {160, 160, 160}},
-    {"mouse-spring", {120, 235, 140}},
-    {"wind", {120, 255, 230}},
-    {"face-area", {255, 120, 150}},
-    {"pressure", {255, 210, 90}},
-    {"constraint", palette::constraintForceArrow},
+constexpr TypeColours typeColours[] = {
+    // type            arrow                            line
+    {"gravity", {90, 200, 255}, palette::spring},
+    {"drag", {160, 160, 160}, palette::spring},
+    {"spring", {255, 140, 60}, palette::spring},
+    {"angular-spring", {200, 120, 255}, {196, 128, 255}},
+    {"mouse-spring", {120, 235, 140}, palette::mouseSpring},
+    {"wind", {120, 255, 230}, palette::spring},
+    {"face-area", {255, 120, 150}, palette::spring},
+    {"pressure", {255, 210, 90}, {255, 210, 90}},  // a gas ring's outline
+    {"rod", palette::otherForceArrow, palette::constraint},
+    {"circular-wire", palette::otherForceArrow, {176, 214, 92}},
+    {"line", palette::otherForceArrow, {196, 200, 214}},
+    {"constraint", palette::constraintForceArrow, palette::spring},
 };
 
-// Line colour of each kind of force and constraint that draws, by type();
-// a kind not listed draws in palette::spring.
-constexpr ForceColour sketchColours[] = {
-    {"spring", palette::spring},
-    {"angular-spring", {196, 128, 255}},
-    {"mouse-spring", palette::mouseSpring},
-    {"pressure", {255, 210, 90}},  // a gas ring's outline
-    {"rod", palette::constraint},
-    {"circular-wire", {176, 214, 92}},
-    {"line", {196, 200, 214}},
-};
+inline const TypeColours* typeColoursOf(const char* type) {
+  for (const TypeColours& entry : typeColours)
+    if (std::strcmp(entry.type, type) == 0) return &entry;
+  return nullptr;
+}
 
 inline Rgb sketchColour(const char* type) {
-  for (const ForceColour& entry : sketchColours)
-    if (std::strcmp(entry.type, type) == 0) return entry.colour;
-  return palette::spring;
+  const TypeColours* entry = typeColoursOf(type);
+  return entry ? entry->line : palette::spring;
 }
 
 inline Rgb forceArrowColour(const char* type) {
-  for (const ForceColour& entry : forceArrowColours)
-    if (std::strcmp(entry.type, type) == 0) return entry.colour;
-  return palette::otherForceArrow;
+  const TypeColours* entry = typeColoursOf(type);
+  return entry ? entry->arrow : palette::otherForceArrow;
 }
 
 }  // namespace demo

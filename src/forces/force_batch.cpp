@@ -2,10 +2,8 @@
 
 #include <algorithm>
 
+#include "forces/force_kinds.h"
 #include "parallel_for.h"
-#include "particles/forces/drag.h"
-#include "particles/forces/gravity.h"
-#include "particles/forces/spring.h"
 #include "particles/threads.h"
 #include "vector_kernels.h"
 
@@ -46,38 +44,6 @@ void addField(const FieldTerm& t, int begin, int end, const Phase& s, double* f)
   }
 }
 
-// The force types that have a batch: each entry takes a force it knows into
-// the batches and returns true, or returns false for the next entry to try.
-struct Batcher {
-  bool (*take)(const Force&, SpringBatch&, FieldTerm&, bool& isField);
-};
-
-const Batcher kBatchers[] = {
-    {[](const Force& force, SpringBatch& springs, FieldTerm&, bool& isField) {
-       const auto* spring = dynamic_cast<const SpringForce*>(&force);
-       if (!spring) return false;
-       isField = false;
-       if (spring->enabled())
-         springs.add(spring->first(), spring->second(), spring->restLength(), spring->stiffness(),
-                     spring->damping());
-       return true;
-     }},
-    {[](const Force& force, SpringBatch&, FieldTerm& field, bool& isField) {
-       const auto* gravity = dynamic_cast<const GravityForce*>(&force);
-       if (!gravity) return false;
-       isField = true;
-       field = {FieldTerm::Kind::Gravity, gravity->acceleration(), 0.0};
-       return true;
-     }},
-    {[](const Force& force, SpringBatch&, FieldTerm& field, bool& isField) {
-       const auto* drag = dynamic_cast<const DragForce*>(&force);
-       if (!drag) return false;
-       isField = true;
-       field = {FieldTerm::Kind::Drag, Eigen::Vector2d::Zero(), drag->damping()};
-       return true;
-     }},
-};
-
 // a_i = w_i f_i for particles i in [begin, end) (f and a from the range's first entry).
 PARTICLES_VECTOR_CLONES
 void divideByMass(int begin, int end, const double* w, const double* f, double* a) {
@@ -114,12 +80,11 @@ void ForceBatches::update(const std::vector<const Force*>& forces, std::uint64_t
   };
   for (const auto& force : forces) {
     FieldTerm field{FieldTerm::Kind::Gravity, Eigen::Vector2d::Zero(), 0.0};
-    bool isField = false, taken = false;
-    for (const Batcher& b : kBatchers)
-      if ((taken = b.take(*force, open, field, isField))) break;
-    if (taken && !isField) continue;  // a spring: consecutive springs share one segment
+    const ForceKind* kind = forceKind(*force);
+    const Batched batched = kind && kind->batch ? kind->batch(*force, open, field) : Batched::No;
+    if (batched == Batched::Springs) continue;  // consecutive springs share one segment
     closeSprings();
-    if (!taken)
+    if (batched == Batched::No)
       segments_.push_back({Segment::Kind::Virtual, 0, field, force});
     else
       segments_.push_back({Segment::Kind::Field, 0, field, nullptr});

@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <mutex>
-#include <stdexcept>
-#include <string>
 
+#include "forces/force_kinds.h"
 #include "parallel_for.h"
 #include "particles/cancel.h"
-#include "particles/forces/angular_spring.h"
-#include "particles/forces/face_area.h"
 #include "particles/forces/mouse_spring.h"
-#include "particles/forces/spring.h"
 #include "particles/particle_system.h"
 #include "particles/threads.h"
 #include "xpbd/constraint_projection.h"
@@ -40,93 +36,14 @@ PARTICLES_VECTOR_CLONES void velocitiesFromPositions(int begin, int end, double 
   for (int k = begin; k < end; ++k) v[k] = (x[k] - xn[k]) / h;
 }
 
-// Compliance needs k_s > 0: a spring or angle spring of zero stiffness is a
-// pure damper and is applied as a force instead.
-void adoptSpring(const Force& force, double h, XpbdIntegrator::Forms& forms) {
-  const auto* spring = dynamic_cast<const SpringForce*>(&force);
-  if (spring != nullptr && !spring->enabled()) return;  // torn: no form at all
-  if (spring == nullptr || spring->stiffness() == 0.0) {
-    forms.applied.push_back(&force);
-    return;
-  }
-  CompliantDistance c;
-  c.i = spring->first();
-  c.j = spring->second();
-  c.rest = spring->restLength();
-  c.compliance = springCompliance(spring->stiffness(), spring->damping(), h);
-  forms.distances.push_back(c);
-}
-
-void adoptAngularSpring(const Force& force, double h, XpbdIntegrator::Forms& forms) {
-  const auto* spring = dynamic_cast<const AngularSpringForce*>(&force);
-  if (spring != nullptr && !spring->enabled()) return;  // an arm torn: no form at all
-  if (spring == nullptr || spring->stiffness() == 0.0) {
-    forms.applied.push_back(&force);
-    return;
-  }
-  CompliantAngle c;
-  for (int n = 0; n < 3; ++n) c.p[n] = spring->triple()[n];
-  c.restAngle = spring->restAngle();
-  c.compliance = springCompliance(spring->stiffness(), spring->damping(), h);
-  forms.angles.push_back(c);
-}
-
-// A mouse joint of positive stiffness is held by a compliant attachment.
-void adoptMouseSpring(const Force& force, double, XpbdIntegrator::Forms& forms) {
-  const auto* mouse = dynamic_cast<const MouseSpringForce*>(&force);
-  if (mouse == nullptr || mouse->stiffness() == 0.0) {
-    forms.applied.push_back(&force);
-    return;
-  }
-  forms.attachments.push_back(mouse);
-}
-
-// A face-area force of positive stiffness: each face a one-sided compliant
-// area constraint (xpbd/area.h).
-void adoptFaceArea(const Force& force, double h, XpbdIntegrator::Forms& forms) {
-  const auto* area = dynamic_cast<const FaceAreaForce*>(&force);
-  if (area == nullptr || area->stiffness() == 0.0) {
-    if (area == nullptr) forms.applied.push_back(&force);
-    return;  // no stiffness: no force at all
-  }
-  for (const AreaFace& face : area->faces()) {
-    CompliantArea c;
-    c.ring = face.ring;
-    c.restArea = face.restArea;
-    c.floor = area->floor();
-    c.compliance = springCompliance(area->stiffness() * face.restArea, 0.0, h);
-    forms.areas.push_back(std::move(c));
-  }
-}
-
-// The forces with a position form: stiff springs become compliant
-// constraints, faces one-sided area constraints. Every other force (fields,
-// drag, wind, a gas's pressure, a user's own force type) is applied in the
-// prediction: a load there is balanced exactly by the constraints'
-// projections at rest, as gravity is by a hanging spring's.
-struct ForceForm {
-  const char* type;
-  void (*adopt)(const Force&, double h, XpbdIntegrator::Forms&);
-};
-
-const ForceForm kForceForms[] = {
-    {"spring", adoptSpring},
-    {"angular-spring", adoptAngularSpring},
-    {"mouse-spring", adoptMouseSpring},
-    {"face-area", adoptFaceArea},
-};
-
 }  // namespace
 
 XpbdIntegrator::Forms XpbdIntegrator::positionForms(const ParticleSystem& system, double h) {
   Forms forms;
   for (const auto& force : system.forceObjects()) {
-    const std::string type = force->type();
-    const ForceForm* form = nullptr;
-    for (const ForceForm& f : kForceForms)
-      if (type == f.type) form = &f;
-    if (form != nullptr)
-      form->adopt(*force, h, forms);
+    const ForceKind* kind = forceKind(*force);
+    if (kind && kind->positionForm)
+      kind->positionForm(*force, h, forms);
     else
       forms.applied.push_back(force.get());
   }

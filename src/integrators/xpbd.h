@@ -13,6 +13,7 @@
 #include "xpbd/attachment.h"
 #include "xpbd/distance_blocks.h"
 #include "xpbd/hanging_lines.h"
+#include "xpbd/position_forms.h"
 
 namespace particles {
 
@@ -39,7 +40,7 @@ class MouseSpringForce;
 //     along each particle's path from xⁿ), so that a contact's impulse enters
 //     the next substep's prediction and constraints.
 // The position error is first order in h. A force without a position form in
-// the table in xpbd.cpp (fields, drag, wind, pressure, a user's own force type) is
+// the table in forces/force_kinds.cpp (fields, drag, wind, pressure, a user's own force type) is
 // applied in the prediction, explicitly, once per substep. Torn springs and
 // angle springs have no form at all.
 class XpbdIntegrator : public Integrator {
@@ -53,15 +54,8 @@ class XpbdIntegrator : public Integrator {
   const XpbdSettings& settings() const { return settings_; }
 
   // How every force of the system enters a substep of h, compliances set for
-  // that h; throws std::invalid_argument naming the first force with no known form.
-  struct Forms {
-    std::vector<CompliantDistance> distances;
-    std::vector<CompliantAngle> angles;
-    std::vector<CompliantArea> areas;        // one per face of each face-area force
-    // Mouse joints, read at each projection (the target moves between steps).
-    std::vector<const MouseSpringForce*> attachments;
-    std::vector<const Force*> applied;  // applied as forces in the prediction
-  };
+  // that h (each force by its type's row in forces/force_kinds.cpp).
+  using Forms = PositionForms;
   static Forms positionForms(const ParticleSystem& system, double h);
 
  private:
