@@ -79,9 +79,8 @@ void Dopri5Settings::validate() const {
 }
 
 void XpbdSettings::validate() const {
-  // Upper bounds keep a typo from turning one step into hours of work.
-  requireInRange("integrator substeps", substeps, 1, 100000);
-  requireInRange("integrator iterations", iterations, 1, 10000);
+  requireInRange("integrator substeps", substeps, substepRange.min, substepRange.max);
+  requireInRange("integrator iterations", iterations, iterationRange.min, iterationRange.max);
 }
 
 const IntegratorInfo* findIntegrator(const std::string& name) {

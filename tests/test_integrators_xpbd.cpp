@@ -393,6 +393,23 @@ TEST(Xpbd, SettingsAreValidatedNamingTheField) {
   EXPECT_EQ(direct.settings().substeps, 7);
 }
 
+// The declared ranges are what validation enforces, at both ends (the
+// command line, the scene file and the panel read the same ranges).
+TEST(Xpbd, TheDeclaredRangesAreTheValidatedOnes) {
+  for (const auto& [range, field] : {std::pair{XpbdSettings::substepRange, &XpbdSettings::substeps},
+                                     std::pair{XpbdSettings::iterationRange, &XpbdSettings::iterations}}) {
+    XpbdSettings s;
+    for (const int inside : {range.min, range.max}) {
+      s.*field = inside;
+      EXPECT_NO_THROW(s.validate()) << inside;
+    }
+    for (const int outside : {range.min - 1, range.max + 1}) {
+      s.*field = outside;
+      EXPECT_THROW(s.validate(), std::invalid_argument) << outside;
+    }
+  }
+}
+
 TEST(Xpbd, ReportsTheSubstepAsItsInternalStep) {
   ParticleSystem system = hangingSpring(1.0, 10.0, 0.0, 9.8);
   auto integrator = xpbd(8, 2);

@@ -171,25 +171,35 @@ int run(const RunOptions& o) {
 
 namespace {
 
+// "in [1, 100000]": a setting's declared range, as the help states it.
+std::string inRange(particles::IntRange range) {
+  return "in [" + std::to_string(range.min) + ", " + std::to_string(range.max) + "]";
+}
+
 // The options that choose the integrator and its settings, dt and the step count.
 void addSteppingOptions(CLI::App* sub, const std::shared_ptr<RunOptions>& options) {
+  using particles::XpbdSettings;
   sub->add_option("--integrator", options->integrator,
                   "integrator: " + particles::integratorNames() + " (default: the scene's, rk4 for built-ins)")
       ->check(options::integratorName());
   options->toleranceOption =
       sub->add_option("--tolerance", options->integratorSettings.dopri5.tolerance,
-                      "local error tolerance of the adaptive scheme (dopri5), >= 1e-13; ignored by "
-                      "fixed-step integrators (default: the scene's, " +
+                      "local error tolerance of the adaptive scheme (dopri5), >= " +
+                          output::formatNumber(particles::Dopri5Settings::minTolerance) +
+                          "; ignored by fixed-step integrators (default: the scene's, " +
                           output::formatNumber(particles::IntegratorSettings{}.dopri5.tolerance) + ")")
           ->check(options::integratorTolerance());
   options->substepsOption =
       sub->add_option("--substeps", options->integratorSettings.xpbd.substeps,
-                      "xpbd: substeps per step, in [1, 100000] (ignored by the others; default: the scene's, 20)")
-          ->check(options::decimalInteger(1, 100000));
+                      "xpbd: substeps per step, " + inRange(XpbdSettings::substepRange) +
+                          " (ignored by the others; default: the scene's, " + std::to_string(XpbdSettings{}.substeps) +
+                          ")")
+          ->check(options::decimalInteger(XpbdSettings::substepRange.min, XpbdSettings::substepRange.max));
   options->iterationsOption =
       sub->add_option("--iterations", options->integratorSettings.xpbd.iterations,
-                      "xpbd: constraint passes per substep, in [1, 10000] (default: the scene's, 1)")
-          ->check(options::decimalInteger(1, 10000));
+                      "xpbd: constraint passes per substep, " + inRange(XpbdSettings::iterationRange) +
+                          " (default: the scene's, " + std::to_string(XpbdSettings{}.iterations) + ")")
+          ->check(options::decimalInteger(XpbdSettings::iterationRange.min, XpbdSettings::iterationRange.max));
   options->linesOption = sub->add_flag("--lines,!--no-lines", options->integratorSettings.xpbd.lines,
                                        "xpbd: solve each straight line of springs hanging from a held particle "
                                        "directly before the Gauss-Seidel pass (default: the scene's, off)");

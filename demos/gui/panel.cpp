@@ -291,6 +291,20 @@ void App::drawPaneIntegrator(std::size_t k) {
   ImGui::PopID();
 }
 
+namespace {
+
+// A logarithmic slider over the setting's declared range up to `reach` (a
+// slider over 1…100000 could not pick 20); a value typed in (ctrl+click) is
+// held to the whole declared range.
+bool settingSlider(const char* label, int& value, particles::IntRange range, int reach) {
+  if (!ImGui::SliderInt(label, &value, range.min, std::min(reach, range.max), "%d", ImGuiSliderFlags_Logarithmic))
+    return false;
+  value = std::clamp(value, range.min, range.max);
+  return true;
+}
+
+}  // namespace
+
 // Schemes with settings of their own: dopri5's error tolerance, xpbd's
 // substeps per step, constraint passes per substep and hanging lines solved directly.
 void App::drawIntegratorSettings() {
@@ -309,8 +323,9 @@ void App::drawIntegratorSettings() {
   for (const auto& pane : panes_) anySubsteps |= table[pane->integratorIndex()].usesSubsteps;
   if (anySubsteps) {
     particles::IntegratorSettings settings = panes_.front()->integratorSettings();
-    const bool substeps = ImGui::SliderInt("substeps", &settings.xpbd.substeps, 1, 200, "%d", ImGuiSliderFlags_Logarithmic);
-    const bool iterations = ImGui::SliderInt("iterations", &settings.xpbd.iterations, 1, 64, "%d", ImGuiSliderFlags_Logarithmic);
+    const bool substeps = settingSlider("substeps", settings.xpbd.substeps, particles::XpbdSettings::substepRange, 200);
+    const bool iterations =
+        settingSlider("iterations", settings.xpbd.iterations, particles::XpbdSettings::iterationRange, 64);
     const bool lines = ImGui::Checkbox("solve hanging lines", &settings.xpbd.lines);
     if (substeps || iterations || lines)
       for (auto& pane : panes_) pane->setIntegratorSettings(settings);

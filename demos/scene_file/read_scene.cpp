@@ -70,8 +70,10 @@ void readIntegratorSettings(const JsonNode& node, particles::IntegratorSettings&
     guarded(field, [&] { s.validate(); });
   };
   read("tolerance", [&](const JsonNode& field) { s.dopri5.tolerance = field.positive(); });
-  read("substeps", [&](const JsonNode& field) { s.xpbd.substeps = field.integer(1, 100000); });
-  read("iterations", [&](const JsonNode& field) { s.xpbd.iterations = field.integer(1, 10000); });
+  const auto integer = [](const JsonNode& field, particles::IntRange range) { return field.integer(range.min, range.max); };
+  read("substeps", [&](const JsonNode& field) { s.xpbd.substeps = integer(field, particles::XpbdSettings::substepRange); });
+  read("iterations",
+       [&](const JsonNode& field) { s.xpbd.iterations = integer(field, particles::XpbdSettings::iterationRange); });
   read("lines", [&](const JsonNode& field) { s.xpbd.lines = field.boolean(); });
 }
 

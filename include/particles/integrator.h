@@ -71,14 +71,24 @@ struct ImplicitEulerSettings {
   void validate() const;  // throws naming the bad field
 };
 
+// The accepted range of an integer setting, declared once beside it: the
+// engine validates by it, and the command line (its check and its help), the
+// scene file's reader and the panel read it.
+struct IntRange {
+  int min, max;
+};
+
 // XPBD (src/integrators/xpbd.h).
 struct XpbdSettings {
   // A step of dt is `substeps` substeps of h = dt/substeps, each with
   // `iterations` Gauss–Seidel passes over the constraints. Macklin et al.
   // 2019 favour many substeps of one pass; the defaults are measured by
   // `particle-lab small-steps` (report, "Small steps").
-  int substeps = 20;     // in [1, 100000]
-  int iterations = 1;    // in [1, 10000]
+  int substeps = 20;
+  int iterations = 1;
+  // Upper bounds keep a typo from turning one step into hours of work.
+  static constexpr IntRange substepRange{1, 100000};
+  static constexpr IntRange iterationRange{1, 10000};
   // Solve each straight line of springs hanging from a held particle
   // directly, before each pass's Gauss–Seidel sweep (src/xpbd/hanging_lines.h):
   // a hanging cloth or strand then holds its length with a few substeps.
