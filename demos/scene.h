@@ -106,6 +106,8 @@ struct SceneInfo {
 
 // Every built-in scene, in the order of the demo's number keys.
 const std::vector<SceneInfo>& sceneTable();
+// The built-in scene of that name, or nullptr.
+const SceneInfo* findScene(const std::string& name);
 
 // Builds a scene by name: the preset fills every parameter, then the overrides
 // replace the ones they name. Throws std::invalid_argument for an unknown

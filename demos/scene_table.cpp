@@ -118,20 +118,24 @@ void refuseStartingOverlap(const Scene& scene, const std::map<std::string, std::
 
 }  // namespace
 
+const SceneInfo* findScene(const std::string& name) {
+  for (const SceneInfo& info : sceneTable())
+    if (name == info.name) return &info;
+  return nullptr;
+}
+
 Scene buildScene(const std::string& name, const std::map<std::string, std::string>& overrides,
                  const std::string& preset) {
   presetIndex(preset);  // an unknown preset is reported before an unknown scene
-  for (const SceneInfo& info : sceneTable()) {
-    if (name != info.name) continue;
-    try {
-      Scene scene = info.build(SceneParams(info.params, overrides, preset));
-      refuseStartingOverlap(scene, overrides);
-      return scene;
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("scene '" + name + "': " + e.what());
-    }
+  const SceneInfo* info = findScene(name);
+  if (!info) throw std::invalid_argument("unknown scene '" + name + "' (valid: " + joinNames(sceneTable()) + ")");
+  try {
+    Scene scene = info->build(SceneParams(info->params, overrides, preset));
+    refuseStartingOverlap(scene, overrides);
+    return scene;
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("scene '" + name + "': " + e.what());
   }
-  throw std::invalid_argument("unknown scene '" + name + "' (valid: " + joinNames(sceneTable()) + ")");
 }
 
 std::vector<std::array<int, 2>> faceEdges(const Scene& scene) {

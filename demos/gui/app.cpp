@@ -12,7 +12,6 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
-#include <type_traits>
 
 #include "backends/imgui_impl_glut.h"
 #include "backends/imgui_impl_opengl3.h"
@@ -42,30 +41,11 @@ constexpr ComparePreset comparePresets[] = {
     {"midpoint", 4.0},
 };
 
-// The scene table's "try this" line, on a table that has one (SceneInfo::hint).
-template <class T, class = void>
-struct HasHint : std::false_type {};
-template <class T>
-struct HasHint<T, std::void_t<decltype(std::declval<const T&>().hint)>> : std::true_type {};
-inline std::string text(const char* s) { return s ? s : ""; }
-inline std::string text(const std::string& s) { return s; }
-template <class Info>
-std::string hintOf(const Info& info) {
-  if constexpr (HasHint<Info>::value) return text(info.hint);
-  else return "";
-}
-
-const scenes::SceneInfo* findSceneInfo(const std::string& name) {
-  for (const scenes::SceneInfo& info : scenes::sceneTable())
-    if (name == info.name) return &info;
-  return nullptr;
-}
-
 // The "try this" line: the choice's own, else its scene's.
 std::string hintFor(const SceneChoice& choice) {
   if (!choice.hint.empty()) return choice.hint;
-  const scenes::SceneInfo* info = findSceneInfo(choice.name);
-  return info ? hintOf(*info) : "";
+  const scenes::SceneInfo* info = scenes::findScene(choice.name);
+  return info && info->hint ? info->hint : "";
 }
 
 // A pixel coordinate from a double that may be huge or NaN (a script's

@@ -34,9 +34,8 @@ double jacobiSn(double u, double k) {
 namespace {
 template <class Params>
 Params paramsOf(const SceneChoice& choice) {
-  for (const scenes::SceneInfo& info : scenes::sceneTable())
-    if (choice.name == info.name) return scenes::readParams<Params>(scenes::SceneParams(info.params, choice.params, choice.preset));
-  return Params{};
+  const scenes::SceneInfo* info = scenes::findScene(choice.name);
+  return info ? scenes::readParams<Params>(scenes::SceneParams(info->params, choice.params, choice.preset)) : Params{};
 }
 
 // The oscillator's ghost runs on a parallel track below the real one.

@@ -126,9 +126,8 @@ std::string App::ghostLabel() const {
 std::string App::sceneSummary() const {
   const Simulation& first = *panes_.front();
   if (!first.scene().caption.empty()) return first.scene().caption;
-  for (const scenes::SceneInfo& i : scenes::sceneTable())
-    if (scene_.name == i.name) return i.summary;
-  return "scene file";
+  const scenes::SceneInfo* info = scenes::findScene(scene_.name);
+  return info ? info->summary : "scene file";
 }
 
 // The first pane's particles outside its view (not counting non-finite ones).

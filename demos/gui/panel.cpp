@@ -15,11 +15,7 @@
 namespace demo {
 
 namespace {
-const scenes::SceneInfo* findScene(const std::string& name) {
-  for (const scenes::SceneInfo& info : scenes::sceneTable())
-    if (name == info.name) return &info;
-  return nullptr;
-}
+using scenes::findScene;
 
 // The constraint solve's choices as the panel shows them (scene files use
 // particles/solver_names.h).
