@@ -3,12 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <vector>
 
 #include "particles/cancel.h"
 #include "particles/particle_system.h"
-#include "system_internals.h"
-#include "vector_kernels.h"
 
 namespace particles {
 
@@ -67,29 +64,6 @@ void combine(const Eigen::VectorXd& y0, double h, const double* c, const std::ar
   }
 }
 
-// combine() over the entries [begin, end) only, each entry's operations as
-// combine's whole-vector expression does them (the same bits): y₀ plus the
-// first term, then each further term added in turn (b₂ = 0 skipped in the
-// sum of six), one pass per term over the range (a few kilobytes, in cache).
-PARTICLES_VECTOR_CLONES
-void firstTerm(const double* y0, double w, const double* k, double* out, int begin, int end) {
-#pragma omp simd
-  for (int e = begin; e < end; ++e) out[e] = y0[e] + w * k[e];
-}
-
-PARTICLES_VECTOR_CLONES
-void nextTerm(double w, const double* k, double* out, int begin, int end) {
-#pragma omp simd
-  for (int e = begin; e < end; ++e) out[e] = out[e] + w * k[e];
-}
-
-void combineRange(const double* y0, const double* w, const double* const* k, int count, double* out, int begin,
-                  int end) {
-  firstTerm(y0, w[0], k[0], out, begin, end);
-  for (int j = 1; j < count; ++j)
-    if (count < 6 || j != 1) nextTerm(w[j], k[j], out, begin, end);
-}
-
 // Σ_i (e_i / sc_i)² over one half of y (x or v), e = h Σ eⱼ kⱼ (e₂ = 0) and
 // sc_i = 1 + max(|y₀_i|, |y₁_i|), in one pass (the tolerance is applied by the caller).
 double squaredScaledError(const std::array<Eigen::VectorXd, 7>& k, const Eigen::VectorXd& y0,
@@ -105,37 +79,18 @@ double squaredScaledError(const std::array<Eigen::VectorXd, 7>& k, const Eigen::
 
 // The velocity is x's derivative, so the velocity of stage s is kx_[s]: v₀ is
 // kx_[0], the stage velocities are formed in place and y₁'s velocity is kx_[6].
-// Stage 2's point is formed from k₁ alone; the six evaluations then run as one
-// sequence (SystemInternals::accelerations, as RK4's four): evaluation s (of
-// stages 2…7) stores its accelerations as kv_[s] and writes stage s + 1's
-// point, range by range in its force pass. The stage positions alternate
-// between xs_ and xt_ (a range's neighbours may still be reading the last
-// ones), and the last is y₁'s, x1_.
 double Dopri5Integrator::trial(ParticleSystem& system, double h) {
-  const Eigen::Index n = x0_.size();
-  xt_.resize(n);
-  for (int s = 1; s < 7; ++s) kx_[s].resize(n), kv_[s].resize(n);
-  x1_.resize(n);
-  a_.resize(n);
-  combine(x0_, h, a[1], kx_, 1, xs_);
-  combine(kx_[0], h, a[1], kv_, 1, kx_[1]);
-  Eigen::VectorXd* position[7] = {nullptr, &xs_, &xt_, &xs_, &xt_, &xs_, &x1_};  // stage s's
-  double w[7][6];  // stage s's weights h a_sj (s ≤ 5) and h b_j (s = 6)
-  for (int s = 2; s < 7; ++s)
-    for (int j = 0; j < s; ++j) w[s][j] = h * (s < 6 ? a[s][j] : b[j]);
-  const double* kx[6] = {kx_[0].data(), kx_[1].data(), kx_[2].data(), kx_[3].data(), kx_[4].data(), kx_[5].data()};
-  const double* kv[6] = {kv_[0].data(), kv_[1].data(), kv_[2].data(), kv_[3].data(), kv_[4].data(), kv_[5].data()};
-  std::vector<StatePoint> points;
-  for (int s = 1; s < 7; ++s) points.push_back({*position[s], kx_[s]});
-  SystemInternals::accelerations(system, points, a_, [&](int k, int begin, int end) {
-    const int s = k + 1, from = 2 * begin, to = 2 * end;
-    std::copy(a_.data() + from, a_.data() + to, kv_[s].data() + from);
-    if (s == 6) return;
-    combineRange(x0_.data(), w[s + 1], kx, s + 1, position[s + 1]->data(), from, to);
-    combineRange(kx_[0].data(), w[s + 1], kv, s + 1, kx_[s + 1].data(), from, to);
-  });
+  for (int s = 1; s < 6; ++s) {
+    combine(x0_, h, a[s], kx_, s, xs_);
+    combine(kx_[0], h, a[s], kv_, s, kx_[s]);
+    system.acceleration(xs_, kx_[s], kv_[s]);
+  }
+  combine(x0_, h, b, kx_, 6, x1_);
+  combine(kx_[0], h, b, kv_, 6, kx_[6]);
+  system.acceleration(x1_, kx_[6], kv_[6]);
 
   // err = sqrt(mean((e_i / sc_i)²)) over the 2N components of (x, v).
+  const Eigen::Index n = x0_.size();
   if (n == 0) return 0.0;
   const double sum = squaredScaledError(kx_, x0_, x1_, h) + squaredScaledError(kv_, kx_[0], kx_[6], h);
   const double err = std::sqrt(sum / (2.0 * n)) / settings_.tolerance;

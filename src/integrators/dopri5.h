@@ -66,9 +66,8 @@ class Dopri5Integrator : public Integrator {
   double accepted_ = 0.0;  // the last accepted internal step (0: none yet)
   std::array<Eigen::VectorXd, 7> kx_, kv_;  // stage derivatives of x (the stage velocities) and v
   // (x0_, kx_[0]): the internal solution, lead_ (s) ahead of the output state;
-  // x1_ a trial's end positions, xs_ and xt_ the stages' in turn; a_ a
-  // stage's accelerations; vs_, a_ the starting step's probe.
-  Eigen::VectorXd x0_, x1_, xs_, xt_, vs_, a_;
+  // x1_ a trial's end positions, xs_ a stage's; vs_, a_ the starting step's probe.
+  Eigen::VectorXd x0_, x1_, xs_, vs_, a_;
   double lead_ = 0.0;
   double denseStep_ = 0.0;  // length of the last accepted step
   // The output state last returned: the internal solution (and its k₁) is
