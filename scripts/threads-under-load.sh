@@ -73,6 +73,13 @@ run() {
 }
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+# ratios BASE OTHER: each round's value in OTHER over its value in BASE, a line each.
+ratios() { paste "$1" "$2" | awk '{ print $2 / $1 }'; }
+# round BASE OTHER: the median of those ratios and their range, "0.59 (0.57-0.60)".
+round() {
+  local r; r=$(ratios "$1" "$2" | sort -g)
+  printf '%4.2f (%.2f-%.2f)' "$(median <<<"$r")" "$(head -1 <<<"$r")" "$(tail -1 <<<"$r")"
+}
 
 echo "threads under load: $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)); medians over $rounds runs of each run's median step_us"
 printf '%-22s %4s %10s %20s %20s %8s %17s %17s %8s %8s %s\n' case busy "1 thread" "--threads 2" "default" ">1 used" \
@@ -103,23 +110,17 @@ for competitors in $levels; do
     one=$(median <"$work/times-0")
     two=$(median <"$work/times-1")
     default=$(median <"$work/times-2")
-    # Line r of each times file is round r's run: the ratios of one round, then their ranges.
-    spread=$(paste "$work/times-0" "$work/times-1" "$work/times-2" |
-      awk '{ a = $2 / $1; b = $3 / $1
-             if (NR == 1 || a < alo) alo = a; if (NR == 1 || a > ahi) ahi = a
-             if (NR == 1 || b < blo) blo = b; if (NR == 1 || b > bhi) bhi = b }
-           END { printf "%.2f-%.2f %.2f-%.2f", alo, ahi, blo, bhi }')
-    round2=$(paste "$work/times-0" "$work/times-1" | awk '{ print $2 / $1 }' | median)
-    rounddef=$(paste "$work/times-0" "$work/times-2" | awk '{ print $2 / $1 }' | median)
-    mean2=$(paste "$work/means-0" "$work/means-1" | awk '{ print $2 / $1 }' | median)
-    meandef=$(paste "$work/means-0" "$work/means-2" | awk '{ print $2 / $1 }' | median)
+    # Line r of each times file is round r's run: the ratios of one round, their median and range.
+    round2=$(round "$work/times-0" "$work/times-1")
+    rounddef=$(round "$work/times-0" "$work/times-2")
+    mean2=$(ratios "$work/means-0" "$work/means-1" | median)
+    meandef=$(ratios "$work/means-0" "$work/means-2" | median)
     awk -v name="$name" -v busy="$competitors" -v one="$one" -v two="$two" -v def="$default" \
-      -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" -v spread="$spread" \
+      -v more="$(median <"$work/more")" -v load="$(cut -d' ' -f1 /proc/loadavg)" \
       -v mean2="$mean2" -v meandef="$meandef" -v round2="$round2" -v rounddef="$rounddef" \
-      'BEGIN { used = more < 0 ? "-" : sprintf("%.0f%%", 100 * more); split(spread, range, " ")
-               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %4.2f (%s) %4.2f (%s) %7.2fx %7.2fx %s\n",
-                      name, busy, one, two, two / one, def, def / one, used, round2, range[1], rounddef, range[2],
-                      mean2, meandef, load }'
+      'BEGIN { used = more < 0 ? "-" : sprintf("%.0f%%", 100 * more)
+               printf "%-22s %4d %7.1f us %9.1f us (%5.2fx) %9.1f us (%5.2fx) %8s %s %s %7.2fx %7.2fx %s\n",
+                      name, busy, one, two, two / one, def, def / one, used, round2, rounddef, mean2, meandef, load }'
   done
   stop_busy
 done
