@@ -39,55 +39,51 @@ Batched batchDrag(const Force& force, SpringBatch&, FieldTerm& field) {
   return Batched::Field;
 }
 
+// Each returns false for a force it gives no form (another class of the same
+// name, or no stiffness to make a compliance of): the force is then applied.
 // Compliance needs k_s > 0: a spring or angle spring of zero stiffness is a
-// pure damper and is applied as a force instead.
-void springForm(const Force& force, double h, PositionForms& forms) {
+// pure damper, applied as a force.
+bool springForm(const Force& force, double h, PositionForms& forms) {
   const auto* spring = dynamic_cast<const SpringForce*>(&force);
-  if (spring != nullptr && !spring->enabled()) return;  // torn: no form at all
-  if (spring == nullptr || spring->stiffness() == 0.0) {
-    forms.applied.push_back(&force);
-    return;
-  }
+  if (spring == nullptr) return false;
+  if (!spring->enabled()) return true;  // torn: no form at all
+  if (spring->stiffness() == 0.0) return false;
   CompliantDistance c;
   c.i = spring->first();
   c.j = spring->second();
   c.rest = spring->restLength();
   c.compliance = springCompliance(spring->stiffness(), spring->damping(), h);
   forms.distances.push_back(c);
+  return true;
 }
 
-void angularSpringForm(const Force& force, double h, PositionForms& forms) {
+bool angularSpringForm(const Force& force, double h, PositionForms& forms) {
   const auto* spring = dynamic_cast<const AngularSpringForce*>(&force);
-  if (spring != nullptr && !spring->enabled()) return;  // an arm torn: no form at all
-  if (spring == nullptr || spring->stiffness() == 0.0) {
-    forms.applied.push_back(&force);
-    return;
-  }
+  if (spring == nullptr) return false;
+  if (!spring->enabled()) return true;  // an arm torn: no form at all
+  if (spring->stiffness() == 0.0) return false;
   CompliantAngle c;
   for (int n = 0; n < 3; ++n) c.p[n] = spring->triple()[n];
   c.restAngle = spring->restAngle();
   c.compliance = springCompliance(spring->stiffness(), spring->damping(), h);
   forms.angles.push_back(c);
+  return true;
 }
 
 // A mouse joint of positive stiffness is held by a compliant attachment.
-void mouseSpringForm(const Force& force, double, PositionForms& forms) {
+bool mouseSpringForm(const Force& force, double, PositionForms& forms) {
   const auto* mouse = dynamic_cast<const MouseSpringForce*>(&force);
-  if (mouse == nullptr || mouse->stiffness() == 0.0) {
-    forms.applied.push_back(&force);
-    return;
-  }
+  if (mouse == nullptr || mouse->stiffness() == 0.0) return false;
   forms.attachments.push_back(mouse);
+  return true;
 }
 
 // A face-area force of positive stiffness: each face a one-sided compliant
 // area constraint (xpbd/area.h); of none, no force at all.
-void faceAreaForm(const Force& force, double h, PositionForms& forms) {
+bool faceAreaForm(const Force& force, double h, PositionForms& forms) {
   const auto* area = dynamic_cast<const FaceAreaForce*>(&force);
-  if (area == nullptr || area->stiffness() == 0.0) {
-    if (area == nullptr) forms.applied.push_back(&force);
-    return;
-  }
+  if (area == nullptr) return false;
+  if (area->stiffness() == 0.0) return true;
   for (const AreaFace& face : area->faces()) {
     CompliantArea c;
     c.ring = face.ring;
@@ -96,6 +92,7 @@ void faceAreaForm(const Force& force, double h, PositionForms& forms) {
     c.compliance = springCompliance(area->stiffness() * face.restArea, 0.0, h);
     forms.areas.push_back(std::move(c));
   }
+  return true;
 }
 
 }  // namespace

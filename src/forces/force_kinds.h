@@ -26,9 +26,10 @@ struct ForceKind {
   // not this type's class after all (a user's force of the same name), or
   // no batch.
   Batched (*batch)(const Force& force, SpringBatch& springs, FieldTerm& field);
-  // Adds the force's position form for substeps of h, or the force to
-  // forms.applied; null: applied.
-  void (*positionForm)(const Force& force, double h, PositionForms& forms);
+  // Adds the force's position form for substeps of h (none for a torn
+  // spring) and returns true, or returns false: the force is applied in the
+  // prediction (as every force of a type whose entry is null).
+  bool (*positionForm)(const Force& force, double h, PositionForms& forms);
 };
 
 // The row of force.type(), or nullptr.

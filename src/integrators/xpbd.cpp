@@ -42,10 +42,7 @@ XpbdIntegrator::Forms XpbdIntegrator::positionForms(const ParticleSystem& system
   Forms forms;
   for (const auto& force : system.forceObjects()) {
     const ForceKind* kind = forceKind(*force);
-    if (kind && kind->positionForm)
-      kind->positionForm(*force, h, forms);
-    else
-      forms.applied.push_back(force.get());
+    if (!kind || !kind->positionForm || !kind->positionForm(*force, h, forms)) forms.applied.push_back(force.get());
   }
   return forms;
 }
